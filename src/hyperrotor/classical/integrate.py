@@ -1,2 +1,621 @@
-"""(in progress)"""
-__all__: list[str] = []
+r"""Numerical integration of the N-dimensional Euler equations: :func:`simulate`.
+
+Equations (eqs. 24-26 of the paper, components; identical in the "paper" and
+"standard" matrix conventions, see :mod:`hyperrotor.conventions`)
+
+.. math:: \dot L_a = \sum_{b,c} C_{bc}^{\;a}\,\omega_b L_c + \tau_a,
+          \qquad L_a = I_a\,\omega_a, \qquad \dot T = \Omega\,T,
+
+i.e. :math:`\dot L = [\Omega, L] + \tau` with plain matrices, ``tau`` an optional
+body-frame torque (components in plane order, units of :math:`dL/dt`) and
+``T`` the attitude of eq. (19) (space to body: :math:`L_\text{body} = T L_\text{space} T^{\mathsf T}`),
+:math:`\Omega` the angular-velocity matrix in the body's convention.
+
+Methods
+-------
+``"splitting2"``, ``"splitting4"``, ``"splitting6"``, ``"splitting8"``
+    Lie-Poisson splitting. The Hamiltonian :math:`H = \sum_a L_a^2/(2 I_a)`
+    is split into one term per plane; the flow of :math:`L_a^2/(2I_a)` keeps
+    :math:`L_a` fixed and rotates :math:`L` (and ``T``) exactly by the angle
+    :math:`h L_a / I_a` in plane ``a`` (see :mod:`hyperrotor.classical._kernels`).
+    The basic method :math:`S_2(h)` is Strang's symmetric product over the planes
+    in paper order followed by the reverse order (order 2). Orders 4, 6, 8 are
+    symmetric compositions :math:`S_2(\gamma_s h)\cdots S_2(\gamma_1 h)`:
+
+    * order 4: Yoshida's / Suzuki's triple jump, :math:`\gamma_1 = \gamma_3 =
+      1/(2 - 2^{1/3})`, :math:`\gamma_2 = 1 - 2\gamma_1` (Yoshida, Phys. Lett. A 150,
+      262 (1990));
+    * order 6: Kahan & Li's 9-stage set ``s9odr6a``;
+    * order 8: Kahan & Li's 17-stage set ``s17odr8a`` (W. Kahan and R.-C. Li,
+      Math. Comp. 66, 1089 (1997); coefficients as tabulated in Hairer, Lubich,
+      Wanner, *Geometric Numerical Integration*, 2nd ed., Sec. V.3.2, p. 157).
+
+    Every elementary flow is an exact coadjoint rotation, so the Casimirs
+    (coefficients of the characteristic polynomial of ``L``, eq. 38) are kept
+    to round-off, the maps are Poisson (symplectic on each coadjoint orbit),
+    symmetric and time-reversible, and the energy error stays bounded (no
+    drift) over long runs. ``T`` stays orthogonal to round-off. Fixed steps;
+    with ``rtol`` the step is chosen by the rule of :func:`_choose_step`.
+    A *constant* body torque is supported as an exact kick
+    :math:`L \mapsto L + \tfrac{\gamma h}{2}\tau` on both sides of each
+    :math:`S_2(\gamma h)` (still symmetric, so the composed orders hold; the
+    Casimirs are then of course not conserved). Callable torques need a
+    scipy method.
+``"DOP853"``, ``"RK45"``, ``"LSODA"``, ``"Radau"``
+    :func:`scipy.integrate.solve_ivp` with ``rtol`` and
+    ``atol = rtol * max|omega0|`` on the angular velocities (and the attitude
+    entries when asked), one call per ensemble member; the right-hand side is
+    ``body.rhs`` when ``body`` is a :class:`hyperrotor.RigidBody`, else an
+    equivalent sparse evaluation of the component equations.
+``"auto"``
+    A callable torque -> ``"DOP853"``. Otherwise the splitting of order 2, 4, 6
+    or 8 for ``rtol >= 1e-4``, ``>= 1e-7``, ``>= 1e-10``, smaller (tight
+    tolerances favour high order; see ``benchmarks/work_precision_classical.py``);
+    with only ``dt`` given, ``"splitting4"``.
+"""
+from __future__ import annotations
+
+import math
+import time
+from numbers import Real
+from typing import Any, Callable
+
+import numpy as np
+
+from hyperrotor.conventions import (
+    check_convention,
+    dimension_from_count,
+    planes,
+    structure_constants,
+    to_matrix,
+)
+
+from . import _kernels
+
+__all__ = ["simulate", "Trajectory", "METHODS", "splitting_coefficients"]
+
+#: Allowed ``method=`` names of :func:`simulate`.
+METHODS = ("auto", "splitting2", "splitting4", "splitting6", "splitting8", "DOP853", "RK45", "LSODA", "Radau")
+_SCIPY_METHODS = ("DOP853", "RK45", "LSODA", "Radau")
+_SPLITTING_ORDER = {"splitting2": 2, "splitting4": 4, "splitting6": 6, "splitting8": 8}
+
+_DEFAULT_RTOL = 1e-9
+
+# Half of each symmetric coefficient set (the middle one last); see the module docstring.
+_KAHAN_LI_6 = (
+    0.39216144400731413927925056,
+    0.33259913678935943859974864,
+    -0.70624617255763935980996482,
+    0.08221359629355080023149045,
+)
+_KAHAN_LI_8 = (
+    0.13020248308889008087881763,
+    0.56116298177510838456196441,
+    -0.38947496264484728640807860,
+    0.15884190655515560089621075,
+    -0.39590389413323757733623154,
+    0.18453964097831570709183254,
+    0.25837438768632204729397911,
+    0.29501172360931029887096624,
+)
+
+
+def splitting_coefficients(order: int) -> np.ndarray:
+    r"""Composition coefficients :math:`\gamma_1, \dots, \gamma_s` of the splitting of ``order``.
+
+    The step is :math:`S_2(\gamma_s h) \cdots S_2(\gamma_1 h)` with Strang's
+    :math:`S_2`; the sets are symmetric and sum to 1 (the middle coefficient is
+    computed as ``1 - 2 * sum(others)`` so that the sum is exact to round-off).
+
+    ====== ====== ==========================================================
+    order  stages set
+    ====== ====== ==========================================================
+    2      1      Strang
+    4      3      Yoshida / Suzuki triple jump
+    6      9      Kahan & Li ``s9odr6a`` (Math. Comp. 66, 1089 (1997))
+    8      17     Kahan & Li ``s17odr8a`` (same reference)
+    ====== ====== ==========================================================
+    """
+    if order == 2:
+        return np.array([1.0])
+    if order == 4:
+        g = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
+        return np.array([g, 1.0 - 2.0 * g, g])
+    if order in (6, 8):
+        half = np.array(_KAHAN_LI_6 if order == 6 else _KAHAN_LI_8)
+        return np.concatenate([half, [1.0 - 2.0 * half.sum()], half[::-1]])
+    raise ValueError(f"splitting order must be one of 2, 4, 6, 8, got {order!r}")
+
+
+def _splitting_word(order: int, n: int, kick: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """One step as a word of elementary flows (plane index, fraction of h); -1 = torque kick.
+
+    Adjacent flows of the same plane are merged (they commute, the sum is exact).
+    """
+    word: list[list] = []
+
+    def push(a, c):
+        if word and word[-1][0] == a:
+            word[-1][1] += c
+        else:
+            word.append([a, c])
+
+    for g in splitting_coefficients(order):
+        if kick:
+            push(-1, g / 2)
+        for a in range(n - 1):
+            push(a, g / 2)
+        push(n - 1, g)
+        for a in range(n - 2, -1, -1):
+            push(a, g / 2)
+        if kick:
+            push(-1, g / 2)
+    word = [w for w in word if w[1] != 0.0]
+    return np.array([w[0] for w in word], dtype=np.int64), np.array([w[1] for w in word], dtype=np.float64)
+
+
+# ----------------------------------------------------------------------------
+# inputs
+# ----------------------------------------------------------------------------
+def _moments_and_n(body: Any) -> tuple[np.ndarray, int]:
+    """Plane moments (float array, plane order) and ``N`` of a RigidBody, an Inertia or a 1-D array."""
+    if hasattr(body, "inertia") and hasattr(body.inertia, "moments"):
+        moments = body.inertia.moments
+    elif hasattr(body, "moments"):
+        moments = body.moments
+    else:
+        moments = body
+    try:
+        moments = np.asarray(moments, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(
+            f"body must be a RigidBody, an Inertia or a 1-D array of plane moments, got {type(body).__name__}"
+        ) from None
+    if moments.ndim != 1:
+        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got shape {moments.shape}")
+    N = dimension_from_count(moments.size)
+    if not np.all(np.isfinite(moments)) or np.any(moments <= 0):
+        raise ValueError(f"plane moments must be finite and > 0 to integrate, got {moments.tolist()}")
+    return moments, N
+
+
+def _convention_of(body: Any) -> str:
+    return check_convention(getattr(body, "convention", "paper"))
+
+
+def _check_time_grid(t: Any) -> np.ndarray:
+    try:
+        t = np.asarray(t, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"t must be a 1-D array of increasing output times, got {t!r}") from None
+    if t.ndim != 1 or t.size < 1:
+        raise ValueError(f"t must be a 1-D array of output times (at least one), got shape {t.shape}")
+    if not np.all(np.isfinite(t)):
+        raise ValueError("t must be finite (no NaN or inf)")
+    bad = np.nonzero(np.diff(t) <= 0)[0]
+    if bad.size:
+        k = int(bad[0])
+        raise ValueError(f"t must be strictly increasing; t[{k}] = {t[k]!r} >= t[{k + 1}] = {t[k + 1]!r}")
+    return t
+
+
+def _check_positive(name: str, value: Any) -> float | None:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (Real, np.floating, np.integer)):
+        raise TypeError(f"{name} must be a positive real number, got {value!r}")
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    return value
+
+
+def _broadcast_batch(name: str, arr: np.ndarray, core_ndim: int, batch: tuple) -> np.ndarray:
+    lead = arr.shape[: arr.ndim - core_ndim]
+    try:
+        out_shape = np.broadcast_shapes(lead, batch)
+    except ValueError:
+        out_shape = None
+    if out_shape != batch:
+        raise ValueError(
+            f"{name} has batch axes {lead}, inconsistent with the batch axes {batch} of omega0 "
+            f"(they must be equal or broadcast to it)"
+        )
+    return np.broadcast_to(arr, batch + arr.shape[arr.ndim - core_ndim:])
+
+
+def _S(N: int) -> np.ndarray:
+    return np.array([(-1.0) ** i for i in range(1, N + 1)])
+
+
+# ----------------------------------------------------------------------------
+# result
+# ----------------------------------------------------------------------------
+class Trajectory:
+    r"""Result of :func:`simulate`.
+
+    Attributes
+    ----------
+    t : ndarray (K,)
+        output times.
+    omega : ndarray batch + (K, n)
+        angular velocities :math:`\omega_{ij}(t)` in plane order.
+    L : ndarray batch + (K, n)
+        body-frame angular momenta :math:`L^{ij} = I_{ij}\omega_{ij}`.
+    attitude : ndarray batch + (K, N, N) or None
+        :math:`T(t)` (eq. 19) in the body's matrix convention, ``None`` unless asked.
+    body : object
+        the ``body`` argument.
+    moments : ndarray (n,)
+        the plane moments used.
+    stats : dict
+        ``method``, ``order`` (splitting) , ``steps`` (steps per trajectory for
+        the splitting methods, ``None`` for scipy), ``nfev`` (scipy, summed over
+        the ensemble), ``dt`` (largest step used), ``rtol``, ``wall_time`` (s).
+    """
+
+    def __init__(self, t, omega, L, attitude, body, moments, stats):
+        self.t = t
+        self.omega = omega
+        self.L = L
+        self.attitude = attitude
+        self.body = body
+        self.moments = moments
+        self.stats = stats
+
+    def energy(self) -> np.ndarray:
+        r"""Kinetic energy :math:`\tfrac12\sum_{i<j} I_{ij}\omega_{ij}^2`, shape batch + (K,)."""
+        return 0.5 * np.sum(self.L * self.omega, axis=-1)
+
+    def __repr__(self) -> str:
+        return (f"Trajectory(method={self.stats.get('method')!r}, batch={self.omega.shape[:-2]}, "
+                f"len(t)={self.t.size}, n_planes={self.omega.shape[-1]}, attitude={self.attitude is not None})")
+
+
+# ----------------------------------------------------------------------------
+# splitting driver
+# ----------------------------------------------------------------------------
+def _nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
+    gaps = np.diff(t)
+    return np.maximum(1, np.ceil(gaps / dt * (1 - 1e-12))).astype(np.int64)
+
+
+def _run_split(L0, moments_b, word, tables, t, nsub, torque_b, T0, with_att):
+    B, n = L0.shape
+    N = T0.shape[-1]
+    outL = np.empty((B, t.size, n))
+    outT = np.empty((B, t.size, N, N)) if with_att else np.empty((B, 1, N, N))
+    _kernels.split_run(
+        np.ascontiguousarray(L0), np.ascontiguousarray(moments_b), word[0], word[1], *tables,
+        t, nsub, np.ascontiguousarray(torque_b), np.ascontiguousarray(T0), bool(with_att), outL, outT,
+    )
+    return outL, (outT if with_att else None)
+
+
+def _choose_step(L0, moments, word, tables, order, T_total, rtol, torque_b, N):
+    r"""Step size for a requested relative accuracy ``rtol`` (splitting methods).
+
+    Rule: the global error of the order-``p`` method over the run is modelled as
+    :math:`e(h) \approx C\,(t_\text{end}-t_0)\,h^p` (linear growth in time, the
+    generic behaviour for the phase error of these integrable / near-integrable
+    motions; chaotic motion grows faster and is not covered by any rule).
+    ``C`` is measured by Richardson's estimate on a probe interval
+    :math:`P = \min(t_\text{end}-t_0, 20/\max|\omega_0|)` for up to 8 members of the
+    ensemble (those with the largest :math:`|\omega_0|`): one run with step
+    ``h`` and one with ``h/2`` give
+    :math:`e_P(h) \approx \max|\omega_h - \omega_{h/2}| / ((1 - 2^{-p})\max|\omega_0|)`.
+    ``h`` starts at :math:`1/\max|\omega_0|` and is refined (x1/4) while the
+    estimate is not asymptotic (:math:`e_P > 10^{-2}`) or enlarged (x4) while it is
+    at round-off level. The step is then
+    :math:`h^* = 0.8\,h\,\bigl(\mathrm{rtol} / (e_P(h)\max(1, (t_\text{end}-t_0)/P))\bigr)^{1/p}`.
+    ``rtol`` is a bound on :math:`\max_t |\omega(t) - \omega_\text{exact}(t)| / \max|\omega_0|`.
+    """
+    W = np.abs(L0 / moments)  # (B, n)
+    wmax_b = W.max(axis=1)
+    wmax = float(wmax_b.max())
+    if wmax == 0.0 and not np.any(torque_b):
+        return T_total  # nothing moves
+    if wmax == 0.0:
+        wmax = float(np.max(np.abs(torque_b) / moments)) ** 0.5  # torque time scale
+    sel = np.argsort(wmax_b)[::-1][: min(8, L0.shape[0])]
+    L0s, Ms, Ts = L0[sel], moments[sel], torque_b[sel]
+    P = min(T_total, 20.0 / wmax)
+    scale = max(wmax, 1e-300)
+    T0 = np.broadcast_to(np.eye(N), (L0s.shape[0], N, N))
+    h = min(P, 1.0 / wmax)
+    est = None
+    for _ in range(12):
+        m = max(1, int(math.ceil(P / h - 1e-9)))
+        h = P / m
+        tg = np.array([0.0, P])
+        y1, _ = _run_split(L0s, Ms, word, tables, tg, np.array([m]), Ts, T0, False)
+        y2, _ = _run_split(L0s, Ms, word, tables, tg, np.array([2 * m]), Ts, T0, False)
+        err = float(np.max(np.abs(y1[:, -1] - y2[:, -1]) / Ms)) / (1.0 - 2.0 ** -order) / scale
+        floor = 1e3 * np.finfo(float).eps * math.sqrt(2 * m * word[0].size)
+        if not np.isfinite(err) or err > 1e-2:
+            h /= 4.0
+            continue
+        est = (h, err)
+        if err < floor:
+            if m == 1:
+                break
+            h *= 4.0
+            continue
+        break
+    if est is None:  # never reached the asymptotic regime: fall back on a conservative step
+        return min(P, 0.01 / wmax)
+    h, err = est
+    growth = max(1.0, T_total / P)
+    err = max(err, 1e3 * np.finfo(float).eps)
+    return 0.8 * h * (rtol / (err * growth)) ** (1.0 / order)
+
+
+# ----------------------------------------------------------------------------
+# scipy driver
+# ----------------------------------------------------------------------------
+class _SparseRHS:
+    """dw/dt of the component equations from moments and structure constants (used when ``body`` has no ``rhs``)."""
+
+    def __init__(self, moments: np.ndarray, N: int):
+        C = structure_constants(N)
+        b, c, a = np.nonzero(C)
+        self.b, self.c, self.a = b, c, a
+        self.coef = C[b, c, a].astype(float)
+        n = moments.size
+        A = np.zeros((b.size, n))
+        A[np.arange(b.size), a] = 1.0
+        self.A = A / moments[a][:, None]
+        self.moments = moments
+
+    def __call__(self, omega):
+        L = omega * self.moments
+        return (self.coef * omega[..., self.b] * L[..., self.c]) @ self.A
+
+
+def _run_scipy(body, method, moments, N, convention, w0, t, rtol, torque, T0, with_att):
+    from scipy.integrate import solve_ivp
+
+    rhs = body.rhs if callable(getattr(body, "rhs", None)) else _SparseRHS(moments, N)
+    n = moments.size
+    B = w0.shape[0]
+    K = t.size
+    omega = np.empty((B, K, n))
+    att = np.empty((B, K, N, N)) if with_att else None
+    nfev = 0
+    for b in range(B):
+        tau_b = None if torque is None or callable(torque) else torque[b]
+
+        def f(tt, y, tau_b=tau_b):
+            w = y[:n]
+            dw = np.asarray(rhs(w), dtype=float)
+            if torque is not None:
+                tau = np.asarray(torque(tt, w), dtype=float) if callable(torque) else tau_b
+                if tau.shape != (n,) or not np.all(np.isfinite(tau)):
+                    raise ValueError(f"torque(t, omega) must return {n} finite body-frame components, got {tau!r}")
+                dw = dw + tau / moments
+            if not with_att:
+                return dw
+            Tm = y[n:].reshape(N, N)
+            return np.concatenate([dw, (to_matrix(w, convention) @ Tm).ravel()])
+
+        y0 = w0[b] if not with_att else np.concatenate([w0[b], T0[b].ravel()])
+        wscale = float(np.max(np.abs(w0[b]))) or 1.0
+        atol = rtol * wscale
+        if with_att:
+            atol = np.concatenate([np.full(n, rtol * wscale), np.full(N * N, rtol)])
+        if K == 1:
+            omega[b, 0] = w0[b]
+            if with_att:
+                att[b, 0] = T0[b]
+            continue
+        sol = solve_ivp(f, (t[0], t[-1]), y0, method=method, t_eval=t, rtol=rtol, atol=atol)
+        if not sol.success:
+            raise RuntimeError(f"scipy {method} failed: {sol.message}")
+        nfev += sol.nfev
+        omega[b] = sol.y[:n].T
+        if with_att:
+            att[b] = sol.y[n:].T.reshape(K, N, N)
+    return omega, att, nfev
+
+
+# ----------------------------------------------------------------------------
+# public entry point
+# ----------------------------------------------------------------------------
+def simulate(
+    body: Any,
+    omega0: Any,
+    t: Any,
+    method: str = "auto",
+    rtol: float | None = None,
+    dt: float | None = None,
+    attitude: bool | Any = False,
+    torque: Callable | Any | None = None,
+) -> Trajectory:
+    r"""Integrate the Euler equations (eqs. 24-26) of a rigid body in N dimensions.
+
+    Parameters
+    ----------
+    body : RigidBody, Inertia or array_like (n_planes,)
+        The body (its matrix convention is used for ``attitude``; plain
+        moments or an ``Inertia`` mean ``convention="paper"``).
+    omega0 : array_like batch + (n_planes,)
+        initial angular velocities :math:`\omega_{ij}(t_0)` in plane order;
+        leading axes are an ensemble integrated in one call.
+    t : array_like (K,)
+        strictly increasing output times; ``t[0]`` is the initial time.
+    method : str
+        one of :data:`METHODS` (see the module docstring).
+    rtol : float, optional
+        requested accuracy: for the splitting methods a bound on
+        :math:`\max_t|\omega-\omega_\text{exact}|/\max|\omega_0|` reached by the step
+        rule of :func:`_choose_step`; for scipy the ``rtol`` of ``solve_ivp``
+        (``atol = rtol * max|omega0|``). Default ``1e-9`` when neither ``rtol``
+        nor ``dt`` is given.
+    dt : float, optional
+        largest step of a splitting method; each output interval is split into
+        ``ceil(gap / dt)`` equal steps, so output times are hit exactly. Not
+        allowed together with ``rtol`` for a splitting method, nor with a scipy
+        method.
+    attitude : bool or array_like, optional
+        ``True`` integrates :math:`T(t)` from the identity; an array
+        ``(N, N)`` or batch + ``(N, N)`` (orthogonal, body convention) is the
+        initial attitude.
+    torque : array_like or callable, optional
+        body-frame torque :math:`\tau_{ij}` added to :math:`\dot L^{ij}`
+        (:math:`I_{ij}\dot\omega_{ij} = \dots + \tau_{ij}`): constant components
+        (n_planes,) or batch + (n_planes,), or a callable ``torque(t, omega)``
+        returning n_planes components (scipy methods only).
+
+    Returns
+    -------
+    Trajectory
+        ``omega``, ``L`` (batch + (K, n)), ``attitude`` (batch + (K, N, N) or
+        ``None``) and ``stats``.
+
+    Raises
+    ------
+    ValueError
+        unknown method, non-finite or mis-shaped ``omega0``, ``t`` not strictly
+        increasing, inconsistent batch axes, conflicting ``dt``/``rtol``,
+        non-positive ``dt``/``rtol``, callable torque with a splitting method.
+    TypeError
+        non-numeric input.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> traj = simulate([2.0, 3.0, 4.0], [0.1, 1.0, 0.2], np.linspace(0, 10, 5), method="splitting4", dt=0.01)
+    >>> traj.omega.shape
+    (5, 3)
+    """
+    wall = time.perf_counter()
+    Lout = None
+    if not isinstance(method, str) or method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; allowed: {', '.join(map(repr, METHODS))}")
+    moments, N = _moments_and_n(body)
+    n = moments.size
+    convention = _convention_of(body)
+    try:
+        w0 = np.asarray(omega0, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"omega0 must be a numeric array of shape batch + ({n},), got {omega0!r}") from None
+    if w0.ndim == 0 or w0.shape[-1] != n:
+        raise ValueError(
+            f"omega0 must have shape batch + ({n},) (n_planes of so({N})), got shape {w0.shape}"
+        )
+    if not np.all(np.isfinite(w0)):
+        raise ValueError("omega0 must be finite (found NaN or inf)")
+    batch = w0.shape[:-1]
+    t = _check_time_grid(t)
+    rtol = _check_positive("rtol", rtol)
+    dt = _check_positive("dt", dt)
+
+    # torque
+    tq = None
+    if torque is not None:
+        if callable(torque):
+            tq = torque
+        else:
+            try:
+                tq = np.asarray(torque, dtype=float)
+            except (TypeError, ValueError):
+                raise TypeError(f"torque must be a callable torque(t, omega) or numeric components, got {torque!r}") from None
+            if tq.ndim == 0 or tq.shape[-1] != n:
+                raise ValueError(f"constant torque must have shape ({n},) or batch + ({n},), got {tq.shape}")
+            if not np.all(np.isfinite(tq)):
+                raise ValueError("torque must be finite (found NaN or inf)")
+            tq = _broadcast_batch("torque", tq, 1, batch)
+
+    # attitude
+    with_att = attitude is not False and attitude is not None
+    T0 = None
+    if with_att:
+        if attitude is True:
+            T0 = np.broadcast_to(np.eye(N), batch + (N, N))
+        else:
+            try:
+                T0 = np.asarray(attitude, dtype=float)
+            except (TypeError, ValueError):
+                raise TypeError(f"attitude must be a bool or an array of N x N matrices, got {attitude!r}") from None
+            if T0.ndim < 2 or T0.shape[-2:] != (N, N):
+                raise ValueError(f"initial attitude must have shape ({N}, {N}) or batch + ({N}, {N}), got {T0.shape}")
+            dev = np.abs(np.swapaxes(T0, -1, -2) @ T0 - np.eye(N)).max() if T0.size else 0.0
+            if not np.isfinite(dev) or dev > 1e-8:
+                raise ValueError(f"initial attitude must be orthogonal (max|T^T T - 1| = {dev:.3g})")
+            T0 = _broadcast_batch("attitude", T0, 2, batch)
+
+    # method choice
+    if method == "auto":
+        if callable(tq):
+            method = "DOP853"
+        elif rtol is None and dt is not None:
+            method = "splitting4"
+        else:
+            r = _DEFAULT_RTOL if rtol is None else rtol
+            method = ("splitting2" if r >= 1e-4 else "splitting4" if r >= 1e-7
+                      else "splitting6" if r >= 1e-10 else "splitting8")
+    if method in _SCIPY_METHODS:
+        if dt is not None:
+            raise ValueError(f"dt fixes the step of the splitting methods; scipy method {method!r} takes rtol only")
+        rtol_used = _DEFAULT_RTOL if rtol is None else rtol
+        rtol_used = max(rtol_used, 100 * np.finfo(float).eps)  # solve_ivp's floor (it warns below it)
+    else:
+        if dt is not None and rtol is not None:
+            raise ValueError(
+                f"give either dt (fixed step) or rtol (step chosen from the accuracy) for {method!r}, not both "
+                f"(got dt={dt!r}, rtol={rtol!r})"
+            )
+        if callable(tq):
+            raise ValueError(
+                f"a callable torque breaks the splitting structure; use a scipy method "
+                f"({', '.join(_SCIPY_METHODS)}) or method='auto' (DOP853), or give constant components"
+            )
+        rtol_used = _DEFAULT_RTOL if (rtol is None and dt is None) else rtol
+
+    B = int(np.prod(batch)) if batch else 1
+    w0f = w0.reshape(B, n)
+    T0f_conv = T0.reshape(B, N, N) if with_att else None
+    stats: dict[str, Any] = {"method": method, "rtol": rtol_used}
+
+    if method in _SCIPY_METHODS:
+        tqf = tq if (tq is None or callable(tq)) else tq.reshape(B, n)
+        omega, att, nfev = _run_scipy(body, method, moments, N, convention, w0f, t, rtol_used, tqf, T0f_conv, with_att)
+        stats.update(order=None, steps=None, nfev=int(nfev), dt=None)
+    else:
+        order = _SPLITTING_ORDER[method]
+        kick = tq is not None and np.any(tq)
+        word = _splitting_word(order, n, kick=bool(kick))
+        tables = _kernels.rotation_tables(N)
+        torque_b = np.zeros((B, n)) if not kick else np.ascontiguousarray(tq.reshape(B, n))
+        moments_b = np.broadcast_to(moments, (B, n))
+        L0 = w0f * moments
+        if with_att:
+            S = _S(N)
+            T0_std = S[:, None] * T0f_conv * S[None, :]  # conventions: T_paper = S T_std S
+        else:
+            T0_std = np.broadcast_to(np.eye(N), (1, N, N))
+        if dt is None:
+            T_total = float(t[-1] - t[0])
+            if T_total > 0:
+                dt = _choose_step(L0, moments_b, word, tables, order, T_total, rtol_used, torque_b, N)
+            else:
+                dt = 1.0
+        nsub = _nsub_for(t, dt)
+        T0_run = T0_std if with_att else np.zeros((B, N, N))
+        outL, outT = _run_split(L0, moments_b, word, tables, t, nsub, torque_b, T0_run, with_att)
+        omega, Lout = outL / moments, outL
+        att = None
+        if with_att:
+            if convention == "paper":
+                att = S[:, None] * outT * S[None, :]
+            else:
+                att = outT
+        stats.update(order=order, steps=int(nsub.sum()), nfev=None,
+                     dt=float(np.max(np.diff(t) / nsub)) if t.size > 1 else None,
+                     flows_per_step=int(word[0].size))
+    omega = omega.reshape(batch + (t.size, n))
+    L = Lout.reshape(omega.shape) if method not in _SCIPY_METHODS else omega * moments
+    if att is not None:
+        att = att.reshape(batch + (t.size, N, N))
+    stats["wall_time"] = time.perf_counter() - wall
+    return Trajectory(t, omega, L, att, body, moments, stats)
