@@ -1,2 +1,508 @@
-"""(in progress)"""
-__all__: list[str] = []
+r"""Closed-form solutions of the torque-free Euler equations (paper Sec. 3).
+
+Three families are solved exactly, for use as ground truth and by
+:mod:`hyperrotor.classical.scenes`:
+
+* **Equal moments** (eqs. 82-83), any N: :math:`\dot\omega = 0`.
+* **One distinguished axis** ("quartet", eqs. 84-118, generalised to any N):
+  moments :math:`I_P = 1 + \kappa^2` for every plane ``P`` containing the axis
+  ``a`` and :math:`I_P = 2` otherwise (or any common rescaling). With plain
+  matrices, :math:`L = \beta W + (\alpha - \beta) W_a` (``alpha = 1 + kappa^2``,
+  ``beta = 2``, :math:`W_a` the part of :math:`W` in the planes containing ``a``),
+  and :math:`\dot L = [W, L] = (\alpha-\beta)[W_r, W_a]` with :math:`W_r = W - W_a`.
+  Writing :math:`W_a = u e_a^{\mathsf T} - e_a u^{\mathsf T}` one finds
+  :math:`[W_r, W_a] = (W_r u) e_a^{\mathsf T} - e_a (W_r u)^{\mathsf T}`, so
+
+  - every component in a plane **not** containing ``a`` is constant;
+  - :math:`\dot u = \Theta\, W_r u` with :math:`\Theta = 1 - \beta/\alpha =
+    (\kappa^2 - 1)/(\kappa^2 + 1)` (eq. 100).
+
+  In components :math:`x_i = \omega_{(\min(i,a), \max(i,a))} = s_i u_i`,
+  :math:`s_i = +1` for ``i < a`` and ``-1`` for ``i > a``, hence
+  :math:`\dot x = \Theta A x` with the real antisymmetric ``(N-1) x (N-1)``
+  matrix :math:`A = S W_r S` (rows/columns ``i != a``). The flow
+  :math:`x(t) = e^{\Theta A t} x_0` is evaluated through the spectral
+  decomposition of the Hermitian matrix :math:`iA` (orthonormal eigenvectors even
+  for repeated eigenvalues), vectorised over times and batches.
+* **3D Euler-Poinsot** with Jacobi elliptic functions, both regimes of the
+  energy-momentum relation, the separatrix and the symmetric top.
+
+Paper discrepancies (Sec. 3)
+----------------------------
+Checked symbolically in ``tests/classical/test_closed_form.py``:
+
+* (83) lists :math:`d\omega_{23}/dt` twice and omits :math:`d\omega_{14}/dt`.
+* (92) and (95) have the wrong overall sign of the :math:`(1-\kappa^2)` term
+  (compare the general eqs. 34 and 37): correct is
+  :math:`(1+\kappa^2)\dot\omega_{25} - (1-\kappa^2)(\omega_{12}\omega_{15}
+  - \omega_{23}\omega_{35} - \omega_{24}\omega_{45}) = 0` and
+  :math:`(1+\kappa^2)\dot\omega_{45} - (1-\kappa^2)(\omega_{14}\omega_{15}
+  + \omega_{24}\omega_{25} + \omega_{34}\omega_{35}) = 0` (eq. 95 also prints
+  :math:`\omega_{51}` for :math:`\omega_{15}`). (89) and (94) are right, and
+  so are the linear equations (96)-(99).
+* (100): the inverse is :math:`\kappa = \sqrt{1-\Theta^2}/(1-\Theta)`, not
+  :math:`/(\Theta - 1)` (which is negative); and :math:`-1 \le \Theta < 1`
+  (``kappa = 0`` gives ``Theta = -1``).
+* (104)-(105) contain :math:`\omega_{45}, \omega_{35}` instead of
+  :math:`C_{45}, C_{35}`; (105) and the entry (2,4) of (106) have the wrong sign
+  of :math:`\Theta c_5` (correct: :math:`i\Omega C_{45} + \Theta c_3 C_{15} +
+  \Theta c_5 C_{25} + \Theta c_6 C_{35} = 0`, and ``M[1, 3] = -Theta c5`` so
+  that ``M - i Omega 1`` is antisymmetric as the text says).
+* (107)-(109) are right: :math:`l_2 = -\Theta^2 \sum c_k^2`,
+  :math:`l_0 = \Theta^4 (c_1 c_6 - c_2 c_5 + c_3 c_4)^2` (a squared Pfaffian),
+  and the factorisation (109) holds identically. But the strict inequalities
+  are false in general: :math:`l_0 = 0` whenever the Pfaffian vanishes (e.g.
+  only :math:`c_1 \ne 0`), :math:`l_2 = 0` for ``kappa = 1`` or all
+  :math:`c = 0`; in (110) :math:`l_2^2 = l_2^2 - 4 l_0` when the Pfaffian
+  vanishes and :math:`l_2^2 - 4 l_0 = 0` for (anti-)self-dual data
+  (:math:`c_1 = \pm c_6, c_3 = \pm c_4, c_2 = \mp c_5`), where the two
+  frequencies coincide. Only the non-strict versions hold.
+* The frequencies printed after (118),
+  :math:`\Omega = \pm\tfrac12\sqrt{\pm 2\sqrt{l_2^2-4l_0} - 2 l_2}`, are right.
+  (110) guarantees they are real: the motion is always quasi-periodic.
+* The same formulas hold for the other axes (111)-(118) with the relabelled
+  constants, because conjugation by ``S`` does not change the characteristic
+  polynomial; the linear ODEs (96)-(99), however, acquire the signs ``s_i``.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from scipy import special
+
+from ..conventions import check_dimension, dimension_from_count, n_planes, plane_index, planes
+
+__all__ = [
+    "equal_moments_solution",
+    "quartet_moments",
+    "quartet_theta",
+    "quartet_matrix",
+    "quartet_solution",
+    "quartet_frequencies",
+    "quartet_polynomial_coefficients",
+    "euler_poinsot",
+    "euler_poinsot_period",
+    "detect_closed_form",
+    "closed_form_solution",
+]
+
+
+# ----------------------------------------------------------------------------
+# input adapters and validation
+# ----------------------------------------------------------------------------
+def _moments_of(body: Any) -> np.ndarray:
+    """Moments (plane order, float64) of a RigidBody, an Inertia or a plain array."""
+    if hasattr(body, "inertia"):
+        body = body.inertia
+    if hasattr(body, "moments"):
+        body = body.moments
+    try:
+        I = np.asarray(body, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"expected a RigidBody, an Inertia or an array of plane moments, got {body!r}") from None
+    if I.ndim != 1:
+        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got shape {I.shape}")
+    dimension_from_count(I.size)
+    if not np.all(np.isfinite(I)) or np.any(I <= 0):
+        raise ValueError(f"plane moments must be finite and positive, got {I}")
+    return I
+
+
+def _times(t: Any) -> np.ndarray:
+    tt = np.asarray(t, dtype=float)
+    if tt.ndim == 0:
+        tt = tt[None]
+    if tt.ndim != 1:
+        raise ValueError(f"t must be a scalar or a 1-D array of times, got shape {tt.shape}")
+    if not np.all(np.isfinite(tt)):
+        raise ValueError("t must contain finite times only")
+    return tt
+
+
+def _omega0(omega0: Any, count: int | None = None) -> np.ndarray:
+    w = np.asarray(omega0, dtype=float)
+    if w.ndim == 0:
+        raise ValueError(f"omega0 must be a vector of plane components, got the scalar {omega0!r}")
+    if count is not None and w.shape[-1] != count:
+        raise ValueError(f"omega0 must have {count} plane components (last axis), got shape {w.shape}")
+    dimension_from_count(w.shape[-1])
+    if not np.all(np.isfinite(w)):
+        raise ValueError("omega0 must be finite")
+    return w
+
+
+def _check_axis(axis: Any, N: int) -> int:
+    if isinstance(axis, bool) or not isinstance(axis, (int, np.integer)) or not 1 <= int(axis) <= N:
+        raise ValueError(f"axis must be an integer in 1..{N} (1-based), got {axis!r}")
+    return int(axis)
+
+
+# ----------------------------------------------------------------------------
+# equal moments (eqs. 82-83)
+# ----------------------------------------------------------------------------
+def equal_moments_solution(omega0: Any, t: Any) -> np.ndarray:
+    r"""Exact solution for equal plane moments (eqs. 82-83), any N.
+
+    With :math:`I_{ij} = I` for all planes, :math:`L = I W` and
+    :math:`\dot L = [W, L] = I[W, W] = 0`: every component is constant.
+
+    Parameters
+    ----------
+    omega0 : array_like, shape (..., n_planes)
+    t : array_like, shape (n_t,)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n_t, n_planes)
+    """
+    w = _omega0(omega0)
+    tt = _times(t)
+    return np.broadcast_to(w[..., None, :], w.shape[:-1] + (tt.size, w.shape[-1])).copy()
+
+
+# ----------------------------------------------------------------------------
+# one distinguished axis (eqs. 84-118), any N
+# ----------------------------------------------------------------------------
+def quartet_moments(kappa: float, axis: int = 5, N: int = 5) -> np.ndarray:
+    r"""Plane moments of the quartet case: ``1 + kappa**2`` for planes containing ``axis``, else 2.
+
+    ``axis=5`` is eqs. (84)-(85); ``axis=4, 3, 2, 1`` are eqs. (111)-(114).
+    """
+    N = check_dimension(N)
+    axis = _check_axis(axis, N)
+    k2 = float(kappa) ** 2
+    return np.array([1.0 + k2 if axis in p else 2.0 for p in planes(N)])
+
+
+def quartet_theta(kappa: float) -> float:
+    r""":math:`\Theta = (\kappa^2 - 1)/(\kappa^2 + 1)` of eq. (100); inverse
+    :math:`\kappa = \sqrt{1-\Theta^2}/(1-\Theta)` (the paper prints ``Theta - 1``)."""
+    k2 = float(kappa) ** 2
+    if not np.isfinite(k2):
+        raise ValueError(f"kappa must be finite, got {kappa!r}")
+    return (k2 - 1.0) / (k2 + 1.0)
+
+
+def _axis_layout(N: int, axis: int):
+    """Indices of the planes (i, a) (in order of i != a), their signs s_i, and the other planes."""
+    idx = np.array([plane_index((min(i, axis), max(i, axis)), N) for i in range(1, N + 1) if i != axis], dtype=int)
+    signs = np.array([1.0 if i < axis else -1.0 for i in range(1, N + 1) if i != axis])
+    rest = np.array([k for k, p in enumerate(planes(N)) if axis not in p], dtype=int)
+    return idx, signs, rest
+
+
+def quartet_matrix(omega0: Any, axis: int = 5) -> np.ndarray:
+    r"""The antisymmetric matrix :math:`A` of :math:`\dot x = \Theta A x` (generalised eqs. 96-99).
+
+    ``x`` lists :math:`\omega_{(\min(i,a),\max(i,a))}` for ``i = 1..N, i != a``;
+    :math:`A_{ij} = s_i s_j (W_r)_{ij}` with :math:`(W_r)_{ij} = \omega_{ij}` (plain
+    antisymmetric matrix of the planes not containing ``a``) and
+    :math:`s_i = \operatorname{sign}(a - i)`. For ``axis = 5, N = 5``,
+    :math:`A = [[0, c_1, c_2, c_3], [-c_1, 0, c_4, c_5], [-c_2, -c_4, 0, c_6],
+    [-c_3, -c_5, -c_6, 0]]`, i.e. exactly eqs. (96)-(99).
+
+    Parameters
+    ----------
+    omega0 : array_like, shape (..., n_planes)
+        Only the components in planes not containing ``axis`` are used.
+    axis : int
+        The distinguished axis (1-based).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., N-1, N-1)
+    """
+    w = _omega0(omega0)
+    N = dimension_from_count(w.shape[-1])
+    axis = _check_axis(axis, N)
+    others = [i for i in range(1, N + 1) if i != axis]
+    s = np.array([1.0 if i < axis else -1.0 for i in others])
+    A = np.zeros(w.shape[:-1] + (N - 1, N - 1))
+    for r, i in enumerate(others):
+        for c, j in enumerate(others):
+            if i < j:
+                v = s[r] * s[c] * w[..., plane_index((i, j), N)]
+                A[..., r, c] = v
+                A[..., c, r] = -v
+    return A
+
+
+def _quartet_flow(theta: float, omega0: np.ndarray, tt: np.ndarray, axis: int) -> np.ndarray:
+    """exp(theta * A * t) applied to the axis components; the rest stays constant."""
+    N = dimension_from_count(omega0.shape[-1])
+    idx, _, _ = _axis_layout(N, axis)
+    A = quartet_matrix(omega0, axis)
+    # iA is Hermitian: iA = U diag(lam) U^H, so exp(theta A t) = U diag(exp(-i lam theta t)) U^H
+    lam, U = np.linalg.eigh(1j * A)
+    x0 = omega0[..., idx]
+    y0 = np.einsum("...ji,...j->...i", U.conj(), x0)  # U^H x0
+    phase = np.exp(-1j * theta * tt[:, None] * lam[..., None, :])  # (..., n_t, N-1)
+    x = np.einsum("...ij,...tj->...ti", U, phase * y0[..., None, :]).real
+    out = np.broadcast_to(omega0[..., None, :], omega0.shape[:-1] + (tt.size, omega0.shape[-1])).copy()
+    out[..., idx] = x
+    return out
+
+
+def quartet_solution(kappa: float, omega0: Any, t: Any, axis: int = 5, N: int | None = None) -> np.ndarray:
+    r"""Exact solution of the quartet case (eqs. 84-118) and its N-dimensional generalisation.
+
+    Moments: :math:`I_P = 1 + \kappa^2` for the planes containing ``axis``,
+    :math:`I_P = 2` for the others (``axis = 5``: eqs. 84-85; ``4, 3, 2, 1``:
+    eqs. 111-114). The components in planes without ``axis`` are constant
+    (eqs. 86-93, 115-118); the ``N-1`` others obey :math:`\dot x = \Theta A x`
+    (:func:`quartet_matrix`, the corrected eqs. 96-99), solved exactly as
+    :math:`x(t) = e^{\Theta A t} x_0` through the eigendecomposition of the
+    Hermitian :math:`iA`.
+
+    Parameters
+    ----------
+    kappa : float
+    omega0 : array_like, shape (..., n_planes)
+        Initial angular velocity; leading batch axes allowed.
+    t : array_like, shape (n_t,)
+        Output times (any order; t = 0 is the initial time).
+    axis : int, default 5
+        Distinguished axis, 1-based.
+    N : int, optional
+        Checked against ``omega0`` when given.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n_t, n_planes)
+    """
+    w = _omega0(omega0)
+    Nw = dimension_from_count(w.shape[-1])
+    if N is not None and check_dimension(N) != Nw:
+        raise ValueError(f"omega0 has {w.shape[-1]} components, i.e. N = {Nw}, but N = {N} was given")
+    axis = _check_axis(axis, Nw)
+    return _quartet_flow(quartet_theta(kappa), w, _times(t), axis)
+
+
+def quartet_polynomial_coefficients(kappa: float, omega0: Any, axis: int = 5) -> tuple[float, float]:
+    r"""``(l2, l0)`` of the characteristic polynomial (107) :math:`\Omega^4 + l_2\Omega^2 + l_0` (N = 5).
+
+    :math:`l_2 = -\Theta^2 \sum_k c_k^2`, :math:`l_0 = \Theta^4 (c_1 c_6 - c_2 c_5 + c_3 c_4)^2`
+    (eq. 108; ``c_k`` the six constant components in plane order, eqs. 115-118).
+    Only non-strict signs hold: ``l2 <= 0``, ``l0 >= 0``.
+    """
+    w = _omega0(omega0, 10)
+    axis = _check_axis(axis, 5)
+    th = quartet_theta(kappa)
+    _, _, rest = _axis_layout(5, axis)
+    c1, c2, c3, c4, c5, c6 = (w[..., k] for k in rest)
+    l2 = -th**2 * (c1**2 + c2**2 + c3**2 + c4**2 + c5**2 + c6**2)
+    l0 = th**4 * (c1 * c6 - c2 * c5 + c3 * c4) ** 2
+    return l2, l0
+
+
+def quartet_frequencies(kappa: float, omega0: Any, axis: int = 5) -> np.ndarray:
+    r"""Non-negative angular frequencies of the oscillating components of the quartet case.
+
+    For ``N = 5`` these are the closed forms after eq. (118),
+    :math:`\Omega_{1,2} = \tfrac12\sqrt{\pm 2\sqrt{l_2^2 - 4 l_0} - 2 l_2}`,
+    i.e. :math:`\Omega^2 = (-l_2 \pm \sqrt{l_2^2-4l_0})/2`, returned as
+    ``[Omega_1, Omega_2]`` with ``Omega_1 >= Omega_2``. With the factors
+    :math:`p, q` of (109) (:math:`\sum c^2 = (p+q)/2`, Pfaffian :math:`= (p-q)/4`)
+    they are :math:`|\Theta|(\sqrt p \pm \sqrt q)/2`, evaluated in that
+    cancellation-free form. For other ``N`` the
+    ``floor((N-1)/2)`` frequencies are :math:`|\Theta|` times the moduli of the
+    eigenvalues of :math:`A` (descending).
+    """
+    w = _omega0(omega0)
+    N = dimension_from_count(w.shape[-1])
+    axis = _check_axis(axis, N)
+    th = quartet_theta(kappa)
+    if N == 5:
+        _, _, rest = _axis_layout(5, axis)
+        c1, c2, c3, c4, c5, c6 = (w[..., k] for k in rest)
+        # (109): l2^2 - 4 l0 = Theta^4 [(c5-c2)^2+(c3+c4)^2+(c1+c6)^2][(c5+c2)^2+(c3-c4)^2+(c1-c6)^2]
+        p = (c5 - c2) ** 2 + (c3 + c4) ** 2 + (c1 + c6) ** 2
+        m = (c5 + c2) ** 2 + (c3 - c4) ** 2 + (c1 - c6) ** 2
+        # Omega^2 = (-l2 +- sqrt(l2^2 - 4 l0))/2 = Theta^2 (sqrt(p) +- sqrt(m))^2 / 4
+        big = 0.5 * abs(th) * (np.sqrt(p) + np.sqrt(m))
+        small = 0.5 * abs(th) * np.abs(np.sqrt(p) - np.sqrt(m))
+        return np.stack([big, small], axis=-1)
+    A = quartet_matrix(w, axis)
+    lam = np.linalg.eigvalsh(1j * A)  # real, symmetric about 0
+    k = (N - 1) // 2
+    return abs(th) * np.sort(np.abs(lam), axis=-1)[..., ::-1][..., : 2 * k : 2]
+
+
+# ----------------------------------------------------------------------------
+# 3D Euler-Poinsot
+# ----------------------------------------------------------------------------
+_EVEN_PERMS = {(0, 1, 2), (1, 2, 0), (2, 0, 1)}
+
+
+def _ep_setup(moments3: Any, omega0: Any):
+    I = _moments_of(moments3)
+    if I.size != 3:
+        raise ValueError(f"euler_poinsot needs the 3 plane moments (I_12, I_13, I_23) of a 3D body, got {I.size}")
+    w = _omega0(omega0, 3)
+    if w.ndim != 1:
+        raise ValueError(f"omega0 must be a single vector (w12, w13, w23), got shape {w.shape}")
+    # textbook map: W1 = w23, W2 = -w13, W3 = w12; I1 = I23, I2 = I13, I3 = I12
+    Itb = np.array([I[2], I[1], I[0]])
+    Wtb = np.array([w[2], -w[1], w[0]])
+    order = np.argsort(Itb, kind="stable")  # ascending
+    lo, mid, hi = order
+    # sign of L^2 - 2 E I_mid, cancellation-free
+    s = Itb[hi] * (Itb[hi] - Itb[mid]) * Wtb[hi] ** 2 - Itb[lo] * (Itb[mid] - Itb[lo]) * Wtb[lo] ** 2
+    d = hi if s >= 0 else lo  # dn axis (the one W never changes sign on)
+    c = lo if s >= 0 else hi  # cn axis
+    perm = (c, mid, d)
+    flip = 1.0 if perm in _EVEN_PERMS else -1.0  # odd relabelling = time reversal: V = -W[perm]
+    J = Itb[list(perm)]
+    V = flip * Wtb[list(perm)]
+    # sign symmetries (-,+,-) and (-,-,+) of the Euler equations: make V3 >= 0 and V1 >= 0
+    sg = np.ones(3)
+    if V[2] < 0:
+        sg *= np.array([-1.0, 1.0, -1.0])
+    if sg[0] * V[0] < 0:
+        sg *= np.array([-1.0, -1.0, 1.0])
+    V = sg * V
+    J1, J2, J3 = J
+    V1, V2, V3 = V
+    # cancellation-free: 2EJ3 - L^2 = J1(J3-J1)V1^2 + J2(J3-J2)V2^2 etc.
+    p31, p32, p21 = J1 * (J3 - J1), J2 * (J3 - J2), J2 * (J2 - J1)
+    q = p31 * V1**2 + p32 * V2**2  # 2 E J3 - L^2
+    r = p21 * V2**2 + J3 * (J3 - J1) * V3**2  # L^2 - 2 E J1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        A = np.sqrt(V1**2 + (p32 / p31) * V2**2) if p31 != 0 else abs(V1)
+        B = np.sqrt((p31 / p32) * V1**2 + V2**2) if p32 != 0 else abs(V2)
+        C = np.sqrt((p21 / (J3 * (J3 - J1))) * V2**2 + V3**2) if J3 != J1 else abs(V3)
+    nu2 = (J3 - J2) * r / (J1 * J2 * J3)
+    nu = np.sign(J3 - J2) * np.sqrt(max(nu2, 0.0))
+    m = 0.0 if (q == 0 or J2 == J1) else (J2 - J1) * q / ((J3 - J2) * r)
+    m = float(min(max(m, 0.0), 1.0))
+    return dict(I=I, w=w, perm=perm, flip=flip, sg=sg, V=V, J=J, A=A, B=B, C=C, nu=nu, m=m)
+
+
+def euler_poinsot(moments3: Any, omega0: Any, t: Any) -> np.ndarray:
+    r"""Exact 3D torque-free motion (Euler-Poinsot) with Jacobi elliptic functions.
+
+    Components in the package order ``(w12, w13, w23)``; internally the textbook
+    map :math:`W_1 = \omega_{23}, W_2 = -\omega_{13}, W_3 = \omega_{12}`,
+    :math:`I_1 = I_{23}, I_2 = I_{13}, I_3 = I_{12}` turns the equations into
+    :math:`I_1\dot W_1 = (I_2 - I_3) W_2 W_3` (cyclic). The axes are relabelled as
+    ``(cn, sn, dn)`` = (an extreme axis, the middle axis, the other extreme axis),
+    the dn axis being the largest-moment axis when :math:`L^2 > 2 E I_\text{mid}`
+    and the smallest otherwise (an odd relabelling is compensated by
+    :math:`W \to -W`). Then, with :math:`J_1, J_2, J_3` the relabelled moments,
+
+    .. math::
+        V_1 = A\,\mathrm{cn}(u), \quad V_2 = B\,\mathrm{sn}(u), \quad V_3 = C\,\mathrm{dn}(u),
+        \qquad u = u_0 + \nu t,
+
+        A^2 = \frac{2EJ_3 - L^2}{J_1(J_3 - J_1)},\;
+        B^2 = \frac{2EJ_3 - L^2}{J_2(J_3 - J_2)},\;
+        C^2 = \frac{L^2 - 2EJ_1}{J_3(J_3 - J_1)},\;
+        \nu^2 = \frac{(J_3-J_2)(L^2 - 2EJ_1)}{J_1J_2J_3},\;
+        m = k^2 = \frac{(J_2-J_1)(2EJ_3 - L^2)}{(J_3-J_2)(L^2 - 2EJ_1)},
+
+    :math:`\operatorname{sign}\nu = \operatorname{sign}(J_3 - J_2)`, and :math:`u_0 =
+    F(\operatorname{atan2}(V_2(0)/B, V_1(0)/A)\,|\,m)`. Signs of the initial state
+    are absorbed by the symmetries :math:`(V_1,V_2,V_3)\to(-V_1,V_2,-V_3)` and
+    :math:`(-V_1,-V_2,V_3)`. All differences :math:`2EJ_3 - L^2` etc. are formed
+    without cancellation. ``m = 1`` is the separatrix (cn = dn = sech,
+    sn = tanh), ``m = 0`` the symmetric top / steady rotation.
+
+    Parameters
+    ----------
+    moments3 : RigidBody, Inertia or array_like (3,)
+        Plane moments ``(I_12, I_13, I_23)``.
+    omega0 : array_like (3,)
+        ``(w12, w13, w23)`` at t = 0.
+    t : array_like (n_t,)
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_t, 3)
+    """
+    tt = _times(t)
+    P = _ep_setup(moments3, omega0)
+    w = P["w"]
+    if P["nu"] == 0.0 or (P["A"] == 0.0 and P["C"] == 0.0):  # steady rotation (or rest)
+        return np.broadcast_to(w, (tt.size, 3)).copy()
+    A, B, C, nu, m = P["A"], P["B"], P["C"], P["nu"], P["m"]
+    V1, V2 = P["V"][0], P["V"][1]
+    phi0 = np.arctan2(V2 / B if B > 0 else 0.0, V1 / A if A > 0 else 1.0)
+    u0 = float(special.ellipkinc(phi0, m))
+    u = u0 + nu * tt
+    if m < 1.0:  # reduce the argument modulo the period 4K
+        K4 = 4.0 * float(special.ellipk(m))
+        u = np.mod(u, K4)
+    sn, cn, dn, _ = special.ellipj(u, m)
+    V = np.stack([A * cn, B * sn, C * dn], axis=-1) * P["sg"] * P["flip"]
+    Wtb = np.empty_like(V)
+    Wtb[:, list(P["perm"])] = V
+    return np.stack([Wtb[:, 2], -Wtb[:, 1], Wtb[:, 0]], axis=-1)
+
+
+def euler_poinsot_period(moments3: Any, omega0: Any) -> float:
+    r"""Period of :math:`\omega(t)` of the 3D free body: :math:`4K(m)/|\nu|` (``inf`` on the
+    separatrix, ``inf`` for steady rotation)."""
+    P = _ep_setup(moments3, omega0)
+    if P["nu"] == 0.0 or P["m"] >= 1.0 or (P["A"] == 0.0 and P["C"] == 0.0):
+        return float("inf")
+    return 4.0 * float(special.ellipk(P["m"])) / abs(P["nu"])
+
+
+# ----------------------------------------------------------------------------
+# detection and dispatch
+# ----------------------------------------------------------------------------
+def detect_closed_form(body: Any, *, rtol: float = 1e-14) -> dict | None:
+    r"""Which closed form the inertia admits, if any.
+
+    Returns ``{"kind": "equal"}``, ``{"kind": "quartet", "axis": a, "theta": Theta}``
+    (any N; moments ``alpha`` on the planes containing ``a`` and ``beta`` on the
+    others, :math:`\Theta = 1 - \beta/\alpha`), ``{"kind": "euler-poinsot"}``
+    (N = 3) or ``None``. Moments are compared with relative tolerance ``rtol``.
+    """
+    I = _moments_of(body)
+    N = dimension_from_count(I.size)
+    scale = float(np.max(np.abs(I)))
+
+    def same(x):
+        return float(np.ptp(x)) <= rtol * scale if x.size else True
+
+    if same(I):
+        return {"kind": "equal"}
+    if N == 3:
+        return {"kind": "euler-poinsot"}
+    for a in range(N, 0, -1):
+        idx, _, rest = _axis_layout(N, a)
+        if same(I[idx]) and same(I[rest]):
+            alpha, beta = float(np.mean(I[idx])), float(np.mean(I[rest]))
+            return {"kind": "quartet", "axis": a, "theta": 1.0 - beta / alpha}
+    return None
+
+
+def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float = 1e-14) -> tuple[np.ndarray, str]:
+    """Exact omega(t) for an inertia admitting a closed form, and the name of the form used.
+
+    Dispatches to :func:`equal_moments_solution`, the quartet flow (any axis, any
+    N, any common scale of the two moments) or :func:`euler_poinsot` (N = 3,
+    unbatched ``omega0``; batches are looped). Raises ``ValueError`` when the
+    inertia admits none (see :func:`detect_closed_form`).
+
+    Returns
+    -------
+    omega : numpy.ndarray, shape (..., n_t, n_planes)
+    kind : str, ``"equal"``, ``"quartet"`` or ``"euler-poinsot"``
+    """
+    I = _moments_of(body)
+    info = detect_closed_form(I, rtol=rtol)
+    if info is None:
+        raise ValueError("this inertia admits no closed form (not equal, not one-distinguished-axis, not 3D)")
+    w = _omega0(omega0, I.size)
+    tt = _times(t)
+    kind = info["kind"]
+    if kind == "equal":
+        return equal_moments_solution(w, tt), kind
+    if kind == "quartet":
+        return _quartet_flow(info["theta"], w, tt, info["axis"]), kind
+    flat = w.reshape(-1, 3)
+    out = np.stack([euler_poinsot(I, x, tt) for x in flat])
+    return out.reshape(w.shape[:-1] + (tt.size, 3)), kind

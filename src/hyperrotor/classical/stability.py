@@ -1,2 +1,288 @@
-"""(in progress)"""
-__all__: list[str] = []
+r"""Linear stability of steady rotation in one plane (paper Sec. 4, corrected).
+
+Steady rotation :math:`\omega = \Omega e_p` in the plane :math:`p = (i, j)` is an
+equilibrium of the torque-free Euler equations for any inertia. The Jacobian of
+:math:`\dot\omega_a = I_a^{-1}\sum_{bc} C_{bc}^{\;a}\,\omega_b I_c \omega_c` is
+
+.. math:: J_{ad} = I_a^{-1}\sum_c C_{dc}^{\;a} (I_c - I_d)\,\omega_c
+          \;\xrightarrow{\ \omega = \Omega e_p\ }\; \Omega\,C_{dp}^{\;a}\,(I_p - I_d)/I_a .
+
+It couples only the two planes :math:`(i,k), (j,k)` of each triple
+:math:`\{(i,j), (i,k), (j,k)\}`, ``k != i, j`` (an so(3) subalgebra); every other
+component (the plane ``p`` itself and the planes disjoint from it) has a zero
+row and column. Each triple gives, with
+:math:`x = \omega_{ik}, y = \omega_{jk}` (up to the signs of the labels),
+:math:`I_{ik}\dot x = \pm\Omega (I_{jk} - I_p) y`,
+:math:`I_{jk}\dot y = \pm\Omega (I_p - I_{ik}) x` and
+
+.. math:: \ddot x = -\Omega^2 \nu_k^2 x, \qquad
+          \nu_k^2 = \frac{(I_p - I_{ik})(I_p - I_{jk})}{I_{ik} I_{jk}},
+
+eigenvalues :math:`\lambda = \pm i\,\Omega\nu_k`. Hence (the true condition):
+
+**rotation in plane (i, j) is linearly stable iff for every k the moment**
+:math:`I_{ij}` **is strictly the largest or strictly the smallest of the triple**
+:math:`\{I_{ij}, I_{ik}, I_{jk}\}` (or equals both others). If it is strictly
+intermediate for some ``k`` the pair grows like :math:`e^{|\Omega|\sqrt{-\nu_k^2}\,t}`
+(N-dimensional tennis-racket instability); if it equals exactly one of them the
+zero eigenvalue is defective and the perturbation grows linearly.
+For a physical body, :math:`I_{ij} = m_i + m_j`, so
+:math:`(I_{ij} - I_{ik})(I_{ij} - I_{jk}) = (m_j - m_k)(m_i - m_k)`: rotation in
+the plane ``(i, j)`` is stable iff no other second moment :math:`m_k` lies
+between :math:`m_i` and :math:`m_j`.
+
+Paper discrepancies (Sec. 4)
+----------------------------
+* (121)-(131) are right (as matrix entries, see the foundation notes); but the
+  text "the four equations will be satisfied ... the remaining six" is
+  inverted, and (132) is wrong: the constant components are
+  :math:`\varpi_1, \varpi_8, \varpi_9, \varpi_{10}` (planes 12, 34, 35, 45), and
+  they are constant, not zero; :math:`\varpi_6` (plane 24) oscillates with
+  :math:`\varpi_3` (plane 14).
+* (133)-(138) as extracted are garbled. The correct solutions are
+  :math:`\nu_1^2 = (J_1-J_2)(J_1-J_4)/(J_2J_4)`,
+  :math:`\nu_2^2 = (J_1-J_3)(J_1-J_5)/(J_3J_5)`,
+  :math:`\nu_3^2 = (J_1-J_7)(J_1-J_8)/(J_7J_8)`, and with
+  :math:`\varpi_{2,3,4} = C_1\sin\Omega\nu t + C_2\cos\Omega\nu t`:
+  :math:`\varpi_5 = \frac{J_2\nu_1}{J_4-J_1}(C_1\cos - C_2\sin)`,
+  :math:`\varpi_6 = \frac{J_3\nu_2}{J_5-J_1}(C_1\cos - C_2\sin)` (the paper's
+  denominator :math:`J_1 - J_5` has the wrong sign),
+  :math:`\varpi_7 = \frac{J_7\nu_3}{J_8-J_1}(C_1\cos - C_2\sin)`.
+* (139)/(140): a total ordering of all ten moments is neither necessary nor
+  (with ``>=``) sufficient. Only the three triples matter (the moments
+  :math:`J_6, J_9, J_{10}` and the order among :math:`J_2..J_8` are irrelevant),
+  and equality :math:`J_1 = J_2 \ne J_4` makes the zero eigenvalue defective
+  (linear secular growth). The correct statement is the per-triple condition
+  above, with strict inequalities. Also, 5D rotation is in a plane, not "about
+  an axis".
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import sympy as sp
+
+from ..conventions import check_dimension, dimension_from_count, plane_index, plane_label, plane_symbols, planes, structure_constants
+
+__all__ = ["CoupledPair", "StabilityResult", "linear_stability", "linearization", "stability_condition"]
+
+
+def _moments_of(body: Any) -> np.ndarray:
+    if hasattr(body, "inertia"):
+        body = body.inertia
+    if hasattr(body, "moments"):
+        body = body.moments
+    try:
+        I = np.asarray(body, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"expected a RigidBody, an Inertia or an array of plane moments, got {body!r}") from None
+    if I.ndim != 1:
+        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got shape {I.shape}")
+    dimension_from_count(I.size)
+    if not np.all(np.isfinite(I)) or np.any(I <= 0):
+        raise ValueError(f"plane moments must be finite and positive, got {I}")
+    return I
+
+
+def _plane(plane: Any, N: int) -> tuple[int, int]:
+    k = plane_index(plane, N)  # validates
+    return planes(N)[k]
+
+
+@dataclass(frozen=True)
+class CoupledPair:
+    r"""The two planes :math:`(i,k), (j,k)` coupled to the rotation plane :math:`(i,j)` by the triple ``k``.
+
+    Attributes
+    ----------
+    k : int
+        The third axis (1-based).
+    planes : tuple of two plane labels
+        ``((min(i,k), max(i,k)), (min(j,k), max(j,k)))``.
+    nu2 : float
+        :math:`\nu_k^2 = (I_p - I_{ik})(I_p - I_{jk})/(I_{ik} I_{jk})`; the pair's
+        eigenvalues are :math:`\pm\Omega\sqrt{-\nu_k^2}`.
+    kind : str
+        ``"oscillating"`` (:math:`\nu^2 > 0`), ``"unstable"`` (:math:`\nu^2 < 0`),
+        ``"secular"`` (exactly one of the differences zero: defective zero
+        eigenvalue) or ``"neutral"`` (both zero).
+    """
+
+    k: int
+    planes: tuple
+    nu2: float
+    kind: str
+
+
+@dataclass(frozen=True)
+class StabilityResult:
+    r"""Linearisation about steady rotation :math:`\omega = \Omega e_p` (see the module docstring).
+
+    Attributes
+    ----------
+    plane : tuple
+    Omega : float
+    jacobian : ndarray (n_planes, n_planes)
+        :math:`J_{ad} = \Omega C_{dp}^{\;a} (I_p - I_d)/I_a`.
+    eigenvalues : ndarray, complex (n_planes,)
+        From the 2x2 blocks: :math:`\pm\Omega\sqrt{-\nu_k^2}` per pair, zeros for the
+        uncoupled components. Exact (purely imaginary when stable).
+    frequencies : ndarray
+        Angular frequencies :math:`|\Omega|\nu_k` of the oscillating pairs.
+    growth_rates : ndarray
+        :math:`|\Omega|\sqrt{-\nu_k^2}` of the unstable pairs.
+    pairs : tuple of CoupledPair
+    stable : bool
+        Linear stability: every eigenvalue purely imaginary and no defective
+        (secularly growing) zero eigenvalue. Moment differences with
+        ``|I_p - I_q| <= rtol * max(I)`` count as equalities.
+    condition : str
+        The stability condition for this plane, one factor per triple.
+    reason : str
+        Why it is (un)stable.
+    """
+
+    plane: tuple
+    Omega: float
+    jacobian: np.ndarray = field(repr=False)
+    eigenvalues: np.ndarray
+    frequencies: np.ndarray
+    growth_rates: np.ndarray
+    pairs: tuple
+    stable: bool
+    condition: str
+    reason: str
+
+
+def linearization(body: Any, plane: Any, Omega: float) -> np.ndarray:
+    r"""Jacobian of the Euler equations at :math:`\omega = \Omega e_p`:
+    :math:`J_{ad} = \Omega\,C_{dp}^{\;a}\,(I_p - I_d)/I_a` (matrix ``(n_planes, n_planes)``)."""
+    I = _moments_of(body)
+    N = dimension_from_count(I.size)
+    p = plane_index(_plane(plane, N), N)
+    C = structure_constants(N).astype(float)
+    # J[a, d] = Omega * C[d, p, a] * (I_p - I_d) / I_a
+    return float(Omega) * C[:, p, :].T * (I[p] - I)[None, :] / I[:, None]
+
+
+def stability_condition(plane: Any, N: int, *, symbol: str = "I"):
+    r"""SymPy condition for linear stability of rotation in ``plane``:
+    :math:`\bigwedge_k (I_p - I_{ik})(I_p - I_{jk}) > 0` over the axes ``k != i, j``.
+
+    Sufficient and, up to the measure-zero case :math:`I_p = I_{ik} = I_{jk}`
+    (neutral), necessary. Symbols are ``plane_symbols(symbol, N)``.
+    """
+    N = check_dimension(N)
+    i, j = _plane(plane, N)
+    Is = dict(zip(planes(N), plane_symbols(symbol, N)))
+    Ip = Is[(i, j)]
+    terms = []
+    for k in range(1, N + 1):
+        if k in (i, j):
+            continue
+        a, b = Is[(min(i, k), max(i, k))], Is[(min(j, k), max(j, k))]
+        terms.append((Ip - a) * (Ip - b) > 0)
+    return sp.And(*terms)
+
+
+def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12) -> StabilityResult:
+    r"""Linear stability of steady rotation :math:`\omega = \Omega e_{\text{plane}}` (Sec. 4, corrected).
+
+    Parameters
+    ----------
+    body : RigidBody, Inertia or array_like (n_planes,)
+        The plane moments.
+    plane : (i, j)
+        1-based rotation plane, ``i < j``.
+    Omega : float
+        Angular velocity of the steady rotation.
+    rtol : float
+        Moment differences below ``rtol * max(I)`` count as zero.
+
+    Returns
+    -------
+    StabilityResult
+        For the 5D body and ``plane=(1, 2)`` the pairs are ``((1,3),(2,3))``,
+        ``((1,4),(2,4))``, ``((1,5),(2,5))`` with
+        :math:`\nu^2 = (I_{12}-I_{13})(I_{12}-I_{23})/(I_{13}I_{23})`, etc.
+        (eqs. 122-127, 135-138 corrected).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> I = np.array([3.0, 2.0, 1.0])            # 3D: I_12 > I_13 > I_23
+    >>> linear_stability(I, (1, 3), 1.0).stable  # intermediate moment: tennis racket
+    False
+    """
+    I = _moments_of(body)
+    N = dimension_from_count(I.size)
+    i, j = _plane(plane, N)
+    try:
+        Om = float(Omega)
+    except (TypeError, ValueError):
+        raise TypeError(f"Omega must be a real number, got {Omega!r}") from None
+    if not np.isfinite(Om):
+        raise ValueError(f"Omega must be finite, got {Omega!r}")
+    if not (rtol >= 0):
+        raise ValueError(f"rtol must be >= 0, got {rtol!r}")
+    p = plane_index((i, j), N)
+    tol = rtol * float(np.max(I))
+    pairs, eig = [], []
+    freqs, rates, factors = [], [], []
+    secular = unstable = False
+    for k in range(1, N + 1):
+        if k in (i, j):
+            continue
+        P1, P2 = (min(i, k), max(i, k)), (min(j, k), max(j, k))
+        I1, I2 = I[plane_index(P1, N)], I[plane_index(P2, N)]
+        d1, d2 = I[p] - I1, I[p] - I2
+        d1 = 0.0 if abs(d1) <= tol else d1
+        d2 = 0.0 if abs(d2) <= tol else d2
+        nu2 = d1 * d2 / (I1 * I2)
+        if d1 == 0.0 and d2 == 0.0:
+            kind = "neutral"
+        elif d1 == 0.0 or d2 == 0.0:
+            kind = "secular"
+        elif nu2 > 0:
+            kind = "oscillating"
+        else:
+            kind = "unstable"
+        pairs.append(CoupledPair(k=k, planes=(P1, P2), nu2=float(nu2), kind=kind))
+        lam = Om * np.sqrt(complex(-nu2))
+        eig += [lam, -lam]
+        if Om != 0.0:
+            if kind == "oscillating":
+                freqs.append(abs(Om) * np.sqrt(nu2))
+            elif kind == "unstable":
+                rates.append(abs(Om) * np.sqrt(-nu2))
+                unstable = True
+            elif kind == "secular":
+                secular = True
+        lp, l1, l2 = (f"I_{plane_label(q, N)}" for q in ((i, j), P1, P2))
+        factors.append(f"({lp} - {l1})*({lp} - {l2}) > 0")
+    eig += [0j] * (I.size - len(eig))
+    stable = not (unstable or secular)
+    if Om == 0.0:
+        reason = "Omega = 0: the linearisation vanishes (rest is trivially stable)"
+    elif unstable:
+        bad = [pr for pr in pairs if pr.kind == "unstable"]
+        reason = "I_p is strictly intermediate in the triple(s) k = " + ", ".join(str(pr.k) for pr in bad) + " (exponential growth)"
+    elif secular:
+        bad = [pr for pr in pairs if pr.kind == "secular"]
+        reason = "I_p equals exactly one other moment in the triple(s) k = " + ", ".join(str(pr.k) for pr in bad) + " (defective zero eigenvalue, linear growth)"
+    else:
+        reason = "I_p is the largest or the smallest moment of every coupled triple"
+    return StabilityResult(
+        plane=(i, j),
+        Omega=Om,
+        jacobian=linearization(I, (i, j), Om),
+        eigenvalues=np.array(eig, dtype=complex),
+        frequencies=np.array(freqs),
+        growth_rates=np.array(rates),
+        pairs=tuple(pairs),
+        stable=bool(stable),
+        condition=" and ".join(factors) if factors else "True",
+        reason=reason,
+    )
