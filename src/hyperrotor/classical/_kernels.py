@@ -96,10 +96,11 @@ def split_run(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i,
     npair = pair_p.shape[1]
     N = T0.shape[1]
     for b in prange(B):
-        L = np.empty(n)
+        Lh = np.empty(n)  # compensated storage: L = Lh + Ll (Lh carries the value, Ll the rounding error)
+        Ll = np.zeros(n)
         for a in range(n):
-            L[a] = L0[b, a]
-            outL[b, 0, a] = L[a]
+            Lh[a] = L0[b, a]
+            outL[b, 0, a] = Lh[a]
         T = np.empty((N, N))
         if with_attitude:
             for r in range(N):
@@ -115,29 +116,45 @@ def split_run(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i,
                     if a < 0:
                         ch = seq_coef[r] * h
                         for e in range(n):
-                            L[e] += ch * torque[b, e]
+                            d = ch * torque[b, e] + Ll[e]
+                            x = Lh[e]
+                            snew = x + d
+                            bb = snew - x
+                            Ll[e] = (x - (snew - bb)) + (d - bb)
+                            Lh[e] = snew
                         continue
-                    phi = seq_coef[r] * h * L[a] / moments[b, a]
-                    c = math.cos(phi)
-                    s = math.sin(phi)
+                    half = 0.5 * seq_coef[r] * h * (Lh[a] + Ll[a]) / moments[b, a]
+                    sh = math.sin(half)
+                    chh = math.cos(half)
+                    s = 2.0 * sh * chh       # sin(phi)
+                    v = 2.0 * sh * sh        # 1 - cos(phi), accurate for small phi
                     for e in range(npair):
                         p = pair_p[a, e]
                         q = pair_q[a, e]
-                        sg = pair_s[a, e]
-                        x = L[p]
-                        y = L[q]
-                        L[p] = c * x + (s * sg) * y
-                        L[q] = c * y - (s * sg) * x
+                        ss = s * pair_s[a, e]
+                        x = Lh[p]
+                        y = Lh[q]
+                        # increments of the exact rotation, added with TwoSum (error-free)
+                        d = (ss * y - v * x) + Ll[p]
+                        snew = x + d
+                        bb = snew - x
+                        Ll[p] = (x - (snew - bb)) + (d - bb)
+                        Lh[p] = snew
+                        d = (-(ss * x) - v * y) + Ll[q]
+                        snew = y + d
+                        bb = snew - y
+                        Ll[q] = (y - (snew - bb)) + (d - bb)
+                        Lh[q] = snew
                     if with_attitude:
                         i = plane_i[a]
                         j = plane_j[a]
                         for e in range(N):
                             x = T[i, e]
                             y = T[j, e]
-                            T[i, e] = c * x + s * y
-                            T[j, e] = c * y - s * x
+                            T[i, e] = x + (s * y - v * x)
+                            T[j, e] = y - (s * x + v * y)
             for a in range(n):
-                outL[b, k + 1, a] = L[a]
+                outL[b, k + 1, a] = Lh[a] + Ll[a]
             if with_attitude:
                 for r in range(N):
                     for c2 in range(N):
