@@ -1,0 +1,352 @@
+"""Tests of hyperrotor.quantum.rotor: Hamiltonians, evolution methods, symmetry blocks, spectra.
+
+Independent references: tiny so(N) representations built here (the vector
+representation E_(ij) = e_i e_j^T - e_j e_i^T and the so(3) spin-l matrices of
+QuTiP mapped to planes by J1 = L^23, J2 = -L^13, J3 = L^12), dense ``expm``,
+and closed-form spectra derived in the docstrings of the tests.
+"""
+import itertools
+
+import numpy as np
+import pytest
+import qutip
+import scipy.linalg as sla
+import scipy.sparse as sps
+
+from hyperrotor.conventions import planes
+from hyperrotor.quantum.rotor import evolve, rotor_hamiltonian, spectrum, symmetry_blocks
+
+
+# ----------------------------------------------------------------------------
+# private tiny representations (duck-typed like hyperrotor.quantum.Representation)
+# ----------------------------------------------------------------------------
+class _Rep:
+    def __init__(self, N, gens, highest_weight):
+        self.N = N
+        self._gens = {p: sps.csr_matrix(g) for p, g in gens.items()}
+        self.dim = next(iter(self._gens.values())).shape[0]
+        self.highest_weight = tuple(highest_weight)
+
+    def generator(self, plane):
+        return self._gens[tuple(plane)]
+
+    def hermitian(self, plane, hbar=1.0):
+        return (-1j * hbar) * self._gens[tuple(plane)]
+
+    def generators(self):
+        return dict(self._gens)
+
+
+def _vector_rep(N):
+    gens = {}
+    for i, j in planes(N):
+        E = np.zeros((N, N))
+        E[i - 1, j - 1], E[j - 1, i - 1] = 1.0, -1.0
+        gens[(i, j)] = E
+    return _Rep(N, gens, (1,) + (0,) * (N // 2 - 1))
+
+
+def _spin_rep(l):
+    J1, J2, J3 = (qutip.jmat(l, c).full() for c in "xyz")
+    # G = i L_hat / hbar with L^23 = J1, L^13 = -J2, L^12 = J3
+    return _Rep(3, {(1, 2): 1j * J3, (1, 3): -1j * J2, (2, 3): 1j * J1}, (l,))
+
+
+def _direct_sum(*reps):
+    N = reps[0].N
+    gens = {p: sps.block_diag([r.generator(p) for r in reps], format="csr") for p in planes(N)}
+    return _Rep(N, gens, reps[0].highest_weight)
+
+
+def _random_state(rng, dim):
+    v = rng.normal(size=dim) + 1j * rng.normal(size=dim)
+    return v / np.linalg.norm(v)
+
+
+def _states(result):
+    return np.array([s.full().ravel() for s in result.states])
+
+
+def _exact(H, psi, times, hbar=1.0):
+    Hd = H.full() if isinstance(H, qutip.Qobj) else np.asarray(H)
+    return np.array([sla.expm(-1j * Hd * (t - times[0]) / hbar) @ psi for t in times])
+
+
+# ----------------------------------------------------------------------------
+# rotor_hamiltonian
+# ----------------------------------------------------------------------------
+@pytest.mark.parametrize("N", [3, 4, 5, 6])
+def test_vector_rep_hamiltonian_is_diagonal_closed_form(N, rng):
+    """Vector rep: -E_ij^2 projects on span(e_i, e_j), so H = diag_k sum_{j != k} 1/(2 I_kj)."""
+    moments = rng.uniform(0.5, 3.0, size=N * (N - 1) // 2)
+    H = rotor_hamiltonian(_vector_rep(N), moments, hbar=1.0).full()
+    I = {p: m for p, m in zip(planes(N), moments)}
+    expected = [sum(1 / (2 * I[tuple(sorted((k, j)))]) for j in range(1, N + 1) if j != k) for k in range(1, N + 1)]
+    np.testing.assert_allclose(H, np.diag(expected), atol=1e-14, rtol=0)
+
+
+def test_hamiltonian_scales_with_hbar_squared(rng):
+    moments = rng.uniform(1, 2, size=3)
+    rep = _spin_rep(2)
+    H1 = rotor_hamiltonian(rep, moments).full()
+    H2 = rotor_hamiltonian(rep, moments, hbar=0.3).full()
+    np.testing.assert_allclose(H2, 0.09 * H1, atol=1e-14)
+    assert np.allclose(H1, H1.conj().T, atol=1e-14)
+
+
+def test_hamiltonian_bad_input():
+    rep = _vector_rep(4)
+    with pytest.raises(ValueError, match="6 plane moments"):
+        rotor_hamiltonian(rep, [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="positive"):
+        rotor_hamiltonian(rep, [1, 1, 1, 1, -1, 1])
+    with pytest.raises(ValueError, match="positive"):
+        rotor_hamiltonian(rep, [1, 1, 1, 1, 0, 1])
+    with pytest.raises(ValueError, match="hbar"):
+        rotor_hamiltonian(rep, [1] * 6, hbar=-1)
+
+    class _Other:  # an Inertia-like object of another N
+        N, moments = 3, np.ones(3)
+
+    with pytest.raises(ValueError, match="N = 3"):
+        rotor_hamiltonian(rep, _Other())
+
+
+# ----------------------------------------------------------------------------
+# evolve
+# ----------------------------------------------------------------------------
+@pytest.mark.parametrize("method", ["eigen", "krylov", "expm_multiply", "auto"])
+@pytest.mark.parametrize("case", ["spin5", "vector5", "spin_sum"])
+def test_native_methods_match_dense_expm(method, case, rng):
+    if case == "spin5":
+        rep = _spin_rep(5)
+    elif case == "vector5":
+        rep = _vector_rep(5)
+    else:
+        rep = _direct_sum(_spin_rep(3), _spin_rep(2.5))
+    moments = rng.uniform(0.6, 2.0, size=rep.N * (rep.N - 1) // 2)
+    hbar = 0.7
+    H = rotor_hamiltonian(rep, moments, hbar=hbar)
+    psi = _random_state(rng, rep.dim)
+    times = np.concatenate([[0.0], np.sort(rng.uniform(0.01, 4.0, size=12))])
+    res = evolve(H, psi, times, method=method, hbar=hbar)
+    np.testing.assert_allclose(_states(res), _exact(H, psi, times, hbar), atol=1e-10, rtol=0)
+    assert res.times == list(times)
+
+
+def test_krylov_many_restarts_and_uniform_grid(rng):
+    """Small Krylov spaces force many restarts and bisected sub-steps; still exact to 1e-10."""
+    rep = _spin_rep(10)
+    H = rotor_hamiltonian(rep, rng.uniform(0.3, 1.0, size=3))
+    psi = _random_state(rng, rep.dim)
+    times = np.linspace(0, 5, 6)
+    res = evolve(H, psi, times, method="krylov", options={"krylov_dim": 8, "blocks": False})
+    assert res.stats["n_krylov"] > 5
+    np.testing.assert_allclose(_states(res), _exact(H, psi, times), atol=1e-10, rtol=0)
+    res2 = evolve(H, psi, times, method="expm_multiply", options={"blocks": False})
+    np.testing.assert_allclose(_states(res2), _exact(H, psi, times), atol=1e-10, rtol=0)
+
+
+def test_sesolve_and_expectations(rng):
+    rep = _spin_rep(3)
+    H = rotor_hamiltonian(rep, [1.0, 1.7, 2.9])
+    psi = _random_state(rng, rep.dim)
+    times = np.linspace(0, 2, 11)
+    ops = [qutip.Qobj(rep.hermitian(p).toarray()) for p in planes(3)] + [H]
+    ref = evolve(H, psi, times, e_ops=ops, method="eigen")
+    ses = evolve(H, psi, times, e_ops=ops, method="sesolve", options={"atol": 1e-12, "rtol": 1e-10})
+    ex = _exact(H, psi, times)
+    for k, op in enumerate(ops):
+        direct = np.einsum("ti,ij,tj->t", ex.conj(), op.full(), ex).real
+        np.testing.assert_allclose(ref.expect[k], direct, atol=1e-10)
+        np.testing.assert_allclose(ses.expect[k], direct, atol=1e-7)
+    # energy is conserved
+    np.testing.assert_allclose(ref.expect[-1], ref.expect[-1][0], atol=1e-11)
+    assert not ref.states  # qutip convention: with e_ops, states are not stored by default
+    assert ref.final_state is not None
+
+
+def test_mesolve_with_dephasing_conserves_energy_and_loses_purity(rng):
+    """c_op = sqrt(g) H: energy populations are constant, coherences decay (purity < 1)."""
+    rep = _spin_rep(1)
+    H = rotor_hamiltonian(rep, [1.0, 1.5, 2.5])
+    psi = qutip.Qobj(_random_state(rng, 3))
+    times = np.linspace(0, 3, 7)
+    res = evolve(H, psi, times, e_ops=[H], c_ops=[np.sqrt(0.5) * H], options={"store_states": True})
+    np.testing.assert_allclose(res.expect[0], res.expect[0][0], atol=1e-6)
+    purity = (res.states[-1] ** 2).tr().real
+    assert purity < 0.95
+
+
+def test_progress_bar(capsys, rng):
+    rep = _spin_rep(2)
+    H = rotor_hamiltonian(rep, [1.0, 1.5, 2.5])
+    evolve(H, _random_state(rng, 5), np.linspace(0, 1, 5), options={"progress_bar": "text"})
+    assert "Total run time" in capsys.readouterr().out
+
+
+def test_evolve_bad_input(rng):
+    rep = _spin_rep(2)
+    H = rotor_hamiltonian(rep, [1.0, 1.5, 2.5])
+    psi = _random_state(rng, 5)
+    t = np.linspace(0, 1, 3)
+    with pytest.raises(ValueError, match="dimension 4 but H has dimension 5"):
+        evolve(H, psi[:4], t)
+    with pytest.raises(ValueError, match="zero vector"):
+        evolve(H, np.zeros(5), t)
+    with pytest.warns(UserWarning, match="norm 2"):
+        res = evolve(H, 2 * psi, t, method="eigen")
+    np.testing.assert_allclose(np.linalg.norm(res.states[-1].full()), 1.0, atol=1e-13)
+    with pytest.raises(ValueError, match="Hermitian"):
+        evolve(qutip.Qobj(np.triu(np.ones((5, 5)))), psi, t)
+    with pytest.raises(ValueError, match="strictly increasing"):
+        evolve(H, psi, [0.0, 1.0, 1.0])
+    with pytest.raises(ValueError, match="strictly increasing"):
+        evolve(H, psi, [0.0, 2.0, 1.0])
+    with pytest.raises(ValueError, match="unknown method 'rk4'"):
+        evolve(H, psi, t, method="rk4")
+    with pytest.raises(ValueError, match="mesolve"):
+        evolve(H, psi, t, method="krylov", c_ops=[H])
+    with pytest.raises(ValueError, match="unknown option"):
+        evolve(H, psi, t, method="krylov", options={"nstep": 5})
+    with pytest.raises(ValueError, match="max_dense_dim"):
+        evolve(H, psi, t, method="eigen", options={"max_dense_dim": 3, "blocks": False})
+    with pytest.raises(ValueError, match="ket"):
+        evolve(H, qutip.ket2dm(qutip.Qobj(psi)), t)
+    with pytest.raises(ValueError, match="hbar"):
+        evolve(H, psi, t, hbar=0)
+
+
+# ----------------------------------------------------------------------------
+# symmetry blocks
+# ----------------------------------------------------------------------------
+def test_blocks_of_direct_sum_and_populated_only(rng):
+    """H of spin 2 (+) spin 3 splits; a state in one summand evolves only that block (== full to 1e-12)."""
+    rep = _direct_sum(_spin_rep(2), _spin_rep(3))
+    H = rotor_hamiltonian(rep, [1.0, 1.4, 2.3])
+    blocks = symmetry_blocks(H)
+    # the D2 symmetry of the asymmetric top also splits each summand (parity of m in the J3 basis)
+    assert sorted(np.concatenate(blocks).tolist()) == list(range(12))
+    assert all(set(b) <= set(range(5)) or set(b) <= set(range(5, 12)) for b in blocks)
+    psi = np.zeros(12, complex)
+    psi[5:] = _random_state(rng, 7)
+    t = np.linspace(0, 3, 9)
+    split = evolve(H, psi, t, method="krylov")
+    full = evolve(H, psi, t, method="krylov", options={"blocks": False})
+    assert split.stats["populated_dim"] == 7 and full.stats["populated_dim"] == 12
+    np.testing.assert_allclose(_states(split), _states(full), atol=1e-12, rtol=0)
+    np.testing.assert_allclose(_states(split), _exact(H, psi, t), atol=1e-12, rtol=0)
+
+
+def test_equal_moments_blocks_are_trivial(rng):
+    """Equal moments: H = C2/(2I) is a multiple of the identity on an irrep (up to round-off)."""
+    rep = _spin_rep(4)
+    H = rotor_hamiltonian(rep, [1.3] * 3)
+    assert len(symmetry_blocks(H)) == rep.dim
+    psi = _random_state(rng, rep.dim)
+    t = np.linspace(0, 2, 5)
+    res = evolve(H, psi, t)
+    assert res.stats["block_methods"] == ["diagonal"]
+    np.testing.assert_allclose(_states(res), _exact(H, psi, t), atol=1e-12, rtol=0)
+
+
+# ----------------------------------------------------------------------------
+# spectra against closed forms
+# ----------------------------------------------------------------------------
+def _casimir(hw, N):
+    r"""<w, w + 2 rho>, rho_k = N/2 - k (k = 1..floor(N/2)): so(3): l(l+1); vector so(N): N - 1."""
+    return sum(w * (w + N - 2 * k) for k, w in enumerate(hw, start=1))
+
+
+@pytest.mark.parametrize("rep, N", [(_spin_rep(2), 3), (_spin_rep(3.5), 3), (_vector_rep(5), 5), (_vector_rep(6), 6)])
+def test_equal_moment_spectrum_is_casimir(rep, N):
+    levels, deg = spectrum(rotor_hamiltonian(rep, [0.8] * (N * (N - 1) // 2)))
+    assert deg.tolist() == [rep.dim]
+    np.testing.assert_allclose(levels, [_casimir(rep.highest_weight, N) / 1.6], atol=1e-10, rtol=0)
+
+
+def _asym_constants(moments):
+    I12, I13, I23 = moments
+    return 1 / (2 * I23), 1 / (2 * I13), 1 / (2 * I12)  # A, B, C for I_1 = I_23, I_2 = I_13, I_3 = I_12
+
+
+def test_asymmetric_top_l1_l2(rng):
+    r"""Closed forms (hbar = 1, A_k = 1/(2 I_k)).
+
+    l = 1: H = sum_k A_k J_k^2 and (J_k^2) = 1 - |e_k><e_k| in the Cartesian basis, so the
+    levels are B + C, A + C, A + B.
+    l = 2: 4A + B + C, A + 4B + C, A + B + 4C and
+    2(A + B + C) +- 2 sqrt((A - B)^2 + (A - C)(B - C)); their sum 10(A + B + C) = tr H and
+    the symmetric-top limit A = B reproduces A J(J+1) + (C - A) K^2.
+    """
+    for _ in range(3):
+        moments = rng.uniform(0.5, 3.0, size=3)
+        A, B, C = _asym_constants(moments)
+        E1 = np.sort(np.linalg.eigvalsh(rotor_hamiltonian(_spin_rep(1), moments).full()))
+        np.testing.assert_allclose(E1, np.sort([B + C, A + C, A + B]), atol=1e-10, rtol=0)
+        E1v = np.sort(np.linalg.eigvalsh(rotor_hamiltonian(_vector_rep(3), moments).full()))
+        np.testing.assert_allclose(E1v, E1, atol=1e-12, rtol=0)
+        root = np.sqrt((A - B) ** 2 + (A - C) * (B - C))
+        expected = [4 * A + B + C, A + 4 * B + C, A + B + 4 * C, 2 * (A + B + C) + 2 * root, 2 * (A + B + C) - 2 * root]
+        levels, deg = spectrum(rotor_hamiltonian(_spin_rep(2), moments))
+        np.testing.assert_allclose(levels, np.sort(expected), atol=1e-10, rtol=0)
+        assert deg.tolist() == [1] * 5
+
+
+def test_symmetric_top_degeneracies():
+    """I_13 = I_23 (A = B): levels A J(J+1) + (C - A) K^2 with degeneracy 2 for K != 0."""
+    Iab, Ic = 1.0, 2.5
+    A, C = 1 / (2 * Iab), 1 / (2 * Ic)
+    J = 3
+    levels, deg = spectrum(rotor_hamiltonian(_spin_rep(J), [Ic, Iab, Iab]))
+    exp = sorted((A * J * (J + 1) + (C - A) * K**2, 1 if K == 0 else 2) for K in range(J + 1))
+    np.testing.assert_allclose(levels, [e for e, _ in exp], atol=1e-10, rtol=0)
+    assert deg.tolist() == [d for _, d in exp]
+
+
+def quartet_levels(m1, m2, kappa):
+    r"""Closed-form quartet levels (axis 5) in the so(5) irrep (m1, m2), hbar = 1.
+
+    Planes containing axis 5 have I = 1 + kappa^2, the six so(4) planes I = 2, so
+    H = C4/4 + (C5 - C4)/(2(1 + kappa^2)) with C5 = sum of all L^2 and C4 = the so(4) part:
+    H = C5/(2(1+kappa^2)) + C4 (1/4 - 1/(2(1+kappa^2))).
+    so(5) > so(4) branching: (p1, p2) with m1 >= p1 >= m2 >= |p2|, p - m integer, each once;
+    C4(p) = p1(p1 + 2) + p2^2, dim(p) = (p1 + p2 + 1)(p1 - p2 + 1).
+    """
+    C5 = _casimir((m1, m2), 5)
+    a = 1 / (2 * (1 + kappa**2))
+    out = {}
+    p1 = m1
+    while p1 >= m2 - 1e-9:
+        p2 = -m2
+        while p2 <= m2 + 1e-9:
+            E = C5 * a + (p1 * (p1 + 2) + p2**2) * (0.25 - a)
+            key = round(E, 9)
+            E0, d0 = out.get(key, (E, 0))
+            out[key] = (E0, d0 + int(round((p1 + p2 + 1) * (p1 - p2 + 1))))
+            p2 += 1
+        p1 -= 1
+    keys = sorted(out)
+    return np.array([out[k][0] for k in keys]), np.array([out[k][1] for k in keys])
+
+
+@pytest.mark.parametrize("kappa", [0.3, 1.7])
+def test_quartet_vector_rep(kappa):
+    """so(5) vector rep (1, 0): levels from the branching rule match the matrix spectrum."""
+    moments = [2.0 if 5 not in p else 1 + kappa**2 for p in planes(5)]
+    levels, deg = spectrum(rotor_hamiltonian(_vector_rep(5), moments))
+    el, ed = quartet_levels(1, 0, kappa)
+    np.testing.assert_allclose(levels, el, atol=1e-10, rtol=0)
+    assert deg.tolist() == ed.tolist()
+
+
+def test_spectrum_tolerance_and_errors(rng):
+    H = np.diag([1.0, 1.0 + 1e-12, 2.0, 2.0 + 1e-6])
+    levels, deg = spectrum(H)
+    assert deg.tolist() == [2, 1, 1]
+    levels, deg = spectrum(H, tol=1e-5)
+    assert deg.tolist() == [2, 2]
+    with pytest.raises(ValueError, match="Hermitian"):
+        spectrum(np.array([[0.0, 1.0], [0.0, 0.0]]))
+    with pytest.raises(ValueError, match="max_dense_dim"):
+        spectrum(np.ones((4, 4)), max_dense_dim=2)
