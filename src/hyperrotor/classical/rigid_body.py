@@ -1,2 +1,535 @@
-"""(in progress)"""
-__all__: list[str] = []
+r"""The free (or torqued) rigid body in N dimensions and its Euler equations.
+
+Equations of motion
+-------------------
+With plane moments :math:`I_{ij}` (see :class:`hyperrotor.Inertia` for the
+normalization) and body-frame components :math:`L^{ij} = I_{ij}\omega_{ij}`, the
+Euler equations (eq. 24, :math:`\dot L = \omega L - L\omega`, plus a torque)
+read, component by component (plane order :func:`hyperrotor.planes`),
+
+.. math:: I_a\,\dot\omega_a = \sum_{b,c} C_{bc}^{\;a}\,\omega_b L_c + m_a
+          = \sum_{b<c} C_{bc}^{\;a}\,(I_c - I_b)\,\omega_b\omega_c + m_a ,
+
+with the so(N) structure constants :math:`C` of
+:func:`hyperrotor.structure_constants`; e.g.
+:math:`I_{12}\dot\omega_{12} = (I_{13} - I_{23})\omega_{13}\omega_{23} +
+(I_{14} - I_{24})\omega_{14}\omega_{24} + \dots`. These component ODEs are the
+same in the ``"paper"`` and the ``"standard"`` convention (the checkerboard of
+eq. 21 is the automorphism :math:`X \mapsto S X S`,
+:math:`S = \mathrm{diag}((-1)^i)`, see :mod:`hyperrotor.conventions`).
+
+The paper prints each equation as the ``(i, j)`` *matrix entry* of
+:math:`\dot L - (\omega L - L\omega) = \tilde m`, i.e. multiplied by the
+checkerboard sign :math:`(-1)^{i+j}`:
+
+.. math:: (-1)^{i+j}\bigl(I_{ij}\dot\omega_{ij} - \mathrm{rhs}_{ij}\bigr) = \tilde m^{ij},
+          \qquad \tilde m^{ij} = (-1)^{i+j} m_{ij},
+
+which is why (28) starts with :math:`-I^{1212}\dot\omega_{12}` and (29) with
+:math:`+I^{1313}\dot\omega_{13}`. :meth:`RigidBody.euler_equations` returns this
+form in the paper convention and the plain component form in the standard one.
+Torques ``m`` passed as numbers are always the *components* :math:`m_{ij}`.
+
+Textbook 3D map
+---------------
+:math:`W_1 = \omega_{23}`, :math:`W_2 = -\omega_{13}`, :math:`W_3 = \omega_{12}`,
+:math:`I_1 = I_{23}`, :math:`I_2 = I_{13}`, :math:`I_3 = I_{12}` turns the N = 3
+equations into :math:`I_1\dot W_1 = (I_2 - I_3)W_2W_3` (and cyclic). For a
+3-axis reduction with remaining axes :math:`a < b < c` use
+:math:`W_1 = \omega_{bc}`, :math:`W_2 = -\omega_{ac}`, :math:`W_3 = \omega_{ab}`.
+"""
+from __future__ import annotations
+
+from collections.abc import Mapping
+from itertools import combinations
+from numbers import Integral
+from typing import Any, Sequence
+
+import numpy as np
+import sympy as sp
+
+from hyperrotor.conventions import (
+    check_convention,
+    plane_label,
+    planes,
+    structure_constants,
+    to_matrix,
+)
+from hyperrotor.classical.inertia import Inertia
+
+__all__ = ["RigidBody", "TIME"]
+
+#: The time symbol of every symbolic equation (``sympy.Symbol("t")``).
+TIME = sp.Symbol("t")
+
+
+def _is_sym(x: Any) -> bool:
+    if isinstance(x, (sp.Basic, sp.MatrixBase)):
+        return True
+    if isinstance(x, np.ndarray):
+        return x.dtype == object and any(isinstance(v, sp.Basic) for v in x.flat)
+    if isinstance(x, (list, tuple)):
+        return any(_is_sym(v) for v in x)
+    return False
+
+
+def _pfaffian(A: sp.Matrix) -> sp.Expr:
+    """Pfaffian of an even-dimensional antisymmetric SymPy matrix (expansion along row 0)."""
+    n = A.rows
+    if n == 0:
+        return sp.Integer(1)
+    total = sp.Integer(0)
+    for j in range(1, n):
+        if A[0, j] != 0:
+            keep = [k for k in range(n) if k not in (0, j)]
+            total += (-1) ** (j + 1) * A[0, j] * _pfaffian(A.extract(keep, keep))
+    return total
+
+
+def _manakov_traces(L: Any, J: Any, lam: Any = 1):
+    r"""``tr((L + lam J^2)^k)``, ``k = 2..N``, for plain-matrix components ``L`` and diagonal ``J``.
+
+    Numeric: array ``(..., N-1)``; SymPy: list of expressions. Conserved along
+    the flow exactly when the plane moments are :math:`J_i + J_j` (Manakov).
+    """
+    if _is_sym(L) or _is_sym(J) or _is_sym(lam):
+        Lm = to_matrix(list(L), "standard") if not isinstance(L, sp.MatrixBase) else L
+        Lm = sp.Matrix(Lm)
+        N = Lm.rows
+        A = Lm + lam * sp.diag(*[sp.sympify(j) ** 2 for j in J])
+        out, P = [], A
+        for _ in range(2, N + 1):
+            P = P * A
+            out.append(sp.expand(P.trace()))
+        return out
+    Lm = to_matrix(np.asarray(L, dtype=np.float64), "standard")
+    J = np.asarray(J, dtype=np.float64)
+    N = Lm.shape[-1]
+    A = Lm + lam * np.diag(J**2)
+    out, P = [], A
+    for _ in range(2, N + 1):
+        P = P @ A
+        out.append(np.trace(P, axis1=-2, axis2=-1))
+    return np.stack(out, axis=-1)
+
+
+class RigidBody:
+    r"""A rigid body in N dimensions with principal plane moments ``inertia``.
+
+    Parameters
+    ----------
+    inertia : Inertia, mapping or sequence
+        Plane moments (anything :meth:`Inertia.from_planes` accepts).
+    convention : {"paper", "standard"}
+        Matrix convention: ``"paper"`` = checkerboard of eq. (21), equations
+        printed as matrix entries like (28)-(37); ``"standard"`` = plain
+        antisymmetric matrices, equations in component form. Component vectors
+        and :meth:`rhs` are identical in both.
+    axes : sequence of int, optional
+        Labels of the body's axes in an ambient body (set by :meth:`lock`;
+        default ``1..N``). Plane labels, symbol names and the checkerboard signs
+        of the paper convention use these original labels.
+    ambient_dimension : int, optional
+        Dimension of the original body (for symbol names; default ``max(axes)``).
+
+    Attributes
+    ----------
+    N, inertia, convention, axes, planes, locked_axes, ambient_dimension
+    rhs_tables : tuple of int arrays ``(left, right, sign)``, each ``(n_planes, N-2)``
+        :math:`I_a\dot\omega_a = \sum_m \mathrm{sign}_{am}(I_{right} - I_{left})
+        \omega_{left}\omega_{right}` (indices ``left[a, m]``, ``right[a, m]``),
+        for compiled integrators.
+    """
+
+    def __init__(
+        self,
+        inertia: Any,
+        convention: str = "paper",
+        *,
+        axes: Sequence[int] | None = None,
+        ambient_dimension: int | None = None,
+        _locked: tuple = (),
+    ):
+        if not isinstance(inertia, Inertia):
+            if isinstance(inertia, (Mapping, Sequence, np.ndarray, sp.MatrixBase)) and not isinstance(inertia, str):
+                inertia = Inertia.from_planes(inertia)
+            else:
+                raise TypeError(f"inertia must be an Inertia (or plane moments), got {inertia!r}")
+        self.inertia = inertia
+        self.N = inertia.N
+        self.convention = check_convention(convention)
+        if axes is None:
+            axes = tuple(range(1, self.N + 1))
+        else:
+            axes = tuple(axes)
+            if (
+                len(axes) != self.N
+                or any(isinstance(a, bool) or not isinstance(a, Integral) or a < 1 for a in axes)
+                or any(b <= a for a, b in zip(axes, axes[1:]))
+            ):
+                raise ValueError(f"axes must be {self.N} increasing positive integers, got {axes!r}")
+            axes = tuple(int(a) for a in axes)
+        self.axes = axes
+        self.ambient_dimension = int(ambient_dimension) if ambient_dimension is not None else max(axes)
+        if self.ambient_dimension < max(axes):
+            raise ValueError(f"ambient_dimension {ambient_dimension} < largest axis label {max(axes)}")
+        self.locked_axes = tuple(_locked)
+        self.planes = tuple((axes[i - 1], axes[j - 1]) for i, j in planes(self.N))
+        self._signs = np.array(
+            [(-1) ** (i + j) if convention == "paper" else 1 for i, j in self.planes], dtype=int
+        )
+        self._build_tables()
+
+    # ------------------------------------------------------------------ tables
+    def _build_tables(self) -> None:
+        N = self.N
+        n = len(self.planes)
+        C = structure_constants(N)
+        left = np.zeros((n, max(N - 2, 0)), dtype=np.intp)
+        right = np.zeros_like(left)
+        sign = np.zeros(left.shape, dtype=np.int8)
+        for a in range(n):
+            terms = [(b, c, int(C[b, c, a])) for b in range(n) for c in range(b + 1, n) if C[b, c, a]]
+            assert len(terms) == N - 2
+            for m, (b, c, s) in enumerate(terms):
+                left[a, m], right[a, m], sign[a, m] = b, c, s
+        for arr in (left, right, sign):
+            arr.setflags(write=False)
+        self.rhs_tables = (left, right, sign)
+        if not self.inertia.is_symbolic:
+            I = self.inertia.moments
+            coef = sign * (I[right] - I[left]) / I[:, None]
+            coef.setflags(write=False)
+            self._coef = coef
+        else:
+            self._coef = None
+
+    def _rhs_terms(self, w: Sequence, I: Sequence, overall: Sequence[int] | None = None) -> list:
+        """SymPy ``overall_a * rhs_a`` with ``I_a w_a' = rhs_a + m_a`` (sums of (I - I) w w, as printed).
+
+        The sign of each term is absorbed into the order of the moment difference.
+        """
+        left, right, sign = self.rhs_tables
+        out = []
+        for a in range(len(self.planes)):
+            g = 1 if overall is None else int(overall[a])
+            out.append(sp.Add(*[
+                ((I[c] - I[b]) if g * int(s) > 0 else (I[b] - I[c])) * w[b] * w[c]
+                for b, c, s in zip(left[a], right[a], sign[a])
+            ]))
+        return out
+
+    # ------------------------------------------------------------------ symbols
+    def _label(self, plane) -> str:
+        return plane_label(plane, self.ambient_dimension)
+
+    def omega_symbols(self, *, function_of: sp.Symbol | None = None) -> tuple:
+        """SymPy symbols ``omega_ij`` (or functions of ``function_of``) with the original plane labels."""
+        names = [f"omega_{self._label(p)}" for p in self.planes]
+        if function_of is None:
+            return tuple(sp.Symbol(s) for s in names)
+        return tuple(sp.Function(s)(function_of) for s in names)
+
+    def torque_symbols(self) -> tuple:
+        r"""``mtilde_ij`` (paper: the matrix entries :math:`\tilde m^{ij}`) or ``m_ij`` (standard)."""
+        name = "mtilde" if self.convention == "paper" else "m"
+        return tuple(sp.Symbol(f"{name}_{self._label(p)}") for p in self.planes)
+
+    def _check_omega(self, omega: Any, what: str = "omega") -> np.ndarray:
+        try:
+            w = np.asarray(omega, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise TypeError(f"{what} must be a real numeric array of plane components") from None
+        n = len(self.planes)
+        if w.ndim == 0 or w.shape[-1] != n:
+            raise ValueError(
+                f"{what} must have {n} plane components (last axis) for N = {self.N}, got shape {w.shape}"
+            )
+        return w
+
+    # ------------------------------------------------------------------ dynamics
+    def rhs(self, omega: Any, torque: Any = None) -> np.ndarray:
+        r"""Time derivative :math:`\dot\omega` of the Euler equations (numpy).
+
+        .. math:: \dot\omega_a = \Bigl(\sum_{b<c} C_{bc}^{\;a}(I_c - I_b)\,\omega_b\omega_c + m_a\Bigr)/I_a
+
+        Parameters
+        ----------
+        omega : array_like, shape (..., N(N-1)/2)
+            Body-frame angular velocity components; leading axes are batch axes.
+        torque : array_like, optional
+            Body-frame torque *components* :math:`m_{ij}` (broadcast against
+            ``omega``); the paper's printed :math:`\tilde m^{ij}` is
+            :math:`(-1)^{i+j}m_{ij}`.
+
+        Identical in both conventions. Gather-and-sum over precomputed index
+        tables: no Python loop over planes.
+        """
+        if self._coef is None:
+            raise TypeError("rhs needs numeric moments; use symbolic_rhs() or euler_equations() for symbolic inertia")
+        w = self._check_omega(omega)
+        left, right, _ = self.rhs_tables
+        out = np.sum(self._coef * w[..., left] * w[..., right], axis=-1)
+        if torque is not None:
+            m = self._check_omega(torque, "torque")
+            out = out + m / self.inertia.moments
+        return out
+
+    def symbolic_rhs(self, omega: Sequence | None = None, torque: Any = None) -> sp.Matrix:
+        r"""The Euler equations solved for :math:`\dot\omega` as a SymPy column.
+
+        ``omega`` defaults to :meth:`omega_symbols`; ``torque`` are components
+        :math:`m_{ij}` (``None`` = torque-free).
+        """
+        w = list(self.omega_symbols() if omega is None else omega)
+        if len(w) != len(self.planes):
+            raise ValueError(f"omega must have {len(self.planes)} components, got {len(w)}")
+        I = self.inertia.symbolic_moments
+        terms = self._rhs_terms(w, I)
+        m = self._torque_components(torque, default_zero=True)
+        return sp.Matrix([(r + mm) / Ia for r, mm, Ia in zip(terms, m, I)])
+
+    def _torque_components(self, torque: Any, *, default_zero: bool) -> list:
+        n = len(self.planes)
+        if torque is None:
+            return [sp.Integer(0)] * n if default_zero else None
+        if isinstance(torque, (int, float, sp.Basic)) and not isinstance(torque, bool) and sp.sympify(torque) == 0:
+            return [sp.Integer(0)] * n
+        if isinstance(torque, (str, bytes)) or not hasattr(torque, "__len__"):
+            raise TypeError(f"torque must be None, 0 or a sequence of {n} components, got {torque!r}")
+        seq = list(torque)
+        if len(seq) != n:
+            raise ValueError(f"torque must have {n} components for N = {self.N}, got {len(seq)}")
+        return [sp.sympify(v) for v in seq]
+
+    def euler_equations(self, torque: Any = None) -> list:
+        r"""The Euler equations as ``sympy.Eq``, one per plane in plane order.
+
+        Paper convention: :math:`(-1)^{i+j}(I_{ij}\dot\omega_{ij} - \mathrm{rhs}_{ij}) = \tilde m^{ij}`,
+        for N = 5 term by term the printed eqs. (28)-(37) (with :math:`I^{ijij}`
+        read as :math:`I_{ij}`). Standard convention:
+        :math:`I_{ij}\dot\omega_{ij} - \mathrm{rhs}_{ij} = m_{ij}`.
+
+        Parameters
+        ----------
+        torque : None, 0 or sequence
+            ``None``: torque symbols (:meth:`torque_symbols`: ``mtilde_ij`` in
+            the paper convention, ``m_ij`` in the standard one); ``0``:
+            torque-free; a sequence: the components :math:`m_{ij}` (in the paper
+            convention the right-hand side is then :math:`(-1)^{i+j} m_{ij}`).
+
+        The angular velocities are ``omega_ij(t)`` (functions of :data:`TIME`)
+        and the moments ``inertia.symbolic_moments``.
+        """
+        w = self.omega_symbols(function_of=TIME)
+        I = self.inertia.symbolic_moments
+        # sign_a * (I_a w_a' - rhs_a), with sign_a distributed over the terms
+        terms = self._rhs_terms(w, I, overall=-self._signs)
+        if torque is None:
+            rhs_side = list(self.torque_symbols())
+        else:
+            rhs_side = [int(s) * m for s, m in zip(self._signs, self._torque_components(torque, default_zero=True))]
+        eqs = []
+        for a, (Ia, wa, r) in enumerate(zip(I, w, terms)):
+            lhs = int(self._signs[a]) * Ia * sp.Derivative(wa, TIME) + r
+            eqs.append(sp.Eq(lhs, rhs_side[a], evaluate=False))
+        return eqs
+
+    # ------------------------------------------------------------------ invariants
+    def angular_momentum(self, omega: Any):
+        r"""Components :math:`L^{ij} = I_{ij}\,\omega_{ij}` (eq. 26 with the physical moment).
+
+        numpy ``(..., n_planes)``; a SymPy column for symbolic input or inertia.
+        """
+        if _is_sym(omega) or self.inertia.is_symbolic:
+            w = list(omega)
+            self._check_len(w)
+            return sp.Matrix([I * x for I, x in zip(self.inertia.symbolic_moments, w)])
+        return self._check_omega(omega) * self.inertia.moments
+
+    def _check_len(self, seq: Sequence) -> None:
+        if len(seq) != len(self.planes):
+            raise ValueError(f"expected {len(self.planes)} plane components for N = {self.N}, got {len(seq)}")
+
+    def energy(self, omega: Any):
+        r"""Kinetic energy :math:`\tfrac12\sum_{i<j} I_{ij}\,\omega_{ij}^2` (eq. 6 summed over planes).
+
+        The full summation of eq. (6) with the eq.-(3) tensor gives the same
+        value (its factor 2 from the double sum cancels the 1/2 of
+        :math:`I^{ijij}`); numpy ``(...)`` or a SymPy expression.
+        """
+        if _is_sym(omega) or self.inertia.is_symbolic:
+            w = list(omega)
+            self._check_len(w)
+            return sp.Rational(1, 2) * sum((I * x**2 for I, x in zip(self.inertia.symbolic_moments, w)), sp.Integer(0))
+        w = self._check_omega(omega)
+        return 0.5 * np.sum(self.inertia.moments * w**2, axis=-1)
+
+    def matrix(self, components: Any):
+        r"""``N x N`` matrix of a component vector in this body's convention.
+
+        Paper: entry ``(p, q)`` is :math:`(-1)^{a_p + a_q}` times the component of
+        plane :math:`(a_p, a_q)` with the *original* axis labels ``a``.
+        """
+        plain = to_matrix(components, "standard")
+        if self.convention == "standard":
+            return plain
+        s = [(-1) ** a for a in self.axes]
+        if isinstance(plain, sp.MatrixBase):
+            S = sp.diag(*s)
+            return S * plain * S
+        S = np.array(s)
+        return plain * S[:, None] * S[None, :]
+
+    def casimirs(self, values: Any, *, of: str = "omega"):
+        r"""Coefficients of the characteristic polynomial of the ``L`` matrix (eq. 38).
+
+        .. math:: \det(\lambda E - L) = \lambda^N + c_2\lambda^{N-2} + c_4\lambda^{N-4} + \dots
+
+        (odd coefficients vanish, ``L`` being antisymmetric). Returned in the
+        order :math:`(c_2, c_4, \dots, c_{2\lfloor N/2\rfloor})`, where
+        :math:`c_{2k}` is the sum of the squared Pfaffians of all
+        :math:`2k \times 2k` principal submatrices; :math:`c_2 = \sum_{i<j} (L^{ij})^2`.
+        They are the same in both conventions (:math:`S L S` has the same
+        characteristic polynomial) and are conserved for every inertia.
+        The paper's eq. (38), :math:`|L - \lambda E| = k_1\lambda + k_3\lambda^3`,
+        omits the :math:`-\lambda^5` term; there :math:`k_3 = -c_2`,
+        :math:`k_1 = -c_4`. The energy is *not* among them.
+
+        Parameters
+        ----------
+        values : array_like or SymPy sequence
+            Angular velocity (``of="omega"``, default) or angular momentum
+            components (``of="L"``).
+
+        Returns
+        -------
+        numpy.ndarray ``(..., N // 2)`` or a list of SymPy expressions.
+        """
+        if of not in ("omega", "L"):
+            raise ValueError(f"of must be 'omega' or 'L', got {of!r}")
+        if of == "omega":
+            L = self.angular_momentum(values)
+        else:
+            L = values
+        N = self.N
+        if _is_sym(L):
+            L = list(L)
+            self._check_len(L)
+            M = to_matrix(L, "standard")
+            out = []
+            for k in range(1, N // 2 + 1):
+                tot = sp.Integer(0)
+                for sub in combinations(range(N), 2 * k):
+                    tot += _pfaffian(M.extract(list(sub), list(sub))) ** 2
+                out.append(sp.expand(tot))
+            return out
+        L = self._check_omega(L, "L")
+        M = to_matrix(L, "standard")
+        # Newton's identities: k e_k = sum_{i=1}^k (-1)^(i-1) e_{k-i} p_i, p_i = tr(M^i)
+        p, P = [None], np.broadcast_to(np.eye(N), M.shape)
+        for _ in range(N):
+            P = P @ M
+            p.append(np.trace(P, axis1=-2, axis2=-1))
+        e = [np.ones(M.shape[:-2])]
+        for k in range(1, N + 1):
+            e.append(sum((-1) ** (i - 1) * e[k - i] * p[i] for i in range(1, k + 1)) / k)
+        return np.stack([e[2 * k] for k in range(1, N // 2 + 1)], axis=-1)
+
+    def manakov_integrals(self, omega: Any, lam: Any = 1.0):
+        r"""Manakov's integrals :math:`\operatorname{tr}\bigl((L + \lambda J^2)^k\bigr)`, ``k = 2..N``.
+
+        For a mass-tensor body :math:`I_{ij} = J_i + J_j`
+        (:attr:`Inertia.mass_tensor`), with plain matrices
+        :math:`L = JW + WJ` and :math:`J = \mathrm{diag}(J_i)`, the Lax pair
+        :math:`\tfrac{d}{dt}(L + \lambda J^2) = [L + \lambda J^2, -(W + \lambda J)]`
+        makes every such trace conserved for every ``lam`` (hence every
+        coefficient of its polynomial in ``lam``). Convention independent.
+
+        Returns
+        -------
+        numpy.ndarray ``(..., N - 1)`` or a list of SymPy expressions (``lam``
+        may be a SymPy symbol).
+
+        Raises
+        ------
+        ValueError
+            If the moments are not of the form :math:`J_i + J_j`.
+        """
+        J = self.inertia.mass_tensor
+        if J is None:
+            raise ValueError(
+                "manakov_integrals needs a mass-tensor inertia I_ij = J_i + J_j; "
+                f"{self.inertia!r} is not of that form"
+            )
+        L = self.angular_momentum(omega)
+        if not _is_sym(L):
+            return _manakov_traces(L, J, lam)
+        return _manakov_traces(list(L), J, lam)
+
+    # ------------------------------------------------------------------ reductions
+    def lock(self, axes: Any) -> "RigidBody":
+        r"""The reduced body when every rotation involving ``axes`` is frozen (Sec. 2.2-2.5).
+
+        Setting :math:`\omega_{ij} = 0` for all planes that contain a locked axis
+        is an invariant subspace of the torque-free flow: each term of
+        :math:`\dot\omega_{ik}` (``k`` locked) contains some
+        :math:`\omega_{\cdot k}` factor. The remaining components obey the Euler
+        equations of the body made of the remaining axes and their plane moments.
+        The reduced body keeps the original axis labels (:attr:`axes`), so its
+        equations use the original symbols and signs (e.g. ``lock(1)`` of a 5D
+        body gives (42)-(47)).
+
+        Parameters
+        ----------
+        axes : int or iterable of int
+            Original axis labels present in :attr:`axes`.
+
+        Raises
+        ------
+        ValueError
+            Unknown axis, or fewer than two axes would remain.
+        """
+        if isinstance(axes, (Integral, np.integer)) and not isinstance(axes, bool):
+            locked = (int(axes),)
+        else:
+            try:
+                locked = tuple(axes)
+            except TypeError:
+                raise TypeError(f"axes must be an axis label or an iterable of them, got {axes!r}") from None
+        for a in locked:
+            if isinstance(a, bool) or not isinstance(a, (Integral, np.integer)) or int(a) not in self.axes:
+                raise ValueError(f"cannot lock axis {a!r}: the body's axes are {self.axes}")
+        locked = tuple(sorted(set(int(a) for a in locked)))
+        remaining = tuple(a for a in self.axes if a not in locked)
+        if len(remaining) < 2:
+            raise ValueError(
+                f"locking axes {locked} of a body with axes {self.axes} leaves {len(remaining)} axis; "
+                "at least two must remain free (one rotation plane)"
+            )
+        keep = [k for k, (i, j) in enumerate(self.planes) if i in remaining and j in remaining]
+        vals = [self.inertia.symbolic_moments[k] for k in keep]
+        J = self.inertia._J
+        if J is not None:
+            J = tuple(J[self.axes.index(a)] for a in remaining)
+        inertia = Inertia._from_values(vals, len(remaining), J)
+        return RigidBody(
+            inertia,
+            self.convention,
+            axes=remaining,
+            ambient_dimension=self.ambient_dimension,
+            _locked=tuple(sorted(self.locked_axes + locked)),
+        )
+
+    def stability(self, plane: Any, Omega: Any):
+        """Linear stability of the steady rotation ``Omega`` in ``plane``.
+
+        Delegates to :func:`hyperrotor.classical.stability.linear_stability`.
+        """
+        from hyperrotor.classical.stability import linear_stability
+
+        return linear_stability(self, plane, Omega)
+
+    def __repr__(self) -> str:
+        extra = f", axes={self.axes}" if self.axes != tuple(range(1, self.N + 1)) else ""
+        return f"RigidBody({self.inertia!r}, convention={self.convention!r}{extra})"
