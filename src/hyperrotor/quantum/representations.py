@@ -508,5 +508,102 @@ def _check_same_N(*reps):
 # ----------------------------------------------------------------------------
 # harmonic polynomials
 # ----------------------------------------------------------------------------
-def harmonic_rep(N: int, l: int) -> Representation:  # pragma: no cover - filled in below
-    raise NotImplementedError
+def _monomial_mean(exponents: tuple, cache: dict) -> Fraction:
+    """Normalized sphere mean of a monomial (via :func:`.harmonic.sphere_monomial_integral`), cached."""
+    v = cache.get(exponents)
+    if v is None:
+        from .harmonic import sphere_monomial_integral
+
+        r = sphere_monomial_integral(exponents, normalized=True)
+        v = cache[exponents] = Fraction(int(r.p), int(r.q))
+    return v
+
+
+def harmonic_rep(N: int, l: int) -> Representation:
+    r"""so(N) on the harmonic homogeneous polynomials of degree ``l`` (eq. 142 made into matrices).
+
+    Basis: the orthonormalized (normalized sphere measure
+    :math:`\langle p, q\rangle = \frac{1}{|S^{N-1}|}\int_{S^{N-1}} \bar p\,q\,dS`)
+    exact Gram-Schmidt basis :math:`h_a = u_a/\sqrt{n_a}` of
+    :func:`hyperrotor.quantum.harmonic.orthogonal_harmonic_basis`. The generator
+    of plane ``(i, j)`` is the matrix of the differential operator
+    :math:`\mathbb L^{ij} = x_i\partial_j - x_j\partial_i`
+    (:func:`hyperrotor.quantum.operators.angular_momentum_operator`):
+    :math:`\mathbb L^{ij} h_b = \sum_a (X_{(ij)})_{ab}\, h_a`,
+    :math:`(X_{(ij)})_{ab} = \langle h_a, \mathbb L^{ij} h_b\rangle`. The measure
+    is rotation invariant, so the :math:`X_{(ij)}` are real antisymmetric, and
+    they satisfy the brackets of :math:`E_{(ij)}` (module docstring).
+
+    Irreducible with highest weight :math:`(l, 0, \dots, 0)` for N >= 3
+    (dimension :math:`\binom{l+N-1}{N-1} - \binom{l+N-3}{N-1}`, Casimir
+    :math:`-l(l+N-2)`); for N = 2 and ``l >= 1`` it is the reducible
+    2-dimensional real rep with weights :math:`\pm l`.
+    Exact SymPy matrices (entries :math:`\sqrt{n_a/n_b}\,q`, q rational) on request.
+    """
+    from .harmonic import orthogonal_harmonic_basis
+    from .operators import angular_momentum_operator
+
+    N = check_dimension(N)
+    if isinstance(l, bool) or not isinstance(l, (int, np.integer, sp.Integer)) or int(l) < 0:
+        raise ValueError(f"degree l must be an integer >= 0, got {l!r}")
+    l = int(l)
+    polys, norms = orthogonal_harmonic_basis(N, l)
+    d = len(polys)
+    monos = sorted({m for p in polys for m in p})
+    pos = {m: k for k, m in enumerate(monos)}
+
+    def vec(p: dict) -> np.ndarray:
+        v = np.zeros(len(monos))
+        for m, c in p.items():
+            v[pos[m]] = float(c)
+        return v
+
+    U = np.stack([vec(p) for p in polys], axis=1) if d else np.zeros((len(monos), 0))
+    Upinv = np.linalg.pinv(U)
+    sq = np.sqrt(np.array([float(n) for n in norms]))
+    images = {}
+    gens = {}
+    for p in planes(N):
+        op = angular_momentum_operator(p, N)
+        imgs = [op.apply_to_polynomial(u) for u in polys]
+        images[p] = imgs
+        LU = np.stack([vec(q) for q in imgs], axis=1) if d else np.zeros((len(monos), 0))
+        Cm = Upinv @ LU
+        if np.abs(U @ Cm - LU).max(initial=0.0) > 1e-9 * max(1.0, np.abs(LU).max(initial=0.0)):  # pragma: no cover
+            raise ArithmeticError("harmonic space not invariant (internal error)")
+        M = sq[:, None] * Cm / sq[None, :]
+        M[np.abs(M) < 1e-13] = 0.0
+        gens[p] = sps.csr_matrix(M)
+
+    def exact():
+        cache: dict = {}
+
+        def inner(a: dict, b: dict) -> Fraction:
+            t = Fraction(0)
+            for m1, c1 in a.items():
+                for m2, c2 in b.items():
+                    e = tuple(x + y for x, y in zip(m1, m2))
+                    if all(x % 2 == 0 for x in e):
+                        t += Fraction(c1) * Fraction(c2) * _monomial_mean(e, cache)
+            return t
+
+        out = {}
+        for p in planes(N):
+            S = sp.zeros(d, d)
+            for b, img in enumerate(images[p]):
+                if not img:
+                    continue
+                for a in range(d):
+                    c = inner(polys[a], img)
+                    if c:
+                        r = c / Fraction(norms[a]) * 1  # coefficient of u_a
+                        S[a, b] = sp.Rational(r.numerator, r.denominator) * sp.sqrt(
+                            sp.Rational(Fraction(norms[a]).numerator * Fraction(norms[b]).denominator,
+                                        Fraction(norms[a]).denominator * Fraction(norms[b]).numerator)
+                        )
+            out[p] = S
+        return out
+
+    hw = None if (N == 2 and l > 0) else _zeros_hw(N, (l,))
+    return Representation(N, gens, highest_weight=hw, exact_generators=exact,
+                          name=f"harmonic polynomials of degree {l} (so({N}))")
