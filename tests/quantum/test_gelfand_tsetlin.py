@@ -1,0 +1,250 @@
+"""Gelfand-Tsetlin irreps of so(N): brackets, Casimir, dimensions, weights, exact mode, bad input."""
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import scipy.sparse as sps
+import sympy as sp
+
+from hyperrotor.conventions import planes, structure_constants
+from hyperrotor.quantum.gelfand_tsetlin import gt_index, gt_patterns, gt_size, irrep
+from hyperrotor.quantum.weights import casimir_eigenvalue, weight_multiplicities, weyl_dimension
+
+H = Fraction(1, 2)
+TOL = 1e-12  # relative residual of the brackets (scaled by max |X|^2)
+
+
+def so5_weights(max_m1=4):
+    out = []
+    for twice in range(0, 2 * max_m1 + 1):
+        m1 = Fraction(twice, 2)
+        m2 = Fraction(twice % 2, 2)
+        while m2 <= m1:
+            out.append((m1, m2))
+            m2 += 1
+    return out
+
+
+SAMPLES = [
+    (2, (3,)), (2, (-H,)),
+    (3, (0,)), (3, (H,)), (3, (1,)), (3, (7 * H,)), (3, (4,)),
+    (4, (1, 0)), (4, (1, 1)), (4, (1, -1)), (4, (H, H)), (4, (H, -H)), (4, (5 * H, -3 * H)), (4, (3, 1)),
+    (6, (1, 0, 0)), (6, (1, 1, 0)), (6, (H, H, H)), (6, (H, H, -H)), (6, (2, 1, -1)), (6, (3 * H, H, -H)),
+    (7, (1, 0, 0)), (7, (H, H, H)), (7, (1, 1, 0)), (7, (2, 1, 0)), (7, (3 * H, H, H)),
+    (8, (H, H, H, -H)), (8, (1, 1, 0, 0)),
+]
+ALL = [(5, m) for m in so5_weights()] + SAMPLES
+
+
+def _bracket_residual(rep):
+    N = rep.N
+    C = structure_constants(N)
+    pl = planes(N)
+    X = rep.generators()
+    scale = max(1.0, max(float(abs(M).max()) if M.nnz else 0.0 for M in X.values())) ** 2
+    worst = 0.0
+    for a, pa in enumerate(pl):
+        for b in range(a + 1, len(pl)):
+            pb = pl[b]
+            lhs = X[pa] @ X[pb] - X[pb] @ X[pa]
+            for c in np.nonzero(C[a, b])[0]:
+                lhs = lhs - int(C[a, b, c]) * X[pl[c]]
+            if lhs.nnz:
+                worst = max(worst, float(abs(lhs).max()))
+    return worst / scale
+
+
+@pytest.fixture(scope="module")
+def reps():
+    return {}
+
+
+def _rep(cache, N, m):
+    key = (N, tuple(m))
+    if key not in cache:
+        cache[key] = irrep(N, m)
+    return cache[key]
+
+
+@pytest.mark.parametrize("N, m", ALL, ids=str)
+def test_brackets_casimir_dimension(reps, N, m):
+    rep = _rep(reps, N, m)
+    assert rep.dim == weyl_dimension(N, m) == gt_size(N, m)
+    assert _bracket_residual(rep) <= TOL
+    c = float(casimir_eigenvalue(N, m))
+    cas = rep.casimir()
+    assert abs(cas + c * sps.identity(rep.dim)).max() <= TOL * max(1.0, c)
+    # anti-Hermitian generators, Hermitian L = -i X
+    for p in rep.planes:
+        X = rep.generator(p)
+        assert abs(X + X.conj().T).max() <= 1e-14 * max(1.0, abs(X).max())
+        L = rep.hermitian(p, hbar=0.7)
+        assert abs(L - L.conj().T).max() <= 1e-14 * max(1.0, abs(L).max())
+        assert abs(L - (-0.7j) * X).max() == 0
+
+
+@pytest.mark.parametrize("N, m", ALL, ids=str)
+def test_weights_equal_freudenthal(reps, N, m):
+    rep = _rep(reps, N, m)
+    assert rep.weight_multiplicities() == weight_multiplicities(N, m)
+
+
+@pytest.mark.parametrize("N, m", [(5, (2, 1)), (5, (3 * H, 3 * H)), (6, (2, 1, -1)), (7, (2, 1, 0)), (4, (5 * H, -3 * H)), (3, (2,))], ids=str)
+def test_contraction_identity(reps, N, m):
+    # sum_{k != i,j} [X_(ik), X_(kj)] = (N - 2) X_(ij), with X_(ba) = -X_(ab)
+    rep = _rep(reps, N, m)
+
+    def X(a, b):
+        return rep.generator((a, b)) if a < b else -rep.generator((b, a))
+
+    for i in range(1, N + 1):
+        for j in range(1, N + 1):
+            if i == j:
+                continue
+            tot = sum((X(i, k) @ X(k, j) - X(k, j) @ X(i, k) for k in range(1, N + 1) if k not in (i, j)),
+                      sps.csr_matrix((rep.dim, rep.dim)))
+            assert abs(tot - (N - 2) * X(i, j)).max() <= TOL * max(1.0, abs(X(i, j)).max()) ** 2
+
+
+@pytest.mark.parametrize("N, m", [(5, (2, 1)), (6, (H, H, -H)), (7, (1, 1, 0)), (4, (1, 1))], ids=str)
+def test_ladder_operators(reps, N, m):
+    rep = _rep(reps, N, m)
+    Hs = rep.cartan_generators(hermitian=True)
+    for root, E in rep.ladder_operators().items():
+        for k, Hk in enumerate(Hs):
+            res = Hk @ E - E @ Hk - root[k] * E
+            assert abs(res).max() <= 1e-12 * max(1.0, abs(E).max())
+    # [E_a, E_-a] lies in the Cartan subalgebra and is proportional to sum_k a_k H_k
+    for root in rep.roots():
+        Ep, Em = rep.ladder(root), rep.ladder(tuple(-x for x in root))
+        comm = (Ep @ Em - Em @ Ep).toarray()
+        target = sum(a * Hk.toarray() for a, Hk in zip(root, Hs))
+        if np.abs(target).max() < 1e-12:  # this su(2) acts trivially (e.g. so(4) (1, 1))
+            assert np.abs(comm).max() <= 1e-12
+            continue
+        lam = np.vdot(target, comm) / np.vdot(target, target)
+        assert abs(lam) > 0.1
+        assert np.abs(comm - lam * target).max() <= 1e-11
+
+
+def test_so3_matches_spin_matrices():
+    # so(3) GT basis = |j, m>, m = j, j-1, ..., -j: X_(12) = i m, and X_(23) is real with
+    # <m+1| X_(23) |m> = +1/2 sqrt((j-m)(j+m+1)) (so -i X_(23) is the spin matrix J_y up to sign of i)
+    for twice in range(1, 8):
+        j = twice / 2
+        rep = irrep(3, (Fraction(twice, 2),))
+        m = j - np.arange(rep.dim)
+        assert np.array_equal(rep.generator((1, 2), format="dense"), np.diag(1j * m))
+        X23 = rep.generator((2, 3), format="dense")
+        A = 0.5 * np.sqrt((j - m[1:]) * (j + m[1:] + 1))
+        assert np.allclose(X23, np.diag(A, 1) - np.diag(A, -1), rtol=0, atol=1e-15)
+
+
+def test_patterns_and_index():
+    m = (3, 1)
+    P = gt_patterns(5, m)
+    assert P.shape == (weyl_dimension(5, m), 6)
+    assert np.all(P[:, :2] == [3, 1])
+    # lexicographically decreasing, index inverse of the order
+    keys = [tuple(r) for r in P.tolist()]
+    assert keys == sorted(keys, reverse=True)
+    assert gt_index(5, m, P[7]) == 7
+    assert np.array_equal(gt_index(5, m, P[::-1]), np.arange(len(P))[::-1])
+    # betweenness of every row
+    for r in P:
+        M5, M4, M3, M2 = r[0:2], r[2:4], r[4], r[5]
+        assert M5[0] >= M4[0] >= M5[1] >= M4[1] >= -M5[1]
+        assert M4[0] >= M3 >= abs(M4[1])
+        assert M3 >= M2 >= -M3
+    with pytest.raises(ValueError, match="not a Gelfand-Tsetlin pattern"):
+        gt_index(5, m, [3, 1, 3, 1, 4, 0])
+    with pytest.raises(ValueError, match="6 entries"):
+        gt_index(5, m, [3, 1, 3])
+    # X_(12) = i diag(M_2): the weight of H_1 is the last pattern entry
+    rep = irrep(5, m)
+    assert np.allclose(rep.generator((1, 2)).diagonal(), 1j * P[:, -1], rtol=0, atol=0)
+
+
+def test_input_forms_agree():
+    ref = irrep(5, (Fraction(3, 2), Fraction(1, 2)))
+    for m in [(1.5, 0.5), (sp.Rational(3, 2), sp.Rational(1, 2)), (Fraction(3, 2), 0.5)]:
+        rep = irrep(5, m)
+        assert rep.highest_weight == (Fraction(3, 2), Fraction(1, 2))
+        assert all(abs(rep.generator(p) - ref.generator(p)).max() == 0 for p in rep.planes)
+    rep = irrep(5, dynkin=[1, 1])
+    assert rep.highest_weight == (Fraction(3, 2), Fraction(1, 2))
+    assert irrep(6, dynkin=[0, 1, 0]).highest_weight == (H, H, -H)
+
+
+def test_dense_format():
+    rep = irrep(5, (1, 1))
+    D = rep.generator((2, 4), format="dense")
+    assert isinstance(D, np.ndarray) and D.shape == (10, 10)
+    assert np.array_equal(D, rep.generator((2, 4)).toarray())
+    assert sps.isspmatrix_csr(rep.generator((2, 4)))
+
+
+@pytest.mark.parametrize("N, m", [(3, (1,)), (4, (H, H)), (5, (1, 0)), (5, (H, H)), (5, (1, 1)), (6, (H, H, -H))], ids=str)
+def test_exact_generators(N, m):
+    rep = irrep(N, m)
+    G = rep.generators(exact=True)
+    pl = planes(N)
+    C = structure_constants(N)
+    for p in pl:
+        num = np.array(G[p].evalf(30), dtype=complex)
+        assert np.abs(num - rep.generator(p, format="dense")).max() <= 1e-14
+    # exact brackets and Casimir
+    for a, pa in enumerate(pl):
+        for b, pb in enumerate(pl):
+            rhs = sp.zeros(rep.dim, rep.dim)
+            for c in np.nonzero(C[a, b])[0]:
+                rhs += int(C[a, b, c]) * G[pl[c]]
+            diff = (G[pa] * G[pb] - G[pb] * G[pa] - rhs).applyfunc(sp.expand)
+            assert diff == sp.zeros(rep.dim, rep.dim)
+    cas = sum((G[p] * G[p] for p in pl), sp.zeros(rep.dim, rep.dim)).applyfunc(sp.expand)
+    c = casimir_eigenvalue(N, m)
+    assert cas == -sp.Rational(c.numerator, c.denominator) * sp.eye(rep.dim)
+
+
+def test_large_so5_irrep():
+    rep = irrep(5, (20, 10))
+    assert rep.dim == 52976 == weyl_dimension(5, (20, 10))
+    # brackets of the chain generators with their neighbours and a Casimir check on random vectors
+    rng = np.random.default_rng(5)
+    v = rng.standard_normal(rep.dim) + 1j * rng.standard_normal(rep.dim)
+    c = float(casimir_eigenvalue(5, (20, 10)))
+    Cv = sum(X @ (X @ v) for X in rep.generators().values())
+    assert np.abs(Cv + c * v).max() <= 1e-10 * c * np.abs(v).max()
+    X = rep.generators()
+    for (a, b), (cc, d), (e, f), s in [((1, 2), (2, 3), (1, 3), 1), ((2, 4), (4, 5), (2, 5), 1), ((1, 5), (3, 5), (1, 3), -1)]:
+        lhs = X[(a, b)] @ (X[(cc, d)] @ v) - X[(cc, d)] @ (X[(a, b)] @ v)
+        assert np.abs(lhs - s * (X[(e, f)] @ v)).max() <= 1e-10 * 900 * np.abs(v).max()
+
+
+@pytest.mark.parametrize(
+    "kwargs, exc, match",
+    [
+        (dict(N=5, highest_weight=(1, 2)), ValueError, "not dominant"),
+        (dict(N=5, highest_weight=(1, 0.5)), ValueError, "all integers or all half-integers"),
+        (dict(N=5, highest_weight=(1, 0, 0)), ValueError, "2 entries"),
+        (dict(N=1, highest_weight=(1,)), ValueError, "N must be an integer >= 2"),
+        (dict(N=5), ValueError, "highest_weight"),
+        (dict(N=5, highest_weight=(1, 0), dynkin=[1, 0]), ValueError, "either"),
+        (dict(N=5, highest_weight=(20, 10), max_dim=50_000), ValueError, r"dimension 52976 > max_dim = 50000.*MiB.*max_dim=52976"),
+        (dict(N=5, highest_weight=(1, 0), max_dim=0), TypeError, "max_dim"),
+    ],
+)
+def test_bad_input(kwargs, exc, match):
+    with pytest.raises(exc, match=match):
+        irrep(**kwargs)
+
+
+def test_bad_plane_and_format():
+    rep = irrep(5, (1, 0))
+    for bad in [(2, 1), (1, 6), (0, 1), (3, 3), (1,), (1, 2, 3)]:
+        with pytest.raises(ValueError, match="plane"):
+            rep.generator(bad)
+    with pytest.raises(ValueError, match="format"):
+        rep.generator((1, 2), format="coo")
+    with pytest.raises(ValueError, match="not a root"):
+        rep.ladder((2, 0))
