@@ -59,6 +59,7 @@ __all__ = [
     "harmonic_rep",
     "tensor",
     "direct_sum",
+    "intertwiner",
 ]
 
 _FORMATS = ("csr", "dense")
@@ -438,12 +439,19 @@ def spinor_rep(N: int, chirality: int | None = None) -> Representation:
     if chirality is not None:
         parity = np.array([bin(b).count("1") % 2 for b in range(dim)])
         keep = np.nonzero(parity == (0 if chirality == 1 else 1))[0]
-    gens, exact = {}, {}
+    gens = {}
     for i, j in planes(N):
         M = 0.5 * (g[i - 1] @ g[j - 1])
-        M = M[np.ix_(keep, keep)]
-        gens[(i, j)] = sps.csr_matrix(M)
-        exact[(i, j)] = sp.Matrix(len(keep), len(keep), lambda r, c: sp.nsimplify(M[r, c].real) + sp.I * sp.nsimplify(M[r, c].imag))
+        gens[(i, j)] = sps.csr_matrix(M[np.ix_(keep, keep)])
+
+    def exact():
+        # entries are 0, +-1/2, +-i/2 exactly
+        out = {}
+        for p, M in gens.items():
+            D = M.toarray()
+            out[p] = sp.Matrix(D.shape[0], D.shape[1], lambda r, c: sp.Rational(int(round(2 * D[r, c].real)), 2)
+                               + sp.I * sp.Rational(int(round(2 * D[r, c].imag)), 2))
+        return out
     half = Fraction(1, 2)
     if N % 2:
         hw = (half,) * n
@@ -497,6 +505,92 @@ def direct_sum(*reps: Representation) -> Representation:
             ex = [r._exact_generators() for r in reps]
             return {p: sp.diag(*[e[p] for e in ex]) for p in planes(N)}
     return Representation(N, gens, highest_weight=hw, exact_generators=exact, name=" + ".join(f"({r.name})" for r in reps))
+
+
+def _null_space(A: np.ndarray, rtol: float = 1e-9) -> np.ndarray:
+    if A.shape[0] == 0:
+        return np.eye(A.shape[1], dtype=complex)
+    _, s, Vh = np.linalg.svd(A)
+    tol = rtol * max(1.0, s[0] if s.size else 0.0)
+    rank = int(np.sum(s > tol))
+    return Vh[rank:].conj().T
+
+
+def _highest_weight_vector(rep: "Representation", raising: list) -> np.ndarray:
+    if not raising:
+        return np.ones(1, dtype=complex)
+    A = np.vstack([E.toarray() for E in raising])
+    K = _null_space(A)
+    if K.shape[1] != 1:
+        raise ValueError(
+            f"{rep.name} is not irreducible: its highest-weight space has dimension {K.shape[1]}"
+        )
+    return K[:, 0]
+
+
+def intertwiner(a: Representation, b: Representation, *, rtol: float = 1e-9) -> np.ndarray:
+    r"""An invertible ``T`` with :math:`T\,X^{(a)}_{(ij)} = X^{(b)}_{(ij)}\,T` for all planes (dense).
+
+    Both representations must be irreducible (a 1-dim joint kernel of the
+    raising operators :math:`E_\alpha`, :math:`\alpha > 0`). Construction: the
+    highest-weight vectors :math:`v_a, v_b` are matched, and so are the vectors
+    :math:`E_{-\beta_1}\cdots E_{-\beta_r} v` obtained by the same words of
+    lowering operators, until they span the space; then
+    :math:`T = Y X^{+}`. By Schur's lemma ``T`` is unique up to a scalar; it is
+    scaled so that :math:`\|T\|_F^2 = \dim`, which makes it unitary when both
+    generator sets are anti-Hermitian in orthonormal bases.
+
+    Raises
+    ------
+    ValueError
+        If the representations are of different so(N), of different dimension,
+        reducible, or not equivalent.
+    """
+    _check_same_N(a, b)
+    if a.dim != b.dim:
+        raise ValueError(f"no intertwiner: dimensions differ ({a.dim} vs {b.dim})")
+    pos = positive_roots(a.N)
+    ra = [a.ladder(r) for r in pos]
+    rb = [b.ladder(r) for r in pos]
+    la = [a.ladder(tuple(-x for x in r)) for r in pos]
+    lb = [b.ladder(tuple(-x for x in r)) for r in pos]
+    va, vb = _highest_weight_vector(a, ra), _highest_weight_vector(b, rb)
+    d = a.dim
+    Xs, Ys = [va], [vb]
+    Q = (va / np.linalg.norm(va))[:, None]
+    frontier = [(va, vb)]
+    while frontier and len(Xs) < d:
+        nxt = []
+        for x, y in frontier:
+            for Ea, Eb in zip(la, lb):
+                x2, y2 = Ea @ x, Eb @ y
+                nx = np.linalg.norm(x2)
+                if nx <= rtol:
+                    continue
+                r = x2 - Q @ (Q.conj().T @ x2)
+                r = r - Q @ (Q.conj().T @ r)
+                if np.linalg.norm(r) > 1e-8 * nx:
+                    Q = np.hstack([Q, (r / np.linalg.norm(r))[:, None]])
+                    Xs.append(x2)
+                    Ys.append(y2)
+                    nxt.append((x2, y2))
+                    if len(Xs) == d:
+                        break
+            if len(Xs) == d:
+                break
+        frontier = nxt
+    if len(Xs) < d:
+        raise ValueError(f"{a.name} is not irreducible (the lowering operators span only {len(Xs)} of {d} dimensions)")
+    X, Y = np.stack(Xs, axis=1), np.stack(Ys, axis=1)
+    T = Y @ np.linalg.inv(X)
+    T *= np.sqrt(d) / np.linalg.norm(T)
+    res = max(
+        float(np.abs(T @ a._gens[p].toarray() - b._gens[p].toarray() @ T).max()) for p in a.planes
+    )
+    scale = max(1.0, max(float(abs(M).max()) for M in a._gens.values()) if a.planes else 1.0)
+    if res > 1e-6 * scale * max(1.0, np.abs(T).max()):
+        raise ValueError(f"{a.name} and {b.name} are not equivalent (intertwining residual {res:.2e})")
+    return T
 
 
 def _check_same_N(*reps):
