@@ -182,6 +182,13 @@ def test_dense_format():
     assert isinstance(D, np.ndarray) and D.shape == (10, 10)
     assert np.array_equal(D, rep.generator((2, 4)).toarray())
     assert sps.isspmatrix_csr(rep.generator((2, 4)))
+    dense = irrep(5, (1, 1), format="dense")
+    assert isinstance(dense.generator((2, 4)), np.ndarray)
+    assert np.array_equal(dense.generator((2, 4)), D)
+    assert sps.isspmatrix_csr(dense.generator((2, 4), format="csr"))
+    assert all(isinstance(M, np.ndarray) for M in dense.generators().values())
+    with pytest.raises(ValueError, match="format"):
+        irrep(5, (1, 1), format="coo")
 
 
 @pytest.mark.parametrize("N, m", [(3, (1,)), (4, (H, H)), (5, (1, 0)), (5, (H, H)), (5, (1, 1)), (6, (H, H, -H))], ids=str)

@@ -83,7 +83,6 @@ __all__ = ["irrep", "gt_patterns", "gt_size", "gt_index", "DEFAULT_MAX_DIM"]
 #: Default ``max_dim`` guard of :func:`irrep`.
 DEFAULT_MAX_DIM = 200_000
 
-_FORMATS = ("csr", "dense")
 
 
 # ----------------------------------------------------------------------------
@@ -411,6 +410,7 @@ def irrep(
     dynkin: Any = None,
     max_dim: int = DEFAULT_MAX_DIM,
     exact: bool = False,
+    format: str = "csr",
 ):
     r"""The so(N) irrep of a given highest weight in the Gelfand-Tsetlin basis.
 
@@ -434,6 +434,9 @@ def irrep(
         Also compute exact SymPy generators (square roots of rationals) at
         construction (only sensible for small dims, say < 200); they are
         otherwise computed on the first ``generator(..., exact=True)`` call.
+    format : {"csr", "dense"}
+        Default format of the matrices the representation returns
+        (:attr:`Representation.format`); storage is always sparse CSR.
 
     Returns
     -------
@@ -459,14 +462,15 @@ def irrep(
     >>> float(abs((rep.casimir() + 4 * sps.identity(5)).toarray()).max()) < 1e-12
     True
     """
-    from .representations import Representation
+    from .representations import Representation, _check_format
 
     N = check_dimension(N)
+    _check_format(format)
     m = _resolve_weight(N, highest_weight, dynkin)
     dim = _check_max_dim(N, m, max_dim)
     gens = _gt_generators_float(N, m)
     exact_gens = _gt_generators_exact(N, m) if exact else (lambda: _gt_generators_exact(N, m))
     name = f"so({N}) irrep {tuple(str(x) for x in m)} (Gelfand-Tsetlin basis)"
-    rep = Representation(N, gens, highest_weight=m, exact_generators=exact_gens, name=name)
+    rep = Representation(N, gens, highest_weight=m, exact_generators=exact_gens, name=name, format=format)
     assert rep.dim == dim
     return rep

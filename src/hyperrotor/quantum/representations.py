@@ -66,6 +66,8 @@ _FORMATS = ("csr", "dense")
 
 
 def _check_format(format: str) -> str:
+    if format is None:
+        return "csr"
     if format not in _FORMATS:
         raise ValueError(f"unknown format {format!r}; allowed: 'csr' (scipy.sparse CSR) or 'dense' (numpy array)")
     return format
@@ -97,6 +99,9 @@ class Representation:
     exact_generators : mapping or callable, optional
         Exact SymPy matrices (or a function computing them on demand).
     name : str
+    format : {"csr", "dense"}
+        Default matrix format of :meth:`generator`, :meth:`generators`,
+        :meth:`hermitian`, :meth:`casimir`, ... when their ``format`` is not given.
 
     Attributes
     ----------
@@ -104,6 +109,7 @@ class Representation:
     dim : int
     highest_weight : tuple of fractions.Fraction or None
     name : str
+    format : str
     """
 
     def __init__(
@@ -114,7 +120,9 @@ class Representation:
         highest_weight: Sequence[Any] | None = None,
         exact_generators: Mapping | Callable[[], Mapping] | None = None,
         name: str = "",
+        format: str = "csr",
     ):
+        self.format = _check_format(format)
         self.N = check_dimension(N)
         self.planes = planes(self.N)
         keys = {tuple(int(v) for v in p) for p in generators}
@@ -140,6 +148,9 @@ class Representation:
         hw = None if self.highest_weight is None else "(" + ", ".join(str(x) for x in self.highest_weight) + ")"
         return f"Representation(N={self.N}, dim={self.dim}, highest_weight={hw}, name={self.name!r})"
 
+    def _fmt(self, format):
+        return self.format if format is None else _check_format(format)
+
     # -- basic access -----------------------------------------------------
     @property
     def rank(self) -> int:
@@ -155,28 +166,29 @@ class Representation:
         k = plane_index(plane, self.N)
         return self.planes[k]
 
-    def generator(self, plane: Sequence[int], *, format: str = "csr", exact: bool = False):
+    def generator(self, plane: Sequence[int], *, format: str | None = None, exact: bool = False):
         r"""The matrix :math:`X_{(ij)}` of ``plane = (i, j)`` (anti-Hermitian, brackets of :math:`E_{(ij)}`).
 
         Parameters
         ----------
         plane : (i, j) with 1 <= i < j <= N
-        format : {"csr", "dense"}
-            scipy.sparse CSR (default) or numpy array.
+        format : {"csr", "dense"}, optional
+            scipy.sparse CSR or numpy array; default :attr:`format` of the
+            representation (``"csr"`` unless chosen at construction).
         exact : bool
             Return an exact ``sympy.Matrix`` instead (small dims only).
         """
         p = self._plane(plane)
         if exact:
             return self._exact_generators()[p]
-        return _as_format(self._gens[p], _check_format(format))
+        return _as_format(self._gens[p], self._fmt(format))
 
-    def generators(self, *, format: str = "csr", exact: bool = False) -> dict:
+    def generators(self, *, format: str | None = None, exact: bool = False) -> dict:
         """All generators as ``{plane: matrix}`` in plane order (see :meth:`generator`)."""
         if exact:
             ex = self._exact_generators()
             return {p: ex[p] for p in self.planes}
-        _check_format(format)
+        format = self._fmt(format)
         return {p: _as_format(M, format) for p, M in self._gens.items()}
 
     def _exact_generators(self) -> dict:
@@ -186,14 +198,14 @@ class Representation:
             self._exact = dict(self._exact())
         return self._exact
 
-    def hermitian(self, plane: Sequence[int], hbar: float = 1.0, *, format: str = "csr"):
+    def hermitian(self, plane: Sequence[int], hbar: float = 1.0, *, format: str | None = None):
         r"""Hermitian angular momentum :math:`L^{ij} = -i\hbar X_{(ij)}` (eq. 141), ``hbar`` default 1."""
-        return _as_format((-1j * hbar) * self._gens[self._plane(plane)], _check_format(format))
+        return _as_format((-1j * hbar) * self._gens[self._plane(plane)], self._fmt(format))
 
     # -- Cartan, weights, ladders ------------------------------------------
-    def cartan_generators(self, *, hermitian: bool = False, hbar: float = 1.0, format: str = "csr") -> list:
+    def cartan_generators(self, *, hermitian: bool = False, hbar: float = 1.0, format: str | None = None) -> list:
         r"""Cartan generators :math:`X_{(12)}, X_{(34)}, \dots` (or :math:`H_k = -i\hbar X_{(2k-1,2k)}`)."""
-        _check_format(format)
+        format = self._fmt(format)
         out = []
         for k in range(1, self.rank + 1):
             p = (2 * k - 1, 2 * k)
@@ -217,7 +229,7 @@ class Representation:
         vectors : ndarray, shape (dim, dim), only with ``return_vectors=True``
             Unitary; column ``a`` has weight ``weights[a]``.
         """
-        H = self.cartan_generators(hermitian=True)
+        H = self.cartan_generators(hermitian=True, format="csr")
         n = self.rank
         diag = all((Hk - sps.diags(Hk.diagonal())).count_nonzero() == 0 for Hk in H)
         if diag:
@@ -247,7 +259,7 @@ class Representation:
         pos = positive_roots(self.N)
         return pos + [tuple(-a for a in r) for r in pos]
 
-    def ladder(self, root: Sequence[int], *, format: str = "csr"):
+    def ladder(self, root: Sequence[int], *, format: str | None = None):
         r"""Root vector :math:`E_\alpha` of the Cartan-Weyl basis (module docstring).
 
         ``root`` in the orthogonal basis, e.g. ``(1, -1)`` or ``(0, 1)`` for so(5).
@@ -262,14 +274,14 @@ class Representation:
         M = sps.csr_matrix((self.dim, self.dim), dtype=complex)
         for p, c in coeff.items():
             M = M + c * self._gens[p]
-        return _as_format(M, _check_format(format))
+        return _as_format(M, self._fmt(format))
 
-    def ladder_operators(self, *, format: str = "csr") -> dict:
+    def ladder_operators(self, *, format: str | None = None) -> dict:
         """``{root: E_root}`` for all roots (:meth:`ladder`)."""
         return {r: self.ladder(r, format=format) for r in self.roots()}
 
     # -- Casimir, QuTiP ------------------------------------------------------
-    def casimir(self, *, format: str = "csr"):
+    def casimir(self, *, format: str | None = None):
         r"""Quadratic Casimir :math:`\sum_{i<j} X_{(ij)}^2` (anti-Hermitian convention).
 
         Equals :math:`-c\,\mathbb 1` with :math:`c = \sum_i m_i(m_i + N - 2i)` on an
@@ -277,7 +289,7 @@ class Representation:
         :math:`\sum (L^{ij})^2` is :math:`+\hbar^2 c`.
         """
         C = sum((M @ M for M in self._gens.values()), sps.csr_matrix((self.dim, self.dim)))
-        return _as_format(sps.csr_matrix(C), _check_format(format))
+        return _as_format(sps.csr_matrix(C), self._fmt(format))
 
     def casimir_value(self) -> Fraction | None:
         r""":math:`c = \sum_i m_i(m_i + N - 2i)` for an irrep (``None`` if reducible)."""
@@ -550,10 +562,10 @@ def intertwiner(a: Representation, b: Representation, *, rtol: float = 1e-9) -> 
     if a.dim != b.dim:
         raise ValueError(f"no intertwiner: dimensions differ ({a.dim} vs {b.dim})")
     pos = positive_roots(a.N)
-    ra = [a.ladder(r) for r in pos]
-    rb = [b.ladder(r) for r in pos]
-    la = [a.ladder(tuple(-x for x in r)) for r in pos]
-    lb = [b.ladder(tuple(-x for x in r)) for r in pos]
+    ra = [a.ladder(r, format="csr") for r in pos]
+    rb = [b.ladder(r, format="csr") for r in pos]
+    la = [a.ladder(tuple(-x for x in r), format="csr") for r in pos]
+    lb = [b.ladder(tuple(-x for x in r), format="csr") for r in pos]
     va, vb = _highest_weight_vector(a, ra), _highest_weight_vector(b, rb)
     d = a.dim
     Xs, Ys = [va], [vb]
