@@ -253,14 +253,32 @@ def test_eq144_commuting_limit_and_printed_typos():
         for j in range(N):
             assert sp.expand(P[i, j](f) - ref[i, j] * f) == 0
             assert Q[i, j] == -P[i, j]
-    # corrected first line of eq. (144)/(25): the printed L23 w31, L24 w34, L25 w35 are typos
+    # printed eqs. (25)/(144) read with unordered labels (w31 = w13, as eq. (28) requires);
+    # three entries carry index typos: (12), (25) and (45)
     L, w = Ls, Ws
-    correct12 = (-L[(1, 3)] * w[(2, 3)] - L[(1, 4)] * w[(2, 4)] - L[(1, 5)] * w[(2, 5)]
-                 + L[(2, 3)] * w[(1, 3)] + L[(2, 4)] * w[(1, 4)] + L[(2, 5)] * w[(1, 5)])
-    assert sp.expand(ref[0, 1] - correct12) == 0
-    printed12 = (-L[(1, 3)] * w[(2, 3)] - L[(1, 4)] * w[(2, 4)] - L[(1, 5)] * w[(2, 5)]
-                 + L[(2, 3)] * (-w[(1, 3)]) + L[(2, 4)] * w[(3, 4)] + L[(2, 5)] * w[(3, 5)])
-    assert sp.expand(ref[0, 1] - printed12) != 0
+    printed = {
+        (1, 2): (-L[(1, 3)] * w[(2, 3)] - L[(1, 4)] * w[(2, 4)] - L[(1, 5)] * w[(2, 5)]
+                 + L[(2, 3)] * w[(1, 3)] + L[(2, 4)] * w[(3, 4)] + L[(2, 5)] * w[(3, 5)]),
+        (2, 5): (-L[(1, 2)] * w[(1, 5)] + L[(3, 5)] * w[(1, 2)] + L[(2, 3)] * w[(3, 5)]
+                 + L[(2, 4)] * w[(4, 5)] - L[(3, 5)] * w[(2, 3)] - L[(4, 5)] * w[(2, 4)]),
+        (4, 5): (-L[(1, 3)] * w[(1, 5)] + L[(1, 5)] * w[(1, 4)] - L[(2, 4)] * w[(2, 5)]
+                 + L[(2, 5)] * w[(2, 4)] - L[(3, 4)] * w[(3, 5)] + L[(3, 5)] * w[(3, 4)]),
+    }
+    corrections = {  # printed term -> correct term
+        (1, 2): [(L[(2, 4)] * w[(3, 4)], L[(2, 4)] * w[(1, 4)]), (L[(2, 5)] * w[(3, 5)], L[(2, 5)] * w[(1, 5)])],
+        (2, 5): [(L[(3, 5)] * w[(1, 2)], L[(1, 5)] * w[(1, 2)])],
+        (4, 5): [(-L[(1, 3)] * w[(1, 5)], -L[(1, 4)] * w[(1, 5)])],
+    }
+    for (i, j), expr in printed.items():
+        assert sp.expand(ref[i - 1, j - 1] - expr) != 0
+        fixed = expr
+        for bad, good in corrections[(i, j)]:
+            fixed = fixed - bad + good
+        assert sp.expand(ref[i - 1, j - 1] - fixed) == 0
+    # an entry printed correctly (same unordered reading): (13)
+    e13 = (-L[(1, 2)] * w[(2, 3)] + L[(1, 4)] * w[(3, 4)] + L[(1, 5)] * w[(3, 5)] + L[(2, 3)] * w[(1, 2)]
+           - L[(3, 4)] * w[(1, 4)] - L[(3, 5)] * w[(1, 5)])
+    assert sp.expand(ref[0, 2] - e13) == 0
 
 
 def test_operator_product_is_exact_for_operators_order_matters():
@@ -326,3 +344,13 @@ def test_bad_arguments():
         operator_matrix(3, convention="weird")
     with pytest.raises(TypeError, match="DifferentialOperators"):
         commutator(A, 3)
+
+
+@pytest.mark.parametrize("N", [3, 4, 5])
+def test_contraction_identity_hermitian_form(N):
+    """For the Hermitian matrix of eq. (141) the antisymmetrized contraction is i hbar (N-2) L."""
+    H = operator_matrix(N, hbar=HBAR)
+    P = operator_product(H, H.T.copy(), form="antisymmetrized")
+    for i in range(N):
+        for j in range(N):
+            assert P[i, j] == sp.I * HBAR * (N - 2) * H[i, j]

@@ -34,6 +34,26 @@ Two forms of the generators
 Operators are :class:`DifferentialOperator` objects wrapping the exact normal
 form :class:`hyperrotor.quantum.normal_form.WeylElement`; equality ``A == B`` is
 an exact operator identity.
+
+Where the printed paper differs (Section 5)
+-------------------------------------------
+* Eq. (141) prints the entries as :math:`\mathbb 1^{ij}`; they are the operators
+  :math:`\mathbb L^{ij}` of eq. (142), times :math:`-i\hbar`, with the checkerboard
+  signs of eq. (21). Eq. (143) reuses the symbol :math:`\mathbb L` for the matrix
+  *without* :math:`-i\hbar`; eqs. (145)-(147) hold for that real matrix.
+* Eq. (144) copies eq. (25) with three index typos (entries 12, 25, 45), see
+  :func:`operator_product`.
+* Eqs. (145)-(147), :math:`\mathbb L\Omega = -(N-2)\mathbb L` with
+  :math:`\Omega = \mathbb L^{\mathsf T}`, are not true for the ordinary matrix
+  product (its entries are second-order operators); they hold for the
+  antisymmetrized product :math:`(\mathbb L\Omega)_{ij} - (\mathbb L\Omega)_{ji}`.
+  With the eq. (144) product itself the sign is opposite (``+(N-2)``) for
+  :math:`\Omega = \mathbb L^{\mathsf T}` and ``-(N-2)`` for :math:`\Omega = \mathbb L`.
+  For the Hermitian matrix of eq. (141) the factor is :math:`i\hbar(N-2)`
+  (:func:`contraction_identity`).
+* Cross references in the text: "operator (144)" should be (141), "operators
+  ... from (146)" should be (143), "products in (147)" and "From Equation (147)"
+  should be (144), "Equation (148)" should be (145).
 """
 from __future__ import annotations
 
@@ -476,7 +496,7 @@ def angular_momentum_operators(N: int, hbar: Any = None, coordinates: Any = None
     >>> L = angular_momentum_operators(5, coordinates="paper")
     >>> x, y, z, w, v = L[(1, 2)].coordinates
     >>> L[(1, 2)](x**2 + y)
-    x - 2*x*y
+    -2*x*y + x
     """
     N = check_dimension(N)
     coords = coordinate_symbols(N, coordinates)
@@ -634,13 +654,27 @@ def operator_product(A: Any, B: Any, form: str = "eq144") -> np.ndarray:
 
     Notes
     -----
-    Printed eq. (144) copies eq. (25) including its index typos; e.g. its
-    :math:`\mathbb L\Omega^{12}` contains :math:`\mathbb L^{23}\Omega^{31}`,
-    :math:`\mathbb L^{24}\Omega^{34}`, :math:`\mathbb L^{25}\Omega^{35}` where the
-    correct entry (paper convention, ``form="eq144"``) is
+    Printed eq. (144) is eq. (25) with :math:`L \to \mathbb L`, :math:`\omega \to \Omega`
+    and copies its typos. Its reversed labels (:math:`\Omega^{31}`, :math:`\Omega^{21}`,
+    :math:`\mathbb L^{31}`) must be read as the *same* components as
+    :math:`\Omega^{13}`, :math:`\Omega^{12}`, :math:`\mathbb L^{13}` (not their
+    negatives; eq. (28) fixes this sign). With that reading seven of the ten
+    entries are right and three carry index typos:
 
-    .. math:: -\mathbb L^{13}\Omega^{23} - \mathbb L^{14}\Omega^{24} - \mathbb L^{15}\Omega^{25}
-              + \mathbb L^{23}\Omega^{13} + \mathbb L^{24}\Omega^{14} + \mathbb L^{25}\Omega^{15}.
+    * :math:`\mathbb L\Omega^{12}`: printed :math:`\mathbb L^{24}\Omega^{34} + \mathbb L^{25}\Omega^{35}`,
+      correct :math:`\mathbb L^{24}\Omega^{14} + \mathbb L^{25}\Omega^{15}`, i.e.
+
+      .. math:: -\mathbb L^{13}\Omega^{23} - \mathbb L^{14}\Omega^{24} - \mathbb L^{15}\Omega^{25}
+                + \mathbb L^{23}\Omega^{13} + \mathbb L^{24}\Omega^{14} + \mathbb L^{25}\Omega^{15};
+
+    * :math:`\mathbb L\Omega^{25}`: printed :math:`+\mathbb L^{35}\Omega^{21}`, correct
+      :math:`+\mathbb L^{15}\Omega^{12}`;
+    * :math:`\mathbb L\Omega^{45}`: printed :math:`-\mathbb L^{13}\Omega^{15}`, correct
+      :math:`-\mathbb L^{14}\Omega^{15}`.
+
+    The same three typos are in eq. (25). For operators the order of the
+    factors matters; the printed order (``A`` left) is kept here, see
+    :func:`contraction_identity` for what it implies for eqs. (145)-(147).
     """
     if form not in _FORMS:
         raise ValueError(f"unknown form {form!r}; allowed: {', '.join(map(repr, _FORMS))}")
