@@ -354,9 +354,9 @@ class RigidBody:
     def energy(self, omega: Any):
         r"""Kinetic energy :math:`\tfrac12\sum_{i<j} I_{ij}\,\omega_{ij}^2` (eq. 6 summed over planes).
 
-        The full summation of eq. (6) with the eq.-(3) tensor gives the same
-        value (its factor 2 from the double sum cancels the 1/2 of
-        :math:`I^{ijij}`); numpy ``(...)`` or a SymPy expression.
+        Eq. (6) read with full summation over ``ij`` and ``kl`` and the
+        eq.-(3) tensor counts every plane twice and gives twice this value.
+        numpy ``(...)`` or a SymPy expression.
         """
         if _is_sym(omega) or self.inertia.is_symbolic:
             w = list(omega)
@@ -436,7 +436,7 @@ class RigidBody:
             e.append(sum((-1) ** (i - 1) * e[k - i] * p[i] for i in range(1, k + 1)) / k)
         return np.stack([e[2 * k] for k in range(1, N // 2 + 1)], axis=-1)
 
-    def manakov_integrals(self, omega: Any, lam: Any = 1.0):
+    def manakov_integrals(self, values: Any, lam: Any = 1.0, *, of: str = "omega"):
         r"""Manakov's integrals :math:`\operatorname{tr}\bigl((L + \lambda J^2)^k\bigr)`, ``k = 2..N``.
 
         For a mass-tensor body :math:`I_{ij} = J_i + J_j`
@@ -445,6 +445,14 @@ class RigidBody:
         :math:`\tfrac{d}{dt}(L + \lambda J^2) = [L + \lambda J^2, -(W + \lambda J)]`
         makes every such trace conserved for every ``lam`` (hence every
         coefficient of its polynomial in ``lam``). Convention independent.
+
+        Parameters
+        ----------
+        values : array_like or SymPy sequence
+            Angular velocity (``of="omega"``, default) or angular momentum
+            components (``of="L"``).
+        lam : number or SymPy expression
+            The spectral parameter.
 
         Returns
         -------
@@ -462,7 +470,15 @@ class RigidBody:
                 "manakov_integrals needs a mass-tensor inertia I_ij = J_i + J_j; "
                 f"{self.inertia!r} is not of that form"
             )
-        L = self.angular_momentum(omega)
+        if of not in ("omega", "L"):
+            raise ValueError(f"of must be 'omega' or 'L', got {of!r}")
+        if of == "omega":
+            L = self.angular_momentum(values)
+        elif _is_sym(values):
+            L = list(values)
+            self._check_len(L)
+        else:
+            L = self._check_omega(values, "L")
         if not _is_sym(L):
             return _manakov_traces(L, J, lam)
         return _manakov_traces(list(L), J, lam)

@@ -1,0 +1,326 @@
+"""Tests of hyperrotor.Inertia: normalization, eq.-(3) tensor, bodies, named inertias, errors."""
+import itertools
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+from scipy.stats import special_ortho_group
+
+import hyperrotor as hr
+from hyperrotor import Inertia
+from hyperrotor.classical.inertia import check_tensor_symmetries, inertia_tensor
+
+
+# ---------------------------------------------------------------- constructors
+def test_from_planes_mapping_and_sequence_agree():
+    m = {(1, 2): 3.0, (1, 3): 2.0, (2, 3): 1.5}
+    a = Inertia.from_planes(m)
+    b = Inertia.from_planes([3.0, 2.0, 1.5])
+    assert a.N == b.N == 3
+    assert a.planes == ((1, 2), (1, 3), (2, 3))
+    np.testing.assert_array_equal(a.moments, [3.0, 2.0, 1.5])
+    assert a == b
+    assert a[(1, 3)] == 2.0
+    assert a.moments.dtype == np.float64
+
+
+def test_from_planes_mapping_order_irrelevant():
+    ps = hr.planes(4)
+    vals = {p: float(k + 1) for k, p in enumerate(ps)}
+    shuffled = dict(reversed(list(vals.items())))
+    np.testing.assert_array_equal(Inertia.from_planes(shuffled).moments, np.arange(1, 7))
+
+
+def test_missing_plane_is_named():
+    with pytest.raises(ValueError, match=r"missing moments for planes \[\(2, 3\)\]"):
+        Inertia.from_planes({(1, 2): 1.0, (1, 3): 1.0})
+
+
+@pytest.mark.parametrize("key", [(2, 1), (0, 1), (1, 1), "ab"])
+def test_unknown_plane(key):
+    with pytest.raises(ValueError, match="plane"):
+        Inertia.from_planes({key: 1.0, (1, 2): 1.0})
+
+
+def test_unknown_plane_for_given_N():
+    with pytest.raises(ValueError, match="unknown planes"):
+        Inertia.from_planes({(1, 2): 1.0, (1, 3): 1.0, (2, 3): 1.0, (3, 4): 1.0}, N=3)
+
+
+@pytest.mark.parametrize("count", [2, 4, 5, 7])
+def test_wrong_count(count):
+    with pytest.raises(ValueError, match=f"{count} plane components"):
+        Inertia.from_planes([1.0] * count)
+
+
+@pytest.mark.parametrize("bad,exc,msg", [
+    (0.0, ValueError, "> 0"), (-1.0, ValueError, "> 0"), (np.inf, ValueError, "finite"),
+    (np.nan, ValueError, "finite"), ("x", TypeError, "real number"), (None, TypeError, "real number"),
+    (1 + 2j, TypeError, "real number"), (True, TypeError, "real number"),
+    (sp.Integer(-2), ValueError, "> 0"), (sp.oo, ValueError, "finite"),
+])
+def test_bad_moments(bad, exc, msg):
+    with pytest.raises(exc, match=msg):
+        Inertia.from_planes([1.0, bad, 1.0])
+
+
+def test_bad_moment_names_the_plane():
+    with pytest.raises(ValueError, match="I_13"):
+        Inertia.from_planes([1.0, -3.0, 1.0])
+
+
+@pytest.mark.parametrize("N", [0, 1])
+def test_dimension_too_small(N):
+    with pytest.raises(ValueError, match="N must be an integer >= 2"):
+        Inertia.equal(N, 1.0)
+
+
+def test_symbolic_moments_accepted_and_moments_refused():
+    a, b = sp.symbols("a b", positive=True)
+    I = Inertia.from_planes([a, b, a + b])
+    assert I.is_symbolic
+    assert I.symbolic_moments == (a, b, a + b)
+    assert I[(2, 3)] == a + b
+    with pytest.raises(TypeError, match="symbolic"):
+        I.moments
+    num = I.subs({a: 1, b: 2})
+    assert not num.is_symbolic
+    np.testing.assert_array_equal(num.moments, [1.0, 2.0, 3.0])
+
+
+def test_symbolic_negative_expression_refused():
+    a = sp.Symbol("a", positive=True)
+    with pytest.raises(ValueError, match="> 0"):
+        Inertia.from_planes([a, -a, 1])
+
+
+def test_symbolic_constructor():
+    I = Inertia.symbolic(4)
+    assert I.symbolic_moments == hr.plane_symbols("I", 4, positive=True)
+    assert [str(s) for s in I.symbolic_moments] == ["I_12", "I_13", "I_14", "I_23", "I_24", "I_34"]
+
+
+# ---------------------------------------------------------------- mass tensor / physicality
+def test_from_mass_tensor_and_back():
+    J = [1.0, 2.0, 4.0, 8.0]
+    I = Inertia.from_mass_tensor(J)
+    for (i, j), v in zip(I.planes, I.moments):
+        assert v == J[i - 1] + J[j - 1]
+    np.testing.assert_array_equal(I.mass_tensor, J)
+    assert I.is_physical()
+    # the same moments given per plane: J is recovered by solving
+    again = Inertia.from_planes(list(I.moments))
+    np.testing.assert_allclose(again.mass_tensor, J, rtol=1e-15)
+
+
+def test_mass_tensor_symbolic_solved():
+    J = sp.symbols("J1:5", positive=True)
+    I = Inertia.from_planes([J[i - 1] + J[j - 1] for i, j in hr.planes(4)])
+    assert I.mass_tensor == J
+    assert I.is_physical() is True
+
+
+def test_generic_inertia_is_not_a_mass_tensor():
+    assert Inertia.symbolic(4).mass_tensor is None
+    assert Inertia.symbolic(4).is_physical() is False
+    assert Inertia.from_planes([1.0, 2.0, 3.0, 4.0, 5.0, 7.0]).mass_tensor is None
+
+
+def test_3d_triangle_inequality_is_physicality():
+    # every 3D inertia has the form J_i + J_j; physical iff I_3 <= I_1 + I_2 (and cyclic)
+    assert Inertia.from_planes({(1, 2): 1.0, (1, 3): 2.0, (2, 3): 3.0}).is_physical()  # flat: J_1 = 0
+    bad = Inertia.from_planes({(1, 2): 1.0, (1, 3): 2.0, (2, 3): 3.5})
+    assert bad.mass_tensor is not None and not bad.is_physical()
+
+
+def test_symbolic_physicality_undecidable():
+    a, b, c = sp.symbols("a b c", positive=True)
+    assert Inertia.from_planes([a, b, c]).is_physical() is None
+
+
+# ---------------------------------------------------------------- continuous bodies
+def test_box_3d_textbook():
+    M, a, b, c = sp.symbols("M a b c", positive=True)
+    I = Inertia.box(M, [a, b, c])
+    I1, I2, I3 = I[(2, 3)], I[(1, 3)], I[(1, 2)]  # textbook map I_1 = I_23, ...
+    assert sp.simplify(I1 - M * (b**2 + c**2) / 12) == 0
+    assert sp.simplify(I2 - M * (a**2 + c**2) / 12) == 0
+    assert sp.simplify(I3 - M * (a**2 + b**2) / 12) == 0
+
+
+def test_ball_3d_textbook():
+    M, R = sp.symbols("M R", positive=True)
+    I = Inertia.ball(3, M, R)
+    for v in I.symbolic_moments:
+        assert sp.simplify(v - sp.Rational(2, 5) * M * R**2) == 0
+
+
+def test_ellipsoid_moments_match_integral():
+    # m_i = M a_i^2/(N+2): check the unit-ball average of x_1^2 by exact integration for N = 2..6
+    for N in range(2, 7):
+        r = sp.Symbol("r", positive=True)
+        # <x_1^2> over the unit N-ball = (1/N) <r^2> = (1/N) * int r^{N+1} / int r^{N-1}
+        avg = sp.integrate(r ** (N + 1), (r, 0, 1)) / sp.integrate(r ** (N - 1), (r, 0, 1)) / N
+        assert avg == sp.Rational(1, N + 2)
+        I = Inertia.ball(N, 1, 1)
+        assert all(v == sp.Rational(2, N + 2) for v in I.symbolic_moments)
+
+
+def test_from_points_box_sample_converges(rng):
+    sides = np.array([1.0, 2.0, 3.0, 0.5])
+    n = 400_000
+    x = rng.uniform(-0.5, 0.5, (n, 4)) * sides
+    I = Inertia.from_points(np.full(n, 2.0 / n), x)
+    exact = Inertia.box(2.0, sides)
+    # Monte-Carlo: relative standard error of <x^2> for a uniform variable ~ sqrt(4/5 / n) ~ 1.4e-3
+    np.testing.assert_allclose(I.moments, exact.moments, rtol=8e-3)
+    np.testing.assert_allclose(I.principal_axes, np.eye(4), atol=2e-2)
+
+
+def test_from_points_rotated_ellipsoid(rng):
+    N, n = 5, 300_000
+    semi = np.array([1.0, 1.5, 2.0, 2.5, 3.0])
+    g = rng.standard_normal((n, N))
+    g /= np.linalg.norm(g, axis=1, keepdims=True)
+    pts = g * rng.uniform(0, 1, (n, 1)) ** (1 / N) * semi  # uniform in the ellipsoid
+    R = special_ortho_group.rvs(N, random_state=7)
+    I = Inertia.from_points(np.full(n, 1.0 / n), pts @ R.T)
+    exact = Inertia.ellipsoid(1.0, semi)
+    P = I.principal_axes
+    np.testing.assert_allclose(P.T @ P, np.eye(N), atol=1e-12)
+    assert np.linalg.det(P) == pytest.approx(1.0, abs=1e-12)
+    # moments come out in some axis order: compare the sorted mass tensors
+    np.testing.assert_allclose(np.sort(I.mass_tensor), np.sort(exact.mass_tensor), rtol=1e-2)
+    # the principal axes diagonalize the second moments
+    c = pts @ R.T
+    c = c - c.mean(axis=0)
+    D = P.T @ (c.T @ c / n) @ P
+    np.testing.assert_allclose(D - np.diag(np.diag(D)), 0, atol=1e-12 * np.abs(D).max())
+    np.testing.assert_allclose(np.diag(D), I.mass_tensor, rtol=1e-12)
+
+
+def test_from_points_discrete_exact():
+    # two unit masses at +-e_1 and two at +-2 e_2 in 3D: m = (2, 8, 0)
+    pos = [[1, 0, 0], [-1, 0, 0], [0, 2, 0], [0, -2, 0]]
+    I = Inertia.from_points([1, 1, 1, 1], pos)
+    np.testing.assert_allclose(I.mass_tensor, [2, 8, 0], atol=1e-14)
+    np.testing.assert_allclose([I[(1, 2)], I[(1, 3)], I[(2, 3)]], [10, 2, 8], atol=1e-13)
+
+
+def test_from_points_centre_of_mass():
+    pos = np.array([[1.0, 0.0], [3.0, 0.0], [2.0, 1.0], [2.0, -1.0]])
+    a = Inertia.from_points(np.ones(4), pos)
+    b = Inertia.from_points(np.ones(4), pos - [2.0, 0.0], center=False)
+    np.testing.assert_allclose(a.moments, b.moments, rtol=1e-14)
+    c = Inertia.from_points(np.ones(4), pos, center=False)
+    assert c.moments[0] > a.moments[0]  # parallel-axis theorem
+
+
+@pytest.mark.parametrize("masses,positions,msg", [
+    ([1, 1], [[0, 0, 0]], "masses must have shape"),
+    ([1], [0, 0], "positions must have shape"),
+    ([-1, 2], [[0, 0], [1, 1]], ">= 0"),
+    ([1, 1], [[0, np.nan], [1, 1]], "finite"),
+])
+def test_from_points_bad_input(masses, positions, msg):
+    with pytest.raises(ValueError, match=msg):
+        Inertia.from_points(masses, positions)
+
+
+# ---------------------------------------------------------------- the eq.-(3) tensor
+def test_eq3_tensor_symmetries_and_normalization(rng):
+    N = 5
+    m = rng.uniform(0.1, 1, 40)
+    x = rng.standard_normal((40, N))
+    T = inertia_tensor(m, x)
+    check_tensor_symmetries(T)
+    # explicit symmetries (eq. 3)
+    np.testing.assert_allclose(T, -T.transpose(1, 0, 2, 3), atol=1e-14)
+    np.testing.assert_allclose(T, -T.transpose(0, 1, 3, 2), atol=1e-14)
+    np.testing.assert_allclose(T, T.transpose(2, 3, 0, 1), atol=1e-14)
+    np.testing.assert_allclose(T + T.transpose(0, 2, 3, 1) + T.transpose(0, 3, 1, 2), 0, atol=1e-13)
+    # rotate to principal axes
+    I = Inertia.from_points(m, x)
+    R = I.principal_axes
+    Tp = np.einsum("ai,bj,ck,dl,abcd->ijkl", R, R, R, R, T)
+    np.testing.assert_allclose(Tp, I.tensor(), atol=1e-12)
+    Jm = I.mass_tensor
+    for i, j in itertools.permutations(range(N), 2):
+        assert Tp[i, j, i, j] == pytest.approx((Jm[i] + Jm[j]) / 2, rel=1e-12)  # I^{ijij} = (m_i+m_j)/2
+    # full summation of eq. (4): L^ij = I^{ijkl} w_kl = I_ij w_ij = 2 I^{ijij} w_ij
+    w = hr.to_matrix(rng.standard_normal(hr.n_planes(N)), "standard")
+    L = np.einsum("ijkl,kl->ij", Tp, w)
+    Lexp = hr.to_matrix(I.moments * hr.to_components(w, "standard"), "standard")
+    np.testing.assert_allclose(L, Lexp, atol=1e-12)
+    for (i, j), Iij in zip(I.planes, I.moments):
+        assert Iij == pytest.approx(2 * Tp[i - 1, j - 1, i - 1, j - 1], rel=1e-12)
+    # eq. (6) with full summation, 1/2 w_ij I^{ijkl} w_kl = 1/2 w_ij L^ij, counts each plane twice:
+    # it is TWICE the kinetic energy 1/2 sum_{i<j} I_ij w_ij^2 (paper's factor-2 slip)
+    W6 = 0.5 * np.einsum("ij,ijkl,kl->", w, Tp, w)
+    body = hr.RigidBody(I)
+    assert W6 == pytest.approx(2 * body.energy(hr.to_components(w, "standard")), rel=1e-12)
+
+
+def test_tensor_symmetries_for_generalized_inertia():
+    I = Inertia.from_planes([1.0, 2.0, 3.0, 4.0, 5.0, 7.0])  # not a mass tensor
+    check_tensor_symmetries(I.tensor())
+    T = I.tensor()
+    assert T[0, 1, 0, 1] == 0.5 and T[0, 1, 1, 0] == -0.5
+
+
+def test_tensor_symmetry_violation_detected():
+    T = np.zeros((3, 3, 3, 3))
+    T[0, 1, 0, 1] = 1.0
+    with pytest.raises(ValueError, match="violates"):
+        check_tensor_symmetries(T)
+
+
+def test_symbolic_tensor():
+    T = Inertia.symbolic(3).tensor()
+    assert T[0, 1, 0, 1] == sp.Symbol("I_12", positive=True) / 2
+
+
+# ---------------------------------------------------------------- named inertias
+def test_equal_eq82():
+    I = Inertia.equal(5, 3.0)
+    np.testing.assert_array_equal(I.moments, np.full(10, 3.0))
+
+
+@pytest.mark.parametrize("axis,eq", [(5, "84-85"), (4, "111"), (3, "112"), (2, "113"), (1, "114")])
+def test_quartet_eqs_84_85_111_114(axis, eq):
+    k = sp.Symbol("kappa", positive=True)
+    I = Inertia.quartet(k, axis=axis)
+    # typed from the paper: the four planes containing the distinguished axis get 1 + kappa^2
+    printed_distinct = {
+        5: [(1, 5), (2, 5), (3, 5), (4, 5)],
+        4: [(1, 4), (2, 4), (3, 4), (4, 5)],
+        3: [(1, 3), (2, 3), (3, 4), (3, 5)],
+        2: [(1, 2), (2, 3), (2, 4), (2, 5)],
+        1: [(1, 2), (1, 3), (1, 4), (1, 5)],
+    }[axis]
+    for p in I.planes:
+        assert I[p] == (1 + k**2 if p in printed_distinct else 2), (eq, p)
+    assert I.is_physical() is True
+    assert I.mass_tensor == tuple(k**2 if a == axis else 1 for a in range(1, 6))
+
+
+def test_quartet_general_N_and_exact():
+    I = Inertia.quartet(sp.Rational(1, 2), axis=2, N=4)
+    assert I.symbolic_moments == (sp.Rational(5, 4), 2, 2, sp.Rational(5, 4), sp.Rational(5, 4), 2)
+    np.testing.assert_array_equal(Inertia.quartet(0.5, N=4, axis=4).moments, [2, 2, 1.25, 2, 1.25, 1.25])
+
+
+@pytest.mark.parametrize("kw,exc", [({"axis": 6}, ValueError), ({"axis": 0}, ValueError),
+                                    ({"kappa": np.inf}, ValueError), ({"kappa": "a"}, TypeError)])
+def test_quartet_bad(kw, exc):
+    args = {"kappa": 0.5, **kw}
+    with pytest.raises(exc):
+        Inertia.quartet(**args)
+
+
+def test_repr_and_hash():
+    I = Inertia.equal(3, 1)
+    assert "12: 1" in repr(I)
+    assert hash(I) == hash(Inertia.equal(3, 1))
+    assert math.isclose(I[(1, 2)], 1.0)
