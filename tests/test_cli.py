@@ -1,0 +1,95 @@
+"""Tests of the ``hyperrotor`` command line (``hyperrotor.cli.main``)."""
+import re
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import hyperrotor as hr
+
+from hyperrotor import Inertia, RigidBody
+from hyperrotor.cli import SUBCOMMANDS, main
+
+
+def _run(capsys, argv):
+    code = main(argv)
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def _value(text, label):
+    m = re.search(re.escape(label) + r" = (\S+)", text)
+    assert m, f"{label!r} not in output"
+    return float(m.group(1))
+
+
+def _vector(text, label):
+    m = re.search(re.escape(label) + r" = \[([^\]]*)\]", text)
+    assert m, f"{label!r} not in output"
+    return np.array([float(v) for v in m.group(1).split(",")])
+
+
+def test_demo_invariants_recomputed(capsys):
+    code, out, _ = _run(capsys, ["demo", "--ascii"])
+    assert code == 0
+    omega = _vector(out, "omega")
+    body = RigidBody(Inertia.quartet(sp.Rational(1, 2)))
+    assert _value(out, "energy E = 1/2 sum I_ij w_ij^2") == pytest.approx(float(body.energy(omega)), rel=1e-15)
+    # independent: c_2 = sum of squared L components, c_4 from numpy's characteristic polynomial
+    L = body.inertia.moments * omega
+    assert _value(out, "Casimir c_2 = sum (L^ij)^2") == pytest.approx(float(np.sum(L**2)), rel=1e-12)
+    poly = np.poly(body.matrix(L))
+    assert _value(out, "Casimir c_4 (lambda^1 coefficient of det(lambda - L))") == pytest.approx(poly[4], rel=1e-10)
+    np.testing.assert_allclose(_vector(out, "  L"), L, rtol=1e-15)
+    np.testing.assert_allclose(_vector(out, "d omega/dt"), body.rhs(omega), rtol=1e-15)
+    A = hr.to_matrix(L, "standard") + np.diag([1, 1, 1, 1, 0.25]) ** 2  # L + J^2, J = (1, 1, 1, 1, kappa^2)
+    for k in range(2, 6):
+        assert _value(out, f"Manakov tr((L + J^2)^{k})") == pytest.approx(
+            np.trace(np.linalg.matrix_power(A, k)), rel=1e-10)
+
+
+def test_demo_prints_equations_28_to_37_in_order(capsys):
+    _, out, _ = _run(capsys, ["demo", "--ascii"])
+    labels = re.findall(r"^\((\d+)\)  ", out, flags=re.M)
+    assert labels == [str(n) for n in range(28, 38)]
+    # the quartet body with kappa = 1/2: the 15-equation carries 5/4 (1 + kappa^2) and 3/4 (1 - kappa^2)
+    block = out.split("(30)")[1].split("(32)")[0]  # the pretty block of (31) starts above its label
+    assert "mtilde_15" in block and "3*omega_12(t)*omega_25(t)" in block and "5*--(omega_15(t))" in block
+    assert "I_15 = 5/4" in out and "I_12 = 2" in out
+    assert "(1, 1, 1, 1, 1/4)" in out
+
+
+def test_demo_options(capsys):
+    code, out, _ = _run(capsys, ["demo", "--ascii", "--kappa", "2", "--axis", "1", "--convention", "standard",
+                                 "--omega", "1,0,0,0,0,0,0,0,0,1"])
+    assert code == 0
+    assert "I_12 = 5" in out and "I_45 = 2" in out
+    assert re.findall(r"^\[(\d+)\]  ", out, flags=re.M)[0] == "12"
+    assert "(28)" not in out
+    assert _value(out, "energy E = 1/2 sum I_ij w_ij^2") == pytest.approx(0.5 * (5 + 2))
+
+
+@pytest.mark.parametrize("argv,msg", [
+    (["demo", "--kappa", "abc"], "--kappa"),
+    (["demo", "--omega", "1,2"], "10 components"),
+    (["demo", "--omega", "a,b"], "--omega"),
+    (["demo", "--axis", "7"], "axis"),
+])
+def test_demo_bad_options(capsys, argv, msg):
+    code, _, err = _run(capsys, argv)
+    assert code == 2 and msg in err
+
+
+def test_help_lists_subcommands(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["--help"])
+    assert exc.value.code == 0
+    out = capsys.readouterr().out
+    for name in SUBCOMMANDS:
+        assert name in out
+
+
+def test_missing_subcommand_is_an_error(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main([])
+    assert exc.value.code == 2
