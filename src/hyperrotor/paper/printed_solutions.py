@@ -47,7 +47,6 @@ from typing import Any
 import sympy as sp
 from sympy.parsing.sympy_parser import convert_xor, implicit_multiplication, parse_expr, standard_transformations
 
-from hyperrotor.conventions import planes
 
 __all__ = ["LATEX", "CLAIMS", "LITERAL", "READINGS", "printed", "tex_to_sympy", "symbol", "printed_keys"]
 
@@ -381,15 +380,20 @@ def printed(key: str) -> Any:
         return tex_to_sympy(tex.split(r"\equiv")[1].split("=")[0])
     if key == "108":
         a, b = tex.split(r"\quad")
-        l2, rel2 = a.split("=")[1].rsplit("<", 1)
-        l0, rel0 = b.split("=")[1].rsplit(">", 1)
-        return {"l_2": tex_to_sympy(l2), "l_0": tex_to_sympy(l0), "l_2 relation": "<", "l_0 relation": ">"}
+        out = {}
+        for name, part in (("l_2", a), ("l_0", b)):
+            expr, rel, _ = re.split(r"(<|>|\\leq|\\geq)", part.split("=", 1)[1])
+            out[name] = tex_to_sympy(expr)
+            out[name + " relation"] = {"\\leq": "<=", "\\geq": ">="}.get(rel, rel)
+        return out
     if key == "109":
         lhs, rhs = tex.split("=")
         return sp.Eq(tex_to_sympy(lhs), tex_to_sympy(rhs), evaluate=False)
     if key == "110":
-        parts = [tex_to_sympy(p) for p in tex.rstrip(".").split(">")]
-        return {"chain": tuple(parts), "relation": ">"}
+        pieces = re.split(r"(>|\\geq)", tex.rstrip("."))
+        parts = [tex_to_sympy(p) for p in pieces[::2]]
+        rels = set(pieces[1::2])
+        return {"chain": tuple(parts), "relation": ">" if rels == {">"} else ">="}
     if key == "after 118":
         l2, l0 = symbol("l_2"), symbol("l_0")
         D = sp.sqrt(l2**2 - 4 * l0)

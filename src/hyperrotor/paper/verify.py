@@ -55,7 +55,6 @@ import sympy as sp
 from hyperrotor.conventions import (
     lie_bracket,
     lie_poisson_bracket,
-    n_planes,
     plane_index,
     plane_symbols,
     planes,
@@ -63,7 +62,7 @@ from hyperrotor.conventions import (
     to_matrix,
 )
 from hyperrotor.classical.inertia import Inertia
-from hyperrotor.classical.rigid_body import TIME, RigidBody
+from hyperrotor.classical.rigid_body import RigidBody
 from hyperrotor.paper import printed_solutions as ps
 
 __all__ = [
@@ -178,12 +177,41 @@ def _term_diff(printed, derived) -> tuple[list, list]:
     return extra, missing
 
 
+_DYN = re.compile(r"^(omega|omegadot|varpi|varpidot|L|C|LOp|OmegaOp)_\d+$")
+
+
+def _grouped(expr) -> str:
+    """Text of ``expr`` grouped by the monomials of the dynamical variables, coefficients factored."""
+    expr = sp.expand(expr)
+    gens = sorted((s for s in expr.free_symbols if _DYN.match(s.name)), key=lambda s: s.name)
+    if not gens or expr == 0:
+        return _fmt(expr)
+    text = ""
+    for mono, coef in sp.Poly(expr, *gens).terms():
+        m = _fmt(sp.Mul(*[g**e for g, e in zip(gens, mono)]))
+        c = sp.factor(coef)
+        if coef.free_symbols == {_KAPPA}:
+            k2 = sp.Dummy("k2")
+            c = sp.factor(sp.expand(coef).subs(_KAPPA**2, k2)).subs(k2, _KAPPA**2)
+        neg = c.could_extract_minus_sign()
+        if neg:
+            c = -c
+        if c == 1:
+            body = m
+        elif c.is_Atom or (c.is_Mul and all(a.is_Atom or a.is_Pow for a in c.args)):
+            body = f"{_fmt(c)}*{m}"
+        else:
+            body = f"({_fmt(c)})*{m}"
+        text += (" - " if neg else " + ") + body if text else ("-" if neg else "") + body
+    return text
+
+
 def _diff_text(extra: list, missing: list) -> str:
     parts = []
     if extra:
-        parts.append("printed has " + ", ".join(_fmt(t) for t in extra))
+        parts.append("printed has " + _grouped(sp.Add(*extra)))
     if missing:
-        parts.append("derived has " + ", ".join(_fmt(t) for t in missing))
+        parts.append("derived has " + _grouped(sp.Add(*missing)))
     return "; ".join(parts)
 
 
@@ -200,38 +228,61 @@ def _proportional(printed, derived):
     return c if sp.expand(printed - c * derived) == 0 else None
 
 
+def _scale_like(p, d):
+    """Scale ``d`` so that its derivative term (or first common term) has the printed coefficient."""
+    pp, dd = _terms(p), _terms(d)
+    common = [m for m in pp if m in dd]
+    dots = [m for m in common if any("dot" in s.name for s in m.free_symbols)]
+    ref = (dots or common or [None])[0]
+    if ref is None:
+        return d
+    return sp.expand(sp.simplify(pp[ref] / dd[ref]) * d)
+
+
+def _mismatch(p, d, zero_form):
+    """(extra, missing) terms of printed ``p`` against derived ``d`` (scaled when ``zero_form``)."""
+    return _term_diff(p, _scale_like(p, d) if zero_form else d)
+
+
+def _agrees(p, d, zero_form) -> bool:
+    return sp.expand(p - d) == 0 or (zero_form and _proportional(p, d) is not None)
+
+
 def _compare(key, section, printed, derived, *, zero_form=False, correct=None, note="", corrections=()):
     """Verdict from comparing a printed expression with the derived one.
 
     ``zero_form``: both stand for ``expr = 0``, so equality up to a non-zero
     constant factor counts. ``corrections``: ``(description, function)`` pairs
-    that transform the printed expression; the first one that makes it agree is
-    reported in the detail (the status stays ``"typo"``).
+    that transform the printed expression (e.g. a notation reading); if one
+    makes it agree, or removes some of the differences, the detail says so (the
+    status stays ``"typo"``).
     """
     p = _antisym(sp.expand(printed))
     d = sp.expand(derived)
-    ok = (sp.expand(p - d) == 0) or (zero_form and _proportional(p, d) is not None)
-    shown_correct = correct if correct is not None else (_fmt(d) + (" = 0" if zero_form else ""))
-    if ok:
+    shown_correct = correct if correct is not None else (_grouped(_scale_like(p, d) if zero_form else d)
+                                                         + (" = 0" if zero_form else ""))
+    if _agrees(p, d, zero_form):
         return Verdict(key, "holds", ("agrees with the derived form" + (f" ({note})" if note else "")),
-                       _fmt(printed), shown_correct, section)
-    c = _proportional(p, d) if zero_form else None
-    extra, missing = _term_diff(p, d if c is None else c * d)
-    if zero_form:
-        # express the difference against the derived form scaled to the printed normalisation
-        dd = _terms(d)
-        pp = _terms(p)
-        common = [m for m in pp if m in dd]
-        if common:
-            scale = sp.simplify(pp[common[0]] / dd[common[0]])
-            extra, missing = _term_diff(p, scale * d)
-    fixes = [desc for desc, fn in corrections if (lambda q: sp.expand(q - d) == 0 or (zero_form and _proportional(q, d) is not None))(sp.expand(_antisym(fn(printed))))]
+                       _grouped(printed), shown_correct, section)
+    extra, missing = _mismatch(p, d, zero_form)
     detail = _diff_text(extra, missing)
-    if fixes:
-        detail += "; fixed by: " + fixes[0]
+    best = None
+    for desc, fn in corrections:
+        q = sp.expand(_antisym(fn(printed)))
+        if _agrees(q, d, zero_form):
+            best = (desc, [], [])
+            break
+        e2, m2 = _mismatch(q, d, zero_form)
+        if len(e2) + len(m2) < len(extra) + len(missing) and (best is None or len(e2) + len(m2) < len(best[1]) + len(best[2])):
+            best = (desc, e2, m2)
+    if best is not None:
+        if not best[1] and not best[2]:
+            detail += f"; agrees when {best[0]}"
+        else:
+            detail += f"; even when {best[0]}, {_diff_text(best[1], best[2])}"
     if note:
         detail += f" ({note})"
-    return Verdict(key, "typo", detail + f". Correct: {shown_correct}", _fmt(printed), shown_correct, section)
+    return Verdict(key, "typo", detail + f". Correct: {shown_correct}", _grouped(printed), shown_correct, section)
 
 
 def _claim(key, section, ok: bool, detail_true: str, detail_false: str, printed=None, correct=None):
@@ -256,8 +307,8 @@ def _euler_entry_forms(locked: tuple = ()) -> dict:
 def _eq_str(zero_expr, rhs_symbol=None) -> str:
     """``lhs = rhs`` text from ``lhs - rhs`` (moving a torque symbol to the right)."""
     if rhs_symbol is not None:
-        return f"{_fmt(zero_expr + rhs_symbol)} = {_fmt(rhs_symbol)}"
-    return f"{_fmt(zero_expr)} = 0"
+        return f"{_grouped(zero_expr + rhs_symbol)} = {_fmt(rhs_symbol)}"
+    return f"{_grouped(zero_expr)} = 0"
 
 
 def _mtilde(p):
@@ -383,11 +434,23 @@ def _product_verdicts(key: str, sec: str, Lname: str, Wname: str) -> list:
     for p in planes(5):
         pr = _antisym(printed[p])
         v = _compare(f"{key} [{p[0]}{p[1]}]", sec, printed[p], derived[p],
-                     note="entry (i,j) of wL - Lw with the checkerboard matrices (21)-(22)")
+                     note="entry (i,j) of wL - Lw with the checkerboard matrices (21)-(22)",
+                     corrections=(("reversed indices (w^31, L^21, ...) are read as w^13, L^12 without the sign of eq. (1)",
+                                   _forward_indices),))
         if v.status == "typo" and sp.expand(pr - comp[p]) == 0:
             v = Verdict(v.equation, "holds", "agrees with the component form [W, L]_ij", v.printed, v.correct, sec)
         out.append(v)
     return out
+
+
+def _forward_indices(expr):
+    """Read ``X_ji`` (j > i) as ``X_ij`` without a sign (a notation slip, contrary to eq. 1)."""
+    reps = {}
+    for s in expr.free_symbols:
+        m = re.fullmatch(r"(\w+)_(\d)(\d)", s.name)
+        if m and int(m.group(2)) > int(m.group(3)):
+            reps[s] = _S(f"{m.group(1)}_{m.group(3)}{m.group(2)}")
+    return expr.xreplace(reps)
 
 
 def _table_candidates(sym: str) -> dict:
@@ -489,11 +552,6 @@ def _sec_euler() -> tuple:
     return tuple(out)
 
 
-def _pf4(A, idx):
-    a, b, c, d = idx
-    return A[a, b] * A[c, d] - A[a, c] * A[b, d] + A[a, d] * A[b, c]
-
-
 def _eq38(sec: str) -> list:
     out = []
     Ls = plane_symbols("L", 5, real=True)
@@ -533,10 +591,11 @@ def _eq38(sec: str) -> list:
     deg1 = sp.Poly(k1, *Ls).total_degree()
     deg3 = sp.Poly(k3, *Ls).total_degree()
     k3_is_norm = sp.expand(k3 + sum(x**2 for x in Ls)) == 0
-    claim_ok = (deg1 == 2) and not H_cas  # k1 would have to be the squared momentum and k3 the energy
+    # the claim: k1 is the (squared) momentum, k3 the energy; the energy depends on the moments, k3 does not
+    claim_ok = (deg1 == 2) and bool(k3.free_symbols & set(Is)) and not H_cas
     cl = ps.CLAIMS["38 (meaning of k1, k3)"]
     out.append(_claim(
-        "38 (k1 momentum, k3 energy)", sec, claim_ok and H_cas, "",
+        "38 (k1 momentum, k3 energy)", sec, claim_ok, "",
         f"k3 = -sum L_ij^2 (degree {deg3}{', minus the squared momentum' if k3_is_norm else ''}) is the momentum "
         f"invariant, and k1 is a quartic (degree {deg1}) Casimir, not the momentum. The energy "
         f"H = sum L_ij^2/(2 I_ij) is not a Casimir ({{H, L_ij}} != 0 for generic I, computed), so it is not a function of "
@@ -628,7 +687,7 @@ def _sec_reductions() -> tuple:
         rem_planes = {p for p in planes(5) if set(p) <= set(rs.remaining_axes)}
         if eq_planes != rem_planes:
             problems.append(f"the printed equations are for the planes {sorted(eq_planes)}, the remaining planes are {sorted(rem_planes)}")
-        name = f"Sec. {rs.section} ({rs.heading})"
+        name = f"Sec. {rs.section} (heading, locked set)"
         if not problems:
             out.append(Verdict(name, "holds",
                                f"locked axes {locked}, frozen set, erased equations and the planes of the {len(rs.equations)} "
@@ -738,18 +797,27 @@ def _sec_closed_form() -> tuple:
     # (86)-(95)
     forms = _quartet_forms(5)
     consts = {"86": (1, 2), "87": (1, 3), "88": (1, 4), "90": (2, 3), "91": (2, 4), "93": (3, 4)}
-    for k, p in consts.items():
+    w51 = {_S("omega_51"): _S("omega_15")}
+    for k in map(str, range(86, 96)):
+        if k in consts:
+            d = forms[consts[k]]
+            out.append(_compare(k, sec, ps.printed(k)["ode"], d, zero_form=True, correct=f"{_fmt(d)} = 0"))
+            continue
+        p = {"89": (1, 5), "92": (2, 5), "94": (3, 5), "95": (4, 5)}[k]
+        dot = _S(f"omegadot_{p[0]}{p[1]}")
         d = forms[p]
-        pz = ps.printed(k)["ode"]
-        out.append(_compare(k, sec, pz, d, zero_form=True, correct=f"{_fmt(d)} = 0"))
-    for k, p in (("89", (1, 5)), ("92", (2, 5)), ("94", (3, 5)), ("95", (4, 5))):
-        d = sp.factor_terms(forms[p])
-        d = forms[p]
-        pz = ps.printed(k)
-        out.append(_compare(k, sec, pz, d, zero_form=True,
-                            correct=f"{_fmt(sp.collect(d, [sp.Symbol('omegadot_' + str(p[0]) + str(p[1]), real=True)]))} = 0",
-                            corrections=(("reading w51 as +w15 (not -w15)",
-                                          lambda e: e.xreplace({_S("omega_51"): _S("omega_15")})),)))
+        ds = sp.expand(d * (1 + _KAPPA**2) / d.coeff(dot))
+        q = sp.expand(sp.cancel((ds - (1 + _KAPPA**2) * dot) / (1 - _KAPPA**2)))
+        shown = f"(1 + kappa^2)*{_fmt(dot)} + (1 - kappa^2)*({_grouped(q)}) = 0"
+
+        def flip(e, dot=dot):
+            e = sp.expand(e)
+            return 2 * e.coeff(dot) * dot - e
+        out.append(_compare(k, sec, ps.printed(k), d, zero_form=True, correct=shown,
+                            corrections=(("the sign of the (1 - kappa^2) term is flipped", flip),
+                                         ("w51 is read as +w15 (not -w15 as eq. 1 says)", lambda e: e.xreplace(w51)),
+                                         ("the sign of the (1 - kappa^2) term is flipped and w51 is read as +w15",
+                                          lambda e, flip=flip: flip(e.xreplace(w51))))))
     # (96)-(99): linear system with constants c1..c6 (planes 12, 13, 14, 23, 24, 34)
     through, K = _axis_system(5, _C)
     xs = [_S(f"omega_{i}{j}") for i, j in through]
@@ -825,13 +893,19 @@ def _sec_closed_form() -> tuple:
     out.append(_compare("108 (l0)", sec, p108["l_0"], sp.expand(l0d)))
     cands = [("all c = 0", {c: 0 for c in _C}, {}), ("kappa = 1 (Theta = 0)", {}, {_THETA: 0}),
              ("only c1 = 1", {**{c: 0 for c in _C}, _C[0]: 1}, {})]
-    for key, expr, rel, strict_bad in (("108 (l2 < 0)", l2d, "<", lambda v: not (v < 0)), ("108 (l0 > 0)", l0d, ">", lambda v: not (v > 0))):
-        found = [(name, v) for name, cs, th in cands for v in [expr.subs(cs).subs(th).subs(_THETA, sp.Rational(1, 2))] if strict_bad(v)]
-        nonstrict = (expr.is_nonpositive if rel == "<" else expr.is_nonnegative)
-        out.append(_claim(key, sec, not found, "",
-                          f"fails for {found[0][0]} ({key.split()[1].strip('(')} = {found[0][1]}); only the non-strict "
-                          f"{key.split()[1].strip('(')} {rel}= 0 holds (computed: {'yes' if nonstrict else 'undecided'})",
-                          f"{key.split('(')[1].rstrip(')')}", f"{key.split()[1].strip('(')} {rel}= 0"))
+    tests = {"<": lambda v: v < 0, "<=": lambda v: v <= 0, ">": lambda v: v > 0, ">=": lambda v: v >= 0}
+    for key, name, expr in (("108 (l2 < 0)", "l_2", l2d), ("108 (l0 > 0)", "l_0", l0d)):
+        rel = p108[name + " relation"]
+        found = [(cn, v) for cn, cs, th in cands for v in [expr.subs(cs).subs(th).subs(_THETA, sp.Rational(1, 2))]
+                 if not tests[rel](v)]
+        weak = rel[0] + "="
+        nonstrict = expr.is_nonpositive if weak == "<=" else expr.is_nonnegative
+        short = name.replace("_", "")
+        out.append(_claim(key, sec, not found and bool(nonstrict),
+                          f"{short} {rel} 0 holds (sign decided symbolically)",
+                          (f"fails for {found[0][0]} ({short} = {found[0][1]}); only the non-strict {short} {weak} 0 holds "
+                           f"(decided symbolically: {'yes' if nonstrict else 'undecided'})") if found else f"{short} {rel} 0 undecided",
+                          f"{short} {rel} 0", f"{short} {weak} 0"))
     p109 = ps.printed("109")
     l2s, l0s = _S("l_2"), _S("l_0")
     lhs109 = p109.lhs.subs({l2s: l2d, l0s: l0d})
@@ -841,14 +915,15 @@ def _sec_closed_form() -> tuple:
     ce = [("only c1 = 1 (Pfaffian 0)", {**{c: 0 for c in _C}, _C[0]: 1}),
           ("c1 = c6 = 1 (self-dual)", {**{c: 0 for c in _C}, _C[0]: 1, _C[5]: 1})]
     fails = []
+    rel110 = ps.printed("110")["relation"]
     for name, cs in ce:
         vals = [e.subs(cs).subs(_THETA, sp.Rational(1, 2)) for e in chain]
         for a, b in zip(vals, vals[1:]):
-            if not a > b:
-                fails.append(f"{name}: {a} > {b} is false")
-    nonneg = sp.factor(chain[1])
+            if not (a > b if rel110 == ">" else a >= b):
+                fails.append(f"{name}: {a} {rel110} {b} is false")
+    nonneg = p109.rhs
     out.append(_claim("110", sec, not fails, "",
-                      "; ".join(fails) + f". Correct: l2^2 >= l2^2 - 4 l0 >= 0 (l2^2 - 4 l0 = {_fmt(nonneg)}, a product of sums of squares); "
+                      "; ".join(fails) + f". Correct: l2^2 >= l2^2 - 4 l0 >= 0 (l2^2 - 4 l0 = {_fmt(nonneg)} by (109), a product of sums of squares); "
                       "equality in the second means two equal frequencies", "l2^2 > l2^2 - 4 l0 > 0", "l2^2 >= l2^2 - 4 l0 >= 0"))
     # frequencies after (118)
     freqs = ps.printed("after 118")
@@ -1049,7 +1124,8 @@ def _stability_claims(sec: str) -> list:
             strict[plane_index(Jmap[J], 5)] = float(v)
         res_strict = linear_stability(strict, (1, 2), 1.0)
         # not necessary: J1 between others yet stable
-        mixed = np.array([5.0, 6.0, 4.0, 7.0, 6.5, 3.0, 4.0, 3.5, 1.0, 9.0])  # I12=5 > I14,I24 & I15,I25; < I13,I23
+        # I12 = 5: below I13, I23 and I15, I25, above I14, I24 (plane order 12,13,14,15,23,24,25,34,35,45)
+        mixed = np.array([5.0, 6.0, 4.0, 7.0, 6.5, 3.0, 8.0, 3.5, 1.0, 9.0])
         res_mixed = linear_stability(mixed, (1, 2), 1.0)
         ok = res.stable
         out.append(_claim(
@@ -1097,9 +1173,10 @@ def _sec_quantum() -> tuple:
         commutator(ops[pa], ops[pb]) == _op_sum(ops, C[a, b], coords)
         for a, pa in enumerate(planes(5)) for b, pb in enumerate(planes(5)) if a < b
     )
-    out.append(Verdict("142", "holds" if not bad else "typo",
-                       ("the ten operators equal angular_momentum_operators(5) (x_i d/dx_j - x_j d/dx_i) and close under commutation "
-                        f"with the so(5) structure constants: {closes}") if not bad else f"wrong operators for planes {bad}",
+    v142 = (Verdict("142", "holds" if not bad else "typo",
+                       ("the ten operators equal angular_momentum_operators(5) (x_i d/dx_j - x_j d/dx_i); they "
+                        + ("close" if closes else "do NOT close") + " under commutation with the so(5) structure constants, "
+                        "[L_a, L_b] = sum_c C_ab^c L_c (computed for all 45 pairs)") if not bad else f"wrong operators for planes {bad}",
                        "L^12 = x d/dy - y d/dx, ...", None, sec))
     # (141), (143): sign patterns and prefactor
     for k, hb in (("141", hbar), ("143", None)):
@@ -1122,16 +1199,21 @@ def _sec_quantum() -> tuple:
                            ("checkerboard matrix (-1)^(i+j) L^ij of the operators (eq. 21 pattern), = operator_matrix(5, 'paper'"
                             + (", hbar): the Hermitian -i hbar L^ij (the extraction shows the entries as 1^ij)" if k == "141" else ")"))
                            if not wrong and pref_ok else f"wrong entries {wrong}", None, None, sec))
+        if k == "141":
+            out.append(v142)
     # (144): same pattern as (25)
     vs = _product_verdicts("144", sec, "LOp", "OmegaOp")
     bad_lines = [v.equation.split("[")[1].rstrip("]") for v in vs if v.status != "holds"]
-    p25_bad = [v.equation.split("[")[1].rstrip("]") for v in _sec_euler() if v.equation.startswith("25 [") and v.status != "holds"]
+    v25 = {v.equation.split("[")[1].rstrip("]"): v.detail for v in _sec_euler() if v.equation.startswith("25 [")}
+    same = all(v.detail.replace("LOp", "L").replace("OmegaOp", "w") == v25.get(v.equation.split("[")[1].rstrip("]"))
+               for v in vs if v.status != "holds")
+    first = next((v for v in vs if v.status != "holds"), None)
     out.append(Verdict("144", "holds" if not bad_lines else "typo",
                        ("all ten entries agree with the operator version of (25)") if not bad_lines else
                        (f"entries {', '.join(bad_lines)} are wrong"
-                        + (" - exactly the entries wrong in (25), copied" if bad_lines == p25_bad else "")
-                        + ": " + " | ".join(f"[{v.equation.split('[')[1]} {v.detail}" for v in vs if v.status != "holds")
-                        + ". Corrected product: operator_product(A, B, form='eq144')"),
+                        + (", term for term the same errors as in (25) (see the verdicts 25 [ij], with L -> LOp, w -> OmegaOp)"
+                           if same else "") + f"; e.g. [{first.equation.split('[')[1]} {first.detail}"
+                        + ". Corrected product: hyperrotor.quantum.operator_product(A, B, form='eq144')"),
                        None, None, sec))
     # (145)-(147)
     for k in ("145", "146", "147"):
@@ -1342,3 +1424,7 @@ def main_verify(argv: Sequence[str] | None = None) -> int:
     else:
         print(text)
     return 0
+
+
+if __name__ == "__main__":  # python -m hyperrotor.paper.verify --markdown -o docs/verification.md
+    raise SystemExit(main_verify())
