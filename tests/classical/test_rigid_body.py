@@ -369,3 +369,13 @@ def test_stability_delegates(monkeypatch):
     body = RigidBody(Inertia.equal(3))
     assert body.stability((1, 2), 2.5) == "sentinel"
     assert calls == [(body, (1, 2), 2.5)]
+
+
+def test_two_dimensional_body_is_trivial():
+    body = RigidBody(Inertia.equal(2, 3.0))
+    np.testing.assert_array_equal(body.rhs(np.array([[2.0], [5.0]])), [[0.0], [0.0]])
+    np.testing.assert_allclose(body.rhs([2.0], [6.0]), [2.0])  # I w' = m
+    assert body.casimirs([2.0]) == pytest.approx([36.0])
+    assert body.manakov_integrals([2.0]).shape == (1,)
+    eq, = body.euler_equations(0)
+    assert sp.expand(eq.lhs + 3 * sp.Derivative(body.omega_symbols(function_of=TIME)[0], TIME)) == 0

@@ -538,6 +538,8 @@ class Inertia:
         )
 
     def __hash__(self) -> int:
+        if self._numeric is not None:
+            return hash((self._N, tuple(self._numeric.tolist())))
         return hash((self._N, self._values))
 
     def __repr__(self) -> str:
