@@ -335,6 +335,38 @@ def quartet_frequencies(kappa: float, omega0: Any, axis: int = 5) -> np.ndarray:
 _EVEN_PERMS = {(0, 1, 2), (1, 2, 0), (2, 0, 1)}
 
 
+def _ellipj(u: np.ndarray, m: float):
+    r"""Jacobi sn, cn, dn accurate to a few ulp for all ``u`` and ``0 <= m <= 1``.
+
+    ``scipy.special.ellipj`` (Cephes) switches to a first-order expansion in
+    ``1 - m`` for ``m > 1 - 1e-9`` that is only valid for small ``|u|`` (it
+    returns values ~1e17 at ``u = 3K`` for ``m = 1 - 1e-10``). The argument is
+    therefore reduced to ``[-K, K]`` with :math:`\mathrm{sn}(u + 2K) = -\mathrm{sn}\,u`,
+    :math:`\mathrm{cn}(u + 2K) = -\mathrm{cn}\,u`, :math:`\mathrm{dn}(u+2K) = \mathrm{dn}\,u`,
+    and ``|u| > K/2`` is folded to ``v = K - |u|`` with
+    :math:`\mathrm{sn}(K - v) = \mathrm{cd}\,v`, :math:`\mathrm{cn}(K - v) = k'\,\mathrm{sd}\,v`,
+    :math:`\mathrm{dn}(K - v) = k'\,\mathrm{nd}\,v`.
+    """
+    u = np.asarray(u, dtype=float)
+    if m >= 1.0:  # separatrix: sn = tanh, cn = dn = sech (exact in Cephes for m = 1)
+        s, c, d, _ = special.ellipj(u, 1.0)
+        return s, c, d
+    K = float(special.ellipk(m))
+    kp = np.sqrt(1.0 - m)
+    j = np.round(u / (2.0 * K))
+    v = u - 2.0 * K * j
+    sg = np.where(np.mod(j, 2.0) == 0.0, 1.0, -1.0)
+    av = np.abs(v)
+    sv = np.where(v < 0.0, -1.0, 1.0)
+    far = av > 0.5 * K
+    w = np.where(far, K - av, av)
+    s, c, d, _ = special.ellipj(w, m)
+    sn = np.where(far, c / d, s) * sv
+    cn = np.where(far, kp * s / d, c)
+    dn = np.where(far, kp / d, d)
+    return sg * sn, sg * cn, dn
+
+
 def _ep_setup(moments3: Any, omega0: Any):
     I = _moments_of(moments3)
     if I.size != 3:
@@ -429,11 +461,7 @@ def euler_poinsot(moments3: Any, omega0: Any, t: Any) -> np.ndarray:
     V1, V2 = P["V"][0], P["V"][1]
     phi0 = np.arctan2(V2 / B if B > 0 else 0.0, V1 / A if A > 0 else 1.0)
     u0 = float(special.ellipkinc(phi0, m))
-    u = u0 + nu * tt
-    if m < 1.0:  # reduce the argument modulo the period 4K
-        K4 = 4.0 * float(special.ellipk(m))
-        u = np.mod(u, K4)
-    sn, cn, dn, _ = special.ellipj(u, m)
+    sn, cn, dn = _ellipj(u0 + nu * tt, m)
     V = np.stack([A * cn, B * sn, C * dn], axis=-1) * P["sg"] * P["flip"]
     Wtb = np.empty_like(V)
     Wtb[:, list(P["perm"])] = V
