@@ -411,6 +411,14 @@ def _ep_setup(moments3: Any, omega0: Any):
     return dict(I=I, w=w, perm=perm, flip=flip, sg=sg, V=V, J=J, A=A, B=B, C=C, nu=nu, m=m)
 
 
+def _is_steady(P) -> bool:
+    """True when the right-hand side vanishes exactly (rest or principal-axis rotation)."""
+    J, V = P["J"], P["V"]
+    return P["nu"] == 0.0 or (
+        (J[1] - J[2]) * V[1] * V[2] == 0.0 and (J[2] - J[0]) * V[2] * V[0] == 0.0 and (J[0] - J[1]) * V[0] * V[1] == 0.0
+    )
+
+
 def euler_poinsot(moments3: Any, omega0: Any, t: Any) -> np.ndarray:
     r"""Exact 3D torque-free motion (Euler-Poinsot) with Jacobi elliptic functions.
 
@@ -455,12 +463,14 @@ def euler_poinsot(moments3: Any, omega0: Any, t: Any) -> np.ndarray:
     tt = _times(t)
     P = _ep_setup(moments3, omega0)
     w = P["w"]
-    if P["nu"] == 0.0 or (P["A"] == 0.0 and P["C"] == 0.0):  # steady rotation (or rest)
+    if _is_steady(P):  # steady rotation about a principal axis (or rest)
         return np.broadcast_to(w, (tt.size, 3)).copy()
     A, B, C, nu, m = P["A"], P["B"], P["C"], P["nu"], P["m"]
     V1, V2 = P["V"][0], P["V"][1]
     phi0 = np.arctan2(V2 / B if B > 0 else 0.0, V1 / A if A > 0 else 1.0)
     u0 = float(special.ellipkinc(phi0, m))
+    if not np.isfinite(u0):  # m = 1 and V1 = 0: the unstable middle-axis equilibrium
+        return np.broadcast_to(w, (tt.size, 3)).copy()
     sn, cn, dn = _ellipj(u0 + nu * tt, m)
     V = np.stack([A * cn, B * sn, C * dn], axis=-1) * P["sg"] * P["flip"]
     Wtb = np.empty_like(V)
@@ -472,7 +482,7 @@ def euler_poinsot_period(moments3: Any, omega0: Any) -> float:
     r"""Period of :math:`\omega(t)` of the 3D free body: :math:`4K(m)/|\nu|` (``inf`` on the
     separatrix, ``inf`` for steady rotation)."""
     P = _ep_setup(moments3, omega0)
-    if P["nu"] == 0.0 or P["m"] >= 1.0 or (P["A"] == 0.0 and P["C"] == 0.0):
+    if _is_steady(P) or P["m"] >= 1.0:
         return float("inf")
     return 4.0 * float(special.ellipk(P["m"])) / abs(P["nu"])
 
