@@ -17,6 +17,7 @@ from hyperrotor.quantum.representations import (
     direct_sum,
     harmonic_rep,
     intertwiner,
+    real_form,
     spinor_rep,
     tensor,
     vector_rep,
@@ -72,6 +73,12 @@ def test_brackets_and_contraction(make):
                            for k in range(1, N + 1) if k not in (i, j)), sps.csr_matrix((rep.dim, rep.dim)))
                 res = tot - (N - 2) * _X(rep, i, j)
                 assert (abs(res).max() if res.nnz else 0.0) <= TOL * scale
+                # the paper's form, eqs. (145)-(147) (-3, -2, -1 for N = 5, 4, 3):
+                # sum_k (X_(ik) X_(jk) - X_(jk) X_(ik)) = -(N - 2) X_(ij)
+                tot2 = sum((_X(rep, i, k) @ _X(rep, j, k) - _X(rep, j, k) @ _X(rep, i, k)
+                            for k in range(1, N + 1) if k not in (i, j)), sps.csr_matrix((rep.dim, rep.dim)))
+                res2 = tot2 + (N - 2) * _X(rep, i, j)
+                assert (abs(res2).max() if res2.nnz else 0.0) <= TOL * scale
 
 
 @pytest.mark.parametrize("make", CONSTRUCTORS)
@@ -264,3 +271,38 @@ def test_bad_input():
         Representation(3, {(1, 2): np.zeros((2, 2))})
     with pytest.raises(ValueError, match="no exact"):
         Representation(2, {(1, 2): np.zeros((1, 1))}).generator((1, 2), exact=True)
+
+
+@pytest.mark.parametrize(
+    "N, m",
+    [(3, (1,)), (3, (2,)), (4, (1, 1)), (5, (1, 0)), (5, (2, 1)), (6, (1, 1, 0)), (7, (H, H, H)), (8, (H, H, H, H)), (8, (H, H, H, -H))],
+    ids=str,
+)
+def test_real_form_of_real_irreps(N, m):
+    rep = irrep(N, m)
+    assert not rep.is_real
+    R = real_form(rep)
+    assert R.is_real and R.highest_weight == rep.highest_weight
+    C = structure_constants(N)
+    pl = planes(N)
+    G = R.generators(format="dense")
+    for p in pl:
+        assert G[p].dtype == np.float64 and np.abs(G[p] + G[p].T).max() <= 1e-13
+    for a, pa in enumerate(pl):
+        for b, pb in enumerate(pl):
+            rhs = sum(int(C[a, b, c]) * G[pl[c]] for c in np.nonzero(C[a, b])[0]) if C[a, b].any() else 0
+            assert np.abs(G[pa] @ G[pb] - G[pb] @ G[pa] - rhs).max() <= 1e-11
+    assert R.weight_multiplicities() == weight_multiplicities(N, m)
+
+
+def test_real_form_rejects_complex_and_quaternionic():
+    with pytest.raises(ValueError, match="quaternionic"):
+        real_form(irrep(3, (H,)))
+    with pytest.raises(ValueError, match="quaternionic"):
+        real_form(spinor_rep(5))
+    with pytest.raises(ValueError, match="no real form"):
+        real_form(irrep(6, (1, 1, 1)))  # conjugate irrep is (1, 1, -1)
+    with pytest.raises(TypeError, match="Representation"):
+        real_form(np.eye(3))
+    v = vector_rep(4)
+    assert real_form(v) is v

@@ -457,10 +457,12 @@ def irrep(
     Examples
     --------
     >>> rep = irrep(5, (1, 0))
-    >>> rep.dim
-    5
-    >>> float(abs((rep.casimir() + 4 * sps.identity(5)).toarray()).max()) < 1e-12
+    >>> rep.dim, rep.casimir_value()
+    (5, Fraction(4, 1))
+    >>> bool(abs(rep.casimir(format="dense") + 4 * np.eye(5)).max() < 1e-12)
     True
+    >>> irrep(5, dynkin=[0, 1]).dim     # the spinor, highest weight (1/2, 1/2)
+    4
     """
     from .representations import Representation, _check_format
 

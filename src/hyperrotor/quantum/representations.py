@@ -24,8 +24,15 @@ Consequences checked in the tests for every representation:
   (:func:`.weights.casimir_eigenvalue`), i.e. :math:`\sum (L^{ij})^2 = \hbar^2 c`;
 * contraction identity :math:`\sum_{k \ne i,j} [X_{(ik)}, X_{(kj)}] = (N-2)\,X_{(ij)}`
   (with :math:`X_{(ba)} = -X_{(ab)}`), from :math:`[E_{ik}, E_{kj}] = E_{ij}` for
-  distinct :math:`i, j, k`; for the Hermitian operators this reads
-  :math:`\sum_k [L^{ik}, L^{kj}] = -i\hbar (N-2) L^{ij}`.
+  distinct :math:`i, j, k`; equivalently
+  :math:`\sum_k (X_{(ik)} X_{(jk)} - X_{(jk)} X_{(ik)}) = -(N-2)\,X_{(ij)}`, which
+  is the paper's "contraction" :math:`\mathbb L\Omega = -3\mathbb L, -2\mathbb L, -\mathbb L`
+  for :math:`\Omega = \mathbb L^{\mathsf T}` in 5D, 4D, 3D (eqs. 145-147),
+  valid for the anti-Hermitian operators of eq. (142) and in every
+  representation. For the Hermitian operators of eq. (141),
+  :math:`L^{ij} = -i\hbar X_{(ij)}`, the factor becomes
+  :math:`\sum_k (L^{ik}L^{jk} - L^{jk}L^{ik}) = +i\hbar(N-2)\,L^{ij}`
+  (the paper's form does not carry over to eq. 141 unchanged).
 
 Cartan subalgebra and weights
 -----------------------------
@@ -60,6 +67,7 @@ __all__ = [
     "tensor",
     "direct_sum",
     "intertwiner",
+    "real_form",
 ]
 
 _FORMATS = ("csr", "dense")
@@ -603,6 +611,57 @@ def intertwiner(a: Representation, b: Representation, *, rtol: float = 1e-9) -> 
     if res > 1e-6 * scale * max(1.0, np.abs(T).max()):
         raise ValueError(f"{a.name} and {b.name} are not equivalent (intertwining residual {res:.2e})")
     return T
+
+
+def real_form(rep: Representation, *, atol: float = 1e-10) -> Representation:
+    r"""An equivalent representation with real antisymmetric generators (irreps of real type).
+
+    Let :math:`T` intertwine the complex-conjugate representation with ``rep``,
+    :math:`T\,\overline{X}_{(ij)} = X_{(ij)}\,T` (:func:`intertwiner`,
+    unitary). Then :math:`T\overline T = \varepsilon\,\mathbb 1` with
+    :math:`\varepsilon = +1` (real type) or :math:`-1` (quaternionic type,
+    e.g. spin 1/2 of so(3) or the spinor of so(5)). For real type :math:`T` is
+    symmetric unitary, :math:`T = W^2` with :math:`W = O\,e^{i\Theta/2} O^{\mathsf T}`
+    (O real orthogonal diagonalizing the commuting real and imaginary parts of
+    T), and :math:`Y_{(ij)} = W^\dagger X_{(ij)} W` is real antisymmetric.
+    Dense :math:`O(\dim^3)`; meant for moderate dimensions.
+
+    Raises
+    ------
+    ValueError
+        If ``rep`` is reducible, not self-conjugate (complex type, e.g. so(6)
+        (1, 1, 1)) or quaternionic.
+    """
+    if not isinstance(rep, Representation):
+        raise TypeError(f"real_form takes a Representation, got {type(rep).__name__}")
+    if rep.is_real:
+        return rep
+    conj = Representation(rep.N, {p: M.conj() for p, M in rep._gens.items()}, name=f"conjugate of {rep.name}")
+    try:
+        T = intertwiner(conj, rep)
+    except ValueError as err:
+        raise ValueError(f"{rep.name} has no real form: {err}") from None
+    TT = T @ T.conj()
+    eps = float(np.real(np.trace(TT))) / rep.dim
+    if abs(eps + 1) < 1e-6:
+        raise ValueError(f"{rep.name} is of quaternionic (pseudo-real) type: T conj(T) = -1, no real form")
+    if np.abs(TT - np.eye(rep.dim)).max() > 1e-8:  # pragma: no cover - internal
+        raise ArithmeticError("conjugation intertwiner is not an involution (internal error)")
+    T = 0.5 * (T + T.T)
+    A, B = T.real, T.imag
+    c = np.sqrt(2.0) + 0.1234
+    _, O = np.linalg.eigh(A + c * B)
+    theta = np.angle(np.einsum("ia,ij,ja->a", O, T, O))
+    W = (O * np.exp(0.5j * theta)) @ O.T
+    gens = {}
+    for p, X in rep._gens.items():
+        Y = W.conj().T @ X.toarray() @ W
+        if np.abs(Y.imag).max() > atol * max(1.0, np.abs(Y).max()):
+            raise ArithmeticError(f"real form failed: imaginary part {np.abs(Y.imag).max():.2e} (internal error)")
+        Y = Y.real
+        Y[np.abs(Y) < 1e-13 * max(1.0, np.abs(Y).max())] = 0.0
+        gens[p] = sps.csr_matrix(Y)
+    return Representation(rep.N, gens, highest_weight=rep.highest_weight, name=f"real form of {rep.name}", format=rep.format)
 
 
 def _check_same_N(*reps):
