@@ -224,8 +224,15 @@ def _broadcast_batch(name: str, arr: np.ndarray, core_ndim: int, batch: tuple) -
     return np.broadcast_to(arr, batch + arr.shape[arr.ndim - core_ndim:])
 
 
-def _S(N: int) -> np.ndarray:
-    return np.array([(-1.0) ** i for i in range(1, N + 1)])
+def _sign_diag(body: Any, N: int, convention: str) -> np.ndarray:
+    """Diagonal of S with T_conv = S T_plain S: (-1)^axis for "paper" (original axis labels of a
+    locked RigidBody, ``body.axes``), ones for "standard"."""
+    if convention == "standard":
+        return np.ones(N)
+    axes = tuple(getattr(body, "axes", range(1, N + 1)))
+    if len(axes) != N:
+        axes = tuple(range(1, N + 1))
+    return np.array([(-1.0) ** int(a) for a in axes])
 
 
 # ----------------------------------------------------------------------------
@@ -372,7 +379,8 @@ class _SparseRHS:
         return (self.coef * omega[..., self.b] * L[..., self.c]) @ self.A
 
 
-def _run_scipy(body, method, moments, N, convention, w0, t, rtol, torque, T0, with_att):
+def _run_scipy(body, method, moments, N, w0, t, rtol, torque, T0, with_att):
+    """scipy peers; the attitude is integrated in the plain-matrix convention (T0 plain)."""
     from scipy.integrate import solve_ivp
 
     rhs = body.rhs if callable(getattr(body, "rhs", None)) else _SparseRHS(moments, N)
@@ -396,7 +404,7 @@ def _run_scipy(body, method, moments, N, convention, w0, t, rtol, torque, T0, wi
             if not with_att:
                 return dw
             Tm = y[n:].reshape(N, N)
-            return np.concatenate([dw, (to_matrix(w, convention) @ Tm).ravel()])
+            return np.concatenate([dw, (to_matrix(w, "standard") @ Tm).ravel()])
 
         y0 = w0[b] if not with_att else np.concatenate([w0[b], T0[b].ravel()])
         wscale = float(np.max(np.abs(w0[b]))) or 1.0
@@ -574,12 +582,14 @@ def simulate(
 
     B = int(np.prod(batch)) if batch else 1
     w0f = w0.reshape(B, n)
-    T0f_conv = T0.reshape(B, N, N) if with_att else None
+    S = _sign_diag(body, N, convention)
+    # attitude is integrated in the plain convention: T_conv = S T_plain S (S = S^-1)
+    T0_std = S[:, None] * T0.reshape(B, N, N) * S[None, :] if with_att else None
     stats: dict[str, Any] = {"method": method, "rtol": rtol_used}
 
     if method in _SCIPY_METHODS:
         tqf = tq if (tq is None or callable(tq)) else tq.reshape(B, n)
-        omega, att, nfev = _run_scipy(body, method, moments, N, convention, w0f, t, rtol_used, tqf, T0f_conv, with_att)
+        omega, att, nfev = _run_scipy(body, method, moments, N, w0f, t, rtol_used, tqf, T0_std, with_att)
         stats.update(order=None, steps=None, nfev=int(nfev), dt=None)
     else:
         order = _SPLITTING_ORDER[method]
@@ -589,11 +599,6 @@ def simulate(
         torque_b = np.zeros((B, n)) if not kick else np.ascontiguousarray(tq.reshape(B, n))
         moments_b = np.broadcast_to(moments, (B, n))
         L0 = w0f * moments
-        if with_att:
-            S = _S(N)
-            T0_std = S[:, None] * T0f_conv * S[None, :]  # conventions: T_paper = S T_std S
-        else:
-            T0_std = np.broadcast_to(np.eye(N), (1, N, N))
         if dt is None:
             T_total = float(t[-1] - t[0])
             if T_total > 0:
@@ -601,21 +606,16 @@ def simulate(
             else:
                 dt = 1.0
         nsub = _nsub_for(t, dt)
-        T0_run = T0_std if with_att else np.zeros((B, N, N))
+        T0_run = T0_std if with_att else np.zeros((1, N, N))
         outL, outT = _run_split(L0, moments_b, word, tables, t, nsub, torque_b, T0_run, with_att)
         omega, Lout = outL / moments, outL
-        att = None
-        if with_att:
-            if convention == "paper":
-                att = S[:, None] * outT * S[None, :]
-            else:
-                att = outT
+        att = outT
         stats.update(order=order, steps=int(nsub.sum()), nfev=None,
                      dt=float(np.max(np.diff(t) / nsub)) if t.size > 1 else None,
                      flows_per_step=int(word[0].size))
     omega = omega.reshape(batch + (t.size, n))
     L = Lout.reshape(omega.shape) if method not in _SCIPY_METHODS else omega * moments
     if att is not None:
-        att = att.reshape(batch + (t.size, N, N))
+        att = (S[:, None] * att * S[None, :]).reshape(batch + (t.size, N, N))
     stats["wall_time"] = time.perf_counter() - wall
     return Trajectory(t, omega, L, att, body, moments, stats)

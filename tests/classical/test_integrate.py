@@ -1,0 +1,377 @@
+"""Tests of hyperrotor.classical.integrate: simulate(), the Lie-Poisson splittings and the scipy peers.
+
+Tolerances are stated as multiples of machine epsilon where the claim is "to round-off"
+and as explicit error bounds against closed forms otherwise.
+"""
+import numpy as np
+import pytest
+
+from hyperrotor import Inertia, RigidBody
+from hyperrotor._jit import JIT_ENABLED
+from hyperrotor.classical import _kernels
+from hyperrotor.classical.closed_form import euler_poinsot, quartet_moments, quartet_solution
+from hyperrotor.classical.integrate import (
+    METHODS,
+    Trajectory,
+    _moments_and_n,
+    _splitting_word,
+    simulate,
+    splitting_coefficients,
+)
+from hyperrotor.conventions import n_planes, structure_constants, to_matrix
+
+SPLITTINGS = ["splitting2", "splitting4", "splitting6", "splitting8"]
+SCIPY = ["DOP853", "RK45", "LSODA", "Radau"]
+
+MOM3 = np.array([2.0, 3.0, 4.0])  # I12, I13, I23
+W3 = np.array([0.6, 1.0, -0.5])
+
+
+def generic5(rng):
+    """A physical asymmetric 5D body: I_ij = m_i + m_j with distinct m."""
+    m = np.array([0.3, 0.55, 0.9, 1.4, 2.1])
+    return Inertia.from_mass_tensor(m), rng.normal(size=10)
+
+
+def casimirs(L):
+    """tr(L^2), tr(L^4) of the plain matrix (the Casimirs of eq. 38 up to normalisation)."""
+    M = to_matrix(L, "standard")
+    M2 = M @ M
+    return np.trace(M2, axis1=-2, axis2=-1), np.trace(M2 @ M2, axis1=-2, axis2=-1)
+
+
+# ----------------------------------------------------------------------------- elementary flows
+@pytest.mark.parametrize("N", [3, 4, 5, 6])
+def test_elementary_flow_is_the_flow_of_one_plane_term(N, rng):
+    """d/dh of the plane-a flow at h = 0 equals dL/dt = [W, L] with W = (L_a / I_a) E_a (structure constants)."""
+    n = n_planes(N)
+    C = structure_constants(N).astype(float)
+    L0 = rng.normal(size=(1, n))
+    mom = rng.uniform(1, 2, size=(1, n))
+    tables = _kernels.rotation_tables(N)
+    h = 1e-5
+    for a in range(n):
+        outs = []
+        for tt in ([0.0, h], [0.0, -h]):
+            outL = np.zeros((1, 2, n))
+            outT = np.zeros((1, 2, N, N))
+            # a negative step is the inverse flow: run on a reversed grid by flipping the coefficient
+            coef = np.array([1.0 if tt[1] > 0 else -1.0])
+            _kernels.split_run(L0, mom, np.array([a]), coef, *tables, np.array([0.0, h]), np.array([1]),
+                               np.zeros((1, n)), np.eye(N)[None], True, outL, outT)
+            outs.append((outL[0, 1], outT[0, 1]))
+        w = np.zeros(n)
+        w[a] = L0[0, a] / mom[0, a]
+        dL = (outs[0][0] - outs[1][0]) / (2 * h)
+        dT = (outs[0][1] - outs[1][1]) / (2 * h)
+        np.testing.assert_allclose(dL, np.einsum("b,c,bca->a", w, L0[0], C), atol=1e-8)
+        np.testing.assert_allclose(dT, to_matrix(w, "standard"), atol=1e-8)  # dT/dt = W T at T = 1
+        assert outs[0][0][a] == L0[0, a]  # L_a is exactly invariant under its own flow
+
+
+@pytest.mark.skipif(not JIT_ENABLED, reason="numba disabled: only the Python path exists")
+def test_jitted_and_python_kernels_agree(rng, eps):
+    N, n = 5, 10
+    L0 = rng.normal(size=(3, n))
+    mom = np.broadcast_to(rng.uniform(1, 3, size=n), (3, n)).copy()
+    word = _splitting_word(4, n)
+    tables = _kernels.rotation_tables(N)
+    t = np.array([0.0, 0.3, 0.7])
+    nsub = np.array([5, 7])
+    outs = []
+    for fn in (_kernels.split_run, _kernels.split_run.py_func):
+        outL = np.zeros((3, 3, n))
+        outT = np.zeros((3, 3, N, N))
+        fn(L0, mom, *word, *tables, t, nsub, np.zeros((3, n)), np.broadcast_to(np.eye(N), (3, N, N)).copy(),
+           True, outL, outT)
+        outs.append((outL, outT))
+    np.testing.assert_allclose(outs[0][0], outs[1][0], rtol=0, atol=64 * eps * np.abs(L0).max())
+    np.testing.assert_allclose(outs[0][1], outs[1][1], rtol=0, atol=64 * eps)
+
+
+def test_coefficient_sets_are_symmetric_and_consistent():
+    for order, stages in [(2, 1), (4, 3), (6, 9), (8, 17)]:
+        g = splitting_coefficients(order)
+        assert g.size == stages
+        np.testing.assert_array_equal(g, g[::-1])
+        assert abs(g.sum() - 1) < 4e-16
+        # a symmetric composition of order >= 4 needs sum gamma^3 = 0 (first order condition)
+        if order >= 4:
+            assert abs(np.sum(g ** 3)) < 1e-14
+        if order >= 6:  # and sum gamma^5 = 0
+            assert abs(np.sum(g ** 5)) < 1e-14
+    with pytest.raises(ValueError, match="2, 4, 6, 8"):
+        splitting_coefficients(3)
+
+
+# ----------------------------------------------------------------------------- convergence order
+ORDER_CASES = {
+    # method: (nominal order, dts on the 3D case, dts on the 5D quartet)
+    "splitting2": (2, [0.1, 0.05, 0.025, 0.0125], [0.05, 0.025, 0.0125, 0.00625]),
+    "splitting4": (4, [0.2, 0.1, 0.05, 0.025], [0.1, 0.05, 0.025, 0.0125]),
+    "splitting6": (6, [0.5, 0.25, 0.125, 0.0625], [0.2, 0.1, 0.05, 0.025]),
+    "splitting8": (8, [1.0, 0.7, 0.5, 0.35], [0.2, 0.1, 0.05, 0.025]),
+}
+
+
+@pytest.mark.parametrize("method", SPLITTINGS)
+def test_empirical_order_3d_against_elliptic_solution(method):
+    p, dts, _ = ORDER_CASES[method]
+    t = np.linspace(0, 10, 11)
+    exact = euler_poinsot(MOM3, W3, t)
+    errs = [np.abs(simulate(MOM3, W3, t, method=method, dt=dt).omega - exact).max() for dt in dts]
+    assert min(errs) > 1e-13, "error at round-off level: the fit would be meaningless"
+    slope = np.polyfit(np.log(dts), np.log(errs), 1)[0]
+    assert abs(slope - p) < 0.5, (method, slope, errs)
+
+
+@pytest.mark.parametrize("method", SPLITTINGS)
+def test_empirical_order_5d_quartet_against_closed_form(method, rng):
+    p, _, dts = ORDER_CASES[method]
+    kappa = 0.5
+    w0 = np.random.default_rng(3).normal(size=10)
+    t = np.linspace(0, 10, 11)
+    exact = quartet_solution(kappa, w0, t)
+    body = RigidBody(Inertia.quartet(kappa))
+    errs = [np.abs(simulate(body, w0, t, method=method, dt=dt).omega - exact).max() for dt in dts]
+    slope = np.polyfit(np.log(dts), np.log(errs), 1)[0]
+    assert abs(slope - p) < 0.5, (method, slope, errs)
+
+
+def test_quartet_body_matches_closed_form_moments():
+    np.testing.assert_allclose(Inertia.quartet(0.5).moments, quartet_moments(0.5))
+
+
+# ----------------------------------------------------------------------------- invariants
+@pytest.mark.parametrize("method", SPLITTINGS)
+def test_casimirs_kept_to_round_off(method, rng, eps):
+    inertia, w0 = generic5(rng)
+    body = RigidBody(inertia)
+    tr = simulate(body, w0, np.linspace(0, 50, 101), method=method, dt=0.01)  # 5000 steps
+    c2, c4 = casimirs(tr.L)
+    assert np.abs(c2 / c2[0] - 1).max() < 64 * eps
+    assert np.abs(c4 / c4[0] - 1).max() < 128 * eps
+    # and the package's own Casimirs (characteristic polynomial coefficients, eq. 38)
+    cas = np.asarray(body.casimirs(tr.omega), dtype=float)
+    cas0 = np.asarray(body.casimirs(w0), dtype=float)
+    assert np.allclose(cas, cas0[..., None, :] if cas.ndim == cas0.ndim + 1 else cas0, rtol=1e-13, atol=0)
+
+
+def test_energy_error_bounded_without_drift(rng):
+    """Symplectic on the orbit: the energy error oscillates, it does not grow (2e5 steps, T = 2000)."""
+    inertia, w0 = generic5(rng)
+    t = np.linspace(0, 2000, 2001)
+    tr = simulate(inertia, w0, t, method="splitting2", dt=0.01)
+    rel = np.abs(tr.energy() / tr.energy()[0] - 1)
+    early, late = rel[:200].max(), rel[-200:].max()
+    assert rel.max() < 1e-3
+    assert late < 3 * early, (early, late)
+
+
+def test_attitude_orthogonal_and_space_momentum_conserved(rng, eps):
+    inertia, w0 = generic5(rng)
+    for convention in ("paper", "standard"):
+        body = RigidBody(inertia, convention=convention)
+        tr = simulate(body, w0, np.linspace(0, 30, 61), method="splitting6", dt=0.005, attitude=True)
+        T = tr.attitude
+        assert T.shape == (61, 5, 5)
+        I = np.eye(5)
+        assert np.abs(np.swapaxes(T, -1, -2) @ T - I).max() < 2000 * eps  # 6000 steps
+        np.testing.assert_allclose(np.linalg.det(T), 1.0, atol=1e-12)
+        Lb = body.matrix(tr.L)  # body-frame matrices in the body's convention
+        Ls = np.swapaxes(T, -1, -2) @ Lb @ T  # L_space = T^T L_body T
+        assert np.abs(Ls - Ls[0]).max() < 1e-12 * np.abs(Lb).max()
+
+
+def test_attitude_obeys_dT_equals_W_T_in_the_body_convention(rng):
+    inertia, w0 = generic5(rng)
+    h = 1e-4
+    t = np.array([0.0, 1.0 - h, 1.0, 1.0 + h])
+    for convention in ("paper", "standard"):
+        body = RigidBody(inertia, convention=convention)
+        tr = simulate(body, w0, t, method="splitting8", dt=1e-3, attitude=True)
+        dT = (tr.attitude[3] - tr.attitude[1]) / (2 * h)
+        W = to_matrix(tr.omega[2], convention)
+        np.testing.assert_allclose(dT, W @ tr.attitude[2], atol=1e-6)
+    # paper = S standard S
+    S = np.diag([(-1.0) ** i for i in range(1, 6)])
+    Tp = simulate(RigidBody(inertia, "paper"), w0, t, method="splitting4", dt=1e-2, attitude=True).attitude
+    Ts = simulate(RigidBody(inertia, "standard"), w0, t, method="splitting4", dt=1e-2, attitude=True).attitude
+    np.testing.assert_allclose(Tp, S @ Ts @ S, atol=1e-15)
+
+
+def test_initial_attitude_is_used(rng):
+    inertia, w0 = generic5(rng)
+    Q, _ = np.linalg.qr(rng.normal(size=(5, 5)))
+    t = np.linspace(0, 2, 5)
+    a = simulate(inertia, w0, t, method="splitting8", dt=0.01, attitude=True).attitude
+    b = simulate(inertia, w0, t, method="splitting8", dt=0.01, attitude=Q).attitude
+    np.testing.assert_allclose(b, a @ Q, atol=1e-13)  # dT/dt = W T is linear in T from the right
+    c = simulate(inertia, w0, t, method="DOP853", rtol=1e-12, attitude=Q).attitude
+    np.testing.assert_allclose(c, b, atol=1e-8)
+
+
+# ----------------------------------------------------------------------------- batches
+@pytest.mark.parametrize("method", ["splitting4", "DOP853"])
+def test_batch_equals_loop_over_single_runs(method, rng):
+    inertia, _ = generic5(rng)
+    w0 = rng.normal(size=(2, 3, 10))
+    torque = rng.normal(size=(3, 10)) * 0.1  # broadcasts over the first batch axis
+    t = np.linspace(0, 3, 7)
+    kw = dict(dt=0.01) if method.startswith("splitting") else dict(rtol=1e-10)
+    tr = simulate(inertia, w0, t, method=method, attitude=True, torque=torque, **kw)
+    assert tr.omega.shape == (2, 3, 7, 10) and tr.attitude.shape == (2, 3, 7, 5, 5)
+    for i in range(2):
+        for j in range(3):
+            one = simulate(inertia, w0[i, j], t, method=method, attitude=True, torque=torque[j], **kw)
+            np.testing.assert_array_equal(tr.omega[i, j], one.omega)
+            np.testing.assert_array_equal(tr.attitude[i, j], one.attitude)
+
+
+# ----------------------------------------------------------------------------- scipy peers
+@pytest.mark.parametrize("method", SCIPY)
+def test_scipy_methods_agree_with_splitting(method, rng):
+    inertia, w0 = generic5(rng)
+    body = RigidBody(inertia)
+    t = np.linspace(0, 5, 11)
+    ref = simulate(body, w0, t, method="splitting8", dt=0.005, attitude=True)
+    tr = simulate(body, w0, t, method=method, rtol=1e-10, attitude=True)
+    assert tr.stats["method"] == method and tr.stats["nfev"] > 0
+    scale = np.abs(w0).max()
+    tol = 1e-7 if method in ("DOP853", "RK45") else 1e-5  # LSODA/Radau control the error more loosely
+    assert np.abs(tr.omega - ref.omega).max() < tol * scale
+    assert np.abs(tr.attitude - ref.attitude).max() < tol * 10
+
+
+def test_scipy_without_rigidbody_uses_equivalent_rhs(rng):
+    inertia, w0 = generic5(rng)
+    t = np.linspace(0, 4, 5)
+    a = simulate(RigidBody(inertia), w0, t, method="DOP853", rtol=1e-12)
+    b = simulate(inertia.moments, w0, t, method="DOP853", rtol=1e-12)
+    np.testing.assert_allclose(a.omega, b.omega, atol=1e-10)
+
+
+# ----------------------------------------------------------------------------- step rule / auto
+@pytest.mark.parametrize("method", SPLITTINGS)
+@pytest.mark.parametrize("rtol", [1e-5, 1e-8, 1e-11])
+def test_step_rule_reaches_requested_accuracy(method, rtol):
+    if method == "splitting2" and rtol < 1e-8:
+        pytest.skip("order 2 at 1e-11 needs ~1e8 steps")
+    t = np.linspace(0, 40, 41)
+    exact = euler_poinsot(MOM3, W3, t)
+    tr = simulate(MOM3, W3, t, method=method, rtol=rtol)
+    err = np.abs(tr.omega - exact).max() / np.abs(W3).max()
+    assert err <= 2 * rtol + 1e-13, (err, tr.stats)
+    # and the rule is not wastefully conservative: error within 1e-4 of the target, or at round-off
+    assert err >= 1e-4 * rtol or err < 1e-13, (err, tr.stats)
+
+
+def test_auto_method_choice(rng):
+    inertia, w0 = generic5(rng)
+    t = [0.0, 1.0]
+    assert simulate(inertia, w0, t, rtol=1e-3).stats["method"] == "splitting2"
+    assert simulate(inertia, w0, t, rtol=1e-6).stats["method"] == "splitting4"
+    assert simulate(inertia, w0, t, rtol=1e-9).stats["method"] == "splitting6"
+    assert simulate(inertia, w0, t, rtol=1e-12).stats["method"] == "splitting8"
+    assert simulate(inertia, w0, t).stats["method"] == "splitting6"  # default rtol 1e-9
+    assert simulate(inertia, w0, t, dt=0.1).stats["method"] == "splitting4"
+    tr = simulate(inertia, w0, t, torque=lambda tt, w: -0.1 * w)
+    assert tr.stats["method"] == "DOP853"
+
+
+# ----------------------------------------------------------------------------- torque
+def test_damping_torque_against_time_reparametrised_free_motion():
+    """tau = -g L gives L(t) = exp(-g t) L_free(s(t)), s = (1 - exp(-g t))/g (exact)."""
+    g = 0.3
+    t = np.linspace(0, 6, 13)
+    tr = simulate(MOM3, W3, t, method="auto", rtol=1e-11, torque=lambda tt, w: -g * MOM3 * w)
+    s = (1 - np.exp(-g * t)) / g
+    order = np.argsort(s)
+    exact = np.exp(-g * t)[:, None] * euler_poinsot(MOM3, W3, s[order])
+    np.testing.assert_allclose(tr.omega, exact, atol=1e-9)
+
+
+@pytest.mark.parametrize("method", ["splitting2", "splitting4", "splitting8"])
+def test_constant_torque_kick_composition(method, rng):
+    inertia, w0 = generic5(rng)
+    tau = rng.normal(size=10)
+    t = np.linspace(0, 3, 4)
+    ref = simulate(inertia, w0, t, method="DOP853", rtol=1e-13, torque=tau)
+    p = int(method[-1])
+    errs = []
+    dts = [0.02, 0.01] if p < 8 else [0.1, 0.05]
+    for dt in dts:
+        errs.append(np.abs(simulate(inertia, w0, t, method=method, dt=dt, torque=tau).omega - ref.omega).max())
+    rate = np.log2(errs[0] / errs[1])
+    assert abs(rate - p) < 0.6, (errs, rate)  # the symmetric kick keeps the order
+
+
+# ----------------------------------------------------------------------------- API and bad input
+def test_trajectory_contents(rng):
+    inertia, w0 = generic5(rng)
+    t = np.linspace(0, 1, 6)
+    tr = simulate(RigidBody(inertia), w0, t, method="splitting2", dt=0.05)
+    assert isinstance(tr, Trajectory)
+    np.testing.assert_array_equal(tr.t, t)
+    np.testing.assert_array_equal(tr.omega[0], w0)
+    np.testing.assert_allclose(tr.L, tr.omega * inertia.moments, rtol=1e-15)
+    assert tr.attitude is None
+    assert tr.stats["steps"] == 20 and tr.stats["order"] == 2 and tr.stats["wall_time"] > 0
+    assert "splitting2" in repr(tr)
+    # a single output time returns the initial state
+    one = simulate(inertia, w0, [2.0], method="splitting4")
+    np.testing.assert_array_equal(one.omega, w0[None])
+
+
+def test_moments_from_every_body_kind(rng):
+    inertia, _ = generic5(rng)
+    for body in (inertia, RigidBody(inertia), inertia.moments, list(inertia.moments)):
+        m, N = _moments_and_n(body)
+        assert N == 5
+        np.testing.assert_array_equal(m, inertia.moments)
+
+
+def test_non_uniform_output_grid_hits_output_times():
+    t = np.array([0.0, 0.013, 0.5, 0.51, 3.0])
+    tr = simulate(MOM3, W3, t, method="splitting8", dt=0.05)
+    np.testing.assert_allclose(tr.omega, euler_poinsot(MOM3, W3, t), atol=1e-10)
+
+
+BAD = [
+    (dict(omega0=[np.nan, 1, 2]), ValueError, "finite"),
+    (dict(omega0=[1, 2]), ValueError, r"batch \+ \(3,\)"),
+    (dict(omega0=3.0), ValueError, "shape"),
+    (dict(omega0="abc"), TypeError, "numeric"),
+    (dict(method="euler"), ValueError, "allowed: 'auto', 'splitting2'"),
+    (dict(t=[0, 1, 1]), ValueError, "strictly increasing"),
+    (dict(t=[0, 2, 1]), ValueError, "strictly increasing"),
+    (dict(t=[[0, 1]]), ValueError, "1-D"),
+    (dict(t=[0, np.inf]), ValueError, "finite"),
+    (dict(dt=0.0), ValueError, "dt must be finite and > 0"),
+    (dict(dt=-1.0), ValueError, "dt must be finite and > 0"),
+    (dict(rtol=0.0), ValueError, "rtol"),
+    (dict(rtol="tight"), TypeError, "rtol"),
+    (dict(method="splitting4", dt=0.1, rtol=1e-6), ValueError, "not both"),
+    (dict(method="DOP853", dt=0.1), ValueError, "rtol only"),
+    (dict(method="splitting4", torque=lambda t, w: w), ValueError, "callable torque"),
+    (dict(torque=[1.0, 2.0]), ValueError, "constant torque"),
+    (dict(omega0=np.ones((4, 3)), torque=np.ones((3, 3))), ValueError, "inconsistent"),
+    (dict(omega0=np.ones((4, 3)), attitude=np.broadcast_to(np.eye(3), (2, 3, 3))), ValueError, "inconsistent"),
+    (dict(attitude=np.ones((3, 3))), ValueError, "orthogonal"),
+    (dict(attitude=np.eye(4)), ValueError, r"\(3, 3\)"),
+    (dict(body=[1.0, 2.0]), ValueError, "N\\(N-1\\)/2"),
+    (dict(body=[1.0, -2.0, 3.0]), ValueError, "> 0"),
+    (dict(body="rod"), TypeError, "RigidBody"),
+]
+
+
+@pytest.mark.parametrize("kw, exc, match", BAD, ids=[f"bad{i}" for i in range(len(BAD))])
+def test_bad_input_gives_clear_errors(kw, exc, match):
+    args = dict(body=MOM3, omega0=W3, t=[0.0, 1.0])
+    args.update(kw)
+    with pytest.raises(exc, match=match):
+        simulate(args.pop("body"), args.pop("omega0"), args.pop("t"), **args)
+
+
+def test_method_list_is_complete():
+    assert set(METHODS) == {"auto", *SPLITTINGS, *SCIPY}
