@@ -32,6 +32,7 @@ SAMPLES = [
     (6, (1, 0, 0)), (6, (1, 1, 0)), (6, (H, H, H)), (6, (H, H, -H)), (6, (2, 1, -1)), (6, (3 * H, H, -H)),
     (7, (1, 0, 0)), (7, (H, H, H)), (7, (1, 1, 0)), (7, (2, 1, 0)), (7, (3 * H, H, H)),
     (8, (H, H, H, -H)), (8, (1, 1, 0, 0)),
+    (10, (H, H, H, H, -H)), (12, (1, 1, 1, 0, 0, 0)),  # the latter uses the dict fallback of the pattern index
 ]
 ALL = [(5, m) for m in so5_weights()] + SAMPLES
 
@@ -244,6 +245,14 @@ def test_large_so5_irrep():
 def test_bad_input(kwargs, exc, match):
     with pytest.raises(exc, match=match):
         irrep(**kwargs)
+
+
+def test_exact_guard():
+    rep = irrep(5, (4, 2))  # dim 220
+    with pytest.raises(ValueError, match="exact"):
+        rep.generator((1, 2), exact=True)
+    with pytest.raises(ValueError, match="exact"):
+        irrep(5, (4, 2), exact=True)
 
 
 def test_bad_plane_and_format():

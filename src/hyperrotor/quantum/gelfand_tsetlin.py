@@ -82,6 +82,8 @@ __all__ = ["irrep", "gt_patterns", "gt_size", "gt_index", "DEFAULT_MAX_DIM"]
 
 #: Default ``max_dim`` guard of :func:`irrep`.
 DEFAULT_MAX_DIM = 200_000
+#: Largest dimension for exact (SymPy) generators.
+EXACT_MAX_DIM = 200
 
 
 
@@ -372,6 +374,12 @@ def _gt_generators_float(N: int, m) -> dict:
 
 
 def _gt_generators_exact(N: int, m) -> dict:
+    dim = weyl_dimension(N, m)
+    if dim > EXACT_MAX_DIM:
+        raise ValueError(
+            f"exact (SymPy) generators are limited to dim <= {EXACT_MAX_DIM} (EXACT_MAX_DIM); "
+            f"the so({N}) irrep {tuple(str(x) for x in m)} has dim {dim}: use the float CSR generators"
+        )
     P = _patterns(N, m)
     index = _PatternIndex(P, float(max(abs(x) for x in m)))
     Pe = np.array([[Fraction(x).limit_denominator(2) for x in row] for row in P.tolist()], dtype=object).reshape(P.shape)
@@ -432,8 +440,8 @@ def irrep(
         and how to raise the guard.
     exact : bool
         Also compute exact SymPy generators (square roots of rationals) at
-        construction (only sensible for small dims, say < 200); they are
-        otherwise computed on the first ``generator(..., exact=True)`` call.
+        construction (dim <= ``EXACT_MAX_DIM`` = 200, else ``ValueError``);
+        they are otherwise computed on the first ``generator(..., exact=True)`` call.
     format : {"csr", "dense"}
         Default format of the matrices the representation returns
         (:attr:`Representation.format`); storage is always sparse CSR.
