@@ -78,7 +78,7 @@ from hyperrotor.conventions import check_dimension
 
 from .weights import check_highest_weight, dynkin_to_orthogonal, weyl_dimension
 
-__all__ = ["irrep", "gt_patterns", "gt_size", "gt_index", "DEFAULT_MAX_DIM"]
+__all__ = ["irrep", "gt_patterns", "gt_size", "gt_index", "DEFAULT_MAX_DIM", "EXACT_MAX_DIM"]
 
 #: Default ``max_dim`` guard of :func:`irrep`.
 DEFAULT_MAX_DIM = 200_000

@@ -29,7 +29,6 @@ All values are exact :class:`fractions.Fraction` objects.
 """
 from __future__ import annotations
 
-from collections import defaultdict
 from fractions import Fraction
 from numbers import Integral, Rational
 from typing import Any, Sequence
