@@ -1,0 +1,238 @@
+"""Linear stability of planar rotation (Sec. 4, corrected) and the N-D tennis-racket instability."""
+import itertools
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import hyperrotor
+from hyperrotor.classical.stability import linear_stability, linearization, stability_condition
+from hyperrotor.conventions import dimension_from_count, plane_index, plane_symbols, planes, structure_constants
+
+
+def _rhs(I):
+    I = np.asarray(I, float)
+    C = structure_constants(dimension_from_count(I.size)).astype(float)
+    return lambda w: np.einsum("bca,b,c->a", C, w, I * w) / I
+
+
+# eq. (131): J1..J10 = I_12, I_13, I_14, I_23, I_24, I_34, I_15, I_25, I_35, I_45 (NOT plane order)
+PAPER_J = [(1, 2), (1, 3), (1, 4), (2, 3), (2, 4), (3, 4), (1, 5), (2, 5), (3, 5), (4, 5)]
+
+
+def _from_J(Jvals):
+    """Plane-order moment array from the paper's J1..J10 of eq. (131)."""
+    out = np.empty(10)
+    for p, v in zip(PAPER_J, Jvals):
+        out[plane_index(p, 5)] = v
+    return out
+
+
+def _physical(m):
+    """I_ij = m_i + m_j."""
+    N = len(m)
+    return np.array([m[i - 1] + m[j - 1] for i, j in planes(N)])
+
+
+@pytest.mark.parametrize("N", [3, 4, 5, 6])
+def test_jacobian_matches_finite_differences(N):
+    rng = np.random.default_rng(N)
+    I = rng.uniform(1, 3, size=N * (N - 1) // 2)
+    f = _rhs(I)
+    for plane in planes(N)[:: max(1, N - 2)]:
+        Om = 1.3
+        w0 = np.zeros(I.size)
+        w0[plane_index(plane, N)] = Om
+        J = linearization(I, plane, Om)
+        h = 1e-6
+        fd = np.stack([(f(w0 + h * e) - f(w0 - h * e)) / (2 * h) for e in np.eye(I.size)], axis=1)
+        np.testing.assert_allclose(J, fd, atol=1e-8)
+
+
+@pytest.mark.parametrize("N", [3, 4, 5, 6])
+def test_eigenvalues_match_numerical_eigenvalues(N):
+    rng = np.random.default_rng(10 + N)
+    I = rng.uniform(1, 3, size=N * (N - 1) // 2)
+    for plane in planes(N):
+        r = linear_stability(I, plane, -0.8)
+        ev = np.linalg.eigvals(r.jacobian)
+        key = lambda z: (round(z.real, 8), round(z.imag, 8))  # noqa: E731
+        np.testing.assert_allclose(sorted(r.eigenvalues, key=key), sorted(ev, key=key), atol=1e-10)
+        assert r.stable == bool(np.all(np.abs(ev.real) < 1e-10))
+        assert r.stable == all(p.nu2 > 0 for p in r.pairs)
+        assert len(r.pairs) == N - 2
+        np.testing.assert_allclose(np.sort(r.frequencies), np.sort([0.8 * np.sqrt(p.nu2) for p in r.pairs if p.nu2 > 0]))
+
+
+def test_5d_plane_12_pairs_and_nu2():
+    I = dict(zip(planes(5), np.array([5.0, 2.0, 3.0, 1.5, 4.0, 2.5, 1.0, 3.5, 2.2, 1.7])))
+    r = linear_stability(np.array(list(I.values())), (1, 2), 2.0)
+    assert [p.planes for p in r.pairs] == [((1, 3), (2, 3)), ((1, 4), (2, 4)), ((1, 5), (2, 5))]
+    for p, k in zip(r.pairs, (3, 4, 5)):
+        a, b = I[(1, k)], I[(2, k)]
+        assert p.nu2 == pytest.approx((I[(1, 2)] - a) * (I[(1, 2)] - b) / (a * b), rel=1e-15)
+    assert r.stable  # I_12 = 5 is the largest of every triple
+    assert "(I_12 - I_13)*(I_12 - I_23) > 0" in r.condition
+
+
+def test_paper_121_to_132_symbolic():
+    """(121)-(127) are right; (132) is wrong: planes 12, 34, 35, 45 are constant, 24 is not."""
+    W = plane_symbols("w", 5)
+    J = sp.symbols("J1:11", positive=True)  # eq. (131)
+    Ip = [None] * 10
+    for p, Jk in zip(PAPER_J, J):
+        Ip[plane_index(p, 5)] = Jk
+    Om, eps = sp.symbols("Omega epsilon")
+    C = structure_constants(5)
+    rhs = []
+    for a in range(10):
+        s = sum(int(C[b, c, a]) * W[b] * Ip[c] * W[c] for b, c in zip(*np.nonzero(C[:, :, a])))
+        rhs.append(s / Ip[a])
+    v = sp.symbols("v1:11")  # varpi_1..varpi_10 = w12, w13, ..., w45 in plane order (eqs. 119-120)
+    sub = {W[a]: (Om if a == 0 else 0) + eps * v[a] for a in range(10)}
+    lin = [sp.expand(sp.series(r.subs(sub), eps, 0, 2).removeO().coeff(eps, 1)) for r in rhs]
+    dv = sp.symbols("dv1:11")  # stands for d varpi / dt
+    # printed (122)-(127), each as sign * (J dv - rhs) = 0
+    printed = {  # J_k -> J[k-1], varpi_k -> v[k-1]
+        1: J[1] * dv[1] + Om * (J[0] - J[3]) * v[4],  # (122)
+        2: -J[2] * dv[2] + Om * (J[4] - J[0]) * v[5],  # (123)
+        3: J[6] * dv[3] + Om * (J[0] - J[7]) * v[6],  # (124)
+        4: -J[3] * dv[4] + Om * (J[0] - J[1]) * v[1],  # (125)
+        5: J[4] * dv[5] + Om * (J[2] - J[0]) * v[2],  # (126)
+        6: -J[7] * dv[6] + Om * (J[0] - J[6]) * v[3],  # (127)
+    }
+    for a, expr in printed.items():
+        assert sp.simplify(expr.subs(dv[a], lin[a])) == 0
+    for a in (0, 7, 8, 9):  # planes 12, 34, 35, 45: constant (121), (128)-(130)
+        assert lin[a] == 0
+    assert lin[5] != 0  # varpi_6 (plane 24) is NOT constant, contrary to (132)
+
+
+def test_paper_133_to_138_corrected_solutions():
+    """The corrected pair solutions satisfy (122)-(127); the printed sign of varpi_6 (J1 - J5) does not."""
+    J = sp.symbols("J1:11", positive=True)
+    Om, t, C1, C2 = sp.symbols("Omega t C1 C2")
+
+    nu1 = sp.sqrt((J[0] - J[1]) * (J[0] - J[3]) / (J[1] * J[3]))
+    x = C1 * sp.sin(Om * nu1 * t) + C2 * sp.cos(Om * nu1 * t)
+    y = J[1] * nu1 / (J[3] - J[0]) * (C1 * sp.cos(Om * nu1 * t) - C2 * sp.sin(Om * nu1 * t))
+    assert sp.simplify(J[1] * x.diff(t) + Om * (J[0] - J[3]) * y) == 0  # (122)
+    assert sp.simplify(-J[3] * y.diff(t) + Om * (J[0] - J[1]) * x) == 0  # (125)
+    nu2 = sp.sqrt((J[0] - J[2]) * (J[0] - J[4]) / (J[2] * J[4]))
+    x = C1 * sp.sin(Om * nu2 * t) + C2 * sp.cos(Om * nu2 * t)
+    good = J[2] * nu2 / (J[4] - J[0]) * (C1 * sp.cos(Om * nu2 * t) - C2 * sp.sin(Om * nu2 * t))
+    bad = J[2] * nu2 / (J[0] - J[4]) * (C1 * sp.cos(Om * nu2 * t) - C2 * sp.sin(Om * nu2 * t))
+    eq123 = lambda y: -J[2] * x.diff(t) + Om * (J[4] - J[0]) * y  # noqa: E731
+    eq126 = lambda y: J[4] * y.diff(t) + Om * (J[2] - J[0]) * x  # noqa: E731
+    assert sp.simplify(eq123(good)) == 0 and sp.simplify(eq126(good)) == 0
+    assert sp.simplify(eq123(bad)) != 0
+    nu3 = sp.sqrt((J[0] - J[6]) * (J[0] - J[7]) / (J[6] * J[7]))
+    x = C1 * sp.sin(Om * nu3 * t) + C2 * sp.cos(Om * nu3 * t)
+    y = J[6] * nu3 / (J[7] - J[0]) * (C1 * sp.cos(Om * nu3 * t) - C2 * sp.sin(Om * nu3 * t))
+    assert sp.simplify(J[6] * x.diff(t) + Om * (J[0] - J[7]) * y) == 0  # (124)
+    assert sp.simplify(-J[7] * y.diff(t) + Om * (J[0] - J[6]) * x) == 0  # (127)
+
+
+def test_paper_139_140_total_orderings():
+    """(139) with equalities is not sufficient; a total ordering is not necessary."""
+    # J1 = J2 > J3 >= ... (139 satisfied with equality): defective zero eigenvalue -> not linearly stable
+    Jv = _from_J([5.0, 5.0, 4.0, 3.0, 2.9, 2.0, 1.9, 1.8, 1.5, 1.0])
+    r = linear_stability(Jv, (1, 2), 1.0)
+    assert not r.stable and r.pairs[0].kind == "secular"
+    Jm = linearization(Jv, (1, 2), 1.0)
+    a, b = plane_index((1, 3), 5), plane_index((2, 3), 5)
+    block = Jm[np.ix_([a, b], [a, b])]
+    assert np.all(block @ block == 0) and np.any(block != 0)  # nilpotent, non-zero: linear growth
+    # no total ordering, still stable: only the triples of plane 12 matter
+    Jv = _from_J([5.0, 1.0, 4.5, 2.0, 4.0, 9.0, 1.5, 3.0, 8.0, 6.0])  # J6, J9, J10 > J1; J2 < J3
+    assert linear_stability(Jv, (1, 2), 1.0).stable
+    # (139)/(140) with strict inequalities: largest / smallest moment -> stable
+    assert linear_stability(_from_J(np.arange(10.0, 0.0, -1.0)), (1, 2), 1.0).stable
+    assert linear_stability(_from_J(np.arange(1.0, 11.0)), (1, 2), 1.0).stable
+
+
+def test_stability_condition_sympy_agrees():
+    rng = np.random.default_rng(5)
+    for N in (4, 5):
+        Is = plane_symbols("I", N)
+        for plane in planes(N):
+            cond = stability_condition(plane, N)
+            for _ in range(5):
+                I = rng.uniform(1, 3, size=len(Is))
+                val = bool(cond.subs(dict(zip(Is, I))))
+                assert val == linear_stability(I, plane, 0.7).stable
+
+
+def test_physical_body_mass_criterion():
+    """I_ij = m_i + m_j: rotation in (i, j) is stable iff no m_k lies between m_i and m_j."""
+    rng = np.random.default_rng(8)
+    for _ in range(10):
+        m = rng.uniform(0.5, 3.0, size=5)
+        I = _physical(m)
+        for i, j in planes(5):
+            lo, hi = sorted((m[i - 1], m[j - 1]))
+            between = any(lo < m[k - 1] < hi for k in range(1, 6) if k not in (i, j))
+            assert linear_stability(I, (i, j), 1.0).stable == (not between)
+
+
+def _perturbed_growth(I, plane, Omega, t_end, eps=1e-8, seed=0):
+    rng = np.random.default_rng(seed)
+    N = dimension_from_count(I.size)
+    w0 = eps * rng.normal(size=I.size)
+    w0[plane_index(plane, N)] = Omega
+    t = np.linspace(0.0, t_end, 201)
+    traj = hyperrotor.simulate(I, w0, t, method="DOP853", rtol=1e-11)
+    dev = traj.omega.copy()
+    dev[:, plane_index(plane, N)] -= Omega
+    off = np.delete(dev, plane_index(plane, N), axis=1)
+    return np.max(np.abs(off), axis=1)
+
+
+def test_tennis_racket_5d_nonlinear():
+    """Intermediate moment within a triple: 1e-8 perturbation grows by orders of magnitude; else stays small."""
+    m = np.array([1.0, 3.0, 2.0, 0.5, 4.0])  # m3 lies between m1 and m2 -> plane 12 unstable (triple k = 3)
+    I = _physical(m)
+    r = linear_stability(I, (1, 2), 1.0)
+    assert not r.stable
+    assert [p.k for p in r.pairs if p.kind == "unstable"] == [3]
+    rate = r.growth_rates[0]
+    t_end = 14.0 / rate
+    growth = _perturbed_growth(I, (1, 2), 1.0, t_end)
+    assert growth[-1] > 1e-3 and growth[0] < 1e-7  # >= 4 orders of magnitude
+    # early growth follows the linear rate: log-slope within 10%
+    k1, k2 = 60, 120
+    t = np.linspace(0.0, t_end, 201)
+    slope = np.log(growth[k2] / growth[k1]) / (t[k2] - t[k1])
+    assert slope == pytest.approx(rate, rel=0.1)
+    # the plane (2, 5): m2 = 3, m5 = 4 and no m_k between -> stable; stays of order 1e-8
+    assert linear_stability(I, (2, 5), 1.0).stable
+    growth = _perturbed_growth(I, (2, 5), 1.0, t_end)
+    assert np.max(growth) < 1e-6
+
+
+def test_bad_input():
+    I = np.arange(1.0, 11.0)
+    with pytest.raises(ValueError, match="unknown plane"):
+        linear_stability(I, (2, 1), 1.0)
+    with pytest.raises(ValueError, match="unknown plane"):
+        linear_stability(I, (1, 6), 1.0)
+    with pytest.raises(ValueError, match="finite"):
+        linear_stability(I, (1, 2), np.inf)
+    with pytest.raises(TypeError, match="Omega"):
+        linear_stability(I, (1, 2), "fast")
+    with pytest.raises(ValueError, match="positive"):
+        linear_stability(-I, (1, 2), 1.0)
+    with pytest.raises(ValueError, match="N\\(N-1\\)/2"):
+        linear_stability(np.ones(7), (1, 2), 1.0)
+    r = linear_stability(I, (1, 2), 0.0)
+    assert r.stable and np.all(r.eigenvalues == 0)
+
+
+def test_accepts_rigid_body_and_inertia():
+    inertia = hyperrotor.Inertia.quartet(0.5, axis=5, N=5)
+    I = inertia.moments
+    for obj in (inertia, hyperrotor.RigidBody(inertia)):
+        for plane in itertools.islice(planes(5), 4):
+            a, b = linear_stability(obj, plane, 1.1), linear_stability(I, plane, 1.1)
+            np.testing.assert_array_equal(a.eigenvalues, b.eigenvalues)
+            assert a.stable == b.stable
