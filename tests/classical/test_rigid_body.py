@@ -379,3 +379,23 @@ def test_two_dimensional_body_is_trivial():
     assert body.manakov_integrals([2.0]).shape == (1,)
     eq, = body.euler_equations(0)
     assert sp.expand(eq.lhs + 3 * sp.Derivative(body.omega_symbols(function_of=TIME)[0], TIME)) == 0
+
+
+def test_lock_numeric_rhs_matches_full_flow(rng):
+    N = 6
+    full = _random_body(rng, N)
+    for locked in [(2,), (1, 6), (2, 3, 5)]:
+        red = full.lock(locked)
+        keep = [k for k, p in enumerate(full.planes) if not set(p) & set(locked)]
+        w = np.zeros(hr.n_planes(N))
+        w[keep] = rng.standard_normal(len(keep))
+        r = full.rhs(w)
+        np.testing.assert_array_equal(np.delete(r, keep), 0.0)  # frozen components stay frozen
+        np.testing.assert_allclose(red.rhs(w[keep]), r[keep], rtol=1e-14)
+        assert red.planes == tuple(full.planes[k] for k in keep)
+
+
+@pytest.mark.parametrize("axes", [(1, 1, 2), (0, 1, 2), (3, 2, 1), (1, 2)])
+def test_bad_axes_labels(axes):
+    with pytest.raises(ValueError, match="increasing positive integers"):
+        RigidBody(Inertia.equal(3), axes=axes)
