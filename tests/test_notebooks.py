@@ -1,0 +1,158 @@
+"""Execute every notebook in ``docs/notebooks`` and check what it computed.
+
+Each notebook ends with a cell that asserts its own results and prints one
+line ``HYPERROTOR_CHECKS {json}``; this test re-checks those numbers against
+the bounds in :data:`CHECKS` (so a notebook that silently stops asserting is
+caught too).
+
+Execution happens once per pytest session: when ``tests/test_docs.py`` built
+the documentation in this session (myst-nb executed every notebook and wrote
+the executed copies next to the HTML), those copies are checked; otherwise
+(e.g. ``pytest -m "not slow"`` or no Sphinx installed) the notebook is
+executed here with nbclient, on a kernel running the current interpreter,
+with ``MPLBACKEND=Agg``.
+"""
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+import pytest
+
+nbformat = pytest.importorskip("nbformat")
+nbclient = pytest.importorskip("nbclient")
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOK_DIR = ROOT / "docs" / "notebooks"
+NOTEBOOKS = sorted(NOTEBOOK_DIR.glob("*.ipynb"))
+#: Where ``tests/test_docs.py`` builds the docs inside pytest's session basetemp.
+DOCS_BUILD_DIRNAME = "docs-build"
+CELL_TIMEOUT = 180  # seconds per cell
+MARKER = "HYPERROTOR_CHECKS"
+
+#: For each notebook: check name -> (relation, bound). "<=": value <= bound,
+#: ">=": value >= bound, "==": value == bound (exact, for counts and booleans).
+CHECKS: dict[str, dict[str, tuple[str, object]]] = {
+    "01_paper_walkthrough": {
+        "n_euler_equations": ("==", 10),
+        "printed_eqs_28_37_match": ("==", True),
+        "standard_equals_paper_components": ("==", True),
+        "max_casimir_drift": ("<=", 1e-12),
+        "lock_axis5_invariant_residual": ("<=", 1e-14),
+        "textbook_3d_residual": ("<=", 1e-14),
+    },
+    "02_quartet_closed_form": {
+        "closed_form_vs_numeric_max_err": ("<=", 1e-8),
+        "frequency_vs_eigen_max_err": ("<=", 1e-12),
+        "norm_v_drift": ("<=", 1e-12),
+    },
+    "03_scenes": {
+        "n_frames": (">=", 10),
+        "max_distance_drift": ("<=", 1e-9),
+        "locked_axis_fixed_max": ("<=", 1e-12),
+    },
+    "04_tennis_racket": {
+        "stable_planes_agree_with_rule": ("==", True),
+        "unstable_growth_factor": (">=", 1e3),
+        "stable_growth_factor": ("<=", 10.0),
+    },
+    "05_so5_representations": {
+        "max_commutator_residual": ("<=", 1e-12),
+        "max_casimir_residual": ("<=", 1e-10),
+        "dims_match_weyl": ("==", True),
+        "harmonic_gt_bridge_ok": ("==", True),
+    },
+    "06_quantum_rotor": {
+        "spectrum_equal_moments_err": ("<=", 1e-9),
+        "ehrenfest_error_decreases": ("==", True),
+    },
+    "07_work_precision": {
+        "best_classical_error": ("<=", 1e-10),
+        "best_quantum_error": ("<=", 1e-8),
+    },
+}
+
+
+def _kernel_env(tmp_dir: Path, monkeypatch) -> str:
+    """A kernelspec that runs the current interpreter, first on JUPYTER_PATH."""
+    name = "python3"
+    spec_dir = tmp_dir / "kernels" / name
+    spec_dir.mkdir(parents=True, exist_ok=True)
+    (spec_dir / "kernel.json").write_text(json.dumps({
+        "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
+        "display_name": "hyperrotor test kernel",
+        "language": "python",
+    }))
+    monkeypatch.setenv("JUPYTER_PATH", str(tmp_dir))
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    monkeypatch.setenv("PYDEVD_DISABLE_FILE_VALIDATION", "1")
+    return name
+
+
+def _executed(path: Path, tmp_path_factory, monkeypatch):
+    """The executed notebook: from this session's docs build if any, else nbclient."""
+    build = tmp_path_factory.getbasetemp() / DOCS_BUILD_DIRNAME
+    built = build / "jupyter_execute" / "notebooks" / path.name
+    if (build / "BUILD_OK").exists() and built.exists():
+        return nbformat.read(built, as_version=4), "docs build"
+    nb = nbformat.read(path, as_version=4)
+    kernel = _kernel_env(tmp_path_factory.mktemp("jupyter"), monkeypatch)
+    client = nbclient.NotebookClient(
+        nb, timeout=CELL_TIMEOUT, kernel_name=kernel,
+        resources={"metadata": {"path": str(path.parent)}},
+    )
+    client.execute()
+    return nb, "nbclient"
+
+
+def _checks(nb) -> dict:
+    found = []
+    for cell in nb.cells:
+        if cell.cell_type != "code":
+            continue
+        for out in cell.get("outputs", []):
+            text = out.get("text", "") if out.get("output_type") == "stream" else ""
+            for line in text.splitlines():
+                if line.startswith(MARKER):
+                    found.append(json.loads(line[len(MARKER):]))
+    assert len(found) == 1, f"expected exactly one '{MARKER} {{...}}' line, found {len(found)}"
+    return found[0]
+
+
+def _errors(nb) -> list[str]:
+    return [
+        f"{out.get('ename')}: {out.get('evalue')}"
+        for cell in nb.cells if cell.cell_type == "code"
+        for out in cell.get("outputs", []) if out.get("output_type") == "error"
+    ]
+
+
+def test_every_notebook_has_checks():
+    assert NOTEBOOKS, "no notebooks found in docs/notebooks"
+    assert {p.stem for p in NOTEBOOKS} <= set(CHECKS), (
+        "add the checks of each new notebook to CHECKS: "
+        f"{sorted({p.stem for p in NOTEBOOKS} - set(CHECKS))}"
+    )
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning:zmq.*")
+@pytest.mark.filterwarnings("ignore::DeprecationWarning:tornado.*")
+@pytest.mark.filterwarnings("ignore::DeprecationWarning:nbclient.*")
+@pytest.mark.filterwarnings("ignore::ResourceWarning")
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
+def test_notebook_executes_and_checks_hold(path, tmp_path_factory, monkeypatch):
+    nb, source = _executed(path, tmp_path_factory, monkeypatch)
+    assert not _errors(nb), f"{path.name} ({source}): {_errors(nb)}"
+    values = _checks(nb)
+    spec = CHECKS[path.stem]
+    assert set(spec) <= set(values), f"{path.name}: missing checks {sorted(set(spec) - set(values))}"
+    for key, (relation, bound) in spec.items():
+        value = values[key]
+        if relation == "==":
+            assert value == bound, f"{path.name}: {key} = {value!r}, expected {bound!r}"
+        else:
+            assert isinstance(value, (int, float)) and math.isfinite(value), f"{path.name}: {key} = {value!r}"
+            ok = value <= bound if relation == "<=" else value >= bound
+            assert ok, f"{path.name}: {key} = {value:.3e}, expected {relation} {bound:.1e}"
