@@ -1,2 +1,366 @@
-"""(in progress)"""
-__all__: list[str] = []
+r"""Scenes: compute only the observables that are asked for, with the least work.
+
+A :class:`Scene` is a request: a body, one initial angular velocity, a time grid
+and a set of observables among
+
+``"omega"``       angular velocity components (optionally only some ``planes``);
+``"L"``           body-frame angular momentum :math:`L^{ij} = I_{ij}\omega_{ij}` (same planes);
+``"energy"``      kinetic energy :math:`\tfrac12\sum I_{ij}\omega_{ij}^2`;
+``"casimirs"``    coefficients of the characteristic polynomial of ``L`` (eq. 38);
+``"attitude"``    :math:`T(t)` (eq. 19, space to body, the body's matrix convention);
+``"projection"``  space-frame positions of body points, :math:`x_\text{space} = T^{\mathsf T} x_\text{body}`,
+                  restricted to the chosen ``axes`` (e.g. ``(1, 2, 3)`` for a 3D picture).
+
+:func:`evaluate` (or :meth:`Scene.evaluate`) picks the cheapest exact route and
+reports it in :attr:`SceneResult.path`:
+
+1. **Invariants.** Energy and Casimirs are conserved by the torque-free flow, so
+   they are evaluated once at ``t[0]`` (``"invariants"`` when nothing else is asked).
+2. **Locked subspace.** If :math:`\omega_0` vanishes on every plane touching a set
+   of axes ``Z``, the subspace stays invariant (:meth:`RigidBody.lock`): only the
+   reduced body on the remaining axes is solved, and the attitude acts only on
+   those axes (:math:`T(t) = (U(t)\oplus 1_Z)\,T_0`). Reported as
+   ``"reduced:axes(...)"``.
+3. **Closed forms** (:mod:`hyperrotor.classical.closed_form`): equal moments
+   (then also the attitude, :math:`T = e^{Wt}T_0`), one distinguished axis
+   ("quartet", any N), 3D Euler-Poinsot; a reduced body with two axes is a
+   single steady rotation. Reported as ``"closed-form:<kind>"``.
+4. Otherwise :func:`hyperrotor.simulate` on the (reduced) body, with the attitude
+   only if ``"attitude"`` or ``"projection"`` is asked (``"integrate"``).
+
+Only the requested planes and projection axes are assembled. ``minimal=False``
+forces the full computation (full body, attitude always integrated, every
+observable computed from the trajectory) for comparison and benchmarks
+(``benchmarks/scenes.py``).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any, Sequence
+
+import numpy as np
+
+from ..conventions import dimension_from_count, plane_index, planes
+from . import closed_form as _cf
+
+__all__ = [
+    "OBSERVABLES",
+    "Scene",
+    "SceneResult",
+    "evaluate",
+    "hypercube_vertices",
+    "simplex_vertices",
+    "ellipsoid_points",
+    "locked_axes",
+]
+
+#: The observable names a :class:`Scene` accepts.
+OBSERVABLES = ("omega", "L", "energy", "casimirs", "attitude", "projection")
+
+
+# ----------------------------------------------------------------------------
+# body points
+# ----------------------------------------------------------------------------
+def hypercube_vertices(N: int, half_edge: float = 1.0) -> np.ndarray:
+    """The ``2**N`` vertices ``(+-half_edge, ..., +-half_edge)`` of the N-cube, shape ``(2**N, N)``."""
+    from ..conventions import check_dimension
+
+    N = check_dimension(N, minimum=1)
+    bits = (np.arange(2**N)[:, None] >> np.arange(N)[None, ::-1]) & 1
+    return half_edge * (2.0 * bits - 1.0)
+
+
+def simplex_vertices(N: int, circumradius: float = 1.0) -> np.ndarray:
+    r"""The ``N + 1`` vertices of a regular N-simplex centred at the origin, shape ``(N + 1, N)``.
+
+    The unit vectors of :math:`\mathbb R^{N+1}` minus their centroid, expressed in an
+    orthonormal basis of the hyperplane :math:`\sum x = 0`, scaled to the given
+    circumradius; all pairwise distances are equal.
+    """
+    from ..conventions import check_dimension
+
+    N = check_dimension(N, minimum=1)
+    E = np.eye(N + 1) - 1.0 / (N + 1)
+    Q, _ = np.linalg.qr(E[:, :N])  # orthonormal basis of the sum-zero hyperplane
+    V = E @ Q
+    return circumradius * V / np.linalg.norm(V[0])
+
+
+def ellipsoid_points(semi_axes: Sequence[float], n: int, *, rng: Any = None) -> np.ndarray:
+    r"""``n`` points on the ellipsoid :math:`\sum_i x_i^2/a_i^2 = 1`, shape ``(n, N)``.
+
+    Directions uniform on the sphere (normalised Gaussian vectors) scaled by the
+    semi-axes. ``rng``: seed or :class:`numpy.random.Generator` (default seed 0,
+    so the points are reproducible).
+    """
+    a = np.asarray(semi_axes, dtype=float)
+    if a.ndim != 1 or a.size < 2 or not np.all(np.isfinite(a)) or np.any(a <= 0):
+        raise ValueError(f"semi_axes must be >= 2 finite positive numbers, got {semi_axes!r}")
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
+        raise ValueError(f"n must be a positive integer, got {n!r}")
+    gen = np.random.default_rng(0 if rng is None else rng)
+    d = gen.normal(size=(int(n), a.size))
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    return d * a
+
+
+# ----------------------------------------------------------------------------
+# helpers
+# ----------------------------------------------------------------------------
+def _as_body(body: Any):
+    from .rigid_body import RigidBody
+
+    if isinstance(body, RigidBody):
+        return body
+    return RigidBody(body.inertia if hasattr(body, "inertia") else body)
+
+
+def locked_axes(omega0: Any, N: int | None = None) -> tuple[int, ...]:
+    """Axes ``k`` (1-based) such that ``omega0`` is exactly zero on every plane containing ``k``.
+
+    Locking them (:meth:`RigidBody.lock`) gives an invariant subsystem.
+    """
+    w = np.asarray(omega0, dtype=float)
+    N = dimension_from_count(w.shape[-1]) if N is None else N
+    nz = w != 0.0
+    return tuple(k for k in range(1, N + 1) if not any(nz[..., q].any() for q, p in enumerate(planes(N)) if k in p))
+
+
+def _sign(N: int, convention: str) -> np.ndarray:
+    return np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
+
+
+def _expm_antisym(W: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """exp(W t) for a real antisymmetric W (eigh of the Hermitian iW), shape (K, N, N)."""
+    lam, U = np.linalg.eigh(1j * W)
+    ph = np.exp(-1j * t[:, None] * lam[None, :])
+    return np.einsum("ij,kj,lj->kil", U, ph, U.conj()).real
+
+
+# ----------------------------------------------------------------------------
+# scene and result
+# ----------------------------------------------------------------------------
+@dataclass
+class SceneResult:
+    r"""Observables of a :class:`Scene` (``None`` where not requested).
+
+    Attributes
+    ----------
+    t : ndarray (K,)
+    planes : tuple of plane labels of the ``omega`` / ``L`` columns
+    omega, L : ndarray (K, len(planes)) or None
+    energy : ndarray (K,) or None
+    casimirs : ndarray (K, N // 2) or None
+    attitude : ndarray (K, N, N) or None
+    projection : ndarray (K, n_points, len(axes)) or None
+    path : str
+        The route taken, e.g. ``"closed-form:quartet"``,
+        ``"reduced:axes(1,2,3)+closed-form:euler-poinsot"``, ``"integrate"``,
+        ``"invariants"`` or ``"full"``.
+    stats : dict
+        ``wall_time`` (s) and, when integrated, the :class:`Trajectory` stats.
+    """
+
+    t: np.ndarray
+    planes: tuple
+    omega: np.ndarray | None = None
+    L: np.ndarray | None = None
+    energy: np.ndarray | None = None
+    casimirs: np.ndarray | None = None
+    attitude: np.ndarray | None = None
+    projection: np.ndarray | None = None
+    path: str = ""
+    stats: dict = field(default_factory=dict)
+
+
+@dataclass
+class Scene:
+    r"""A request for observables of a free rigid body on a time grid.
+
+    Parameters
+    ----------
+    body : RigidBody, Inertia or array_like (n_planes,)
+        Plain moments or an ``Inertia`` mean ``RigidBody(..., convention="paper")``.
+    omega0 : array_like (n_planes,)
+        Initial angular velocity at ``t[0]`` (one state; ensembles: use
+        :func:`hyperrotor.simulate`).
+    t : array_like (K,)
+        Strictly increasing output times.
+    observables : sequence of str
+        Any of :data:`OBSERVABLES`.
+    planes : sequence of (i, j), optional
+        Columns of ``omega`` / ``L`` (default: all planes, paper order).
+    points : array_like (P, N), optional
+        Body-frame points for ``"projection"`` (e.g. :func:`hypercube_vertices`).
+    axes : sequence of int
+        Space axes (1-based) kept by ``"projection"`` (default ``(1, 2, 3)``).
+    attitude0 : array_like (N, N), optional
+        Initial attitude (orthogonal, body convention); default the identity.
+    method, rtol : passed to :func:`hyperrotor.simulate` when integration is needed
+        (default ``"auto"``, ``1e-10``).
+    """
+
+    body: Any
+    omega0: Any
+    t: Any
+    observables: Sequence[str] = ("omega",)
+    planes: Sequence | None = None
+    points: Any = None
+    axes: Sequence[int] = (1, 2, 3)
+    attitude0: Any = None
+    method: str = "auto"
+    rtol: float = 1e-10
+
+    def evaluate(self, *, minimal: bool = True) -> SceneResult:
+        """Compute the scene; see :func:`evaluate`."""
+        return evaluate(self, minimal=minimal)
+
+
+def _validate(scene: Scene):
+    body = _as_body(scene.body)
+    N = body.N
+    n = len(body.planes)
+    obs = tuple(scene.observables) if not isinstance(scene.observables, str) else (scene.observables,)
+    bad = [o for o in obs if o not in OBSERVABLES]
+    if bad or not obs:
+        raise ValueError(f"unknown observable(s) {bad!r}; allowed: {', '.join(OBSERVABLES)}")
+    w0 = np.asarray(scene.omega0, dtype=float)
+    if w0.shape != (n,):
+        raise ValueError(f"omega0 must have shape ({n},) for N = {N}, got {w0.shape}")
+    if not np.all(np.isfinite(w0)):
+        raise ValueError("omega0 must be finite")
+    t = np.asarray(scene.t, dtype=float)
+    if t.ndim != 1 or t.size < 1 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+        raise ValueError("t must be a 1-D array of finite, strictly increasing times")
+    sel_planes = tuple(planes(N)) if scene.planes is None else tuple(tuple(int(v) for v in p) for p in scene.planes)
+    cols = np.array([plane_index(p, N) for p in sel_planes], dtype=int)
+    pts = None
+    ax = None
+    if "projection" in obs:
+        if scene.points is None:
+            raise ValueError("observable 'projection' needs body points (points=..., e.g. hypercube_vertices(N))")
+        pts = np.asarray(scene.points, dtype=float)
+        if pts.ndim != 2 or pts.shape[1] != N:
+            raise ValueError(f"points must have shape (P, {N}), got {pts.shape}")
+        ax = np.array([int(a) for a in scene.axes], dtype=int)
+        if ax.size == 0 or np.any(ax < 1) or np.any(ax > N):
+            raise ValueError(f"projection axes must be in 1..{N}, got {tuple(scene.axes)!r}")
+    T0 = None
+    if scene.attitude0 is not None:
+        T0 = np.asarray(scene.attitude0, dtype=float)
+        if T0.shape != (N, N) or np.max(np.abs(T0.T @ T0 - np.eye(N))) > 1e-8:
+            raise ValueError(f"attitude0 must be an orthogonal {N} x {N} matrix")
+    return body, obs, w0, t, sel_planes, cols, pts, ax, T0
+
+
+def _fill(res: SceneResult, obs, body, omega_full, T, cols, pts, ax, invariants_from, w0):
+    """Assemble the requested observables from omega (K, n) (or None) and T (K, N, N) (or None)."""
+    I = body.inertia.moments
+    if "omega" in obs:
+        res.omega = omega_full[:, cols]
+    if "L" in obs:
+        res.L = omega_full[:, cols] * I[cols]
+    K = res.t.size
+    if "energy" in obs:
+        res.energy = (np.full(K, float(body.energy(w0))) if invariants_from == "initial"
+                      else np.asarray(body.energy(omega_full)))
+    if "casimirs" in obs:
+        res.casimirs = (np.broadcast_to(body.casimirs(w0), (K, body.N // 2)).copy() if invariants_from == "initial"
+                        else np.asarray(body.casimirs(omega_full)))
+    if "attitude" in obs:
+        res.attitude = T
+    if "projection" in obs:
+        # x_space = T^T x_body, only the rows `ax`: x_space[a] = sum_b T[b, a] x_body[b]
+        res.projection = np.einsum("kba,pb->kpa", T[:, :, ax - 1], pts)
+    return res
+
+
+def evaluate(scene: Scene, *, minimal: bool = True) -> SceneResult:
+    """Evaluate a :class:`Scene` with the least work (``minimal=True``) or fully (``minimal=False``).
+
+    See the module docstring for the routes. The minimal route is exact where it
+    uses invariants, reductions and closed forms, and integrates with
+    ``scene.method`` / ``scene.rtol`` otherwise; both routes agree to the
+    integration accuracy.
+    """
+    from .integrate import simulate
+    from .rigid_body import RigidBody
+
+    wall = time.perf_counter()
+    body, obs, w0, t, sel_planes, cols, pts, ax, T0 = _validate(scene)
+    N = body.N
+    conv = body.convention
+    res = SceneResult(t=t, planes=sel_planes)
+    need_att = "attitude" in obs or "projection" in obs
+    need_omega = "omega" in obs or "L" in obs
+
+    if not minimal:
+        traj = simulate(body, w0, t, method=scene.method, rtol=scene.rtol,
+                        attitude=True if T0 is None else T0)
+        res.path = "full"
+        res.stats.update(traj.stats)
+        _fill(res, obs, body, traj.omega, traj.attitude, cols, pts, ax, "trajectory", w0)
+        res.stats["wall_time"] = time.perf_counter() - wall
+        return res
+
+    if not need_att and not need_omega:
+        res.path = "invariants"
+        _fill(res, obs, body, None, None, cols, pts, ax, "initial", w0)
+        res.stats["wall_time"] = time.perf_counter() - wall
+        return res
+
+    steps = []
+    Z = locked_axes(w0, N)
+    if len(Z) == N:  # at rest
+        omega = np.zeros((t.size, w0.size))
+        T = np.broadcast_to(np.eye(N) if T0 is None else T0, (t.size, N, N)).copy() if need_att else None
+        res.path = "closed-form:rest"
+        _fill(res, obs, body, omega, T, cols, pts, ax, "initial", w0)
+        res.stats["wall_time"] = time.perf_counter() - wall
+        return res
+    keep_axes = tuple(k for k in range(1, N + 1) if k not in Z)
+    if Z:
+        steps.append("reduced:axes(" + ",".join(map(str, keep_axes)) + ")")
+        kept = np.array([q for q, p in enumerate(planes(N)) if p[0] in keep_axes and p[1] in keep_axes], dtype=int)
+    else:
+        kept = np.arange(w0.size)
+    M = len(keep_axes)
+    I_red = body.inertia.moments[kept]
+    w_red = w0[kept]
+    tau = t - t[0]
+    # solve the (reduced) body in the plain ("standard") convention, then embed and convert
+    U = None
+    info = {"kind": "equal"} if M == 2 else _cf.detect_closed_form(I_red)
+    if info is not None and (not need_att or info["kind"] == "equal"):
+        if info["kind"] == "equal":
+            om_red = np.broadcast_to(w_red, (t.size, w_red.size)).copy()
+            if need_att:
+                from ..conventions import to_matrix
+
+                U = _expm_antisym(to_matrix(w_red, "standard").astype(float), tau)
+        else:
+            om_red, _ = _cf.closed_form_solution(I_red, w_red, tau)
+        steps.append("closed-form:" + info["kind"])
+    else:
+        red_body = RigidBody(I_red, "standard")
+        traj = simulate(red_body, w_red, t, method=scene.method, rtol=scene.rtol, attitude=need_att)
+        om_red = traj.omega
+        U = traj.attitude
+        res.stats.update(traj.stats)
+        steps.append("integrate")
+    omega = np.zeros((t.size, w0.size))
+    omega[:, kept] = om_red
+    T = None
+    if need_att:
+        idx = np.array(keep_axes) - 1
+        T_std = np.broadcast_to(np.eye(N), (t.size, N, N)).copy()
+        T_std[:, idx[:, None], idx[None, :]] = U
+        S = _sign(N, conv)
+        if T0 is not None:
+            T_std = T_std @ (S[:, None] * T0 * S[None, :])
+        T = S[None, :, None] * T_std * S[None, None, :]
+    res.path = "+".join(steps)
+    _fill(res, obs, body, omega, T, cols, pts, ax, "initial", w0)
+    res.stats["wall_time"] = time.perf_counter() - wall
+    return res
