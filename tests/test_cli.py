@@ -30,7 +30,7 @@ def _vector(text, label):
 
 
 def test_demo_invariants_recomputed(capsys):
-    code, out, _ = _run(capsys, ["demo", "--ascii"])
+    code, out, _ = _run(capsys, ["demo", "--ascii", "--no-png"])
     assert code == 0
     omega = _vector(out, "omega")
     body = RigidBody(Inertia.quartet(sp.Rational(1, 2)))
@@ -49,7 +49,7 @@ def test_demo_invariants_recomputed(capsys):
 
 
 def test_demo_prints_equations_28_to_37_in_order(capsys):
-    _, out, _ = _run(capsys, ["demo", "--ascii"])
+    _, out, _ = _run(capsys, ["demo", "--ascii", "--no-png"])
     labels = re.findall(r"^\((\d+)\)  ", out, flags=re.M)
     assert labels == [str(n) for n in range(28, 38)]
     # the quartet body with kappa = 1/2: the 15-equation carries 5/4 (1 + kappa^2) and 3/4 (1 - kappa^2)
@@ -60,7 +60,7 @@ def test_demo_prints_equations_28_to_37_in_order(capsys):
 
 
 def test_demo_options(capsys):
-    code, out, _ = _run(capsys, ["demo", "--ascii", "--kappa", "2", "--axis", "1", "--convention", "standard",
+    code, out, _ = _run(capsys, ["demo", "--ascii", "--no-png", "--kappa", "2", "--axis", "1", "--convention", "standard",
                                  "--omega", "1,0,0,0,0,0,0,0,0,1"])
     assert code == 0
     assert "I_12 = 5" in out and "I_45 = 2" in out
@@ -93,3 +93,24 @@ def test_missing_subcommand_is_an_error(capsys):
     with pytest.raises(SystemExit) as exc:
         main([])
     assert exc.value.code == 2
+
+
+def test_demo_motion_matches_closed_form_and_writes_png(capsys, tmp_path):
+    png = tmp_path / "motion.png"
+    code, out, _ = _run(capsys, ["demo", "--ascii", "--t-end", "50", "--png", str(png)])
+    assert code == 0
+    errs = {m.group(1): float(m.group(2)) for m in
+            re.finditer(r"(splitting8|DOP853)\s+rtol=\S+: max relative error vs closed form = (\S+),", out)}
+    assert set(errs) == {"splitting8", "DOP853"}
+    assert errs["splitting8"] < 1e-10 and errs["DOP853"] < 1e-7
+    # the frequencies printed are the closed forms after eq. (118); recompute them from the eigenvalues
+    from hyperrotor.classical.closed_form import quartet_matrix, quartet_theta
+    omega = _vector(out, "omega")
+    lam = np.sort(np.abs(np.linalg.eigvals(quartet_theta(0.5) * quartet_matrix(omega, 5)).imag))[::-1]
+    np.testing.assert_allclose(_vector(out, "frequencies Omega_1, Omega_2 (after eq. 118)"), lam[::2], rtol=1e-12)
+    assert png.stat().st_size > 10_000 and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_demo_bad_t_end(capsys):
+    code, _, err = _run(capsys, ["demo", "--no-png", "--t-end", "-1"])
+    assert code == 2 and "--t-end" in err
