@@ -1,0 +1,135 @@
+"""Benchmark: scenes evaluated with the least work vs the full computation.
+
+For each scene the minimal route of :func:`hyperrotor.classical.scenes.evaluate`
+(invariants, locked-subspace reduction, closed forms, no attitude unless
+asked) is timed against the full route (``minimal=False``: whole body,
+attitude always integrated, every observable from the trajectory), once with
+the package's own integrator (``method="auto"``, a Lie-Poisson splitting) and
+once with the scipy peer (``method="DOP853"``), all at ``rtol = 1e-10``.
+The largest deviation between the minimal and the full (auto) results, relative
+to the largest value, is reported beside the times (the minimal route is exact
+where it uses closed forms or invariants, so the deviation measures the error of
+the full integration).
+
+Times are the best of ``--repeat`` runs after one warm-up run (numba caches
+compiled kernels on disk; the warm-up removes compile and import costs).
+
+Writes benchmarks/results/scenes.csv and scenes.png.
+
+Usage: python benchmarks/scenes.py [--quick] [--repeat R]
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import time
+
+import numpy as np
+
+import hyperrotor
+from hyperrotor.classical.scenes import Scene, evaluate, hypercube_vertices, simplex_vertices
+from hyperrotor.conventions import plane_index, planes
+
+RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
+FIELDS = ("omega", "L", "energy", "casimirs", "attitude", "projection")
+
+
+def _scenes(t):
+    rng = np.random.default_rng(7)
+    gen5 = rng.uniform(1.0, 3.0, size=10)
+    w = rng.normal(size=10)
+    w3 = np.zeros(10)
+    for p in [(1, 2), (1, 3), (2, 3)]:
+        w3[plane_index(p, 5)] = rng.normal()
+    w4 = w.copy()
+    w4[[plane_index(p, 5) for p in planes(5) if 5 in p]] = 0.0
+    N8 = 8
+    return [
+        ("5D quartet (axis 3), omega", Scene(hyperrotor.Inertia.quartet(0.5, axis=3, N=5), w, t, ("omega",))),
+        ("8D one-axis body, omega + energy", Scene(hyperrotor.Inertia.quartet(0.5, axis=8, N=N8),
+                                                   rng.normal(size=N8 * (N8 - 1) // 2), t, ("omega", "energy"))),
+        ("5D generic, energy + casimirs", Scene(gen5, w, t, ("energy", "casimirs"))),
+        ("5D generic, omega in locked 3D subspace", Scene(gen5, w3, t, ("omega",))),
+        ("5D generic, omega only", Scene(gen5, w, t, ("omega",))),
+        ("5D generic, axis 5 locked, 5-cube -> (1,2,3)", Scene(gen5, w4, t, ("projection",),
+                                                               points=hypercube_vertices(5), axes=(1, 2, 3))),
+        ("5D equal moments, 5-simplex -> (1,2,3)", Scene(np.full(10, 2.0), w, t, ("projection",),
+                                                         points=simplex_vertices(5), axes=(1, 2, 3))),
+    ]
+
+
+def _best(fn, repeat):
+    fn()  # warm-up
+    best = np.inf
+    out = None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def _deviation(a, b):
+    dev = 0.0
+    for f in FIELDS:
+        x, y = getattr(a, f), getattr(b, f)
+        if x is not None:
+            dev = max(dev, float(np.max(np.abs(x - y))) / max(1e-300, float(np.max(np.abs(y)))))
+    return dev
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="shorter time span and fewer repeats")
+    ap.add_argument("--repeat", type=int, default=None)
+    args = ap.parse_args(argv)
+    T_end, K = (50.0, 501) if args.quick else (200.0, 2001)
+    repeat = args.repeat or (2 if args.quick else 3)
+    t = np.linspace(0.0, T_end, K)
+    rows = []
+    print(f"scenes over t in [0, {T_end:g}] with {K} output times, rtol = 1e-10, best of {repeat}")
+    head = f"{'scene':46s} {'minimal path':48s} {'min [s]':>9s} {'full [s]':>9s} {'DOP853 [s]':>10s} {'x full':>8s} {'x DOP853':>9s} {'rel. dev':>9s}"
+    print(head)
+    print("-" * len(head))
+    for name, sc in _scenes(t):
+        tm, a = _best(lambda: evaluate(sc), repeat)
+        tf, b = _best(lambda: evaluate(sc, minimal=False), repeat)
+        sc_d = Scene(**{**sc.__dict__, "method": "DOP853"})
+        td, _ = _best(lambda: evaluate(sc_d, minimal=False), max(1, repeat - 1))
+        dev = _deviation(a, b)
+        rows.append(dict(scene=name, path=a.path, t_minimal=tm, t_full=tf, t_full_dop853=td,
+                         ratio_full=tf / tm, ratio_dop853=td / tm, rel_deviation=dev))
+        print(f"{name:46s} {a.path:48s} {tm:9.4f} {tf:9.4f} {td:10.4f} {tf / tm:8.1f} {td / tm:9.1f} {dev:9.1e}")
+    os.makedirs(RESULTS, exist_ok=True)
+    path_csv = os.path.join(RESULTS, "scenes.csv")
+    with open(path_csv, "w", newline="") as fh:
+        wr = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        wr.writeheader()
+        wr.writerows(rows)
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(9, 4.5))
+        y = np.arange(len(rows))
+        ax.barh(y - 0.2, [r["ratio_full"] for r in rows], height=0.4, label="full (splitting, auto)")
+        ax.barh(y + 0.2, [r["ratio_dop853"] for r in rows], height=0.4, label="full (scipy DOP853)")
+        ax.set_yticks(y, [r["scene"] for r in rows], fontsize=8)
+        ax.set_xscale("log")
+        ax.axvline(1.0, color="k", lw=0.8)
+        ax.set_xlabel("time(full) / time(minimal)")
+        ax.set_title(f"Scenes: saving of the minimal route (t in [0, {T_end:g}], {K} outputs)")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(RESULTS, "scenes.png"), dpi=120)
+    except ImportError:  # pragma: no cover
+        print("matplotlib not available: no PNG")
+    print(f"wrote {path_csv} and scenes.png")
+    return rows
+
+
+if __name__ == "__main__":
+    main()
