@@ -527,20 +527,14 @@ def direct_sum(*reps: Representation) -> Representation:
     return Representation(N, gens, highest_weight=hw, exact_generators=exact, name=" + ".join(f"({r.name})" for r in reps))
 
 
-def _null_space(A: np.ndarray, rtol: float = 1e-9) -> np.ndarray:
-    if A.shape[0] == 0:
-        return np.eye(A.shape[1], dtype=complex)
-    _, s, Vh = np.linalg.svd(A)
-    tol = rtol * max(1.0, s[0] if s.size else 0.0)
-    rank = int(np.sum(s > tol))
-    return Vh[rank:].conj().T
-
-
 def _highest_weight_vector(rep: "Representation", raising: list) -> np.ndarray:
+    """Joint kernel of the raising operators: null space of G = sum_E E^dagger E (Hermitian PSD)."""
     if not raising:
         return np.ones(1, dtype=complex)
-    A = np.vstack([E.toarray() for E in raising])
-    K = _null_space(A)
+    G = sum((E.conj().T @ E for E in raising), sps.csr_matrix((rep.dim, rep.dim))).toarray()
+    w, V = np.linalg.eigh(G)
+    tol = 1e-10 * max(1.0, float(w[-1]))
+    K = V[:, w < tol]
     if K.shape[1] != 1:
         raise ValueError(
             f"{rep.name} is not irreducible: its highest-weight space has dimension {K.shape[1]}"
@@ -555,8 +549,9 @@ def intertwiner(a: Representation, b: Representation, *, rtol: float = 1e-9) -> 
     raising operators :math:`E_\alpha`, :math:`\alpha > 0`). Construction: the
     highest-weight vectors :math:`v_a, v_b` are matched, and so are the vectors
     :math:`E_{-\beta_1}\cdots E_{-\beta_r} v` obtained by the same words of
-    lowering operators, until they span the space; then
-    :math:`T = Y X^{+}`. By Schur's lemma ``T`` is unique up to a scalar; it is
+    lowering operators, until they span the space; the a-side vectors are
+    orthonormalized (Gram-Schmidt, twice) and the same linear combinations are
+    applied on the b-side, giving :math:`T = Y Q^\dagger` with Q unitary. By Schur's lemma ``T`` is unique up to a scalar; it is
     scaled so that :math:`\|T\|_F^2 = \dim`, which makes it unitary when both
     generator sets are anti-Hermitian in orthonormal bases.
 
@@ -576,33 +571,44 @@ def intertwiner(a: Representation, b: Representation, *, rtol: float = 1e-9) -> 
     lb = [b.ladder(tuple(-x for x in r), format="csr") for r in pos]
     va, vb = _highest_weight_vector(a, ra), _highest_weight_vector(b, rb)
     d = a.dim
-    Xs, Ys = [va], [vb]
-    Q = (va / np.linalg.norm(va))[:, None]
-    frontier = [(va, vb)]
-    while frontier and len(Xs) < d:
+    # Orthonormalize on the a-side and apply the same linear combinations on the
+    # b-side (T is linear), so that T = Y Q^dagger with Q unitary (well conditioned).
+    nva = np.linalg.norm(va)
+    Q = np.zeros((d, d), dtype=complex)
+    Y = np.zeros((d, d), dtype=complex)
+    Q[:, 0], Y[:, 0] = va / nva, vb / nva
+    k = 1
+    frontier = [0]
+    la = [sps.csr_matrix(E) for E in la]
+    lb = [sps.csr_matrix(E) for E in lb]
+    while frontier and k < d:
         nxt = []
-        for x, y in frontier:
-            for Ea, Eb in zip(la, lb):
-                x2, y2 = Ea @ x, Eb @ y
+        for col in frontier:
+            X2 = np.stack([E @ Q[:, col] for E in la], axis=1)
+            Y2 = np.stack([E @ Y[:, col] for E in lb], axis=1)
+            for x2, y2 in zip(X2.T, Y2.T):
                 nx = np.linalg.norm(x2)
                 if nx <= rtol:
                     continue
-                r = x2 - Q @ (Q.conj().T @ x2)
-                r = r - Q @ (Q.conj().T @ r)
-                if np.linalg.norm(r) > 1e-8 * nx:
-                    Q = np.hstack([Q, (r / np.linalg.norm(r))[:, None]])
-                    Xs.append(x2)
-                    Ys.append(y2)
-                    nxt.append((x2, y2))
-                    if len(Xs) == d:
+                Qk = Q[:, :k]
+                c = (x2.conj() @ Qk).conj()
+                r = x2 - Qk @ c
+                c2 = (r.conj() @ Qk).conj()
+                r = r - Qk @ c2
+                nr = np.linalg.norm(r)
+                if nr > 1e-8 * nx:
+                    Q[:, k] = r / nr
+                    Y[:, k] = (y2 - Y[:, :k] @ (c + c2)) / nr
+                    nxt.append(k)
+                    k += 1
+                    if k == d:
                         break
-            if len(Xs) == d:
+            if k == d:
                 break
         frontier = nxt
-    if len(Xs) < d:
-        raise ValueError(f"{a.name} is not irreducible (the lowering operators span only {len(Xs)} of {d} dimensions)")
-    X, Y = np.stack(Xs, axis=1), np.stack(Ys, axis=1)
-    T = Y @ np.linalg.inv(X)
+    if k < d:
+        raise ValueError(f"{a.name} is not irreducible (the lowering operators span only {k} of {d} dimensions)")
+    T = Y @ Q.conj().T
     T *= np.sqrt(d) / np.linalg.norm(T)
     res = max(
         float(np.abs(T @ a._gens[p].toarray() - b._gens[p].toarray() @ T).max()) for p in a.planes
