@@ -236,3 +236,18 @@ def test_accepts_rigid_body_and_inertia():
             a, b = linear_stability(obj, plane, 1.1), linear_stability(I, plane, 1.1)
             np.testing.assert_array_equal(a.eigenvalues, b.eigenvalues)
             assert a.stable == b.stable
+
+
+def test_locked_body_keeps_labels():
+    """A body from RigidBody.lock uses its original axis labels for planes, pairs and k."""
+    body = hyperrotor.RigidBody(np.arange(1.0, 11.0))
+    red = body.lock(1)  # axes (2, 3, 4, 5)
+    r = linear_stability(red, (2, 3), 1.0)
+    assert r.plane == (2, 3)
+    assert [p.k for p in r.pairs] == [4, 5]
+    assert [p.planes for p in r.pairs] == [((2, 4), (3, 4)), ((2, 5), (3, 5))]
+    I = dict(zip(planes(5), np.arange(1.0, 11.0)))
+    assert r.pairs[0].nu2 == pytest.approx((I[(2, 3)] - I[(2, 4)]) * (I[(2, 3)] - I[(3, 4)]) / (I[(2, 4)] * I[(3, 4)]))
+    assert "I_23 - I_24" in r.condition
+    with pytest.raises(ValueError, match="unknown plane"):
+        linear_stability(red, (1, 2), 1.0)

@@ -86,6 +86,25 @@ def _moments_of(body: Any) -> np.ndarray:
     return I
 
 
+def _labels(body: Any, N: int) -> tuple[int, ...]:
+    """Axis labels of the body (a locked RigidBody keeps its original labels, e.g. (2, 3, 4, 5))."""
+    axes = getattr(body, "axes", None)
+    if axes is not None and len(tuple(axes)) == N:
+        return tuple(int(a) for a in axes)
+    return tuple(range(1, N + 1))
+
+
+def _local_plane(plane: Any, labels: tuple[int, ...]) -> tuple[int, int]:
+    """Translate a plane given in the body's axis labels to local 1..N labels."""
+    try:
+        a, b = (int(v) for v in plane)
+    except (TypeError, ValueError):
+        raise ValueError(f"a plane label is a pair (i, j) of integers, got {plane!r}") from None
+    if a not in labels or b not in labels or a >= b:
+        raise ValueError(f"unknown plane {plane!r}: planes are pairs (i, j), i < j, of the body's axes {labels}")
+    return labels.index(a) + 1, labels.index(b) + 1
+
+
 def _plane(plane: Any, N: int) -> tuple[int, int]:
     k = plane_index(plane, N)  # validates
     return planes(N)[k]
@@ -195,7 +214,8 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     body : RigidBody, Inertia or array_like (n_planes,)
         The plane moments.
     plane : (i, j)
-        1-based rotation plane, ``i < j``.
+        1-based rotation plane, ``i < j``, in the body's axis labels (a body
+        from :meth:`RigidBody.lock` keeps its original labels).
     Omega : float
         Angular velocity of the steady rotation.
     rtol : float
@@ -218,7 +238,9 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     """
     I = _moments_of(body)
     N = dimension_from_count(I.size)
-    i, j = _plane(plane, N)
+    labels = _labels(body, N)
+    i, j = _local_plane(plane, labels)
+    lab = lambda q: (labels[q[0] - 1], labels[q[1] - 1])  # noqa: E731  local -> body labels
     try:
         Om = float(Omega)
     except (TypeError, ValueError):
@@ -249,7 +271,7 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
             kind = "oscillating"
         else:
             kind = "unstable"
-        pairs.append(CoupledPair(k=k, planes=(P1, P2), nu2=float(nu2), kind=kind))
+        pairs.append(CoupledPair(k=labels[k - 1], planes=(lab(P1), lab(P2)), nu2=float(nu2), kind=kind))
         lam = Om * np.sqrt(complex(-nu2))
         eig += [lam, -lam]
         if Om != 0.0:
@@ -260,7 +282,7 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
                 unstable = True
             elif kind == "secular":
                 secular = True
-        lp, l1, l2 = (f"I_{plane_label(q, N)}" for q in ((i, j), P1, P2))
+        lp, l1, l2 = (f"I_{plane_label(lab(q), max(labels))}" for q in ((i, j), P1, P2))
         factors.append(f"({lp} - {l1})*({lp} - {l2}) > 0")
     eig += [0j] * (I.size - len(eig))
     stable = not (unstable or secular)
@@ -275,7 +297,7 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     else:
         reason = "I_p is the largest or the smallest moment of every coupled triple"
     return StabilityResult(
-        plane=(i, j),
+        plane=lab((i, j)),
         Omega=Om,
         jacobian=linearization(I, (i, j), Om),
         eigenvalues=np.array(eig, dtype=complex),
