@@ -188,10 +188,12 @@ def test_equivalences_with_gt_irreps():
             assert np.abs(res).max() <= 1e-10
 
 
-def test_harmonic_rep_so5_l4_equivalent_to_irrep():
-    a, b = harmonic_rep(5, 4), irrep(5, (4, 0))
-    assert a.dim == b.dim == harmonic_dimension(5, 4) == 55
-    assert a.casimir_value() == b.casimir_value() == 4 * (4 + 3)
+@pytest.mark.parametrize("l", [4, 5])
+def test_harmonic_rep_so5_equivalent_to_irrep(l):
+    a, b = harmonic_rep(5, l), irrep(5, (l, 0))
+    assert a.dim == b.dim == harmonic_dimension(5, l) == (l + 1) * (l + 2) * (2 * l + 3) // 6
+    assert a.casimir_value() == b.casimir_value() == l * (l + 3)
+    assert abs(a.casimir(format="dense") + l * (l + 3) * np.eye(a.dim)).max() <= 1e-12 * l * (l + 3)
     assert a.weight_multiplicities() == b.weight_multiplicities()
     T = intertwiner(a, b)
     for p in a.planes:
