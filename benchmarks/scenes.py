@@ -54,6 +54,8 @@ def _scenes(t):
         ("5D generic, omega only", Scene(gen5, w, t, ("omega",))),
         ("5D generic, axis 5 locked, 5-cube -> (1,2,3)", Scene(gen5, w4, t, ("projection",),
                                                                points=hypercube_vertices(5), axes=(1, 2, 3))),
+        ("5D quartet (axis 5), 5-cube -> (1,2,3)", Scene(hyperrotor.Inertia.quartet(0.5, axis=5, N=5), w, t,
+                                                         ("projection",), points=hypercube_vertices(5), axes=(1, 2, 3))),
         ("5D equal moments, 5-simplex -> (1,2,3)", Scene(np.full(10, 2.0), w, t, ("projection",),
                                                          points=simplex_vertices(5), axes=(1, 2, 3))),
     ]
@@ -122,7 +124,7 @@ def main(argv=None):
         ax.axvline(1.0, color="k", lw=0.8)
         ax.set_xlabel("time(full) / time(minimal)")
         ax.set_title(f"Scenes: saving of the minimal route (t in [0, {T_end:g}], {K} outputs)")
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=8, loc="lower right")
         fig.tight_layout()
         fig.savefig(os.path.join(RESULTS, "scenes.png"), dpi=120)
     except ImportError:  # pragma: no cover

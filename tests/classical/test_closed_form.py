@@ -423,3 +423,26 @@ def test_euler_poinsot_bad_input():
         euler_poinsot([1.0, -2.0, 3.0], np.ones(3), [0.0])
     with pytest.raises(TypeError):
         euler_poinsot(object(), np.ones(3), [0.0])
+
+
+@pytest.mark.parametrize("convention,axis,N", [("paper", 5, 5), ("standard", 2, 5), ("paper", 1, 4), ("standard", 6, 6)])
+def test_quartet_attitude_against_simulate(convention, axis, N):
+    """T(t) = exp(Theta W_r t) exp((W0 - Theta W_r) t) T0 solves dT/dt = W(t) T."""
+    import hyperrotor
+    from hyperrotor.classical.closed_form import quartet_attitude
+
+    rng = np.random.default_rng(axis + 10 * N)
+    n = N * (N - 1) // 2
+    w0 = rng.normal(size=n)
+    Q, _ = np.linalg.qr(rng.normal(size=(N, N)))
+    t = np.linspace(0.0, 10.0, 21)
+    body = hyperrotor.RigidBody(quartet_moments(0.5, axis, N), convention)
+    ref = hyperrotor.simulate(body, w0, t, method="DOP853", rtol=1e-12, attitude=Q).attitude
+    T = quartet_attitude(0.5, w0, t, axis, attitude0=Q, convention=convention)
+    np.testing.assert_allclose(T, ref, atol=1e-10)
+    np.testing.assert_allclose(np.einsum("kji,kjl->kil", T, T), np.broadcast_to(np.eye(N), T.shape), atol=1e-13)
+    # equal moments (kappa = 1, Theta = 0): T = expm(W0 t)
+    from scipy.linalg import expm
+
+    W0 = body.matrix(w0)
+    np.testing.assert_allclose(quartet_attitude(1.0, w0, t[:3], axis, convention=convention)[2], expm(W0 * t[2]), atol=1e-13)

@@ -176,3 +176,11 @@ def test_bad_input():
         Scene(GENERIC, w0, T, ("attitude",), attitude0=2 * np.eye(5)).evaluate()
     with pytest.raises(ValueError, match="unknown plane"):
         Scene(GENERIC, w0, T, planes=[(3, 1)]).evaluate()
+
+
+def test_quartet_projection_closed_form():
+    inertia = hyperrotor.Inertia.quartet(2.0, axis=4, N=5)
+    scene = Scene(inertia, RNG.normal(size=10), T, ("omega", "projection", "attitude"),
+                  points=hypercube_vertices(5), axes=(2, 3, 4))
+    a = _compare(scene, 1e-8)
+    assert a.path == "closed-form:quartet"

@@ -81,6 +81,7 @@ __all__ = [
     "quartet_solution",
     "quartet_frequencies",
     "quartet_polynomial_coefficients",
+    "quartet_attitude",
     "euler_poinsot",
     "euler_poinsot_period",
     "detect_closed_form",
@@ -327,6 +328,74 @@ def quartet_frequencies(kappa: float, omega0: Any, axis: int = 5) -> np.ndarray:
     lam = np.linalg.eigvalsh(1j * A)  # real, symmetric about 0
     k = (N - 1) // 2
     return abs(th) * np.sort(np.abs(lam), axis=-1)[..., ::-1][..., : 2 * k : 2]
+
+
+def _expm_antisym(W: np.ndarray, tt: np.ndarray) -> np.ndarray:
+    """exp(W t) for one real antisymmetric W and many t (eigh of the Hermitian iW), shape (n_t, N, N)."""
+    lam, U = np.linalg.eigh(1j * W)
+    ph = np.exp(-1j * tt[:, None] * lam[None, :])
+    return np.einsum("ij,kj,lj->kil", U, ph, U.conj()).real
+
+
+def _quartet_attitude_std(theta: float, omega0: np.ndarray, tt: np.ndarray, axis: int) -> np.ndarray:
+    """T(t) (plain convention, T(0) = 1) of the one-distinguished-axis body."""
+    from ..conventions import to_matrix
+
+    N = dimension_from_count(omega0.size)
+    W0 = to_matrix(omega0, "standard").astype(float)
+    Wr = W0.copy()
+    Wr[axis - 1, :] = 0.0
+    Wr[:, axis - 1] = 0.0
+    R = _expm_antisym(theta * Wr, tt)
+    S = _expm_antisym(W0 - theta * Wr, tt)
+    return R @ S
+
+
+def quartet_attitude(kappa: float, omega0: Any, t: Any, axis: int = 5, *, attitude0: Any = None,
+                     convention: str = "paper") -> np.ndarray:
+    r"""Exact attitude :math:`T(t)` (eq. 19, :math:`\dot T = W T`) of the quartet body, any N.
+
+    With plain matrices, the solution of :func:`quartet_solution` is
+    :math:`W(t) = R(t) W_0 R(t)^{\mathsf T}` with :math:`R(t) = e^{\Theta W_r t}`
+    (:math:`W_r` = the constant part of :math:`W` in the planes without the
+    distinguished axis; ``R`` fixes :math:`e_a` and commutes with :math:`W_r`).
+    Writing :math:`T = R\,S` gives :math:`\dot S = (W_0 - \Theta W_r) S`, so
+
+    .. math:: T(t) = e^{\Theta W_r t}\, e^{(W_0 - \Theta W_r) t}\, T_0,
+
+    the N-dimensional analogue of the regular precession of a symmetric top
+    (for equal moments, :math:`\Theta = 0`, :math:`T = e^{W_0 t} T_0`).
+
+    Parameters
+    ----------
+    kappa, omega0, axis : as in :func:`quartet_solution` (one initial state).
+    t : array_like (n_t,), time since the initial state.
+    attitude0 : array_like (N, N), optional
+        :math:`T_0` in the chosen convention (default identity).
+    convention : {"paper", "standard"}
+        Matrix convention of ``T`` (:math:`T_\text{paper} = S T_\text{standard} S`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n_t, N, N)
+    """
+    from ..conventions import check_convention
+
+    check_convention(convention)
+    w = _omega0(omega0)
+    if w.ndim != 1:
+        raise ValueError(f"omega0 must be a single vector of plane components, got shape {w.shape}")
+    N = dimension_from_count(w.size)
+    axis = _check_axis(axis, N)
+    tt = _times(t)
+    T = _quartet_attitude_std(quartet_theta(kappa), w, tt, axis)
+    Sg = np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
+    if attitude0 is not None:
+        T0 = np.asarray(attitude0, dtype=float)
+        if T0.shape != (N, N):
+            raise ValueError(f"attitude0 must have shape ({N}, {N}), got {T0.shape}")
+        T = T @ (Sg[:, None] * T0 * Sg[None, :])
+    return Sg[None, :, None] * T * Sg[None, None, :]
 
 
 # ----------------------------------------------------------------------------

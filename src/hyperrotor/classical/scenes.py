@@ -22,9 +22,12 @@ reports it in :attr:`SceneResult.path`:
    those axes (:math:`T(t) = (U(t)\oplus 1_Z)\,T_0`). Reported as
    ``"reduced:axes(...)"``.
 3. **Closed forms** (:mod:`hyperrotor.classical.closed_form`): equal moments
-   (then also the attitude, :math:`T = e^{Wt}T_0`), one distinguished axis
-   ("quartet", any N), 3D Euler-Poinsot; a reduced body with two axes is a
-   single steady rotation. Reported as ``"closed-form:<kind>"``.
+   and one distinguished axis ("quartet", any N), both with the attitude
+   (:math:`T = e^{\Theta W_r t} e^{(W_0 - \Theta W_r)t} T_0`,
+   :func:`~hyperrotor.classical.closed_form.quartet_attitude`), and 3D
+   Euler-Poinsot (angular velocity only; the attitude is then integrated); a
+   reduced body with two axes is a single steady rotation. Reported as
+   ``"closed-form:<kind>"``.
 4. Otherwise :func:`hyperrotor.simulate` on the (reduced) body, with the attitude
    only if ``"attitude"`` or ``"projection"`` is asked (``"integrate"``).
 
@@ -129,13 +132,6 @@ def locked_axes(omega0: Any, N: int | None = None) -> tuple[int, ...]:
 
 def _sign(N: int, convention: str) -> np.ndarray:
     return np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
-
-
-def _expm_antisym(W: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """exp(W t) for a real antisymmetric W (eigh of the Hermitian iW), shape (K, N, N)."""
-    lam, U = np.linalg.eigh(1j * W)
-    ph = np.exp(-1j * t[:, None] * lam[None, :])
-    return np.einsum("ij,kj,lj->kil", U, ph, U.conj()).real
 
 
 # ----------------------------------------------------------------------------
@@ -332,15 +328,17 @@ def evaluate(scene: Scene, *, minimal: bool = True) -> SceneResult:
     # solve the (reduced) body in the plain ("standard") convention, then embed and convert
     U = None
     info = {"kind": "equal"} if M == 2 else _cf.detect_closed_form(I_red)
-    if info is not None and (not need_att or info["kind"] == "equal"):
+    if info is not None and (not need_att or info["kind"] in ("equal", "quartet")):
         if info["kind"] == "equal":
             om_red = np.broadcast_to(w_red, (t.size, w_red.size)).copy()
             if need_att:
                 from ..conventions import to_matrix
 
-                U = _expm_antisym(to_matrix(w_red, "standard").astype(float), tau)
+                U = _cf._expm_antisym(to_matrix(w_red, "standard").astype(float), tau)
         else:
             om_red, _ = _cf.closed_form_solution(I_red, w_red, tau)
+            if need_att:  # T = exp(Theta W_r t) exp((W0 - Theta W_r) t), see quartet_attitude
+                U = _cf._quartet_attitude_std(info["theta"], w_red, tau, info["axis"])
         steps.append("closed-form:" + info["kind"])
     else:
         red_body = RigidBody(I_red, "standard")
