@@ -33,9 +33,12 @@ between :math:`m_i` and :math:`m_j`.
 
 Paper discrepancies (Sec. 4)
 ----------------------------
-* (121)-(131) are right (as matrix entries, see the foundation notes); but the
-  text "the four equations will be satisfied ... the remaining six" is
-  inverted, and (132) is wrong: the constant components are
+* (121)-(131) are right (each printed as a matrix entry, i.e. with the sign
+  :math:`(-1)^{i+j}`); note that (131) numbers the moments differently from the
+  :math:`\varpi_k` of (119)-(120) (:math:`J_4 = I^{2323}` but
+  :math:`\varpi_4 = \omega_{15}`; :math:`J_7 = I^{1515}`). The text announces
+  "four equations satisfied, six remaining" but then lists all ten, and (132)
+  is wrong: the constant components are
   :math:`\varpi_1, \varpi_8, \varpi_9, \varpi_{10}` (planes 12, 34, 35, 45), and
   they are constant, not zero; :math:`\varpi_6` (plane 24) oscillates with
   :math:`\varpi_3` (plane 14).
@@ -66,7 +69,14 @@ import sympy as sp
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, plane_label, plane_symbols, planes, structure_constants
 
-__all__ = ["CoupledPair", "StabilityResult", "linear_stability", "linearization", "stability_condition"]
+__all__ = [
+    "CoupledPair",
+    "StabilityResult",
+    "linear_stability",
+    "linearization",
+    "stability_condition",
+    "perturbation_growth",
+]
 
 
 def _moments_of(body: Any) -> np.ndarray:
@@ -308,3 +318,32 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
         condition=" and ".join(factors) if factors else "True",
         reason=reason,
     )
+
+
+def perturbation_growth(body: Any, plane: Any, Omega: float, t: Any, *, eps: float = 1e-8, seed: int = 0,
+                        method: str = "DOP853", rtol: float = 1e-11) -> np.ndarray:
+    r"""Nonlinear check of (in)stability: largest off-plane component of a perturbed steady rotation.
+
+    Integrates the full Euler equations (:func:`hyperrotor.simulate`) from
+    :math:`\omega_0 = \Omega e_p + \epsilon\,\xi` (:math:`\xi` standard normal,
+    ``seed``) and returns :math:`\max_{q \ne p} |\omega_q(t)|` on the grid ``t``
+    (``t[0]`` is the initial time). For an unstable plane it grows like
+    :math:`\epsilon\,e^{\sigma t}` with :math:`\sigma` the largest entry of
+    :attr:`StabilityResult.growth_rates` (the N-dimensional tennis-racket
+    effect) until it saturates at the size of :math:`\Omega`; for a stable plane
+    it stays of order :math:`\epsilon`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (len(t),)
+    """
+    from .integrate import simulate
+
+    I = _moments_of(body)
+    N = dimension_from_count(I.size)
+    i, j = _local_plane(plane, _labels(body, N))
+    p = plane_index((i, j), N)
+    w0 = float(eps) * np.random.default_rng(seed).normal(size=I.size)
+    w0[p] = float(Omega)
+    traj = simulate(I, w0, t, method=method, rtol=rtol)
+    return np.max(np.abs(np.delete(traj.omega, p, axis=-1)), axis=-1)
