@@ -12,20 +12,14 @@ the preprint prints it (doi:10.20944/preprints202508.0136.v2). A small,
 documented converter (:func:`tex_to_sympy`) turns the scalar formulas into
 SymPy with these readings, chosen to keep every printed index as printed:
 
-=========================  ==================================  ==========================
-printed                    SymPy symbol                        note
-=========================  ==================================  ==========================
-``\omega_{ij}``            ``omega_ij``                        also ``omega_51``, ``omega_31``
-                                                               (index order kept as printed)
-``\frac{d\omega_{ij}}{dt}`` ``omegadot_ij``
-``I^{ijij}``               ``I_ij`` (positive)                 the plane moment, as in
-                                                               :mod:`hyperrotor.paper.printed`
-``L^{ij}``, ``\omega^{ij}`` ``L_ij``, ``omega_ij``             eq. (25)
-``\varpi_n``, ``d\varpi_n/dt``  ``varpi_n``, ``varpidot_n``
-``c_n``, ``C_{ij}``, ``C_n``  ``c_n``, ``C_ij``, ``C_n``
-``\Theta`` and ``\theta``  ``Theta``                           (108)-(109) print lowercase
-``i\Omega``                ``I*Omega``                         imaginary unit
-=========================  ==================================  ==========================
+* ``\omega_{ij}`` -> ``omega_ij``, index order kept as printed (also ``omega_51``, ``omega_31``);
+* ``\frac{d\omega_{ij}}{dt}`` -> ``omegadot_ij``;
+* ``I^{ijij}`` -> ``I_ij`` (positive), the plane moment, as in :mod:`hyperrotor.paper.printed`;
+* ``L^{ij}``, ``\omega^{ij}`` (eq. 25) -> ``L_ij``, ``omega_ij``;
+* ``\varpi_n``, ``d\varpi_n/dt`` -> ``varpi_n``, ``varpidot_n``;
+* ``c_n``, ``C_{ij}``, ``C_n`` -> ``c_n``, ``C_ij``, ``C_n``;
+* ``\Theta`` and ``\theta`` -> ``Theta`` ((108)-(109) print the lowercase letter);
+* ``i\Omega`` -> ``I*Omega`` (imaginary unit).
 
 Objects that are not single scalar equations (matrices, chains of equalities,
 inequalities, sets of constants, operators) are given as small structured
