@@ -71,7 +71,7 @@ from typing import Any
 import numpy as np
 from scipy import special
 
-from ..conventions import check_dimension, dimension_from_count, n_planes, plane_index, planes
+from ..conventions import check_dimension, dimension_from_count, plane_index, planes
 
 __all__ = [
     "equal_moments_solution",
