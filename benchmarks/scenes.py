@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 import hyperrotor
-from hyperrotor.classical.scenes import Scene, evaluate, hypercube_vertices, simplex_vertices
+from hyperrotor.classical.scenes import Scene, evaluate_scene, hypercube_vertices, simplex_vertices
 from hyperrotor.conventions import plane_index, planes
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
@@ -95,10 +95,10 @@ def main(argv=None):
     print(head)
     print("-" * len(head))
     for name, sc in _scenes(t):
-        tm, a = _best(lambda: evaluate(sc), repeat)
-        tf, b = _best(lambda: evaluate(sc, minimal=False), repeat)
+        tm, a = _best(lambda: evaluate_scene(sc), repeat)
+        tf, b = _best(lambda: evaluate_scene(sc, minimal=False), repeat)
         sc_d = Scene(**{**sc.__dict__, "method": "DOP853"})
-        td, _ = _best(lambda: evaluate(sc_d, minimal=False), max(1, repeat - 1))
+        td, _ = _best(lambda: evaluate_scene(sc_d, minimal=False), max(1, repeat - 1))
         dev = _deviation(a, b)
         rows.append(dict(scene=name, path=a.path, t_minimal=tm, t_full=tf, t_full_dop853=td,
                          ratio_full=tf / tm, ratio_dop853=td / tm, rel_deviation=dev))

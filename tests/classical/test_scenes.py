@@ -9,7 +9,7 @@ from hyperrotor.classical import integrate as _integrate
 from hyperrotor.classical.scenes import (
     Scene,
     ellipsoid_points,
-    evaluate,
+    evaluate_scene,
     hypercube_vertices,
     locked_axes,
     simplex_vertices,
@@ -31,7 +31,7 @@ def _on_planes(values, plist, N=5):
 
 def _compare(scene, tol):
     a = scene.evaluate()
-    b = evaluate(scene, minimal=False)
+    b = evaluate_scene(scene, minimal=False)
     assert b.path == "full"
     for f in FIELDS:
         x, y = getattr(a, f), getattr(b, f)
@@ -86,7 +86,7 @@ def test_invariants_route_does_not_integrate(monkeypatch):
     scene = Scene(GENERIC, RNG.normal(size=10), T, ("energy", "casimirs"))
     a = scene.evaluate()
     assert a.path == "invariants" and calls == []
-    b = evaluate(scene, minimal=False)
+    b = evaluate_scene(scene, minimal=False)
     np.testing.assert_allclose(a.energy, b.energy, rtol=1e-9)
     np.testing.assert_allclose(a.casimirs, b.casimirs, rtol=1e-9)
 

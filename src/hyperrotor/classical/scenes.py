@@ -11,7 +11,7 @@ and a set of observables among
 ``"projection"``  space-frame positions of body points, :math:`x_\text{space} = T^{\mathsf T} x_\text{body}`,
                   restricted to the chosen ``axes`` (e.g. ``(1, 2, 3)`` for a 3D picture).
 
-:func:`evaluate` (or :meth:`Scene.evaluate`) picks the cheapest exact route and
+:func:`evaluate_scene` (or :meth:`Scene.evaluate`) picks the cheapest exact route and
 reports it in :attr:`SceneResult.path`:
 
 1. **Invariants.** Energy and Casimirs are conserved by the torque-free flow, so
@@ -48,10 +48,10 @@ from ..conventions import dimension_from_count, plane_index, planes
 from . import closed_form as _cf
 
 __all__ = [
-    "OBSERVABLES",
+    "SCENE_OBSERVABLES",
     "Scene",
     "SceneResult",
-    "evaluate",
+    "evaluate_scene",
     "hypercube_vertices",
     "simplex_vertices",
     "ellipsoid_points",
@@ -59,7 +59,7 @@ __all__ = [
 ]
 
 #: The observable names a :class:`Scene` accepts.
-OBSERVABLES = ("omega", "L", "energy", "casimirs", "attitude", "projection")
+SCENE_OBSERVABLES = ("omega", "L", "energy", "casimirs", "attitude", "projection")
 
 
 # ----------------------------------------------------------------------------
@@ -184,7 +184,7 @@ class Scene:
     t : array_like (K,)
         Strictly increasing output times.
     observables : sequence of str
-        Any of :data:`OBSERVABLES`.
+        Any of :data:`SCENE_OBSERVABLES`.
     planes : sequence of (i, j), optional
         Columns of ``omega`` / ``L`` (default: all planes, paper order).
     points : array_like (P, N), optional
@@ -209,8 +209,8 @@ class Scene:
     rtol: float = 1e-10
 
     def evaluate(self, *, minimal: bool = True) -> SceneResult:
-        """Compute the scene; see :func:`evaluate`."""
-        return evaluate(self, minimal=minimal)
+        """Compute the scene; see :func:`evaluate_scene`."""
+        return evaluate_scene(self, minimal=minimal)
 
 
 def _validate(scene: Scene):
@@ -218,9 +218,9 @@ def _validate(scene: Scene):
     N = body.N
     n = len(body.planes)
     obs = tuple(scene.observables) if not isinstance(scene.observables, str) else (scene.observables,)
-    bad = [o for o in obs if o not in OBSERVABLES]
+    bad = [o for o in obs if o not in SCENE_OBSERVABLES]
     if bad or not obs:
-        raise ValueError(f"unknown observable(s) {bad!r}; allowed: {', '.join(OBSERVABLES)}")
+        raise ValueError(f"unknown observable(s) {bad!r}; allowed: {', '.join(SCENE_OBSERVABLES)}")
     w0 = np.asarray(scene.omega0, dtype=float)
     if w0.shape != (n,):
         raise ValueError(f"omega0 must have shape ({n},) for N = {N}, got {w0.shape}")
@@ -272,7 +272,7 @@ def _fill(res: SceneResult, obs, body, omega_full, T, cols, pts, ax, invariants_
     return res
 
 
-def evaluate(scene: Scene, *, minimal: bool = True) -> SceneResult:
+def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     """Evaluate a :class:`Scene` with the least work (``minimal=True``) or fully (``minimal=False``).
 
     See the module docstring for the routes. The minimal route is exact where it
