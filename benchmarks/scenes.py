@@ -1,6 +1,6 @@
 """Benchmark: scenes evaluated with the least work vs the full computation.
 
-For each scene the minimal route of :func:`hyperrotor.classical.scenes.evaluate`
+For each scene the minimal route of :func:`hyperrotor.classical.scenes.evaluate_scene`
 (invariants, locked-subspace reduction, closed forms, no attitude unless
 asked) is timed against the full route (``minimal=False``: whole body,
 attitude always integrated, every observable from the trajectory), once with
