@@ -655,10 +655,9 @@ def _sec_reductions() -> tuple:
             v = _compare(k, sec, pz, d, correct=_eq_str(d, _mtilde(p)),
                          note=f"body with axes {locked} locked, RigidBody.lock")
             if v.status == "typo" and sp.expand(pz.xreplace(lockset) - d) == 0:
-                stale = [t for t in _terms(pz) if t.xreplace(lockset) == 0 and t != 0]
                 stale_terms = [c * t for t, c in _terms(pz).items() if (c * t).xreplace(lockset) == 0]
                 v = Verdict(k, "typo",
-                            f"not reduced: keeps {', '.join(_fmt(t) for t in stale_terms)}, which vanish"
+                            f"not reduced: keeps {_grouped(sp.Add(*stale_terms))}, which vanishes"
                             f" because axes {locked} are locked (the equation is copied from eq. "
                             f"{_source_equation(pz, k)}). Correct: {_eq_str(d, _mtilde(p))}",
                             _eq_str(pz, _mtilde(p)), _eq_str(d, _mtilde(p)), sec)
@@ -681,7 +680,7 @@ def _sec_reductions() -> tuple:
             if rs.heading_axis not in locked:
                 problems.append(f"the heading names axis {rs.heading_axis}, but the remaining axes "
                                 f"{'-'.join(map(str, rs.remaining_axes))} mean axes {locked} are locked "
-                                f"(additionally locked: axis {[b for b in locked if b != 5] or locked})")
+                                f"(the additionally locked axis is {', '.join(str(b) for b in locked if b != 5)})")
             if rs.text_axis not in locked:
                 problems.append(f"the text names axis {rs.text_axis}, which is not locked")
             if rs.frozen_planes is not None:
