@@ -1,0 +1,291 @@
+r"""Quantum <-> classical correspondence for the rigid rotor.
+
+Sign relation (derived in :mod:`hyperrotor.quantum.rotor`): for a representation
+:math:`X_a` with :math:`[X_a, X_b] = C_{ab}^{\;c} X_c`, the Hermitian generators
+:math:`\hat L_a = -i\hbar X_a` obey :math:`[\hat L_a, \hat L_b] = -i\hbar C_{ab}^{\;c}\hat L_c`
+(space-frame sign), while the classical body-frame Lie-Poisson bracket is
+:math:`\{L_a, L_b\} = +C_{ab}^{\;c} L_c`. Dirac's rule :math:`[\,,] = i\hbar\{\,,\}`
+holds for the body-frame operators :math:`\hat L^{b}_a = -\hat L_a`, whose
+Heisenberg equations are the symmetrized Euler equations forward in time:
+classical :math:`L(t) \leftrightarrow \langle \hat L^{b}\rangle(t) = -\langle\hat L\rangle(t)`.
+"""
+import numpy as np
+import pytest
+import qutip
+import scipy.sparse as sps
+import sympy as sp
+from scipy.integrate import solve_ivp
+
+import hyperrotor
+from hyperrotor.conventions import lie_poisson_bracket, plane_symbols, planes, structure_constants
+from hyperrotor.quantum import irrep, spinor_rep, vector_rep
+from hyperrotor.quantum.coherent import (
+    apply_rotation,
+    coherent_state,
+    generator_expectations,
+    highest_weight_state,
+    normal_form_rotation,
+)
+from hyperrotor.quantum.rotor import evolve, rotor_hamiltonian
+
+
+def _reps():
+    return [
+        pytest.param(lambda: vector_rep(3), id="vector3"),
+        pytest.param(lambda: vector_rep(4), id="vector4"),
+        pytest.param(lambda: vector_rep(6), id="vector6"),
+        pytest.param(lambda: spinor_rep(4, 1), id="spinor4+"),
+        pytest.param(lambda: spinor_rep(5), id="spinor5"),
+        pytest.param(lambda: irrep(3, (sp.Rational(3, 2),)), id="so3-3/2"),
+        pytest.param(lambda: irrep(4, (2, -1)), id="so4-(2,-1)"),
+        pytest.param(lambda: irrep(5, (2, 1)), id="so5-(2,1)"),
+    ]
+
+
+def _dense(rep, hbar):
+    """Hermitian (space-frame) generators -i hbar X_a as dense arrays, plane order."""
+    return [rep.hermitian(p, hbar).toarray() for p in planes(rep.N)]
+
+
+# ----------------------------------------------------------------------------
+# brackets
+# ----------------------------------------------------------------------------
+def test_classical_bracket_is_structure_constants():
+    """{L_a, L_b} = sum_c C[a,b,c] L_c exactly (SymPy), for N = 3..5: f_ab^c(classical) = C_ab^c."""
+    for N in (3, 4, 5):
+        L = plane_symbols("L", N)
+        C = structure_constants(N)
+        for a in range(len(L)):
+            for b in range(len(L)):
+                expected = sum(int(C[a, b, c]) * L[c] for c in range(len(L)))
+                assert sp.expand(lie_poisson_bracket(L[a], L[b], L) - expected) == 0
+
+
+@pytest.mark.parametrize("make", _reps())
+def test_commutators_match_lie_poisson(make):
+    r"""[Lh_a, Lh_b] = -i hbar C_ab^c Lh_c and [Lb_a, Lb_b] = +i hbar C_ab^c Lb_c = i hbar {L_a, L_b}."""
+    rep = make()
+    hbar = 0.37
+    Lh = _dense(rep, hbar)
+    Lb = [-x for x in Lh]
+    C = structure_constants(rep.N)
+    n = len(Lh)
+    scale = max(1.0, max(np.abs(x).max() for x in Lh)) ** 2
+    for a in range(n):
+        for b in range(n):
+            rhs = sum(C[a, b, c] * Lh[c] for c in range(n) if C[a, b, c])
+            comm = Lh[a] @ Lh[b] - Lh[b] @ Lh[a]
+            np.testing.assert_allclose(comm, -1j * hbar * (rhs if np.ndim(rhs) else 0 * comm), atol=1e-12 * scale)
+            rhs_b = sum(C[a, b, c] * Lb[c] for c in range(n) if C[a, b, c])
+            comm_b = Lb[a] @ Lb[b] - Lb[b] @ Lb[a]
+            np.testing.assert_allclose(comm_b, 1j * hbar * (rhs_b if np.ndim(rhs_b) else 0 * comm_b), atol=1e-12 * scale)
+
+
+@pytest.mark.parametrize("make", _reps())
+def test_heisenberg_equals_symmetrized_euler(make, rng):
+    r"""(i/hbar)[H, Lb_a] = sum_{b,c} C[b,c,a] (w_b Lb_c + Lb_c w_b)/2, w_b = Lb_b/I_b (forward Euler);
+    the space-frame generators obey the same equation with the opposite sign (time-reversed)."""
+    rep = make()
+    hbar = 0.6
+    moments = rng.uniform(0.5, 2.5, size=len(planes(rep.N)))
+    H = rotor_hamiltonian(rep, moments, hbar=hbar).full()
+    Lh = _dense(rep, hbar)
+    Lb = [-x for x in Lh]
+    C = structure_constants(rep.N)
+    n = len(Lh)
+    scale = max(1.0, np.abs(H).max()) * max(1.0, max(np.abs(x).max() for x in Lh))
+    for a in range(n):
+        sym_b = sum(C[b, c, a] * (Lb[b] @ Lb[c] + Lb[c] @ Lb[b]) / (2 * moments[b]) for b in range(n) for c in range(n) if C[b, c, a])
+        sym_h = sum(C[b, c, a] * (Lh[b] @ Lh[c] + Lh[c] @ Lh[b]) / (2 * moments[b]) for b in range(n) for c in range(n) if C[b, c, a])
+        np.testing.assert_allclose((1j / hbar) * (H @ Lb[a] - Lb[a] @ H), sym_b, atol=1e-11 * scale)
+        np.testing.assert_allclose((1j / hbar) * (H @ Lh[a] - Lh[a] @ H), -sym_h, atol=1e-11 * scale)
+
+
+def test_classical_component_ode_matches_simulate(rng):
+    """The component ODE used below, dL_a/dt = sum C[b,c,a] w_b L_c, is what hyperrotor.simulate integrates."""
+    moments = np.array([1.0, 1.6, 2.3])
+    L0 = rng.normal(size=3)
+    t = np.linspace(0, 3, 7)
+    ref = _classical(moments, L0, t)
+    body = hyperrotor.RigidBody(hyperrotor.Inertia.from_planes(moments))
+    traj = hyperrotor.simulate(body, L0 / moments, t, rtol=1e-12)
+    np.testing.assert_allclose(traj.L, ref, atol=1e-8)
+
+
+# ----------------------------------------------------------------------------
+# coherent states
+# ----------------------------------------------------------------------------
+def _random_rotation(rng, N):
+    Q, R = np.linalg.qr(rng.normal(size=(N, N)))
+    Q = Q * np.sign(np.diag(R))
+    if np.linalg.det(Q) < 0:
+        Q[:, 0] *= -1
+    return Q
+
+
+def _components(A):
+    return np.array([A[i - 1, j - 1] for i, j in planes(A.shape[0])])
+
+
+def _bivector(Q, lam):
+    N = Q.shape[0]
+    B = np.zeros((N, N))
+    for k, lk in enumerate(lam):
+        B[2 * k, 2 * k + 1], B[2 * k + 1, 2 * k] = lk, -lk
+    return _components(Q @ B @ Q.T)
+
+
+@pytest.mark.parametrize("N", [3, 4, 5, 6, 7])
+def test_normal_form_rotation(N, rng):
+    Q0 = _random_rotation(rng, N)
+    lam0 = np.sort(rng.uniform(0.5, 2, size=N // 2))[::-1]
+    L = _bivector(Q0, lam0)
+    Q, lam = normal_form_rotation(L)
+    assert abs(np.linalg.det(Q) - 1) < 1e-12
+    np.testing.assert_allclose(lam, lam0, atol=1e-12)
+    np.testing.assert_allclose(_bivector(Q, lam), L, atol=1e-12)
+    if N % 2 == 0:  # opposite orientation: last lambda negative
+        P = np.eye(N)
+        P[0, 0] = -1
+        Lr = _bivector(P @ Q0, lam0)  # P Q0 has det -1: the mirror-image bivector
+        _, lam_r = normal_form_rotation(Lr)
+        np.testing.assert_allclose(lam_r, np.r_[lam0[:-1], -lam0[-1]], atol=1e-12)
+
+
+@pytest.mark.parametrize("N", [3, 4, 5])
+def test_apply_rotation_is_the_group_action(N, rng):
+    """U(Q) Lh(X) U(Q)^dagger = Lh(Q X Q^T): the vector rep gives U(Q) = Q itself."""
+    rep = vector_rep(N)
+    Q = _random_rotation(rng, N)
+    psi = rng.normal(size=N) + 1j * rng.normal(size=N)
+    np.testing.assert_allclose(apply_rotation(rep, Q, psi), Q @ psi, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "make, hw",
+    [
+        (lambda: irrep(3, (5,)), (5,)),
+        (lambda: irrep(3, (sp.Rational(7, 2),)), (3.5,)),
+        (lambda: vector_rep(4), (1, 0)),
+        (lambda: irrep(4, (3, 0)), (3, 0)),
+        (lambda: vector_rep(5), (1, 0)),
+        (lambda: irrep(5, (4, 0)), (4, 0)),
+        (lambda: irrep(6, (2, 0, 0)), (2, 0, 0)),
+    ],
+)
+def test_coherent_state_simple_bivector(make, hw, rng):
+    r"""<Lh> = hbar l L/|L| ("space"), <Lb> = -<Lh> = hbar l L/|L| ("body"), and minimal uncertainty
+    sum_a Var(Lh_a) = hbar^2 <w, 2 rho> (rho_k = N/2 - k), e.g. hbar^2 l for so(3)."""
+    rep = make()
+    N = rep.N
+    hbar = 0.8
+    _, w = highest_weight_state(rep)
+    np.testing.assert_allclose(w, hw, atol=1e-10)
+    Q = _random_rotation(rng, N)
+    L = _bivector(Q, [1.7] + [0.0] * (N // 2 - 1))  # a simple bivector of norm 1.7
+    l = hw[0]
+    for frame, sign in (("space", 1), ("body", -1)):
+        psi = coherent_state(rep, L, hbar=hbar, frame=frame)
+        assert isinstance(psi, qutip.Qobj) and abs(psi.norm() - 1) < 1e-12
+        ex = generator_expectations(rep, psi, hbar=hbar)
+        np.testing.assert_allclose(sign * ex, hbar * l * L / 1.7, atol=1e-9)
+        v = psi.full().ravel()
+        second = sum(np.vdot(v, (x @ (x @ v))).real for x in (rep.hermitian(p, hbar) for p in planes(N)))
+        rho = [N / 2 - k for k in range(1, N // 2 + 1)]
+        np.testing.assert_allclose(second - ex @ ex, hbar**2 * 2 * np.dot(hw, rho), atol=1e-9)
+
+
+def test_coherent_state_general_so5(rng):
+    """General L in so(5) with normal form proportional to (m1, m2) = (3, 1) (also (2, 2))."""
+    for hw in [(3, 1), (2, 2), (sp.Rational(5, 2), sp.Rational(1, 2))]:
+        rep = irrep(5, hw)
+        Q = _random_rotation(rng, 5)
+        w = np.array([float(x) for x in hw])
+        L = _bivector(Q, 0.4 * w)
+        psi = coherent_state(rep, L)
+        np.testing.assert_allclose(generator_expectations(rep, psi), L / 0.4, atol=1e-9)
+        psi_b = coherent_state(rep, L, hbar=2.0, frame="body")
+        np.testing.assert_allclose(-generator_expectations(rep, psi_b, hbar=2.0), 2 * L / 0.4, atol=1e-9)
+
+
+def test_coherent_state_errors(rng):
+    rep = irrep(5, (3, 0))
+    L_general = _bivector(_random_rotation(rng, 5), [2.0, 1.0])
+    with pytest.raises(ValueError, match="not a positive multiple"):
+        coherent_state(rep, L_general)
+    with pytest.raises(ValueError, match="10 components"):
+        coherent_state(rep, [1.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="non-zero"):
+        coherent_state(rep, np.zeros(10))
+    with pytest.raises(ValueError, match="frame"):
+        coherent_state(rep, np.eye(10)[0], frame="lab")
+    chiral = spinor_rep(4, 1)  # (1/2, 1/2): self-dual bivectors only
+    Q = _random_rotation(rng, 4)
+    coherent_state(chiral, _bivector(Q, [1.0, 1.0]))
+    P = np.diag([-1.0, 1, 1, 1])
+    with pytest.raises(ValueError, match="not a positive multiple"):
+        coherent_state(chiral, _bivector(P @ Q, [1.0, 1.0]))
+
+
+# ----------------------------------------------------------------------------
+# Ehrenfest / classical limit
+# ----------------------------------------------------------------------------
+def _classical(moments, L0, t):
+    N = hyperrotor.dimension_from_count(len(moments))
+    C = structure_constants(N).astype(float)
+
+    def rhs(_, L):
+        return np.einsum("bca,b,c->a", C, L / moments, L)
+
+    sol = solve_ivp(rhs, (t[0], t[-1]), L0, t_eval=t, method="DOP853", rtol=1e-12, atol=1e-13)
+    return sol.y.T
+
+
+def _ehrenfest_errors(N, ls, moments, L0, times):
+    r"""max_t |<Lb>(t) - L(t)| for coherent states in (l, 0, ...), hbar = 1/l (so |<Lb>(0)| = |L0|)."""
+    ref = _classical(moments, L0, times)
+    back = _classical(moments, L0, -times)  # L(-t): the time-reversed flow, for the sign check
+    rows = []
+    for l in ls:
+        rep = irrep(3, (l,)) if N == 3 else irrep(N, (l,) + (0,) * (N // 2 - 1))
+        hbar = 1.0 / l
+        H = rotor_hamiltonian(rep, moments, hbar=hbar)
+        psi = coherent_state(rep, L0, hbar=hbar, frame="body")
+        e_ops = [qutip.Qobj(-rep.hermitian(p, hbar)) for p in planes(N)]
+        res = evolve(H, psi, times, e_ops=e_ops, hbar=hbar)
+        q = np.array(res.expect).T.real
+        rows.append((l, rep.dim, np.abs(q - ref).max(), np.abs(q - back).max()))
+    return rows
+
+
+def _report(title, rows):
+    print(f"\n{title}\n   l    dim   max|<Lb>/(l hbar) - L_cl|   vs time-reversed flow")
+    for l, dim, err, rev in rows:
+        print(f"{l:4d} {dim:6d}   {err:.3e}                  {rev:.3e}")
+    ls = np.array([r[0] for r in rows], float)
+    errs = np.array([r[2] for r in rows])
+    slope = np.polyfit(np.log(ls), np.log(errs), 1)[0]
+    print(f"log-log slope: {slope:.3f}")
+    return slope, errs, np.array([r[3] for r in rows])
+
+
+def test_ehrenfest_so3_error_shrinks_like_one_over_l():
+    moments = np.array([1.0, 1.6, 2.3])  # I_12, I_13, I_23
+    L0 = np.array([0.5, -0.3, 0.81])
+    L0 = L0 / np.linalg.norm(L0)
+    times = np.linspace(0, 4.0, 41)
+    rows = _ehrenfest_errors(3, [2, 4, 8, 16, 32], moments, L0, times)
+    slope, errs, rev = _report("so(3) asymmetric top, coherent states (l), hbar = 1/l", rows)
+    assert -1.3 < slope < -0.7
+    assert errs[-1] < 0.05
+    assert np.all(rev > 0.3)  # the body-frame expectation does not follow the reversed flow
+
+
+def test_ehrenfest_so5_error_shrinks_like_one_over_l():
+    moments = np.array([1.0, 1.3, 1.7, 2.2, 1.1, 1.9, 2.6, 1.4, 2.0, 1.2])
+    L0 = _bivector(_random_rotation(np.random.default_rng(3), 5), [1.0, 0.0])  # unit simple bivector
+    times = np.linspace(0, 3.0, 31)
+    rows = _ehrenfest_errors(5, [2, 4, 8, 16], moments, L0, times)
+    slope, errs, rev = _report("so(5) rotor, coherent states (l, 0), hbar = 1/l", rows)
+    assert -1.3 < slope < -0.7
+    assert np.all(rev > 0.3)
