@@ -114,3 +114,58 @@ def test_demo_motion_matches_closed_form_and_writes_png(capsys, tmp_path):
 def test_demo_bad_t_end(capsys):
     code, _, err = _run(capsys, ["demo", "--no-png", "--t-end", "-1"])
     assert code == 2 and "--t-end" in err
+
+
+@pytest.mark.parametrize("argv,route", [
+    (["--inertia", "quartet"], "closed-form:quartet"),
+    (["--inertia", "box", "--lock", "5", "--shape", "simplex"], "reduced:axes(1,2,3,4)+integrate"),
+    (["--inertia", "equal", "--shape", "ellipsoid", "--N", "4"], "closed-form:equal"),
+])
+def test_scene_writes_png_and_takes_the_minimal_route(capsys, tmp_path, argv, route):
+    out_png = tmp_path / "scene.png"
+    code, out, err = _run(capsys, ["scene", *argv, "--frames", "8", "--output", str(out_png)])
+    assert code == 0, err
+    assert f"route '{route}" in out
+    assert out_png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_scene_gif(capsys, tmp_path):
+    gif = tmp_path / "scene.gif"
+    code, _, err = _run(capsys, ["scene", "--frames", "4", "--output", str(gif)])
+    assert code == 0, err
+    assert gif.read_bytes()[:6] == b"GIF89a"
+
+
+@pytest.mark.parametrize("argv,msg", [
+    (["scene", "--axes", "1,2"], "--axes must be three different axes"),
+    (["scene", "--axes", "1,2,9"], "--axes must be three different axes in 1..5"),
+    (["scene", "--lock", "0"], "--lock axes must be in 1..5"),
+    (["scene", "--omega", "1,2,3"], "needs N(N-1)/2 = 10 components"),
+    (["scene", "--output", "x.jpg"], "--output must end in .png or .gif"),
+    (["scene", "--N", "2"], "--N must be >= 3"),
+    (["scene", "--frames", "1"], "--frames must be >= 2"),
+])
+def test_scene_bad_options(capsys, argv, msg):
+    code, _, err = _run(capsys, argv)
+    assert code == 2 and msg in err
+
+
+def test_verify_json_matches_function(capsys):
+    import json
+
+    code, out, _ = _run(capsys, ["verify", "--json", "--section", "euler"])
+    assert code == 0
+    items = json.loads(out)
+    direct = hr.verify_paper(["euler"])
+    assert [(d["equation"], d["status"]) for d in items] == [(v.equation, v.status) for v in direct]
+    assert {d["status"] for d in items} <= {"holds", "typo", "claim-false", "not-checkable"}
+    status = {d["equation"]: d["status"] for d in items}
+    assert all(status[str(n)] == "holds" for n in range(28, 38))  # eqs. (28)-(37) are right as printed
+    assert status["38"] != "holds"                                # the -lambda^5 term is missing
+
+
+def test_verify_bad_section(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["verify", "--section", "nope"])
+    assert exc.value.code == 2
+    assert "invalid choice: 'nope'" in capsys.readouterr().err

@@ -1425,23 +1425,18 @@ def render(verdicts: Sequence[Verdict], format: str = "table") -> str:
     return _FORMATS[format](verdicts)
 
 
-def main_verify(argv: Sequence[str] | None = None) -> int:
-    """Command-line entry: ``hyperrotor verify [--json | --markdown] [--section NAME ...] [--output FILE]``.
-
-    Prints the report (or writes it to ``--output``) and returns the exit code 0.
-    Bad options exit with code 2 and a message listing what is allowed (argparse).
-    """
-    parser = argparse.ArgumentParser(
-        prog="hyperrotor verify",
-        description="Check the preprint's equations (3)-(147) against hyperrotor's derivations; "
-                    "each item holds / typo / claim-false / not-checkable.")
+def configure_parser(parser: argparse.ArgumentParser) -> None:
+    """Add the options of ``hyperrotor verify`` to ``parser`` (shared by the CLI and :func:`main_verify`)."""
     fmt = parser.add_mutually_exclusive_group()
     fmt.add_argument("--json", action="store_true", help="JSON list of {equation, status, detail, ...}")
     fmt.add_argument("--markdown", action="store_true", help="Markdown report (docs/verification.md)")
     parser.add_argument("--section", action="append", choices=list(SECTIONS), metavar="NAME",
                         help="only this section (repeatable); one of: " + ", ".join(SECTIONS))
     parser.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
-    args = parser.parse_args(argv)
+
+
+def run_from_args(args: argparse.Namespace) -> int:
+    """Run the report for parsed options (see :func:`configure_parser`); returns the exit code 0."""
     verdicts = verify(args.section)
     text = render(verdicts, "json" if args.json else "markdown" if args.markdown else "table")
     if args.output:
@@ -1450,6 +1445,22 @@ def main_verify(argv: Sequence[str] | None = None) -> int:
     else:
         print(text)
     return 0
+
+
+def main_verify(argv: Sequence[str] | None = None) -> int:
+    """Command-line entry: ``hyperrotor verify [--json | --markdown] [--section NAME ...] [--output FILE]``.
+
+    Prints the report (or writes it to ``--output``) and returns the exit code 0.
+    Bad options exit with code 2 and a message listing what is allowed (argparse).
+    """
+    parser = argparse.ArgumentParser(prog="hyperrotor verify", description=VERIFY_DESCRIPTION)
+    configure_parser(parser)
+    return run_from_args(parser.parse_args(argv))
+
+
+#: One-line description of the report (CLI help).
+VERIFY_DESCRIPTION = ("check the preprint's equations (3)-(147) against hyperrotor's derivations; "
+                      "each item holds / typo / claim-false / not-checkable")
 
 
 if __name__ == "__main__":  # python -m hyperrotor.paper.verify --markdown -o docs/verification.md
