@@ -350,3 +350,61 @@ def test_spectrum_tolerance_and_errors(rng):
         spectrum(np.array([[0.0, 1.0], [0.0, 0.0]]))
     with pytest.raises(ValueError, match="max_dense_dim"):
         spectrum(np.ones((4, 4)), max_dense_dim=2)
+
+
+# ----------------------------------------------------------------------------
+# Gelfand-Tsetlin irreps (hyperrotor.quantum.irrep)
+# ----------------------------------------------------------------------------
+def _quartet_moments(kappa, axis=5):
+    return [1 + kappa**2 if axis in p else 2.0 for p in planes(5)]
+
+
+@pytest.mark.parametrize("hw", [(2, 1), (3, 0), (3, 3), (2.5, 1.5), (4, 2)])
+def test_quartet_gt_irreps_branching(hw):
+    """Quartet levels and degeneracies of so(5) irreps from the so(5) > so(4) branching rule (1e-10)."""
+    from hyperrotor.quantum import irrep
+
+    kappa = 0.45
+    H = rotor_hamiltonian(irrep(5, hw), _quartet_moments(kappa))
+    levels, deg = spectrum(H)
+    el, ed = quartet_levels(hw[0], hw[1], kappa)
+    np.testing.assert_allclose(levels, el, atol=1e-10, rtol=0)
+    assert deg.tolist() == ed.tolist()
+    # the GT basis of so(5) > so(4) diagonalizes the so(4) Casimir, hence H (axis 5)
+    assert len(symmetry_blocks(H)) == H.shape[0]
+    # another distinguished axis: same spectrum, H no longer diagonal in this basis
+    H3 = rotor_hamiltonian(irrep(5, hw), _quartet_moments(kappa, axis=3))
+    l3, d3 = spectrum(H3)
+    np.testing.assert_allclose(l3, el, atol=1e-10, rtol=0)
+    assert d3.tolist() == ed.tolist()
+
+
+@pytest.mark.parametrize("N, hw", [(4, (2, 1)), (5, (2, 1)), (6, (1, 1, 0)), (5, (1.5, 0.5))])
+def test_equal_moments_gt_casimir(N, hw):
+    from hyperrotor.quantum import irrep
+
+    rep = irrep(N, hw)
+    levels, deg = spectrum(rotor_hamiltonian(rep, [1.25] * (N * (N - 1) // 2), hbar=0.5))
+    assert deg.tolist() == [rep.dim]
+    np.testing.assert_allclose(levels, [0.25 * _casimir(hw, N) / 2.5], atol=1e-10, rtol=0)
+
+
+@pytest.mark.parametrize("method", ["auto", "krylov", "eigen"])
+def test_symmetry_adapted_quartet_equals_full_evolution(method, rng):
+    """Quartet inertia in the GT basis: H is diagonal; block evolution == full Krylov evolution (1e-12)."""
+    from hyperrotor.quantum import irrep
+
+    rep = irrep(5, (4, 2))
+    H = rotor_hamiltonian(rep, _quartet_moments(0.8))
+    psi = np.zeros(rep.dim, complex)
+    sel = rng.choice(rep.dim, size=40, replace=False)
+    psi[sel] = rng.normal(size=40) + 1j * rng.normal(size=40)
+    psi /= np.linalg.norm(psi)
+    t = np.linspace(0, 2.5, 11)
+    ops = [H, qutip.Qobj(rep.hermitian((1, 5)).toarray())]
+    sym = evolve(H, psi, t, e_ops=ops, method=method, options={"store_states": True})
+    full = evolve(H, psi, t, e_ops=ops, method="krylov", options={"blocks": False, "atol": 1e-14, "store_states": True})
+    assert sym.stats["populated_dim"] == 40
+    np.testing.assert_allclose(_states(sym), _states(full), atol=1e-12, rtol=0)
+    for a, b in zip(sym.expect, full.expect):
+        np.testing.assert_allclose(a, b, atol=1e-12, rtol=0)
