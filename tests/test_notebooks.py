@@ -66,7 +66,10 @@ CHECKS: dict[str, dict[str, tuple[str, object]]] = {
     },
     "06_quantum_rotor": {
         "spectrum_equal_moments_err": ("<=", 1e-9),
+        "quartet_branching_err": ("<=", 1e-9),
         "ehrenfest_error_decreases": ("==", True),
+        "ehrenfest_slope": ("<=", -0.7),
+        "sesolve_vs_native": ("<=", 1e-6),
     },
     "07_work_precision": {
         "best_classical_error": ("<=", 1e-10),
