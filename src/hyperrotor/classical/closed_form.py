@@ -72,6 +72,7 @@ import numpy as np
 from scipy import special
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, planes
+from .inertia import body_moments
 
 __all__ = [
     "equal_moments_solution",
@@ -92,22 +93,6 @@ __all__ = [
 # ----------------------------------------------------------------------------
 # input adapters and validation
 # ----------------------------------------------------------------------------
-def _moments_of(body: Any) -> np.ndarray:
-    """Moments (plane order, float64) of a RigidBody, an Inertia or a plain array."""
-    if hasattr(body, "inertia"):
-        body = body.inertia
-    if hasattr(body, "moments"):
-        body = body.moments
-    try:
-        I = np.asarray(body, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"expected a RigidBody, an Inertia or an array of plane moments, got {body!r}") from None
-    if I.ndim != 1:
-        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got shape {I.shape}")
-    dimension_from_count(I.size)
-    if not np.all(np.isfinite(I)) or np.any(I <= 0):
-        raise ValueError(f"plane moments must be finite and positive, got {I}")
-    return I
 
 
 def _times(t: Any) -> np.ndarray:
@@ -437,7 +422,7 @@ def _ellipj(u: np.ndarray, m: float):
 
 
 def _ep_setup(moments3: Any, omega0: Any):
-    I = _moments_of(moments3)
+    I = body_moments(moments3)
     if I.size != 3:
         raise ValueError(f"euler_poinsot needs the 3 plane moments (I_12, I_13, I_23) of a 3D body, got {I.size}")
     w = _omega0(omega0, 3)
@@ -567,7 +552,7 @@ def detect_closed_form(body: Any, *, rtol: float = 1e-14) -> dict | None:
     others, :math:`\Theta = 1 - \beta/\alpha`), ``{"kind": "euler-poinsot"}``
     (N = 3) or ``None``. Moments are compared with relative tolerance ``rtol``.
     """
-    I = _moments_of(body)
+    I = body_moments(body)
     N = dimension_from_count(I.size)
     scale = float(np.max(np.abs(I)))
 
@@ -599,7 +584,7 @@ def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float = 1e-14)
     omega : numpy.ndarray, shape (..., n_t, n_planes)
     kind : str, ``"equal"``, ``"quartet"`` or ``"euler-poinsot"``
     """
-    I = _moments_of(body)
+    I = body_moments(body)
     info = detect_closed_form(I, rtol=rtol)
     if info is None:
         raise ValueError("this inertia admits no closed form (not equal, not one-distinguished-axis, not 3D)")

@@ -629,3 +629,28 @@ class Inertia:
             t[a, b, a, b] = t[b, a, b, a] = h
             t[a, b, b, a] = t[b, a, a, b] = -h
         return t
+
+
+def body_moments(body: Any) -> np.ndarray:
+    """Plane moments (float64, plane order) of a RigidBody, an Inertia or a 1-D array of moments.
+
+    The one adapter the numerical modules (integrators, closed forms, stability,
+    scenes) use to accept any of the three. Raises ``TypeError`` for anything
+    else and ``ValueError`` for a wrong count or non-finite / non-positive moments.
+    """
+    if hasattr(body, "inertia") and hasattr(body.inertia, "moments"):
+        body = body.inertia.moments
+    elif hasattr(body, "moments"):
+        body = body.moments
+    try:
+        I = np.asarray(body, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(
+            f"expected a RigidBody, an Inertia or a 1-D array of plane moments, got {type(body).__name__}"
+        ) from None
+    if I.ndim != 1:
+        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got shape {I.shape}")
+    dimension_from_count(I.size)
+    if not np.all(np.isfinite(I)) or np.any(I <= 0):
+        raise ValueError(f"plane moments must be finite and positive, got {I.tolist()}")
+    return I

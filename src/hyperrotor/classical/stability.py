@@ -68,6 +68,7 @@ import numpy as np
 import sympy as sp
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, plane_label, plane_symbols, planes, structure_constants
+from .inertia import body_moments
 
 __all__ = [
     "CoupledPair",
@@ -77,23 +78,6 @@ __all__ = [
     "stability_condition",
     "perturbation_growth",
 ]
-
-
-def _moments_of(body: Any) -> np.ndarray:
-    if hasattr(body, "inertia"):
-        body = body.inertia
-    if hasattr(body, "moments"):
-        body = body.moments
-    try:
-        I = np.asarray(body, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"expected a RigidBody, an Inertia or an array of plane moments, got {body!r}") from None
-    if I.ndim != 1:
-        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got shape {I.shape}")
-    dimension_from_count(I.size)
-    if not np.all(np.isfinite(I)) or np.any(I <= 0):
-        raise ValueError(f"plane moments must be finite and positive, got {I}")
-    return I
 
 
 def _labels(body: Any, N: int) -> tuple[int, ...]:
@@ -188,7 +172,7 @@ class StabilityResult:
 def linearization(body: Any, plane: Any, Omega: float) -> np.ndarray:
     r"""Jacobian of the Euler equations at :math:`\omega = \Omega e_p`:
     :math:`J_{ad} = \Omega\,C_{dp}^{\;a}\,(I_p - I_d)/I_a` (matrix ``(n_planes, n_planes)``)."""
-    I = _moments_of(body)
+    I = body_moments(body)
     N = dimension_from_count(I.size)
     p = plane_index(_plane(plane, N), N)
     C = structure_constants(N).astype(float)
@@ -246,7 +230,7 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     >>> linear_stability(I, (1, 3), 1.0).stable  # intermediate moment: tennis racket
     False
     """
-    I = _moments_of(body)
+    I = body_moments(body)
     N = dimension_from_count(I.size)
     labels = _labels(body, N)
     i, j = _local_plane(plane, labels)
@@ -339,7 +323,7 @@ def perturbation_growth(body: Any, plane: Any, Omega: float, t: Any, *, eps: flo
     """
     from .integrate import simulate
 
-    I = _moments_of(body)
+    I = body_moments(body)
     N = dimension_from_count(I.size)
     i, j = _local_plane(plane, _labels(body, N))
     p = plane_index((i, j), N)
