@@ -43,7 +43,7 @@ Methods
     scipy method.
 ``"DOP853"``, ``"RK45"``, ``"LSODA"``, ``"Radau"``
     :func:`scipy.integrate.solve_ivp` with ``rtol`` and
-    ``atol = rtol * max|omega0|`` on the angular velocities (and the attitude
+    ``atol_a = rtol * min(max|omega0|, |L0| / I_a)`` on the angular velocities (and the attitude
     entries when asked), one call per ensemble member; the right-hand side is
     ``body.rhs`` when ``body`` is a :class:`hyperrotor.RigidBody`, else an
     equivalent sparse evaluation of the component equations.
@@ -299,6 +299,19 @@ def _run_split(L0, moments_b, word, tables, t, nsub, torque_b, T0, with_att):
     return outL, (outT if with_att else None)
 
 
+def _triples(N: int):
+    """Plane indices (c, a, b) of every coupled triple {ij, ik, jk}, each plane in turn as c."""
+    idx = {p: k for k, p in enumerate(planes(N))}
+    out = []
+    for i in range(1, N + 1):
+        for j in range(i + 1, N + 1):
+            for k in range(j + 1, N + 1):
+                t3 = (idx[(i, j)], idx[(i, k)], idx[(j, k)])
+                out += [(t3[0], t3[1], t3[2]), (t3[1], t3[0], t3[2]), (t3[2], t3[0], t3[1])]
+    arr = np.array(out, dtype=np.int64).reshape(-1, 3)
+    return arr[:, 0], arr[:, 1], arr[:, 2]
+
+
 def _choose_step(L0, moments, word, tables, order, T_total, rtol, torque_b, N):
     r"""Step size for a requested relative accuracy ``rtol`` (splitting methods).
 
@@ -311,50 +324,79 @@ def _choose_step(L0, moments, word, tables, order, T_total, rtol, torque_b, N):
     ensemble (those with the largest :math:`|\omega_0|`): one run with step
     ``h`` and one with ``h/2`` give
     :math:`e_P(h) \approx \max|\omega_h - \omega_{h/2}| / ((1 - 2^{-p})\max|\omega_0|)`.
-    ``h`` starts at :math:`1/\max|\omega_0|` and is refined (x1/4) while the
-    estimate is not asymptotic (:math:`e_P > 10^{-2}`) or enlarged (x4) while it is
-    at round-off level. The step is then
-    :math:`h^* = 0.8\,h\,\bigl(\mathrm{rtol} / (e_P(h)\max(1, (t_\text{end}-t_0)/P))\bigr)^{1/p}`.
-    ``rtol`` is a bound on :math:`\max_t |\omega(t) - \omega_\text{exact}(t)| / \max|\omega_0|`.
+    Here :math:`\max|\omega|` is the bound :math:`\max_a \min(|L|, \sqrt{2 E I_a})/I_a` on the
+    rates reachable on the orbit (from the Casimir :math:`|L|^2` and the energy ``E``),
+    not just the initial rates (which can be far smaller for stiff moment ratios), and
+    of the linearised frequencies :math:`|\omega_c|\sqrt{|(I_c-I_a)(I_c-I_b)|/(I_aI_b)}` of every
+    coupled triple of planes (no larger than the rates for physical moments
+    :math:`I_{ij} = J_i + J_j`; much larger, i.e. stiff, for moments violating the triangle
+    inequalities, where an implicit scipy method such as ``"Radau"`` can be cheaper).
+    ``h`` starts at :math:`1/\max|\omega|` and is refined (x1/4) while the
+    estimate is not asymptotic (:math:`e_P > 10^{-2}`) or enlarged (x4; once
+    ``h = P``, ``P`` grows x4 up to the whole run) while it is at round-off level.
+    The step is then
+    :math:`h^* = \min\bigl(8h,\; 0.8\,h\,(\mathrm{rtol} / (e_P(h)\max(1, (t_\text{end}-t_0)/P)))^{1/p}\bigr)`.
+    ``rtol`` bounds both :math:`\max_t |\omega(t) - \omega_\text{exact}(t)|_\infty / \max|\omega_0|` and
+    :math:`\max_t |L(t) - L_\text{exact}(t)|_\infty / |L_0|_2` (the two differ for stiff moment
+    ratios, where the heavy planes have small rates but carry most of ``L``).
     """
-    W = np.abs(L0 / moments)  # (B, n)
+    # bound on every rate reachable on the orbit: |L_a| <= min(|L|, sqrt(2 E I_a)) (Casimir and energy)
+    C = np.sqrt(np.sum(L0 * L0, axis=1, keepdims=True))
+    E2 = np.sum(L0 * L0 / moments, axis=1, keepdims=True)
+    W = np.minimum(C, np.sqrt(E2 * moments)) / moments  # (B, n)
     wmax_b = W.max(axis=1)
+    # linearised frequencies about rotation in plane c of a coupled triple (c, a, b):
+    # lambda^2 = w_c^2 (I_c - I_a)(I_c - I_b) / (I_a I_b); <= w_c^2 for physical moments, but
+    # arbitrarily larger (stiff) when the triangle inequalities I_c <= I_a + I_b fail
+    tc, ta, tb = _triples(N)
+    if tc.size:
+        Ic, Ia, Ib = moments[:, tc], moments[:, ta], moments[:, tb]
+        lam = W[:, tc] * np.sqrt(np.abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib))
+        wmax_b = np.maximum(wmax_b, lam.max(axis=1))
     wmax = float(wmax_b.max())
     if wmax == 0.0 and not np.any(torque_b):
         return T_total  # nothing moves
-    if wmax == 0.0:
-        wmax = float(np.max(np.abs(torque_b) / moments)) ** 0.5  # torque time scale
+    if np.any(torque_b):  # rate a torque can build up within the run
+        wmax = max(wmax, float(np.max(np.abs(torque_b) / moments)) * T_total, float(np.max(np.abs(torque_b) / moments)) ** 0.5)
     sel = np.argsort(wmax_b)[::-1][: min(8, L0.shape[0])]
     L0s, Ms, Ts = L0[sel], moments[sel], torque_b[sel]
     P = min(T_total, 20.0 / wmax)
-    scale = max(wmax, 1e-300)
+    scale = float(np.max(np.abs(L0s / Ms))) or wmax  # rtol is relative to max|omega0| ...
+    Lnorm = np.maximum(np.sqrt(np.sum(L0s * L0s, axis=1, keepdims=True)), 1e-300)  # ... and to |L0|
     T0 = np.broadcast_to(np.eye(N), (L0s.shape[0], N, N))
     h = min(P, 1.0 / wmax)
     est = None
-    for _ in range(12):
+    for _ in range(24):
         m = max(1, int(math.ceil(P / h - 1e-9)))
+        if m > 200_000:  # probe budget exhausted (should not happen with the rate bound above)
+            break
         h = P / m
         tg = np.array([0.0, P])
         y1, _ = _run_split(L0s, Ms, word, tables, tg, np.array([m]), Ts, T0, False)
         y2, _ = _run_split(L0s, Ms, word, tables, tg, np.array([2 * m]), Ts, T0, False)
-        err = float(np.max(np.abs(y1[:, -1] - y2[:, -1]) / Ms)) / (1.0 - 2.0 ** -order) / scale
+        dL = np.abs(y1[:, -1] - y2[:, -1])
+        err = max(float(np.max(dL / Ms)) / scale, float(np.max(dL / Lnorm))) / (1.0 - 2.0 ** -order)
         floor = 1e3 * np.finfo(float).eps * math.sqrt(2 * m * word[0].size)
         if not np.isfinite(err) or err > 1e-2:
             h /= 4.0
             continue
-        est = (h, err)
-        if err < floor:
-            if m == 1:
-                break
-            h *= 4.0
+        est = (h, err, P)
+        if err < floor:  # round-off level: the probe says nothing; try longer steps / a longer probe
+            if m > 1:
+                h *= 4.0
+            elif P < T_total:
+                P = h = min(4.0 * P, T_total)
+            else:
+                break  # one step over the whole run is exact to round-off
             continue
         break
     if est is None:  # never reached the asymptotic regime: fall back on a conservative step
         return min(P, 0.01 / wmax)
-    h, err = est
+    h, err, P = est
     growth = max(1.0, T_total / P)
     err = max(err, 1e3 * np.finfo(float).eps)
-    return 0.8 * h * (rtol / (err * growth)) ** (1.0 / order)
+    # no extrapolation far beyond the probed step (the error model is asymptotic in h)
+    return min(8.0 * h, 0.8 * h * (rtol / (err * growth)) ** (1.0 / order))
 
 
 # ----------------------------------------------------------------------------
@@ -395,7 +437,8 @@ def _run_scipy(body, method, moments, N, w0, t, rtol, torque, T0, with_att):
 
         def f(tt, y, tau_b=tau_b):
             w = y[:n]
-            dw = np.asarray(rhs(w), dtype=float)
+            with np.errstate(over="ignore", invalid="ignore"):  # trial steps may overflow; scipy rejects them
+                dw = np.asarray(rhs(w), dtype=float)
             if torque is not None:
                 tau = np.asarray(torque(tt, w), dtype=float) if callable(torque) else tau_b
                 if tau.shape != (n,) or not np.all(np.isfinite(tau)):
@@ -408,9 +451,11 @@ def _run_scipy(body, method, moments, N, w0, t, rtol, torque, T0, with_att):
 
         y0 = w0[b] if not with_att else np.concatenate([w0[b], T0[b].ravel()])
         wscale = float(np.max(np.abs(w0[b]))) or 1.0
-        atol = rtol * wscale
+        Lscale = float(np.linalg.norm(w0[b] * moments)) or wscale * float(moments.min())
+        # error in omega_a <= rtol max|omega0| and in L_a <= rtol |L0| (matters for stiff moments)
+        atol = rtol * np.minimum(wscale, Lscale / moments)
         if with_att:
-            atol = np.concatenate([np.full(n, rtol * wscale), np.full(N * N, rtol)])
+            atol = np.concatenate([atol, np.full(N * N, rtol)])
         if K == 1:
             omega[b, 0] = w0[b]
             if with_att:
@@ -455,9 +500,10 @@ def simulate(
         one of :data:`METHODS` (see the module docstring).
     rtol : float, optional
         requested accuracy: for the splitting methods a bound on
-        :math:`\max_t|\omega-\omega_\text{exact}|/\max|\omega_0|` reached by the step
-        rule of :func:`_choose_step`; for scipy the ``rtol`` of ``solve_ivp``
-        (``atol = rtol * max|omega0|``). Default ``1e-9`` when neither ``rtol``
+        :math:`\max_t|\omega-\omega_\text{exact}|/\max|\omega_0|` and on
+        :math:`\max_t|L-L_\text{exact}|/|L_0|` reached by the step rule of
+        :func:`_choose_step`; for scipy the ``rtol`` of ``solve_ivp``
+        (``atol_a = rtol * min(max|omega0|, |L0| / I_a)``). Default ``1e-9`` when neither ``rtol``
         nor ``dt`` is given.
     dt : float, optional
         largest step of a splitting method; each output interval is split into
