@@ -15,12 +15,13 @@ a page is viewed).
 from __future__ import annotations
 
 import csv
+import fnmatch
 import os
 import sys
 from pathlib import Path
 
 from docutils import nodes
-from docutils.parsers.rst import Directive
+from docutils.parsers.rst import Directive, directives
 
 DOCS = Path(__file__).resolve().parent
 ROOT = DOCS.parent
@@ -112,6 +113,7 @@ class BenchmarkResults(Directive):
 
     has_content = False
     optional_arguments = 1  # a glob pattern of stems, default "*"
+    option_spec = {"exclude": directives.unchanged}  # space-separated stem patterns
 
     def run(self):
         results = ROOT / "benchmarks" / "results"
@@ -120,9 +122,11 @@ class BenchmarkResults(Directive):
         docdir = Path(env.doc2path(env.docname)).parent
         stems = sorted({p.stem for p in results.glob(pattern + ".csv")}
                        | {p.stem for p in results.glob(pattern + ".png")})
+        excluded = self.options.get("exclude", "").split()
+        stems = [s for s in stems if not any(fnmatch.fnmatch(s, e) for e in excluded)]
         if not stems:
             para = nodes.paragraph()
-            para += nodes.emphasis(text="No benchmark results found in benchmarks/results "
+            para += nodes.emphasis(text=f"No results matching '{pattern}' in benchmarks/results "
                                         "(run the scripts in benchmarks/ to produce them).")
             return [para]
         out = []
@@ -143,7 +147,7 @@ class BenchmarkResults(Directive):
         return out
 
 
-def _csv_table(path: Path, max_rows: int = 60) -> nodes.Node:
+def _csv_table(path: Path, max_rows: int = 300) -> nodes.Node:
     with path.open(newline="") as handle:
         rows = list(csv.reader(handle))
     if not rows:
