@@ -90,7 +90,7 @@ mathjax3_config = {
 
 # -- HTML -------------------------------------------------------------------
 html_theme = "alabaster"
-html_static_path = ["_static"]
+html_static_path = ["_static"] if (DOCS / "_static").is_dir() else []
 html_title = f"hyperrotor {release}"
 html_theme_options = {
     "description": "Rigid rotation in N dimensions, classical and quantum",
