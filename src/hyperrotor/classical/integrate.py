@@ -57,6 +57,7 @@ from __future__ import annotations
 
 import math
 import time
+from functools import lru_cache
 from numbers import Real
 from typing import Any, Callable
 
@@ -80,6 +81,9 @@ _SCIPY_METHODS = ("DOP853", "RK45", "LSODA", "Radau")
 _SPLITTING_ORDER = {"splitting2": 2, "splitting4": 4, "splitting6": 6, "splitting8": 8}
 
 _DEFAULT_RTOL = 1e-9
+#: ensembles at least this large use the threaded kernel (thread launch costs ~ms on a busy machine)
+_PARALLEL_MIN_BODIES = 32
+_ENSEMBLE_CHUNK = 128  # bodies per chunk of the ensemble kernel (working set fits in L1/L2)
 
 # Half of each symmetric coefficient set (the middle one last); see the module docstring.
 _KAHAN_LI_6 = (
@@ -127,6 +131,7 @@ def splitting_coefficients(order: int) -> np.ndarray:
     raise ValueError(f"splitting order must be one of 2, 4, 6, 8, got {order!r}")
 
 
+@lru_cache(maxsize=None)
 def _splitting_word(order: int, n: int, kick: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """One step as a word of elementary flows (plane index, fraction of h); -1 = torque kick.
 
@@ -151,7 +156,18 @@ def _splitting_word(order: int, n: int, kick: bool = False) -> tuple[np.ndarray,
         if kick:
             push(-1, g / 2)
     word = [w for w in word if w[1] != 0.0]
-    return np.array([w[0] for w in word], dtype=np.int64), np.array([w[1] for w in word], dtype=np.float64)
+    planes_, coefs = np.array([w[0] for w in word], dtype=np.int64), np.array([w[1] for w in word], dtype=np.float64)
+    planes_.setflags(write=False)
+    coefs.setflags(write=False)
+    return planes_, coefs
+
+
+@lru_cache(maxsize=None)
+def _rotation_tables(N: int):
+    tables = _kernels.rotation_tables(N)
+    for arr in tables:
+        arr.setflags(write=False)
+    return tables
 
 
 # ----------------------------------------------------------------------------
@@ -288,14 +304,22 @@ def _nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
 
 
 def _run_split(L0, moments_b, word, tables, t, nsub, torque_b, T0, with_att):
+    """Dispatch to a kernel: one body or a few -> serial; an ensemble without attitude ->
+    bodies-innermost chunks over threads; an ensemble with attitude -> threads over bodies."""
     B, n = L0.shape
     N = T0.shape[-1]
     outL = np.empty((B, t.size, n))
+    L0 = np.ascontiguousarray(L0)
+    moments_b = np.ascontiguousarray(moments_b)
+    torque_b = np.ascontiguousarray(torque_b)
+    if B >= _PARALLEL_MIN_BODIES and not with_att:
+        chunk = max(1, min(_ENSEMBLE_CHUNK, -(-B // 8)))
+        _kernels.split_run_ensemble(L0, moments_b, word[0], word[1], *tables[:3], t, nsub, torque_b, chunk, outL)
+        return outL, None
     outT = np.empty((B, t.size, N, N)) if with_att else np.empty((B, 1, N, N))
-    _kernels.split_run(
-        np.ascontiguousarray(L0), np.ascontiguousarray(moments_b), word[0], word[1], *tables,
-        t, nsub, np.ascontiguousarray(torque_b), np.ascontiguousarray(T0), bool(with_att), outL, outT,
-    )
+    kernel = _kernels.split_run if B >= _PARALLEL_MIN_BODIES else _kernels.split_run_serial
+    kernel(L0, moments_b, word[0], word[1], *tables, t, nsub, torque_b, np.ascontiguousarray(T0),
+           bool(with_att), outL, outT)
     return outL, (outT if with_att else None)
 
 
@@ -641,7 +665,7 @@ def simulate(
         order = _SPLITTING_ORDER[method]
         kick = tq is not None and np.any(tq)
         word = _splitting_word(order, n, kick=bool(kick))
-        tables = _kernels.rotation_tables(N)
+        tables = _rotation_tables(N)
         torque_b = np.zeros((B, n)) if not kick else np.ascontiguousarray(tq.reshape(B, n))
         moments_b = np.broadcast_to(moments, (B, n))
         L0 = w0f * moments
