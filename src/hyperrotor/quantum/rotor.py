@@ -455,8 +455,8 @@ def _krylov_propagator(mat, v0, times, hbar, stats, *, tol: float, m_max: int) -
     ``exp(-i H tau/hbar) v ~ beta0 V exp(-i T tau/hbar) e1`` with the error estimate
     ``beta0 * beta_m * |e_m^T exp(-i T tau/hbar) e1|``. Every remaining output
     time whose estimate is <= ``tol`` is served from this basis; the next restart
-    begins at the last of them (or, if none is reachable, at the largest
-    sub-step ``tau`` that meets the tolerance, found by bisection).
+    begins at the last of them (or, if none is reachable, after a sub-step ``tau``
+    meeting the tolerance, found by bisection).
     """
     n = v0.shape[0]
     mv = _matvec_factory(mat)
@@ -505,19 +505,31 @@ def _krylov_propagator(mat, v0, times, hbar, stats, *, tol: float, m_max: int) -
 
         Tm = np.diag(alpha[:m]) + np.diag(beta[: m - 1], 1) + np.diag(beta[: m - 1], -1)
 
+        floor = 4 * m * np.finfo(float).eps * beta0 * bm
+
         def err(tau: np.ndarray) -> np.ndarray:
-            # e_m^T exp(-i T tau/hbar) e1 from Pade (scipy expm keeps the exact zeros of
-            # the powers of the tridiagonal T, so tiny values keep their relative accuracy;
-            # the eigen-decomposition would leave a round-off floor ~ m eps)
+            # beta0 beta_m |e_m^T exp(-i T tau/hbar) e1|. From the eigen-decomposition the value
+            # has an absolute round-off floor ~ m eps beta0 beta_m: above it, return the safe
+            # bound value + floor; when tol is close to the floor, use Pade instead (scipy expm
+            # keeps the exact zeros of the powers of the tridiagonal T, so tiny values keep
+            # their relative accuracy).
+            tau = np.asarray(tau, dtype=float)
             if bm == 0.0:
                 return np.zeros(len(tau))
-            E = sla.expm((-1j / hbar) * np.asarray(tau)[:, None, None] * Tm[None])
+            if tol > 2 * floor:
+                return beta0 * bm * np.abs(coeffs(tau)[m - 1]) + floor
+            E = sla.expm((-1j / hbar) * tau[:, None, None] * Tm[None])
             return beta0 * bm * np.abs(E[:, m - 1, 0])
 
         taus = times[k:] - t_cur
-        e = err(taus)
-        ok = e <= tol
-        nok = len(ok) if ok.all() else int(np.argmin(ok))
+        # serve the output times in order, checking them in growing batches
+        nok, start, batch = 0, 0, 4
+        while start < len(taus):
+            ok = err(taus[start : start + batch]) <= tol
+            nok = start + (len(ok) if ok.all() else int(np.argmin(ok)))
+            if not ok.all():
+                break
+            start, batch = start + batch, 2 * batch
         if nok > 0:
             C = coeffs(taus[:nok]) * beta0
             for q in range(nok):
@@ -527,6 +539,7 @@ def _krylov_propagator(mat, v0, times, hbar, stats, *, tol: float, m_max: int) -
             t_cur = times[k + nok - 1]
             k += nok
         else:
+            # largest sub-step meeting the tolerance (bisection; the estimate grows ~ tau^m)
             lo, hi = 0.0, taus[0]
             for _ in range(60):
                 mid = 0.5 * (lo + hi)
@@ -540,8 +553,9 @@ def _krylov_propagator(mat, v0, times, hbar, stats, *, tol: float, m_max: int) -
                 raise RuntimeError(
                     f"Krylov propagation cannot meet atol = {tol:.3g}; increase options['krylov_dim'] or atol"
                 )
-            v = beta0 * (coeffs(np.array([lo]))[:, 0] @ V[:m])
-            t_cur = t_cur + lo
+            tau = lo
+            v = beta0 * (coeffs(np.array([tau]))[:, 0] @ V[:m])
+            t_cur = t_cur + tau
 
 
 # ----------------------------------------------------------------------------
