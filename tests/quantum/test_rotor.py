@@ -408,3 +408,27 @@ def test_symmetry_adapted_quartet_equals_full_evolution(method, rng):
     np.testing.assert_allclose(_states(sym), _states(full), atol=1e-12, rtol=0)
     for a, b in zip(sym.expect, full.expect):
         np.testing.assert_allclose(a, b, atol=1e-12, rtol=0)
+
+
+def test_krylov_tolerance_below_round_off_floor(rng):
+    """atol far below m eps ||H|| switches the error estimate to Pade; the result stays exact."""
+    rep = _spin_rep(20)
+    H = rotor_hamiltonian(rep, [1.0, 1.3, 2.1])
+    psi = _random_state(rng, rep.dim)
+    t = np.linspace(0, 0.5, 6)
+    res = evolve(H, psi, t, method="krylov", options={"atol": 1e-15, "krylov_dim": 40, "blocks": False})
+    np.testing.assert_allclose(_states(res), _exact(H, psi, t), atol=1e-12, rtol=0)
+
+
+def test_evolve_accepts_sparse_and_arrays(rng):
+    rep = _spin_rep(2)
+    Hq = rotor_hamiltonian(rep, [1.0, 1.5, 2.5])
+    Hs = sps.csr_matrix(Hq.full())
+    psi = _random_state(rng, 5)
+    t = np.linspace(0, 1, 4)
+    op = rep.hermitian((1, 2))
+    a = evolve(Hs, psi.reshape(-1, 1), t, e_ops={"L12": op}, method="krylov")
+    b = evolve(Hq, qutip.Qobj(psi), t, e_ops=[qutip.Qobj(op.toarray())], method="eigen")
+    np.testing.assert_allclose(a.e_data["L12"], b.expect[0], atol=1e-12)
+    with pytest.raises(TypeError, match="Qobj"):
+        evolve([[1, 0], [0, 1]], psi, t)

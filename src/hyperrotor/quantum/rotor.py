@@ -562,18 +562,20 @@ def _krylov_propagator(mat, v0, times, hbar, stats, *, tol: float, m_max: int) -
 # evolve
 # ----------------------------------------------------------------------------
 def _e_ops_list(e_ops: Any, dims) -> Any:
+    """e_ops as QuTiP accepts them, with scipy.sparse / ndarray operators wrapped as Qobj."""
+
+    def conv(op):
+        if sps.issparse(op) or isinstance(op, np.ndarray):
+            return qutip.Qobj(op, dims=dims)
+        return op
+
     if e_ops is None:
         return []
-    if isinstance(e_ops, (qutip.Qobj, qutip.QobjEvo)) or callable(e_ops) and not isinstance(e_ops, (list, tuple, dict)):
-        return [e_ops]
     if isinstance(e_ops, dict):
-        return e_ops
-    out = []
-    for k, op in enumerate(e_ops):
-        if sps.issparse(op) or isinstance(op, np.ndarray):
-            op = qutip.Qobj(op, dims=dims)
-        out.append(op)
-    return out
+        return {k: conv(op) for k, op in e_ops.items()}
+    if isinstance(e_ops, (list, tuple)):
+        return [conv(op) for op in e_ops]
+    return [conv(e_ops)]
 
 
 def _split_options(options: Any) -> tuple[dict, dict]:
