@@ -44,7 +44,6 @@ import time  # noqa: E402
 import tracemalloc  # noqa: E402
 
 import numpy as np  # noqa: E402
-import qutip  # noqa: E402,F401
 import scipy.sparse as sps  # noqa: E402
 
 from hyperrotor.conventions import planes  # noqa: E402

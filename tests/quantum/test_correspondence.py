@@ -12,7 +12,6 @@ classical :math:`L(t) \leftrightarrow \langle \hat L^{b}\rangle(t) = -\langle\ha
 import numpy as np
 import pytest
 import qutip
-import scipy.sparse as sps
 import sympy as sp
 from scipy.integrate import solve_ivp
 

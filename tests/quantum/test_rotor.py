@@ -5,7 +5,6 @@ representation E_(ij) = e_i e_j^T - e_j e_i^T and the so(3) spin-l matrices of
 QuTiP mapped to planes by J1 = L^23, J2 = -L^13, J3 = L^12), dense ``expm``,
 and closed-form spectra derived in the docstrings of the tests.
 """
-import itertools
 
 import numpy as np
 import pytest

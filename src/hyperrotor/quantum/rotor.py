@@ -89,7 +89,7 @@ from __future__ import annotations
 
 import time as _time
 import warnings
-from numbers import Integral, Real
+from numbers import Real
 from typing import Any, Iterator, Sequence
 
 import numpy as np
@@ -461,7 +461,6 @@ def _krylov_propagator(mat, v0, times, hbar, stats, *, tol: float, m_max: int) -
     n = v0.shape[0]
     mv = _matvec_factory(mat)
     m_max = max(1, min(int(m_max), n))
-    k = 0
     t_cur = times[0]
     v = v0.astype(complex)
     yield v
