@@ -284,7 +284,7 @@ def test_ehrenfest_so5_error_shrinks_like_one_over_l():
     moments = np.array([1.0, 1.3, 1.7, 2.2, 1.1, 1.9, 2.6, 1.4, 2.0, 1.2])
     L0 = _bivector(_random_rotation(np.random.default_rng(3), 5), [1.0, 0.0])  # unit simple bivector
     times = np.linspace(0, 3.0, 31)
-    rows = _ehrenfest_errors(5, [2, 4, 8, 16], moments, L0, times)
+    rows = _ehrenfest_errors(5, [2, 4, 8, 16, 32], moments, L0, times)
     slope, errs, rev = _report("so(5) rotor, coherent states (l, 0), hbar = 1/l", rows)
     assert -1.3 < slope < -0.7
     assert np.all(rev > 0.3)
