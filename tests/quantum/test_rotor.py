@@ -431,3 +431,19 @@ def test_evolve_accepts_sparse_and_arrays(rng):
     np.testing.assert_allclose(a.e_data["L12"], b.expect[0], atol=1e-12)
     with pytest.raises(TypeError, match="Qobj"):
         evolve([[1, 0], [0, 1]], psi, t)
+
+
+def test_hamiltonian_with_hyperrotor_inertia():
+    """The classical Inertia (same plane order) drives rotor_hamiltonian; N and symbols are checked."""
+    import sympy
+
+    import hyperrotor
+    from hyperrotor.quantum import irrep, vector_rep
+
+    rep = irrep(5, (2, 1))
+    H = rotor_hamiltonian(rep, hyperrotor.Inertia.quartet(0.45))
+    np.testing.assert_allclose(H.full(), rotor_hamiltonian(rep, _quartet_moments(0.45)).full(), atol=1e-14)
+    with pytest.raises(ValueError, match="N = 4"):
+        rotor_hamiltonian(vector_rep(5), hyperrotor.Inertia.equal(4, 1.3))
+    with pytest.raises(TypeError, match="symbolic"):
+        rotor_hamiltonian(vector_rep(3), hyperrotor.Inertia.from_planes([sympy.Symbol("a")] * 3))
