@@ -2,9 +2,10 @@
 
 Layers: ``operators``/``normal_form``/``harmonic`` (symbolic) and ``weights``/
 ``representations``/``gelfand_tsetlin`` (matrices) sit below ``rotor`` (QuTiP
-Hamiltonians and evolution); the classical subpackage never imports this one.
+Hamiltonians and evolution) and ``coherent`` (coherent states); the classical subpackage never imports this one.
 """
-from . import gelfand_tsetlin, harmonic, normal_form, operators, representations, rotor, weights
+from . import coherent, gelfand_tsetlin, harmonic, normal_form, operators, representations, rotor, weights
+from .coherent import *  # noqa: F401,F403
 from .gelfand_tsetlin import *  # noqa: F401,F403
 from .harmonic import *  # noqa: F401,F403
 from .normal_form import *  # noqa: F401,F403
@@ -21,4 +22,5 @@ __all__ = [
     *representations.__all__,
     *gelfand_tsetlin.__all__,
     *rotor.__all__,
+    *coherent.__all__,
 ]

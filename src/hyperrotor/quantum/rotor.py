@@ -392,54 +392,16 @@ def _expm_propagator(mat, v0, times, hbar, stats) -> Iterator[np.ndarray]:
         yield v
 
 
-def _numpy_openblas():
-    """ctypes handles (get, set) of numpy's bundled OpenBLAS thread count, or None."""
-    global _OPENBLAS
-    if _OPENBLAS is None:
-        _OPENBLAS = False
-        try:
-            import ctypes
-            import glob
-            import os
-
-            libdir = os.path.join(os.path.dirname(os.path.dirname(np.__file__)), "numpy.libs")
-            for path in glob.glob(os.path.join(libdir, "*openblas*")):
-                lib = ctypes.CDLL(path)
-                for suffix in ("64_", "_64_", ""):
-                    get = getattr(lib, f"scipy_openblas_get_num_threads{suffix}", None)
-                    set_ = getattr(lib, f"scipy_openblas_set_num_threads{suffix}", None)
-                    if get is not None and set_ is not None:
-                        _OPENBLAS = (get, set_)
-                        break
-                if _OPENBLAS:
-                    break
-        except Exception:  # pragma: no cover - platform dependent
-            _OPENBLAS = False
-    return _OPENBLAS or None
-
-
-_OPENBLAS = None
-
-
-class _single_thread_blas:
+def _single_thread_blas():
     """Run the thin Krylov products on one BLAS thread (restored afterwards).
 
     The products of the ``(m, dim)`` Krylov basis with vectors gain nothing from
     threads, and on a loaded machine OpenBLAS thread over-subscription made them
-    ~10x slower in our measurements. A no-op when numpy's OpenBLAS is not found.
+    ~10x slower in our measurements. Uses ``threadpoolctl``.
     """
+    from threadpoolctl import threadpool_limits
 
-    def __enter__(self):
-        self._h = _numpy_openblas()
-        if self._h:
-            self._old = int(self._h[0]())
-            self._h[1](1)
-        return self
-
-    def __exit__(self, *exc):
-        if self._h:
-            self._h[1](self._old)
-        return False
+    return threadpool_limits(limits=1, user_api="blas")
 
 
 def _norm(v: np.ndarray) -> float:
