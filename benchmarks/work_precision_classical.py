@@ -91,19 +91,19 @@ def work_precision(quick):
         for m in SPLITTINGS:
             simulate(body, w0, t[:2], method=m, dt=0.1)  # warm
             for dt in dts[m]:
-                el, tr = timed(lambda: simulate(body, w0, t, method=m, dt=dt), 3)
+                el, tr = timed(lambda: simulate(body, w0, t, method=m, dt=dt), 5)
                 err = np.abs(tr.omega - ref).max() / scale
                 rows.append(dict(problem=pname, method=m, param=f"dt={dt:g}", work=tr.stats["steps"], time=el, error=err))
                 print(f"{m:>11} {dt:>9.3g} {tr.stats['steps']:>11d} {el:>10.4g} {err:>9.2e}")
         for m in SCIPY:
             for rtol in rtols[m]:
-                el, tr = timed(lambda: simulate(body, w0, t, method=m, rtol=rtol), 1)
+                el, tr = timed(lambda: simulate(body, w0, t, method=m, rtol=rtol), 2 if m != "Radau" else 1)
                 err = np.abs(tr.omega - ref).max() / scale
                 rows.append(dict(problem=pname, method=m, param=f"rtol={rtol:g}", work=tr.stats["nfev"], time=el, error=err))
                 print(f"{m:>11} {rtol:>9.3g} {tr.stats['nfev']:>11d} {el:>10.4g} {err:>9.2e}")
         # the auto step rule: requested vs reached
         for rtol in (1e-6, 1e-10):
-            el, tr = timed(lambda: simulate(body, w0, t, rtol=rtol), 1)
+            el, tr = timed(lambda: simulate(body, w0, t, rtol=rtol), 5)
             err = np.abs(tr.omega - ref).max() / scale
             rows.append(dict(problem=pname, method=f"auto({tr.stats['method']})", param=f"rtol={rtol:g}",
                              work=tr.stats["steps"], time=el, error=err))
@@ -184,18 +184,28 @@ def goal_throughput(quick):
 
 
 def cold_compile():
+    """First-call times in a fresh process: one body (serial kernel), an ensemble (vectorised
+    kernel), an ensemble with attitude (threaded kernel); with the disk cache off and on."""
     code = (
-        "import time; t0 = time.perf_counter(); import numpy as np; from hyperrotor import simulate; "
-        "t1 = time.perf_counter(); simulate([2., 3., 4.], [0.1, 1., 0.2], [0., 1.], method='splitting2', dt=0.1); "
-        "t2 = time.perf_counter(); simulate([2., 3., 4.], [0.1, 1., 0.2], [0., 1.], method='splitting2', dt=0.1); "
-        "t3 = time.perf_counter(); print(t1 - t0, t2 - t1, t3 - t2)"
+        "import time; import numpy as np; from hyperrotor import simulate; m = [2., 3., 4.]; "
+        "w = np.ones((64, 3)); out = []\n"
+        "for kw in (dict(omega0=w[0]), dict(omega0=w), dict(omega0=w, attitude=True)):\n"
+        "    t0 = time.perf_counter(); simulate(m, t=[0., 1.], method='splitting2', dt=0.1, **kw); "
+        "t1 = time.perf_counter(); simulate(m, t=[0., 1.], method='splitting2', dt=0.1, **kw); "
+        "t2 = time.perf_counter(); out.append((t1 - t0) - (t2 - t1))\n"
+        "print(*out)"
     )
     out = {}
     for label, env in (("cold (no cache)", {"HYPERROTOR_DISABLE_CACHE": "1"}), ("from disk cache", {})):
         res = subprocess.run([sys.executable, "-c", code], env={**os.environ, **env}, capture_output=True, text=True)
-        imp, first, second = (float(x) for x in res.stdout.split())
-        out[label] = first - second
-        print(f"first simulate() call, {label}: {first:.2f} s (import {imp:.2f} s, warm call {second * 1e3:.2f} ms)")
+        if res.returncode:
+            raise RuntimeError(res.stderr)
+        single, ens, att = (float(x) for x in res.stdout.split())
+        out[f"{label}: one body"] = single
+        out[f"{label}: ensemble"] = ens
+        out[f"{label}: ensemble+attitude"] = att
+        print(f"compile on first call, {label}: one body {single:.2f} s, ensemble {ens:.2f} s, "
+              f"ensemble with attitude {att:.2f} s")
     return out
 
 

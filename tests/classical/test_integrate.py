@@ -302,11 +302,11 @@ def test_step_rule_reaches_requested_accuracy(method, rtol):
 def test_auto_method_choice(rng):
     inertia, w0 = generic5(rng)
     t = [0.0, 1.0]
-    assert simulate(inertia, w0, t, rtol=1e-3).stats["method"] == "splitting2"
-    assert simulate(inertia, w0, t, rtol=1e-6).stats["method"] == "splitting4"
-    assert simulate(inertia, w0, t, rtol=1e-9).stats["method"] == "splitting6"
-    assert simulate(inertia, w0, t, rtol=1e-12).stats["method"] == "splitting8"
-    assert simulate(inertia, w0, t).stats["method"] == "splitting6"  # default rtol 1e-9
+    assert simulate(inertia, w0, t, rtol=0.1).stats["method"] == "splitting2"
+    assert simulate(inertia, w0, t, rtol=1e-3).stats["method"] == "splitting4"
+    assert simulate(inertia, w0, t, rtol=1e-6).stats["method"] == "splitting6"
+    assert simulate(inertia, w0, t, rtol=1e-9).stats["method"] == "splitting8"
+    assert simulate(inertia, w0, t).stats["method"] == "splitting8"  # default rtol 1e-9
     assert simulate(inertia, w0, t, dt=0.1).stats["method"] == "splitting4"
     tr = simulate(inertia, w0, t, torque=lambda tt, w: -0.1 * w)
     assert tr.stats["method"] == "DOP853"
