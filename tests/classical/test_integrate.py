@@ -261,6 +261,29 @@ def test_batch_equals_loop_over_single_runs(method, rng):
             np.testing.assert_array_equal(tr.attitude[i, j], one.attitude)
 
 
+def test_threaded_kernels_for_large_ensembles_equal_single_runs(rng):
+    """>= 32 bodies: threaded per-body kernel (attitude) and bodies-innermost kernel (no attitude)."""
+    inertia, _ = generic5(rng)
+    w0 = rng.normal(size=(40, 10))
+    t = np.linspace(0, 1, 3)
+    with_att = simulate(inertia, w0, t, method="splitting6", dt=0.02, attitude=True)
+    without = simulate(inertia, w0, t, method="splitting6", dt=0.02)
+    for i in (0, 17, 39):
+        one = simulate(inertia, w0[i], t, method="splitting6", dt=0.02, attitude=True)
+        np.testing.assert_array_equal(with_att.omega[i], one.omega)
+        np.testing.assert_array_equal(with_att.attitude[i], one.attitude)
+        np.testing.assert_array_equal(without.omega[i], one.omega)
+
+
+def test_step_rule_on_an_ensemble_follows_the_fastest_member(rng):
+    t = np.linspace(0, 20, 5)
+    w0 = np.stack([np.array([0.6, 1.0, -0.5]) * s for s in (0.1, 1.0, 5.0)])
+    tr = simulate(MOM3, w0, t, method="splitting8", rtol=1e-9)
+    exact = np.stack([euler_poinsot(MOM3, w, t) for w in w0])
+    err = np.abs(tr.omega - exact).max(axis=(1, 2)) / np.abs(w0).max(axis=1)
+    assert np.all(err < 2e-9), err
+
+
 # ----------------------------------------------------------------------------- scipy peers
 @pytest.mark.parametrize("method", SCIPY)
 def test_scipy_methods_agree_with_splitting(method, rng):
