@@ -85,11 +85,12 @@ from hyperrotor.conventions import (
 )
 
 from . import _kernels
+from .inertia import body_moments
 
-__all__ = ["simulate", "Trajectory", "METHODS", "splitting_coefficients"]
+__all__ = ["simulate", "Trajectory", "SIMULATION_METHODS", "splitting_coefficients"]
 
 #: Allowed ``method=`` names of :func:`simulate`.
-METHODS = ("auto", "splitting2", "splitting4", "splitting6", "splitting8", "DOP853", "RK45", "LSODA", "Radau")
+SIMULATION_METHODS = ("auto", "splitting2", "splitting4", "splitting6", "splitting8", "DOP853", "RK45", "LSODA", "Radau")
 _SCIPY_METHODS = ("DOP853", "RK45", "LSODA", "Radau")
 _SPLITTING_ORDER = {"splitting2": 2, "splitting4": 4, "splitting6": 6, "splitting8": 8}
 
@@ -187,25 +188,9 @@ def _rotation_tables(N: int):
 # inputs
 # ----------------------------------------------------------------------------
 def _moments_and_n(body: Any) -> tuple[np.ndarray, int]:
-    """Plane moments (float array, plane order) and ``N`` of a RigidBody, an Inertia or a 1-D array."""
-    if hasattr(body, "inertia") and hasattr(body.inertia, "moments"):
-        moments = body.inertia.moments
-    elif hasattr(body, "moments"):
-        moments = body.moments
-    else:
-        moments = body
-    try:
-        moments = np.asarray(moments, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"body must be a RigidBody, an Inertia or a 1-D array of plane moments, got {type(body).__name__}"
-        ) from None
-    if moments.ndim != 1:
-        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got shape {moments.shape}")
-    N = dimension_from_count(moments.size)
-    if not np.all(np.isfinite(moments)) or np.any(moments <= 0):
-        raise ValueError(f"plane moments must be finite and > 0 to integrate, got {moments.tolist()}")
-    return moments, N
+    """Plane moments (see :func:`~hyperrotor.classical.inertia.body_moments`) and ``N``."""
+    moments = body_moments(body)
+    return moments, dimension_from_count(moments.size)
 
 
 def _convention_of(body: Any) -> str:
@@ -534,7 +519,7 @@ def simulate(
     t : array_like (K,)
         strictly increasing output times; ``t[0]`` is the initial time.
     method : str
-        one of :data:`METHODS` (see the module docstring).
+        one of :data:`SIMULATION_METHODS` (see the module docstring).
     rtol : float, optional
         requested accuracy: for the splitting methods a bound on
         :math:`\max_t|\omega-\omega_\text{exact}|/\max|\omega_0|` and on
@@ -581,8 +566,8 @@ def simulate(
     """
     wall = time.perf_counter()
     Lout = None
-    if not isinstance(method, str) or method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; allowed: {', '.join(map(repr, METHODS))}")
+    if not isinstance(method, str) or method not in SIMULATION_METHODS:
+        raise ValueError(f"unknown method {method!r}; allowed: {', '.join(map(repr, SIMULATION_METHODS))}")
     moments, N = _moments_and_n(body)
     n = moments.size
     convention = _convention_of(body)
