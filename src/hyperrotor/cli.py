@@ -342,6 +342,52 @@ def _run_scene(args: argparse.Namespace) -> int:
     return 0
 
 
+# ----------------------------------------------------------------------------
+# bench
+# ----------------------------------------------------------------------------
+def _configure_bench(p: argparse.ArgumentParser) -> None:
+    from hyperrotor.bench import BENCH_PROBLEMS
+
+    p.add_argument("--problem", action="append", choices=BENCH_PROBLEMS,
+                   help="problem with an exact solution (repeatable; default: all)")
+    p.add_argument("--method", action="append", default=None,
+                   help="splitting2, splitting4, splitting6, splitting8, DOP853 or RK45 (repeatable; default: all)")
+    p.add_argument("--repeats", type=int, default=2, help="timed repeats per run, best kept (default 2)")
+    p.add_argument("--error", type=float, default=1e-10,
+                   help="error level at which the speed-up over DOP853 is reported (default 1e-10)")
+    p.add_argument("--output", default="hyperrotor-bench",
+                   help="file stem of the CSV and PNG written (default ./hyperrotor-bench)")
+
+
+def _run_bench(args: argparse.Namespace) -> int:
+    from hyperrotor.bench import _main_table, plot_work_precision, speedup_at, work_precision, write_csv
+
+    problems = args.problem or ["quartet", "euler-poinsot"]
+    points = []
+    try:
+        for prob in problems:
+            points += work_precision(prob, args.method, repeats=args.repeats,
+                                     progress=lambda msg: print(msg, file=sys.stderr, flush=True))
+    except ValueError as err:
+        print(f"hyperrotor bench: {err}", file=sys.stderr)
+        return 2
+    _main_table(points)
+    for prob in problems:
+        s = speedup_at([p for p in points if p.problem == prob], args.error)
+        if s is None:
+            print(f"{prob}: no pair of runs reaches error <= {args.error:g} (ours and DOP853)")
+        else:
+            print(f"{prob}: at error <= {args.error:g} {s['method']} takes {s['seconds']:.4f} s, "
+                  f"DOP853 {s['peer_seconds']:.4f} s: {s['ratio']:.1f}x faster")
+    csv_path = write_csv(points, args.output + ".csv")
+    print(f"written: {csv_path}")
+    try:
+        print(f"written: {plot_work_precision(points, args.output + '.png')}")
+    except ImportError as err:
+        print(f"PNG skipped: {err}")
+    return 0
+
+
 def _verify_module():
     from hyperrotor.paper import verify
 
@@ -362,6 +408,11 @@ SUBCOMMANDS: dict[str, Subcommand] = {
         help="check the preprint equation by equation (holds / typo / claim-false / not-checkable)",
         configure=lambda p: _verify_module().configure_parser(p),
         run=lambda a: _verify_module().run_from_args(a),
+    ),
+    "bench": Subcommand(
+        help="quick work-precision run (wall time vs error against closed forms), CSV + PNG",
+        configure=_configure_bench,
+        run=_run_bench,
     ),
     "scene": Subcommand(
         help="render the 3D projection of a body rotating in N dimensions to PNG (snapshots) or GIF",

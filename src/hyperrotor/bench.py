@@ -1,0 +1,161 @@
+"""Quick work-precision run of the classical solvers (``hyperrotor bench``).
+
+Each method of :func:`hyperrotor.simulate` is run at several accuracies on a
+problem with an exact solution, and its warm wall time (JIT compiled, best of
+``repeats``) is recorded against its error
+
+.. math:: \\text{error} = \\max_t \\lVert\\omega(t) - \\omega_\\text{exact}(t)\\rVert_\\infty / \\lVert\\omega_0\\rVert_\\infty .
+
+Problems: ``"quartet"``, the paper's 5D body with kappa = 1/2 (eqs. 84-85) over
+t in [0, 200] against the closed form of eqs. 96-110; ``"euler-poinsot"``, a 3D
+asymmetric top over t in [0, 100] against the Jacobi-elliptic solution. The full
+study with more problems, Casimir drift and ensemble throughput is
+``benchmarks/work_precision_classical.py``.
+"""
+from __future__ import annotations
+
+import csv
+import sys
+import time
+from dataclasses import asdict, dataclass
+from typing import Callable, Sequence
+
+import numpy as np
+
+__all__ = ["WorkPrecisionPoint", "work_precision", "speedup_at", "write_csv", "plot_work_precision", "BENCH_PROBLEMS"]
+
+#: Problems of :func:`work_precision`.
+BENCH_PROBLEMS = ("quartet", "euler-poinsot")
+
+_SETTINGS = {  # method -> (keyword, values): splittings by step, scipy by tolerance
+    "splitting2": ("dt", (0.02, 0.005, 0.001)),
+    "splitting4": ("dt", (0.1, 0.03, 0.01, 0.003)),
+    "splitting6": ("dt", (0.3, 0.1, 0.05, 0.02)),
+    "splitting8": ("dt", (0.4, 0.2, 0.1, 0.05, 0.03)),
+    "DOP853": ("rtol", (1e-6, 1e-8, 1e-10, 1e-12, 1e-13)),
+    "RK45": ("rtol", (1e-4, 1e-6, 1e-8)),
+}
+
+
+@dataclass(frozen=True)
+class WorkPrecisionPoint:
+    """One run: ``method`` with ``setting`` (``dt`` or ``rtol`` = ``value``) took ``seconds`` for ``error``."""
+
+    problem: str
+    method: str
+    setting: str
+    value: float
+    error: float
+    seconds: float
+
+
+def _problem(name: str):
+    from hyperrotor import Inertia, RigidBody
+    from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+
+    if name == "quartet":
+        body = RigidBody(Inertia.quartet(0.5))
+        w0 = np.array([0.3, -0.5, 0.8, 1.0, 0.2, -0.7, 0.4, 0.6, -0.9, 0.5])
+        t = np.linspace(0.0, 200.0, 101)
+        return body, w0, t, quartet_solution(0.5, w0, t)
+    if name == "euler-poinsot":
+        moments = np.array([2.0, 3.0, 4.0])
+        w0 = np.array([0.6, 1.0, -0.5])
+        t = np.linspace(0.0, 100.0, 101)
+        return RigidBody(moments), w0, t, euler_poinsot(moments, w0, t)
+    raise ValueError(f"unknown problem {name!r}; allowed: {', '.join(BENCH_PROBLEMS)}")
+
+
+def work_precision(problem: str = "quartet", methods: Sequence[str] | None = None, *, repeats: int = 2,
+                   progress: Callable[[str], None] | None = None) -> list[WorkPrecisionPoint]:
+    """Run every method at its accuracy settings; returns the measured points.
+
+    Parameters
+    ----------
+    problem : one of :data:`BENCH_PROBLEMS`.
+    methods : subset of ``splitting2/4/6/8``, ``DOP853``, ``RK45`` (default all).
+    repeats : each run is timed ``repeats`` times after one warm-up call; the best time is kept.
+    progress : called with a short message before each method (e.g. ``print``).
+    """
+    from hyperrotor import simulate
+
+    methods = list(_SETTINGS) if methods is None else list(methods)
+    bad = [m for m in methods if m not in _SETTINGS]
+    if bad:
+        raise ValueError(f"unknown method(s) {bad}; allowed: {', '.join(_SETTINGS)}")
+    if int(repeats) < 1:
+        raise ValueError(f"repeats must be >= 1, got {repeats}")
+    body, w0, t, exact = _problem(problem)
+    scale = float(np.max(np.abs(w0)))
+    points = []
+    for method in methods:
+        key, values = _SETTINGS[method]
+        if progress:
+            progress(f"{problem}: {method} ({len(values)} settings)")
+        for value in values:
+            run = lambda: simulate(body, w0, t, method=method, **{key: value})  # noqa: E731
+            traj = run()  # warm-up (JIT compile on the first splitting call)
+            best = np.inf
+            for _ in range(int(repeats)):
+                start = time.perf_counter()
+                traj = run()
+                best = min(best, time.perf_counter() - start)
+            err = float(np.max(np.abs(traj.omega - exact))) / scale
+            points.append(WorkPrecisionPoint(problem, method, key, float(value), err, best))
+    return points
+
+
+def speedup_at(points: Sequence[WorkPrecisionPoint], error: float, *, peer: str = "DOP853") -> dict | None:
+    """Fastest run of any method reaching ``error`` vs the fastest ``peer`` run reaching it.
+
+    Returns ``{"method", "seconds", "peer_seconds", "ratio"}`` or ``None`` when
+    either side never reaches ``error``.
+    """
+    ok = [p for p in points if p.error <= error]
+    ours = [p for p in ok if p.method != peer]
+    theirs = [p for p in ok if p.method == peer]
+    if not ours or not theirs:
+        return None
+    best = min(ours, key=lambda p: p.seconds)
+    ref = min(theirs, key=lambda p: p.seconds)
+    return {"method": best.method, "seconds": best.seconds, "peer_seconds": ref.seconds,
+            "ratio": ref.seconds / best.seconds}
+
+
+def write_csv(points: Sequence[WorkPrecisionPoint], path: str) -> str:
+    """Write the points as CSV (one row per run, header = field names)."""
+    fields = list(WorkPrecisionPoint.__dataclass_fields__)
+    with open(path, "w", newline="", encoding="utf-8") as fh:
+        writer = csv.DictWriter(fh, fieldnames=fields)
+        writer.writeheader()
+        for p in points:
+            writer.writerow(asdict(p))
+    return path
+
+
+def plot_work_precision(points: Sequence[WorkPrecisionPoint], path: str) -> str:
+    """Log-log plot of wall time against error, one line per method and one panel per problem."""
+    from hyperrotor.plotting import _pyplot
+
+    plt = _pyplot()
+    problems = list(dict.fromkeys(p.problem for p in points))
+    fig, axes = plt.subplots(1, len(problems), figsize=(5.5 * len(problems), 4.2), squeeze=False)
+    for ax, prob in zip(axes[0], problems):
+        for method in dict.fromkeys(p.method for p in points if p.problem == prob):
+            sel = sorted((p for p in points if p.problem == prob and p.method == method), key=lambda p: p.error)
+            ax.loglog([max(p.error, 1e-17) for p in sel], [p.seconds for p in sel], "o-", ms=3, label=method)
+        ax.set(xlabel="max relative error", ylabel="wall time [s]", title=prob)
+        ax.invert_xaxis()
+        ax.grid(True, which="major", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _main_table(points: Sequence[WorkPrecisionPoint], out=sys.stdout) -> None:
+    print(f"{'problem':<14} {'method':<11} {'setting':>14} {'error':>10} {'time [s]':>10}", file=out)
+    for p in points:
+        print(f"{p.problem:<14} {p.method:<11} {p.setting + '=' + format(p.value, 'g'):>14} "
+              f"{p.error:>10.2e} {p.seconds:>10.4f}", file=out)

@@ -1,0 +1,50 @@
+"""Tests of hyperrotor.bench and ``hyperrotor bench`` (accuracy of the runs, speed-up bookkeeping, files)."""
+import csv
+
+import pytest
+
+from hyperrotor.bench import WorkPrecisionPoint, speedup_at, work_precision
+from hyperrotor.cli import main
+
+
+def test_work_precision_errors_against_the_elliptic_solution():
+    pts = work_precision("euler-poinsot", ["splitting8", "DOP853"], repeats=1)
+    by = {(p.method, p.value): p for p in pts}
+    # order 8: halving the step from 0.2 to 0.1 gains over 2^6 (2^8 asymptotically); dt = 0.1 reaches 1e-11
+    assert by["splitting8", 0.2].error / by["splitting8", 0.1].error > 2**6
+    assert by["splitting8", 0.1].error < 1e-11
+    assert by["DOP853", 1e-12].error < 1e-10
+    assert all(p.seconds > 0 for p in pts)
+
+
+def test_speedup_at_picks_fastest_runs_reaching_the_level():
+    P = lambda m, e, s: WorkPrecisionPoint("x", m, "dt", 0.1, e, s)  # noqa: E731
+    pts = [P("splitting8", 1e-11, 0.02), P("splitting4", 1e-11, 0.01), P("splitting2", 1e-6, 0.001),
+           P("DOP853", 1e-9, 0.1), P("DOP853", 1e-11, 0.5), P("DOP853", 1e-12, 0.8)]
+    s = speedup_at(pts, 1e-10)
+    assert s == {"method": "splitting4", "seconds": 0.01, "peer_seconds": 0.5, "ratio": 50.0}
+    assert speedup_at(pts, 1e-13) is None
+
+
+def test_cli_bench_writes_csv_and_png(capsys, tmp_path):
+    stem = tmp_path / "wp"
+    code = main(["bench", "--problem", "euler-poinsot", "--method", "splitting6", "--method", "DOP853",
+                 "--repeats", "1", "--output", str(stem)])
+    out = capsys.readouterr().out
+    assert code == 0
+    with open(f"{stem}.csv", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    assert {r["method"] for r in rows} == {"splitting6", "DOP853"} and len(rows) == 9
+    assert min(float(r["error"]) for r in rows if r["method"] == "splitting6") < 1e-10
+    assert "euler-poinsot: at error <= 1e-10 splitting6" in out
+    assert (tmp_path / "wp.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_cli_bench_bad_method(capsys):
+    assert main(["bench", "--method", "Euler"]) == 2
+    assert "unknown method(s) ['Euler']" in capsys.readouterr().err
+
+
+def test_unknown_problem():
+    with pytest.raises(ValueError, match="unknown problem 'pendulum'"):
+        work_precision("pendulum")
