@@ -223,13 +223,14 @@ def plane_signs(N: int, convention: str = "paper") -> np.ndarray:
 # ----------------------------------------------------------------------------
 # matrices <-> components
 # ----------------------------------------------------------------------------
-def _is_symbolic(x: Any) -> bool:
+def is_symbolic(x: Any) -> bool:
+    """True when ``x`` holds SymPy objects (the symbolic path of the package's dual numpy/SymPy functions)."""
     if isinstance(x, (sp.Basic, sp.MatrixBase)):
         return True
     if isinstance(x, np.ndarray):
         return x.dtype == object and any(isinstance(v, sp.Basic) for v in x.flat)
     if isinstance(x, (list, tuple)):
-        return any(_is_symbolic(v) for v in x)
+        return any(is_symbolic(v) for v in x)
     return False
 
 
@@ -276,7 +277,7 @@ def to_matrix(components: Any, convention: str = "paper"):
            [-2,  3,  0]])
     """
     check_convention(convention)
-    if _is_symbolic(components):
+    if is_symbolic(components):
         comps = list(sp.Matrix(components)) if isinstance(components, sp.MatrixBase) else list(np.ravel(np.asarray(components, dtype=object)))
         N = dimension_from_count(len(comps))
         signs = plane_signs(N, convention)
@@ -318,7 +319,7 @@ def to_components(matrix: Any, convention: str = "paper", *, atol: float | None 
     for SymPy input.
     """
     check_convention(convention)
-    if _is_symbolic(matrix):
+    if is_symbolic(matrix):
         M = sp.Matrix(matrix)
         if M.rows != M.cols or M.rows < 2:
             raise ValueError(f"expected a square N x N matrix with N >= 2, got shape {M.shape}")
@@ -396,7 +397,7 @@ def lie_bracket(x: Any, y: Any):
     Convention independent (see the module docstring). NumPy input broadcasts
     over leading axes; SymPy input gives a ``sympy.Matrix`` column.
     """
-    if _is_symbolic(x) or _is_symbolic(y):
+    if is_symbolic(x) or is_symbolic(y):
         xs, ys = list(sp.Matrix(x)), list(sp.Matrix(y))
         if len(xs) != len(ys):
             raise ValueError(f"component vectors of different length: {len(xs)} and {len(ys)}")

@@ -50,6 +50,7 @@ import sympy as sp
 
 from hyperrotor.conventions import (
     check_convention,
+    is_symbolic,
     plane_label,
     planes,
     structure_constants,
@@ -61,16 +62,6 @@ __all__ = ["RigidBody", "TIME"]
 
 #: The time symbol of every symbolic equation (``sympy.Symbol("t")``).
 TIME = sp.Symbol("t")
-
-
-def _is_sym(x: Any) -> bool:
-    if isinstance(x, (sp.Basic, sp.MatrixBase)):
-        return True
-    if isinstance(x, np.ndarray):
-        return x.dtype == object and any(isinstance(v, sp.Basic) for v in x.flat)
-    if isinstance(x, (list, tuple)):
-        return any(_is_sym(v) for v in x)
-    return False
 
 
 def _pfaffian(A: sp.Matrix) -> sp.Expr:
@@ -92,7 +83,7 @@ def _manakov_traces(L: Any, J: Any, lam: Any = 1):
     Numeric: array ``(..., N-1)``; SymPy: list of expressions. Conserved along
     the flow exactly when the plane moments are :math:`J_i + J_j` (Manakov).
     """
-    if _is_sym(L) or _is_sym(J) or _is_sym(lam):
+    if is_symbolic(L) or is_symbolic(J) or is_symbolic(lam):
         Lm = to_matrix(list(L), "standard") if not isinstance(L, sp.MatrixBase) else L
         Lm = sp.Matrix(Lm)
         N = Lm.rows
@@ -341,7 +332,7 @@ class RigidBody:
 
         numpy ``(..., n_planes)``; a SymPy column for symbolic input or inertia.
         """
-        if _is_sym(omega) or self.inertia.is_symbolic:
+        if is_symbolic(omega) or self.inertia.is_symbolic:
             w = list(omega)
             self._check_len(w)
             return sp.Matrix([I * x for I, x in zip(self.inertia.symbolic_moments, w)])
@@ -358,7 +349,7 @@ class RigidBody:
         eq.-(3) tensor counts every plane twice and gives twice this value.
         numpy ``(...)`` or a SymPy expression.
         """
-        if _is_sym(omega) or self.inertia.is_symbolic:
+        if is_symbolic(omega) or self.inertia.is_symbolic:
             w = list(omega)
             self._check_len(w)
             return sp.Rational(1, 2) * sum((I * x**2 for I, x in zip(self.inertia.symbolic_moments, w)), sp.Integer(0))
@@ -413,7 +404,7 @@ class RigidBody:
         else:
             L = values
         N = self.N
-        if _is_sym(L):
+        if is_symbolic(L):
             L = list(L)
             self._check_len(L)
             M = to_matrix(L, "standard")
@@ -474,12 +465,12 @@ class RigidBody:
             raise ValueError(f"of must be 'omega' or 'L', got {of!r}")
         if of == "omega":
             L = self.angular_momentum(values)
-        elif _is_sym(values):
+        elif is_symbolic(values):
             L = list(values)
             self._check_len(L)
         else:
             L = self._check_omega(values, "L")
-        if not _is_sym(L):
+        if not is_symbolic(L):
             return _manakov_traces(L, J, lam)
         return _manakov_traces(list(L), J, lam)
 
