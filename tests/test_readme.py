@@ -21,7 +21,8 @@ def test_readme_tour(capsys):
     # eq. (28) as printed in the paper, typed here from the preprint
     t = sp.Symbol("t")
     w = {k: sp.Function(f"omega_{k}")(t) for k in ("12", "13", "23", "14", "24", "15", "25")}
-    I = {k: sp.Symbol(f"I_{k}") for k in ("12", "13", "23", "14", "24", "15", "25")}
+    I = {f"{i}{j}": m for (i, j), m in zip(ns["hr"].planes(5), ns["gen"].inertia.symbolic_moments)}
+    assert all(str(I[k]) == f"I_{k}" for k in I)
     eq28 = (-I["12"] * sp.diff(w["12"], t) + (I["13"] - I["23"]) * w["13"] * w["23"]
             + (I["14"] - I["24"]) * w["14"] * w["24"] + (I["15"] - I["25"]) * w["15"] * w["25"])
     first = ns["gen"].euler_equations()[0]
