@@ -300,6 +300,8 @@ class RigidBody:
         for N = 5 term by term the printed eqs. (28)-(37) (with :math:`I^{ijij}`
         read as :math:`I_{ij}`). Standard convention:
         :math:`I_{ij}\dot\omega_{ij} - \mathrm{rhs}_{ij} = m_{ij}`.
+        The angular velocities are ``omega_ij(t)`` (functions of :data:`TIME`)
+        and the moments ``inertia.symbolic_moments``.
 
         Parameters
         ----------
@@ -309,8 +311,9 @@ class RigidBody:
             torque-free; a sequence: the components :math:`m_{ij}` (in the paper
             convention the right-hand side is then :math:`(-1)^{i+j} m_{ij}`).
 
-        The angular velocities are ``omega_ij(t)`` (functions of :data:`TIME`)
-        and the moments ``inertia.symbolic_moments``.
+        Returns
+        -------
+        list of sympy.Eq
         """
         w = self.omega_symbols(function_of=TIME)
         I = self.inertia.symbolic_moments

@@ -3,13 +3,14 @@ r"""Scenes: compute only the observables that are asked for, with the least work
 A :class:`Scene` is a request: a body, one initial angular velocity, a time grid
 and a set of observables among
 
-``"omega"``       angular velocity components (optionally only some ``planes``);
-``"L"``           body-frame angular momentum :math:`L^{ij} = I_{ij}\omega_{ij}` (same planes);
-``"energy"``      kinetic energy :math:`\tfrac12\sum I_{ij}\omega_{ij}^2`;
-``"casimirs"``    coefficients of the characteristic polynomial of ``L`` (eq. 38);
-``"attitude"``    :math:`T(t)` (eq. 19, space to body, the body's matrix convention);
-``"projection"``  space-frame positions of body points, :math:`x_\text{space} = T^{\mathsf T} x_\text{body}`,
-                  restricted to the chosen ``axes`` (e.g. ``(1, 2, 3)`` for a 3D picture).
+* ``"omega"``: angular velocity components (optionally only some ``planes``);
+* ``"L"``: body-frame angular momentum :math:`L^{ij} = I_{ij}\omega_{ij}` (same planes);
+* ``"energy"``: kinetic energy :math:`\tfrac12\sum I_{ij}\omega_{ij}^2`;
+* ``"casimirs"``: coefficients of the characteristic polynomial of ``L`` (eq. 38);
+* ``"attitude"``: :math:`T(t)` (eq. 19, space to body, the body's matrix convention);
+* ``"projection"``: space-frame positions of body points,
+  :math:`x_\text{space} = T^{\mathsf T} x_\text{body}`, restricted to the chosen
+  ``axes`` (e.g. ``(1, 2, 3)`` for a 3D picture).
 
 :func:`evaluate_scene` (or :meth:`Scene.evaluate`) picks the cheapest exact route and
 reports it in :attr:`SceneResult.path`:
