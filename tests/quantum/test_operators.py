@@ -104,7 +104,8 @@ def test_commutation_relations_normal_form(N):
         assert lhs == rhs
 
 
-@pytest.mark.parametrize("N", [2, 3, 4, 5, 6])
+@pytest.mark.parametrize("N", [2, 3, 4, 5, 6, pytest.param(7, marks=pytest.mark.slow),
+                               pytest.param(8, marks=pytest.mark.slow)])
 def test_commutation_relations_naive_sympy(N):
     """Independent check: apply both sides to a generic function f(x1..xN)."""
     xs = coordinate_symbols(N)
