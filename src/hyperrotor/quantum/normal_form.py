@@ -159,6 +159,18 @@ def dict_to_polynomial(poly: Mapping, coordinates: Sequence[sp.Symbol]) -> sp.Ex
 # ----------------------------------------------------------------------------
 # Weyl algebra element
 # ----------------------------------------------------------------------------
+def _normalise_symbolic(out: dict) -> dict:
+    """Normalise SymPy coefficients (e.g. ``I*I``) once after accumulation, dropping zeros; in place."""
+    for k, v in list(out.items()):
+        if isinstance(v, sp.Basic):
+            v = _norm_scalar(v)
+            if v == 0:
+                del out[k]
+            else:
+                out[k] = v
+    return out
+
+
 class WeylElement:
     r"""A differential operator with polynomial coefficients in normal order.
 
@@ -343,15 +355,7 @@ class WeylElement:
                         tuple(p + q for p, q in zip(a, a2)),
                     )
                     _accumulate(out, key, c12 * w)
-        # normalise SymPy products (e.g. I*I) once at the end
-        for k, v in list(out.items()):
-            if isinstance(v, sp.Basic):
-                v = _norm_scalar(v)
-                if v == 0:
-                    del out[k]
-                else:
-                    out[k] = v
-        return WeylElement(N, out, _trusted=True)
+        return WeylElement(N, _normalise_symbolic(out), _trusted=True)
 
     def commutator(self, other: "WeylElement") -> "WeylElement":
         """``[self, other] = self o other - other o self`` (exact)."""
@@ -376,14 +380,7 @@ class WeylElement:
                 if w:
                     key = tuple(p + q - r for p, q, r in zip(m1, m2, a1))
                     _accumulate(out, key, c1 * c2 * w)
-        for k, v in list(out.items()):
-            if isinstance(v, sp.Basic):
-                v = _norm_scalar(v)
-                if v == 0:
-                    del out[k]
-                else:
-                    out[k] = v
-        return out
+        return _normalise_symbolic(out)
 
     def apply(self, expr: Any, coordinates: Sequence[sp.Symbol]) -> sp.Expr:
         """Apply to an arbitrary SymPy expression in ``coordinates`` (SymPy differentiation).
