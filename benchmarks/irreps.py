@@ -31,6 +31,8 @@ import tracemalloc
 from fractions import Fraction
 
 import numpy as np
+
+from hyperrotor.bench import best_of
 import scipy.sparse as sps
 import sympy as sp
 
@@ -134,16 +136,6 @@ def naive_sympy_chain(m1, m2):
 
 
 # ----------------------------------------------------------------------------
-def _time(fn, repeat):
-    best = np.inf
-    out = None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
-
-
 def _fast_chain_only(m):
     """Time of the 4 chain generators alone (private helper mirrors irrep's first stage)."""
     from hyperrotor.quantum.gelfand_tsetlin import _PatternIndex, _chain_elements
@@ -172,8 +164,8 @@ def main(argv=None):
     for m in ks:
         dim = weyl_dimension(5, m)
         rep_count = 5 if dim < 5000 else (2 if dim < 60000 else 1)
-        t_all, rep = _time(lambda: irrep(5, m, max_dim=10**7), rep_count)
-        t_chain, _ = _time(lambda: _fast_chain_only(m), rep_count)
+        t_all, rep = best_of(lambda: irrep(5, m, max_dim=10**7), rep_count)
+        t_chain, _ = best_of(lambda: _fast_chain_only(m), rep_count)
         G = rep.generators()
         nnz = sum(M.nnz for M in G.values())
         csr_bytes = sum(M.data.nbytes + M.indices.nbytes + M.indptr.nbytes for M in G.values())

@@ -27,6 +27,8 @@ import time
 
 import numpy as np
 
+from hyperrotor.bench import best_of
+
 import hyperrotor
 from hyperrotor.classical.scenes import Scene, evaluate_scene, hypercube_vertices, simplex_vertices
 from hyperrotor.conventions import plane_index, planes
@@ -61,17 +63,6 @@ def _scenes(t):
     ]
 
 
-def _best(fn, repeat):
-    fn()  # warm-up
-    best = np.inf
-    out = None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
-
-
 def _deviation(a, b):
     dev = 0.0
     for f in FIELDS:
@@ -95,10 +86,10 @@ def main(argv=None):
     print(head)
     print("-" * len(head))
     for name, sc in _scenes(t):
-        tm, a = _best(lambda: evaluate_scene(sc), repeat)
-        tf, b = _best(lambda: evaluate_scene(sc, minimal=False), repeat)
+        tm, a = best_of(lambda: evaluate_scene(sc), repeat, warmup=True)
+        tf, b = best_of(lambda: evaluate_scene(sc, minimal=False), repeat, warmup=True)
         sc_d = Scene(**{**sc.__dict__, "method": "DOP853"})
-        td, _ = _best(lambda: evaluate_scene(sc_d, minimal=False), max(1, repeat - 1))
+        td, _ = best_of(lambda: evaluate_scene(sc_d, minimal=False), max(1, repeat - 1), warmup=True)
         dev = _deviation(a, b)
         rows.append(dict(scene=name, path=a.path, t_minimal=tm, t_full=tf, t_full_dop853=td,
                          ratio_full=tf / tm, ratio_dop853=td / tm, rel_deviation=dev))

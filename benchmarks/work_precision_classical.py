@@ -30,21 +30,13 @@ from pathlib import Path
 import numpy as np
 
 from hyperrotor import Inertia, RigidBody, simulate
+from hyperrotor.bench import best_of
 from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
 from hyperrotor.conventions import to_matrix
 
 RESULTS = Path(__file__).resolve().parent / "results"
 SPLITTINGS = ["splitting2", "splitting4", "splitting6", "splitting8"]
 SCIPY = ["DOP853", "RK45", "LSODA", "Radau"]
-
-
-def timed(fn, repeats):
-    best, out = np.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def problems():
@@ -91,19 +83,19 @@ def work_precision(quick):
         for m in SPLITTINGS:
             simulate(body, w0, t[:2], method=m, dt=0.1)  # warm
             for dt in dts[m]:
-                el, tr = timed(lambda: simulate(body, w0, t, method=m, dt=dt), 5)
+                el, tr = best_of(lambda: simulate(body, w0, t, method=m, dt=dt), 5)
                 err = np.abs(tr.omega - ref).max() / scale
                 rows.append(dict(problem=pname, method=m, param=f"dt={dt:g}", work=tr.stats["steps"], time=el, error=err))
                 print(f"{m:>11} {dt:>9.3g} {tr.stats['steps']:>11d} {el:>10.4g} {err:>9.2e}")
         for m in SCIPY:
             for rtol in rtols[m]:
-                el, tr = timed(lambda: simulate(body, w0, t, method=m, rtol=rtol), 2 if m != "Radau" else 1)
+                el, tr = best_of(lambda: simulate(body, w0, t, method=m, rtol=rtol), 2 if m != "Radau" else 1)
                 err = np.abs(tr.omega - ref).max() / scale
                 rows.append(dict(problem=pname, method=m, param=f"rtol={rtol:g}", work=tr.stats["nfev"], time=el, error=err))
                 print(f"{m:>11} {rtol:>9.3g} {tr.stats['nfev']:>11d} {el:>10.4g} {err:>9.2e}")
         # the auto step rule: requested vs reached
         for rtol in (1e-6, 1e-10):
-            el, tr = timed(lambda: simulate(body, w0, t, rtol=rtol), 5)
+            el, tr = best_of(lambda: simulate(body, w0, t, rtol=rtol), 5)
             err = np.abs(tr.omega - ref).max() / scale
             rows.append(dict(problem=pname, method=f"auto({tr.stats['method']})", param=f"rtol={rtol:g}",
                              work=tr.stats["steps"], time=el, error=err))
@@ -149,7 +141,7 @@ def goal_casimir(quick):
     runs = [(m, dict(dt=0.01)) for m in ("splitting2", "splitting4", "splitting8")] + [
         ("DOP853", dict(rtol=1e-10)), ("DOP853", dict(rtol=1e-13))]
     for m, kw in runs:
-        el, tr = timed(lambda: simulate(body, w0, t, method=m, **kw), 1)
+        el, tr = best_of(lambda: simulate(body, w0, t, method=m, **kw), 1)
         c2, c4 = casimirs(tr.L)
         E = tr.energy()
         d2, d4, dE = (float(np.abs(x / x[0] - 1).max()) for x in (c2, c4, E))
@@ -169,13 +161,13 @@ def goal_throughput(quick):
         w0 = rng.normal(size=(B, n))
         for m in SPLITTINGS:
             simulate(body, w0[:4], [0, 0.1], method=m, dt=0.05)
-            el, tr = timed(lambda: simulate(body, w0, [0.0, 1.0], method=m, dt=0.01), 3)
+            el, tr = best_of(lambda: simulate(body, w0, [0.0, 1.0], method=m, dt=0.01), 3)
             rate = B * tr.stats["steps"] / el
             rows.append(dict(N=N, method=m, bodies=B, steps=tr.stats["steps"], time=el, rate=rate))
             print(f"N={N} {m:>11}: {el:.3f} s  {rate:.3g} traj-steps/s  ({tr.stats['flows_per_step']} plane flows/step)")
         # peer: DOP853 on a few bodies, per trajectory (one solve_ivp per body), same accuracy as splitting4 dt=0.01
         k = 20
-        el, tr = timed(lambda: simulate(body, w0[:k], [0.0, 1.0], method="DOP853", rtol=1e-8), 1)
+        el, tr = best_of(lambda: simulate(body, w0[:k], [0.0, 1.0], method="DOP853", rtol=1e-8), 1)
         rate = k * 100 / el
         rows.append(dict(N=N, method="DOP853 (per-body solve_ivp)", bodies=k, steps=100, time=el, rate=rate))
         print(f"N={N} {'DOP853':>11}: {el:.3f} s for {k} bodies -> {rate:.3g} 'trajectory-steps'/s at the same 100-step grid")

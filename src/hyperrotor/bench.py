@@ -22,7 +22,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-__all__ = ["WorkPrecisionPoint", "work_precision", "speedup_at", "write_csv", "plot_work_precision", "BENCH_PROBLEMS"]
+__all__ = ["best_of", "WorkPrecisionPoint", "work_precision", "speedup_at", "write_csv", "plot_work_precision", "BENCH_PROBLEMS"]
 
 #: Problems of :func:`work_precision`.
 BENCH_PROBLEMS = ("quartet", "euler-poinsot")
@@ -47,6 +47,23 @@ class WorkPrecisionPoint:
     value: float
     error: float
     seconds: float
+
+
+def best_of(fn: Callable, repeats: int, *, warmup: bool = False):
+    """Best wall time of ``repeats`` calls of ``fn()`` and the last result: ``(seconds, result)``.
+
+    ``warmup=True`` makes one untimed call first (JIT compilation, caches). The
+    benchmark scripts in ``benchmarks/`` time with this function too.
+    """
+    if int(repeats) < 1:
+        raise ValueError(f"repeats must be >= 1, got {repeats}")
+    out = fn() if warmup else None
+    best = np.inf
+    for _ in range(int(repeats)):
+        start = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - start)
+    return best, out
 
 
 def _problem(name: str):
@@ -93,13 +110,8 @@ def work_precision(problem: str = "quartet", methods: Sequence[str] | None = Non
         if progress:
             progress(f"{problem}: {method} ({len(values)} settings)")
         for value in values:
-            run = lambda: simulate(body, w0, t, method=method, **{key: value})  # noqa: E731
-            traj = run()  # warm-up (JIT compile on the first splitting call)
-            best = np.inf
-            for _ in range(int(repeats)):
-                start = time.perf_counter()
-                traj = run()
-                best = min(best, time.perf_counter() - start)
+            best, traj = best_of(lambda: simulate(body, w0, t, method=method, **{key: value}), repeats,
+                                 warmup=True)  # warm-up: JIT compile on the first splitting call
             err = float(np.max(np.abs(traj.omega - exact))) / scale
             points.append(WorkPrecisionPoint(problem, method, key, float(value), err, best))
     return points
