@@ -21,12 +21,13 @@ Usage: python benchmarks/commutators.py [--quick] [--budget SECONDS]
 from __future__ import annotations
 
 import argparse
-import csv
 import itertools
 import os
 import time
 
 import sympy as sp
+
+from hyperrotor.bench import write_csv
 
 from hyperrotor.conventions import planes
 from hyperrotor.quantum import angular_momentum_operators, commutator
@@ -145,10 +146,7 @@ def main(argv=None) -> list[dict]:
     print("ratio = naive time / fast time; '(est)' = extrapolated lower bound, not measured.")
 
     os.makedirs(RESULTS, exist_ok=True)
-    with open(os.path.join(RESULTS, "commutators.csv"), "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(rows, os.path.join(RESULTS, "commutators.csv"))
     try:
         import matplotlib
 

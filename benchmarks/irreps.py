@@ -24,7 +24,6 @@ Usage: python benchmarks/irreps.py [--quick] [--naive-max-dim D]
 from __future__ import annotations
 
 import argparse
-import csv
 import os
 import time
 import tracemalloc
@@ -32,7 +31,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from hyperrotor.bench import best_of
+from hyperrotor.bench import best_of, write_csv
 import scipy.sparse as sps
 import sympy as sp
 
@@ -197,11 +196,7 @@ def main(argv=None):
               f"CSR {r['csr_mib']:.1f} MiB, peak {r['peak_mib']:.1f} MiB")
 
     os.makedirs(RESULTS, exist_ok=True)
-    path = os.path.join(RESULTS, "irreps.csv")
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    path = write_csv(rows, os.path.join(RESULTS, "irreps.csv"))
     print(f"wrote {path}")
     try:
         import matplotlib

@@ -46,6 +46,7 @@ import tracemalloc  # noqa: E402
 import numpy as np  # noqa: E402
 import scipy.sparse as sps  # noqa: E402
 
+from hyperrotor.bench import write_csv  # noqa: E402
 from hyperrotor.conventions import planes  # noqa: E402
 from hyperrotor.quantum import irrep  # noqa: E402
 from hyperrotor.quantum.coherent import coherent_state  # noqa: E402
@@ -191,10 +192,7 @@ def main(argv=None):
                 if r["body"] == body and r["l"] == lmax and r["method"] == name:
                     r["mem_MiB"] = mem
     os.makedirs(RESULTS, exist_ok=True)
-    with open(os.path.join(RESULTS, "quantum_evolution.csv"), "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv(rows, os.path.join(RESULTS, "quantum_evolution.csv"))
     _plot(rows)
     print(f"\nwrote {RESULTS}/quantum_evolution.csv and .png")
 

@@ -21,13 +21,12 @@ Usage: python benchmarks/scenes.py [--quick] [--repeat R]
 from __future__ import annotations
 
 import argparse
-import csv
 import os
 import time
 
 import numpy as np
 
-from hyperrotor.bench import best_of
+from hyperrotor.bench import best_of, write_csv
 
 import hyperrotor
 from hyperrotor.classical.scenes import Scene, evaluate_scene, hypercube_vertices, simplex_vertices
@@ -95,11 +94,7 @@ def main(argv=None):
                          ratio_full=tf / tm, ratio_dop853=td / tm, rel_deviation=dev))
         print(f"{name:46s} {a.path:48s} {tm:9.4f} {tf:9.4f} {td:10.4f} {tf / tm:8.1f} {td / tm:9.1f} {dev:9.1e}")
     os.makedirs(RESULTS, exist_ok=True)
-    path_csv = os.path.join(RESULTS, "scenes.csv")
-    with open(path_csv, "w", newline="") as fh:
-        wr = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        wr.writeheader()
-        wr.writerows(rows)
+    path_csv = write_csv(rows, os.path.join(RESULTS, "scenes.csv"))
     try:
         import matplotlib
 

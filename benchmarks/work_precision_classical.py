@@ -20,7 +20,6 @@ Writes benchmarks/results/work_precision_classical*.csv and .png.
 from __future__ import annotations
 
 import argparse
-import csv
 import os
 import subprocess
 import sys
@@ -30,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from hyperrotor import Inertia, RigidBody, simulate
-from hyperrotor.bench import best_of
+from hyperrotor.bench import best_of, write_csv
 from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
 from hyperrotor.conventions import to_matrix
 
@@ -223,13 +222,6 @@ def plot(rows, path):
     np.atleast_1d(axes)[0].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
-
-
-def write_csv(rows, path):
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
 
 
 def main(argv=None):

@@ -48,3 +48,19 @@ def test_cli_bench_bad_method(capsys):
 def test_unknown_problem():
     with pytest.raises(ValueError, match="unknown problem 'pendulum'"):
         work_precision("pendulum")
+
+
+def test_write_csv_dicts_and_dataclasses_round_trip(tmp_path):
+    from hyperrotor.bench import write_csv
+
+    rows = [{"N": 3, "seconds": 0.5}, {"N": 4, "seconds": 1.25}]
+    path = write_csv(rows, tmp_path / "d.csv")
+    with open(path, encoding="utf-8") as fh:
+        back = list(csv.DictReader(fh))
+    assert [(int(r["N"]), float(r["seconds"])) for r in back] == [(3, 0.5), (4, 1.25)]
+    pt = WorkPrecisionPoint("p", "m", "dt", 0.1, 1e-9, 0.25)
+    with open(write_csv([pt], tmp_path / "p.csv"), encoding="utf-8") as fh:
+        (row,) = csv.DictReader(fh)
+    assert row == {"problem": "p", "method": "m", "setting": "dt", "value": "0.1", "error": "1e-09", "seconds": "0.25"}
+    with pytest.raises(ValueError, match="at least one row"):
+        write_csv([], tmp_path / "e.csv")

@@ -17,7 +17,7 @@ from __future__ import annotations
 import csv
 import sys
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, is_dataclass
 from typing import Callable, Sequence
 
 import numpy as np
@@ -134,15 +134,21 @@ def speedup_at(points: Sequence[WorkPrecisionPoint], error: float, *, peer: str 
             "ratio": ref.seconds / best.seconds}
 
 
-def write_csv(points: Sequence[WorkPrecisionPoint], path: str) -> str:
-    """Write the points as CSV (one row per run, header = field names)."""
-    fields = list(WorkPrecisionPoint.__dataclass_fields__)
+def write_csv(rows: Sequence, path) -> str:
+    """Write rows as CSV, one line per row, the header from the first row's keys.
+
+    ``rows``: dicts or dataclass instances (e.g. :class:`WorkPrecisionPoint`), all
+    with the same fields. The benchmark scripts in ``benchmarks/`` write through
+    this function too.
+    """
+    rows = [asdict(r) if is_dataclass(r) else dict(r) for r in rows]
+    if not rows:
+        raise ValueError("write_csv needs at least one row")
     with open(path, "w", newline="", encoding="utf-8") as fh:
-        writer = csv.DictWriter(fh, fieldnames=fields)
+        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
         writer.writeheader()
-        for p in points:
-            writer.writerow(asdict(p))
-    return path
+        writer.writerows(rows)
+    return str(path)
 
 
 def plot_work_precision(points: Sequence[WorkPrecisionPoint], path: str) -> str:
