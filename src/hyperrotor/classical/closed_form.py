@@ -72,7 +72,7 @@ import numpy as np
 from scipy import special
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, planes
-from .inertia import body_moments
+from .inertia import Inertia, body_moments
 
 __all__ = [
     "equal_moments_solution",
@@ -154,11 +154,9 @@ def quartet_moments(kappa: float, axis: int = 5, N: int = 5) -> np.ndarray:
     r"""Plane moments of the quartet case: ``1 + kappa**2`` for planes containing ``axis``, else 2.
 
     ``axis=5`` is eqs. (84)-(85); ``axis=4, 3, 2, 1`` are eqs. (111)-(114).
+    The moments of :meth:`hyperrotor.Inertia.quartet` as a float array.
     """
-    N = check_dimension(N)
-    axis = _check_axis(axis, N)
-    k2 = float(kappa) ** 2
-    return np.array([1.0 + k2 if axis in p else 2.0 for p in planes(N)])
+    return Inertia.quartet(kappa, axis=axis, N=N).moments
 
 
 def quartet_theta(kappa: float) -> float:
