@@ -30,8 +30,8 @@ BENCH_PROBLEMS = ("quartet", "euler-poinsot")
 _SETTINGS = {  # method -> (keyword, values): splittings by step, scipy by tolerance
     "splitting2": ("dt", (0.02, 0.005, 0.001)),
     "splitting4": ("dt", (0.1, 0.03, 0.01, 0.003)),
-    "splitting6": ("dt", (0.3, 0.1, 0.05, 0.02)),
-    "splitting8": ("dt", (0.4, 0.2, 0.1, 0.05, 0.03)),
+    "splitting6": ("dt", (0.5, 0.3, 0.1, 0.05, 0.02)),
+    "splitting8": ("dt", (1.0, 0.6, 0.4, 0.3, 0.2, 0.1)),
     "DOP853": ("rtol", (1e-6, 1e-8, 1e-10, 1e-12, 1e-13)),
     "RK45": ("rtol", (1e-4, 1e-6, 1e-8)),
 }

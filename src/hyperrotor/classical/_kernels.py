@@ -9,8 +9,10 @@ Data layout (``n = N(N-1)/2`` planes, ``B`` bodies, ``K`` output times)
 ---------------------------------------------------------------------
 ``L0 (B, n)``
     angular-momentum components (plane order of :mod:`hyperrotor.conventions`).
-``moments (B, n)``
-    plane moments :math:`I_a` per body (rows may repeat one body).
+``rates (B, n)``
+    rotation rate per unit momentum of each plane term, :math:`1/I_a - c` for the
+    split Hamiltonian :math:`H - c\,C_2` (``c`` the Casimir shift of
+    :mod:`hyperrotor.classical.integrate`; rows may repeat one body).
 ``seq_plane (m,) int64``, ``seq_coef (m,) float64``
     one step of the composed method as a word of elementary flows: entry ``r``
     is the exact flow of :math:`L_a^2/(2I_a)` (``a = seq_plane[r] >= 0``) over
@@ -25,12 +27,13 @@ Data layout (``n = N(N-1)/2`` planes, ``B`` bodies, ``K`` output times)
 
 Elementary flow
 ---------------
-For :math:`H_a = L_a^2/(2 I_a)` the component equations
+For :math:`H_a = \rho_a L_a^2/2` (:math:`\rho_a` = ``rates[a]``, :math:`1/I_a` without
+shift) the component equations
 :math:`\dot L_c = \sum_{b,d} C_{bd}^{\;c}\,\omega_b L_d` (plain matrices:
 :math:`\dot L = [\Omega, L]`) reduce to :math:`\dot L = \theta'\,[E_a, L]` with the
-constant rate :math:`\theta' = L_a / I_a` (``L_a`` is conserved because ``C`` is
+constant rate :math:`\theta' = \rho_a L_a` (``L_a`` is conserved because ``C`` is
 totally antisymmetric). The exact solution is
-:math:`L(h) = R L R^{\mathsf T}`, :math:`R = \exp(\phi E_a)`, :math:`\phi = h L_a / I_a`;
+:math:`L(h) = R L R^{\mathsf T}`, :math:`R = \exp(\phi E_a)`, :math:`\phi = h \rho_a L_a`;
 on rows ``i, j`` :math:`R` is :math:`\begin{pmatrix} c & s\\ -s & c\end{pmatrix}`,
 so for every ``k != i, j``
 
@@ -102,13 +105,15 @@ def sincos(x):  # pragma: no cover - jitted
     return x + (x * z) * ps, 1.0 + z * pc
 
 
-def _split_run(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j,
-               t, nsub, torque, T0, with_attitude, outL, outT):  # pragma: no cover - jitted
+def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j,
+               t, nsub, torque, T0, with_attitude, compensated, outL, outT):  # pragma: no cover - jitted
     """Integrate ``B`` bodies over the output grid ``t`` with a composed splitting method.
 
     Interval ``[t[k], t[k+1]]`` is covered by ``nsub[k]`` equal steps. Writes
     ``outL[b, k, :]`` (angular momentum at ``t[k]``) and, if ``with_attitude``,
-    ``outT[b, k]`` (plain-matrix attitude, starting from ``T0[b]``).
+    ``outT[b, k]`` (plain-matrix attitude, starting from ``T0[b]``). With ``compensated``
+    the increments of ``L`` are added with error-free TwoSum (``L = Lh + Ll``), else in
+    plain arithmetic (~1.6x faster; see ``_COMPENSATE_ABOVE`` in ``integrate``).
     Compiled twice: :func:`split_run` (``prange`` over bodies, threads) and
     :func:`split_run_serial` (no thread launch: cheaper for a few bodies).
     """
@@ -121,9 +126,6 @@ def _split_run(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i
     for b in prange(B):
         Lh = np.empty(n)  # compensated storage: L = Lh + Ll (Lh carries the value, Ll the rounding error)
         Ll = np.zeros(n)
-        inv = np.empty(n)
-        for a in range(n):
-            inv[a] = 1.0 / moments[b, a]
         fac = np.empty(m)
         for a in range(n):
             Lh[a] = L0[b, a]
@@ -139,13 +141,16 @@ def _split_run(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i
             h = (t[k + 1] - t[k]) / ns
             for r in range(m):
                 a = seq_plane[r]
-                fac[r] = seq_coef[r] * h if a < 0 else 0.5 * seq_coef[r] * h * inv[a]
+                fac[r] = seq_coef[r] * h if a < 0 else 0.5 * seq_coef[r] * h * rates[b, a]
             for _ in range(ns):
                 for r in range(m):
                     a = seq_plane[r]
                     if a < 0:
                         ch = fac[r]
                         for e in range(n):
+                            if not compensated:
+                                Lh[e] += ch * torque[b, e]
+                                continue
                             d = ch * torque[b, e] + Ll[e]
                             x = Lh[e]
                             snew = x + d
@@ -153,7 +158,7 @@ def _split_run(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i
                             Ll[e] = (x - (snew - bb)) + (d - bb)
                             Lh[e] = snew
                         continue
-                    half = fac[r] * (Lh[a] + Ll[a])
+                    half = fac[r] * (Lh[a] + Ll[a]) if compensated else fac[r] * Lh[a]
                     sh, chh = sincos(half)
                     s = 2.0 * sh * chh       # sin(phi)
                     v = 2.0 * sh * sh        # 1 - cos(phi), accurate for small phi
@@ -163,6 +168,10 @@ def _split_run(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i
                         ss = s * pair_s[a, e]
                         x = Lh[p]
                         y = Lh[q]
+                        if not compensated:
+                            Lh[p] = x + (ss * y - v * x)
+                            Lh[q] = y - (ss * x + v * y)
+                            continue
                         # increments of the exact rotation, added with TwoSum (error-free)
                         d = (ss * y - v * x) + Ll[p]
                         snew = x + d
@@ -190,8 +199,8 @@ def _split_run(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i
                         outT[b, k + 1, r, c2] = T[r, c2]
 
 
-def _split_run_ensemble(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s,
-                        t, nsub, torque, chunk, outL):  # pragma: no cover - jitted
+def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
+                        t, nsub, torque, chunk, compensated, outL):  # pragma: no cover - jitted
     """Same integration as :func:`_split_run` without attitude, bodies innermost.
 
     Bodies are processed in chunks of ``chunk`` (threads over chunks); inside a chunk the
@@ -210,7 +219,6 @@ def _split_run_ensemble(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s
         nb = min(B, b0 + chunk) - b0
         Lh = np.empty((n, nb))
         Ll = np.zeros((n, nb))
-        inv = np.empty((n, nb))
         tq = np.empty((n, nb))
         fac = np.empty((m, nb))
         S = np.empty(nb)
@@ -218,7 +226,6 @@ def _split_run_ensemble(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s
         for a in range(n):
             for j in range(nb):
                 Lh[a, j] = L0[b0 + j, a]
-                inv[a, j] = 1.0 / moments[b0 + j, a]
                 tq[a, j] = torque[b0 + j, a]
                 outL[b0 + j, 0, a] = Lh[a, j]
         for k in range(K - 1):
@@ -227,12 +234,16 @@ def _split_run_ensemble(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s
             for r in range(m):
                 a = seq_plane[r]
                 for j in range(nb):
-                    fac[r, j] = seq_coef[r] * h if a < 0 else 0.5 * seq_coef[r] * h * inv[a, j]
+                    fac[r, j] = seq_coef[r] * h if a < 0 else 0.5 * seq_coef[r] * h * rates[b0 + j, a]
             for _ in range(ns):
                 for r in range(m):
                     a = seq_plane[r]
                     if a < 0:
                         for e in range(n):
+                            if not compensated:
+                                for j in range(nb):
+                                    Lh[e, j] += fac[r, j] * tq[e, j]
+                                continue
                             for j in range(nb):
                                 d = fac[r, j] * tq[e, j] + Ll[e, j]
                                 x = Lh[e, j]
@@ -265,6 +276,15 @@ def _split_run_ensemble(L0, moments, seq_plane, seq_coef, pair_p, pair_q, pair_s
                         p = pair_p[a, e]
                         q = pair_q[a, e]
                         sg = pair_s[a, e]
+                        if not compensated:
+                            for j in range(nb):
+                                ss = S[j] * sg
+                                v = V[j]
+                                x = Lh[p, j]
+                                y = Lh[q, j]
+                                Lh[p, j] = x + (ss * y - v * x)
+                                Lh[q, j] = y - (ss * x + v * y)
+                            continue
                         for j in range(nb):  # contiguous, branch-free: vectorised over bodies
                             ss = S[j] * sg
                             v = V[j]

@@ -14,12 +14,17 @@ body-frame torque (components in plane order, units of :math:`dL/dt`) and
 Methods
 -------
 ``"splitting2"``, ``"splitting4"``, ``"splitting6"``, ``"splitting8"``
-    Lie-Poisson splitting. The Hamiltonian :math:`H = \sum_a L_a^2/(2 I_a)`
-    is split into one term per plane; the flow of :math:`L_a^2/(2I_a)` keeps
+    Lie-Poisson splitting. The Hamiltonian, shifted by a multiple of the Casimir
+    :math:`C_2 = \tfrac12\sum_a L_a^2` (same motion of ``L``, see :func:`casimir_shift`),
+    :math:`H - c\,C_2 = \sum_a \rho_a L_a^2/2` with :math:`\rho_a = 1/I_a - c`,
+    is split into one term per plane; the flow of :math:`\rho_a L_a^2/2` keeps
     :math:`L_a` fixed and rotates :math:`L` (and ``T``) exactly by the angle
-    :math:`h L_a / I_a` in plane ``a`` (see :mod:`hyperrotor.classical._kernels`).
-    The basic method :math:`S_2(h)` is Strang's symmetric product over the planes
-    in paper order followed by the reverse order (order 2). Orders 4, 6, 8 are
+    :math:`h \rho_a L_a` in plane ``a`` (see :mod:`hyperrotor.classical._kernels`).
+    Planes with :math:`\rho_a = 0` (those whose moment equals ``1/c``) drop out;
+    the attitude is corrected for the shift exactly. The basic method :math:`S_2(h)`
+    is Strang's symmetric product over the remaining planes, in an order where
+    consecutive planes share no axis wherever possible (their flows overlap in the
+    CPU pipeline), followed by the reverse order (order 2). Orders 4, 6, 8 are
     symmetric compositions :math:`S_2(\gamma_s h)\cdots S_2(\gamma_1 h)`:
 
     * order 4: Yoshida's / Suzuki's triple jump, :math:`\gamma_1 = \gamma_3 =
@@ -61,9 +66,13 @@ on first use and cached on disk: a cold first call costs about 1 s (one body),
 machine, a cached one about 0.1 s. One body (or fewer than 32) runs a serial
 kernel; ensembles without attitude run a chunked kernel with the bodies
 innermost (vectorised, threads over chunks); ensembles with attitude run one
-thread per body. The rotation increments are added with error-free TwoSum
-(compensated storage of ``L``), so round-off does not random-walk the Casimirs:
-their relative drift stays ~1e-15 after 1e6 steps. Measured work-precision and
+thread per body. With ``compensated`` (automatic for runs of more than 1e6
+elementary flows per trajectory or ``rtol < 1e-12``) the rotation increments are
+added with error-free TwoSum (compensated storage of ``L``), so round-off does not
+random-walk the Casimirs: their relative drift stays ~1e-15 after 1e6 steps, and the
+trajectory's round-off floor stays ~1e-15. Otherwise plain arithmetic (~1.6x faster
+per flow): the Casimirs' round-off random-walks as ~0.15 eps sqrt(flows) (< 1e-13),
+the trajectory's floor is ~1e-13 .. 1e-12, like scipy's DOP853. Measured work-precision and
 throughput: ``benchmarks/work_precision_classical.py``.
 """
 from __future__ import annotations
@@ -87,7 +96,7 @@ from hyperrotor.conventions import (
 from . import _kernels
 from .inertia import body_moments
 
-__all__ = ["simulate", "Trajectory", "SIMULATION_METHODS", "splitting_coefficients"]
+__all__ = ["simulate", "Trajectory", "SIMULATION_METHODS", "splitting_coefficients", "casimir_shift"]
 
 #: Allowed ``method=`` names of :func:`simulate`.
 SIMULATION_METHODS = ("auto", "splitting2", "splitting4", "splitting6", "splitting8", "DOP853", "RK45", "LSODA", "Radau")
@@ -98,6 +107,11 @@ _DEFAULT_RTOL = 1e-9
 #: ensembles at least this large use the threaded kernel (thread launch costs ~ms on a busy machine)
 _PARALLEL_MIN_BODIES = 32
 _ENSEMBLE_CHUNK = 128  # bodies per chunk of the ensemble kernel (working set fits in L1/L2)
+#: ``compensated=None``: runs of more elementary flows than this (per trajectory) keep L in
+#: compensated storage (plain round-off of the Casimirs random-walks as ~0.15 eps sqrt(flows)) ...
+_COMPENSATE_ABOVE = 1_000_000
+#: ... and so do runs asked for an rtol below this (plain round-off of omega reaches ~1e-13..1e-12)
+_COMPENSATE_BELOW_RTOL = 1e-12
 
 # Half of each symmetric coefficient set (the middle one last); see the module docstring.
 _KAHAN_LI_6 = (
@@ -145,11 +159,98 @@ def splitting_coefficients(order: int) -> np.ndarray:
     raise ValueError(f"splitting order must be one of 2, 4, 6, 8, got {order!r}")
 
 
+def casimir_shift(moments: Any, L: Any = None) -> float:
+    r"""The shift ``c`` of the split Hamiltonian :math:`H - c\,C_2` used by the splitting methods.
+
+    :math:`C_2 = \tfrac12\sum_a L_a^2` is a Casimir, so :math:`H` and
+    :math:`H - c\,C_2 = \sum_a \rho_a L_a^2/2`, :math:`\rho_a = 1/I_a - c`, generate the
+    same motion of ``L`` for every ``c``; only the angles :math:`h\rho_a L_a` of the
+    elementary flows change. The splitting error is built from brackets of the plane
+    terms, each proportional to products of these angles, so small :math:`|\rho_a L_a|`
+    make it small, and a plane with :math:`\rho_a = 0` drops out of the step altogether.
+
+    The rule: ``c`` minimises :math:`\sum_a w_a\,|1/I_a - c|` with the weights
+    :math:`w_a = \sum_b \min(|L_b|, \sqrt{2E_bI_a})/|L_b|` (the bound on :math:`|L_a|` over
+    the orbit of each ensemble member ``b``, from its Casimir and energy; equal weights
+    without ``L``), i.e. ``c`` is the weighted median of the :math:`1/I_a`, which is one of
+    them (ties go to the value shared by most planes). On the 5D work-precision problems
+    this cuts the cost at error 1e-10 by about 2x (generic body) and 8x (quartet, whose six
+    planes of equal moment all drop out; ``benchmarks/work_precision_classical.py``); with
+    moments spread over 12 decades the weights keep ``c`` among the heavy planes, which
+    carry the momentum. With equal moments every plane drops out and ``L`` is (exactly)
+    constant.
+
+    The attitude feels the shift: the flow of :math:`c\,C_2` turns ``T`` at the rate
+    :math:`c\,L`; :func:`simulate` puts it back exactly (see ``_unshift_attitude``).
+
+    Parameters
+    ----------
+    moments : array_like (n,)
+        plane moments :math:`I_a`.
+    L : array_like (n,) or (B, n), optional
+        initial angular momenta (an ensemble: one row per member).
+
+    Returns
+    -------
+    float
+        ``c``, equal to one of the :math:`1/I_a`.
+    """
+    moments = np.asarray(moments, dtype=float).ravel()
+    rates = 1.0 / moments
+    weights = np.ones_like(rates)
+    if L is not None:
+        L = np.atleast_2d(np.asarray(L, dtype=float))
+        norm = np.sqrt(np.sum(L * L, axis=1, keepdims=True))
+        E2 = np.sum(L * L / moments, axis=1, keepdims=True)
+        moving = norm[:, 0] > 0
+        if np.any(moving):
+            weights = np.sum(np.minimum(norm, np.sqrt(E2 * moments))[moving] / norm[moving], axis=0)
+    values, counts = np.unique(rates, return_counts=True)
+    cost = np.abs(rates[None, :] - values[:, None]) @ weights
+    cost = np.round(cost / max(float(cost.max()), 1e-300), 12)  # equal up to round-off -> tie
+    return float(values[np.lexsort((-counts, cost))[0]])
+
+
 @lru_cache(maxsize=None)
-def _splitting_word(order: int, n: int, kick: bool = False) -> tuple[np.ndarray, np.ndarray]:
+def _plane_sequence(N: int, active: tuple[int, ...]) -> tuple[int, ...]:
+    """The active planes in an order where consecutive planes share no axis wherever possible.
+
+    Flows of planes with no common axis commute and the angle of the second does not
+    depend on the result of the first, so the CPU overlaps them (a single trajectory is
+    latency-bound). Greedy path in the "disjoint planes" graph (a Kneser graph; the
+    Petersen graph for N = 5) with Warnsdorff's rule (go to the candidate with the fewest
+    onward options), from every start; the order with the fewest shared-axis neighbours wins.
+    """
+    ps = planes(N)
+    if len(active) <= 2:
+        return active
+    disjoint = {a: {b for b in active if b != a and not set(ps[a]) & set(ps[b])} for a in active}
+    best, best_bad = active, len(active)
+    for start in active:
+        path, left, bad = [start], set(active) - {start}, 0
+        while left:
+            cand = disjoint[path[-1]] & left
+            if cand:
+                nxt = min(cand, key=lambda b: (len(disjoint[b] & left), b))
+            else:
+                bad += 1
+                nxt = min(left, key=lambda b: (len(disjoint[b] & left), b))
+            path.append(nxt)
+            left.discard(nxt)
+        if bad < best_bad:
+            best, best_bad = tuple(path), bad
+            if bad == 0:
+                break
+    return best
+
+
+@lru_cache(maxsize=None)
+def _splitting_word(order: int, seq: tuple[int, ...], kick: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """One step as a word of elementary flows (plane index, fraction of h); -1 = torque kick.
 
-    Adjacent flows of the same plane are merged (they commute, the sum is exact).
+    Strang's :math:`S_2` runs the planes of ``seq`` forward with half steps, the last
+    one with a full step, and back; adjacent flows of the same plane are merged (they
+    commute, the sum is exact).
     """
     word: list[list] = []
 
@@ -162,18 +263,36 @@ def _splitting_word(order: int, n: int, kick: bool = False) -> tuple[np.ndarray,
     for g in splitting_coefficients(order):
         if kick:
             push(-1, g / 2)
-        for a in range(n - 1):
-            push(a, g / 2)
-        push(n - 1, g)
-        for a in range(n - 2, -1, -1):
-            push(a, g / 2)
+        if seq:
+            for a in seq[:-1]:
+                push(a, g / 2)
+            push(seq[-1], g)
+            for a in seq[-2::-1]:
+                push(a, g / 2)
         if kick:
             push(-1, g / 2)
     word = [w for w in word if w[1] != 0.0]
-    planes_, coefs = np.array([w[0] for w in word], dtype=np.int64), np.array([w[1] for w in word], dtype=np.float64)
+    planes_ = np.array([w[0] for w in word], dtype=np.int64)
+    coefs = np.array([w[1] for w in word], dtype=np.float64)
     planes_.setflags(write=False)
     coefs.setflags(write=False)
     return planes_, coefs
+
+
+def _unshift_attitude(att: np.ndarray, L0: np.ndarray, T0: np.ndarray, t: np.ndarray, c: float) -> np.ndarray:
+    r"""Attitude of :math:`H` from the attitude ``att`` (B, K, N, N) of :math:`H - c\,C_2` (plain convention).
+
+    The flows of :math:`H - cC_2` and :math:`cC_2` commute; the latter keeps ``L`` and
+    turns the attitude, :math:`\dot T = c\,L\,T`. With the conserved space-frame momentum
+    :math:`\Lambda = T_0^{\mathsf T} L_0 T_0` (``L = T \Lambda T^T``) this gives
+    :math:`T(t) = T'(t)\,\exp\bigl(c\,(t - t_0)\,\Lambda\bigr)`, evaluated exactly from one
+    eigen-decomposition of the Hermitian :math:`i\Lambda` per body (orthogonal to round-off).
+    """
+    Lam = np.swapaxes(T0, -1, -2) @ to_matrix(L0, "standard") @ T0  # (B, N, N)
+    lam, U = np.linalg.eigh(1j * Lam)  # Lam = U diag(-i lam) U^H
+    phase = np.exp(-1j * c * (t - t[0])[None, :, None] * lam[:, None, :])  # (B, K, N)
+    E = np.einsum("brm,bkm,bsm->bkrs", U, phase, U.conj()).real
+    return att @ E
 
 
 @lru_cache(maxsize=None)
@@ -272,7 +391,11 @@ class Trajectory:
     stats : dict
         ``method``, ``order`` (splitting) , ``steps`` (steps per trajectory for
         the splitting methods, ``None`` for scipy), ``nfev`` (scipy, summed over
-        the ensemble), ``dt`` (largest step used), ``rtol``, ``wall_time`` (s).
+        the ensemble), ``dt`` (largest step used), ``rtol``, ``wall_time`` (s);
+        for the splitting methods also ``flows_per_step`` (elementary plane flows
+        in one step), ``casimir_shift`` (the ``c`` of :func:`casimir_shift`) and
+        ``compensated`` (whether ``L`` was kept in compensated storage, see the
+        performance notes).
     """
 
     def __init__(self, t, omega, L, attitude, body, moments, stats):
@@ -301,23 +424,25 @@ def _nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
     return np.maximum(1, np.ceil(gaps / dt * (1 - 1e-12))).astype(np.int64)
 
 
-def _run_split(L0, moments_b, word, tables, t, nsub, torque_b, T0, with_att):
+def _run_split(L0, rates_b, word, tables, t, nsub, torque_b, T0, with_att, compensated):
     """Dispatch to a kernel: one body or a few -> serial; an ensemble without attitude ->
-    bodies-innermost chunks over threads; an ensemble with attitude -> threads over bodies."""
+    bodies-innermost chunks over threads; an ensemble with attitude -> threads over bodies.
+    ``compensated``: TwoSum storage of ``L`` (see the performance notes)."""
     B, n = L0.shape
     N = T0.shape[-1]
     outL = np.empty((B, t.size, n))
     L0 = np.ascontiguousarray(L0)
-    moments_b = np.ascontiguousarray(moments_b)
+    rates_b = np.ascontiguousarray(rates_b)
     torque_b = np.ascontiguousarray(torque_b)
     if B >= _PARALLEL_MIN_BODIES and not with_att:
         chunk = max(1, min(_ENSEMBLE_CHUNK, -(-B // 8)))
-        _kernels.split_run_ensemble(L0, moments_b, word[0], word[1], *tables[:3], t, nsub, torque_b, chunk, outL)
+        _kernels.split_run_ensemble(L0, rates_b, word[0], word[1], *tables[:3], t, nsub, torque_b, chunk,
+                                    compensated, outL)
         return outL, None
     outT = np.empty((B, t.size, N, N)) if with_att else np.empty((B, 1, N, N))
     kernel = _kernels.split_run if B >= _PARALLEL_MIN_BODIES else _kernels.split_run_serial
-    kernel(L0, moments_b, word[0], word[1], *tables, t, nsub, torque_b, np.ascontiguousarray(T0),
-           bool(with_att), outL, outT)
+    kernel(L0, rates_b, word[0], word[1], *tables, t, nsub, torque_b, np.ascontiguousarray(T0),
+           bool(with_att), compensated, outL, outT)
     return outL, (outT if with_att else None)
 
 
@@ -334,7 +459,7 @@ def _triples(N: int):
     return arr[:, 0], arr[:, 1], arr[:, 2]
 
 
-def _choose_step(L0, moments, word, tables, order, T_total, rtol, torque_b, N):
+def _choose_step(L0, moments, rates, word, tables, order, T_total, rtol, torque_b, N, compensated):
     r"""Step size for a requested relative accuracy ``rtol`` (splitting methods).
 
     Rule: the global error of the order-``p`` method over the run is modelled as
@@ -381,7 +506,7 @@ def _choose_step(L0, moments, word, tables, order, T_total, rtol, torque_b, N):
     if np.any(torque_b):  # rate a torque can build up within the run
         wmax = max(wmax, float(np.max(np.abs(torque_b) / moments)) * T_total, float(np.max(np.abs(torque_b) / moments)) ** 0.5)
     sel = np.argsort(wmax_b)[::-1][: min(8, L0.shape[0])]
-    L0s, Ms, Ts = L0[sel], moments[sel], torque_b[sel]
+    L0s, Ms, Rs, Ts = L0[sel], moments[sel], rates[sel], torque_b[sel]
     P = min(T_total, 20.0 / wmax)
     scale = float(np.max(np.abs(L0s / Ms))) or wmax  # rtol is relative to max|omega0| ...
     Lnorm = np.maximum(np.sqrt(np.sum(L0s * L0s, axis=1, keepdims=True)), 1e-300)  # ... and to |L0|
@@ -394,8 +519,8 @@ def _choose_step(L0, moments, word, tables, order, T_total, rtol, torque_b, N):
             break
         h = P / m
         tg = np.array([0.0, P])
-        y1, _ = _run_split(L0s, Ms, word, tables, tg, np.array([m]), Ts, T0, False)
-        y2, _ = _run_split(L0s, Ms, word, tables, tg, np.array([2 * m]), Ts, T0, False)
+        y1, _ = _run_split(L0s, Rs, word, tables, tg, np.array([m]), Ts, T0, False, compensated)
+        y2, _ = _run_split(L0s, Rs, word, tables, tg, np.array([2 * m]), Ts, T0, False, compensated)
         dL = np.abs(y1[:, -1] - y2[:, -1])
         err = max(float(np.max(dL / Ms)) / scale, float(np.max(dL / Lnorm))) / (1.0 - 2.0 ** -order)
         floor = 1e3 * np.finfo(float).eps * math.sqrt(2 * m * word[0].size)
@@ -505,6 +630,8 @@ def simulate(
     dt: float | None = None,
     attitude: bool | Any = False,
     torque: Callable | Any | None = None,
+    *,
+    compensated: bool | None = None,
 ) -> Trajectory:
     r"""Integrate the Euler equations (eqs. 24-26) of a rigid body in N dimensions.
 
@@ -541,6 +668,12 @@ def simulate(
         (:math:`I_{ij}\dot\omega_{ij} = \dots + \tau_{ij}`): constant components
         (n_planes,) or batch + (n_planes,), or a callable ``torque(t, omega)``
         returning n_planes components (scipy methods only).
+    compensated : bool or None, optional
+        splitting methods: keep ``L`` in compensated (TwoSum) storage, so that round-off
+        does not random-walk the Casimirs and the trajectory (~1.6x slower per step).
+        ``None`` (default) means yes for runs of more than 1e6 elementary flows per
+        trajectory or ``rtol < 1e-12``, else plain arithmetic (round-off then ~eps
+        sqrt(flows), below ~1e-13 for the Casimirs).
 
     Returns
     -------
@@ -585,6 +718,8 @@ def simulate(
     t = _check_time_grid(t)
     rtol = _check_positive("rtol", rtol)
     dt = _check_positive("dt", dt)
+    if compensated is not None and not isinstance(compensated, (bool, np.bool_)):
+        raise TypeError(f"compensated must be True, False or None (automatic), got {compensated!r}")
 
     # torque
     tq = None
@@ -633,6 +768,8 @@ def simulate(
     if method in _SCIPY_METHODS:
         if dt is not None:
             raise ValueError(f"dt fixes the step of the splitting methods; scipy method {method!r} takes rtol only")
+        if compensated is not None:
+            raise ValueError(f"compensated applies to the splitting methods only, not to scipy method {method!r}")
         rtol_used = _DEFAULT_RTOL if rtol is None else rtol
         rtol_used = max(rtol_used, 100 * np.finfo(float).eps)  # solve_ivp's floor (it warns below it)
     else:
@@ -661,26 +798,36 @@ def simulate(
         stats.update(order=None, steps=None, nfev=int(nfev), dt=None)
     else:
         order = _SPLITTING_ORDER[method]
-        kick = tq is not None and np.any(tq)
-        word = _splitting_word(order, n, kick=bool(kick))
+        kick = bool(tq is not None and np.any(tq))
+        # a torque moves the space-frame momentum, so the attitude could not be un-shifted
+        shift = 0.0 if (kick and with_att) else casimir_shift(moments, w0f * moments)
+        rates = 1.0 / moments - shift
+        seq = _plane_sequence(N, tuple(int(a) for a in np.flatnonzero(rates)))
+        word = _splitting_word(order, seq, kick=kick)
         tables = _rotation_tables(N)
         torque_b = np.zeros((B, n)) if not kick else np.ascontiguousarray(tq.reshape(B, n))
-        moments_b = np.broadcast_to(moments, (B, n))
+        rates_b = np.broadcast_to(rates, (B, n))
         L0 = w0f * moments
+        tight = rtol_used is not None and rtol_used < _COMPENSATE_BELOW_RTOL
         if dt is None:
             T_total = float(t[-1] - t[0])
-            if T_total > 0:
-                dt = _choose_step(L0, moments_b, word, tables, order, T_total, rtol_used, torque_b, N)
+            if T_total > 0 and word[0].size:
+                dt = _choose_step(L0, np.broadcast_to(moments, (B, n)), rates_b, word, tables, order, T_total,
+                                  rtol_used, torque_b, N, tight if compensated is None else compensated)
             else:
-                dt = 1.0
+                dt = max(T_total, 1.0)  # nothing to integrate (equal moments, no torque): L is constant
         nsub = _nsub_for(t, dt)
+        if compensated is None:
+            compensated = tight or int(nsub.sum()) * word[0].size > _COMPENSATE_ABOVE
         T0_run = T0_std if with_att else np.zeros((1, N, N))
-        outL, outT = _run_split(L0, moments_b, word, tables, t, nsub, torque_b, T0_run, with_att)
+        outL, outT = _run_split(L0, rates_b, word, tables, t, nsub, torque_b, T0_run, with_att, compensated)
         omega, Lout = outL / moments, outL
         att = outT
+        if with_att and shift != 0.0:
+            att = _unshift_attitude(att, L0, T0_std, t, shift)
         stats.update(order=order, steps=int(nsub.sum()), nfev=None,
                      dt=float(np.max(np.diff(t) / nsub)) if t.size > 1 else None,
-                     flows_per_step=int(word[0].size))
+                     flows_per_step=int(word[0].size), casimir_shift=shift, compensated=compensated)
     omega = omega.reshape(batch + (t.size, n))
     L = Lout.reshape(omega.shape) if method not in _SCIPY_METHODS else omega * moments
     if att is not None:
