@@ -1,4 +1,4 @@
-"""Work-precision of hyperrotor.simulate: Lie-Poisson splittings (numba) vs scipy solve_ivp.
+"""Work-precision of hyperrotor.simulate: Lie-Poisson splittings and Moser-Veselov (numba) vs scipy solve_ivp.
 
 Problems
   (a) 3D Euler-Poinsot, moments (I12, I13, I23) = (2, 3, 4), T = 100, vs the elliptic closed form;
@@ -35,6 +35,7 @@ from hyperrotor.conventions import to_matrix
 
 RESULTS = Path(__file__).resolve().parent / "results"
 SPLITTINGS = ["splitting2", "splitting4", "splitting6", "splitting8"]
+OURS = SPLITTINGS + ["moser-veselov"]  # hyperrotor's own integrators
 SCIPY = ["DOP853", "RK45", "LSODA", "Radau"]
 
 
@@ -61,12 +62,13 @@ def problems():
     }
 
 
-def work_precision(quick):
+def work_precision(quick, probs):
     dts = {
         "splitting2": [0.1, 0.03, 0.01, 0.003, 0.001] + ([] if quick else [3e-4, 1e-4]),
         "splitting4": [0.2, 0.1, 0.05, 0.02, 0.01, 0.005] + ([] if quick else [0.002, 0.001]),
         "splitting6": [0.5, 0.3, 0.2, 0.1, 0.05, 0.03, 0.02] + ([] if quick else [0.01]),
         "splitting8": [1.0, 0.6, 0.4, 0.3, 0.2, 0.15, 0.1, 0.07, 0.05] + ([] if quick else [0.03]),
+        "moser-veselov": [0.1, 0.03, 0.01, 0.003] + ([] if quick else [0.001]),
     }
     rtols = {
         "DOP853": [1e-6, 1e-8, 1e-10, 1e-11, 1e-12, 1e-13] + ([] if quick else [3e-14]),
@@ -75,11 +77,11 @@ def work_precision(quick):
         "Radau": [1e-4, 1e-6] + ([] if quick else [1e-8]),
     }
     rows = []
-    for pname, (body, w0, t, ref) in problems().items():
+    for pname, (body, w0, t, ref) in probs.items():
         scale = np.abs(w0).max()
         print(f"\n== {pname}: T = {t[-1]:g}, {t.size} output times ==")
         print(f"{'method':>11} {'param':>9} {'steps/nfev':>11} {'time [s]':>10} {'error':>9}")
-        for m in SPLITTINGS:
+        for m in OURS:
             simulate(body, w0, t[:2], method=m, dt=0.1)  # warm
             for dt in dts[m]:
                 el, tr = best_of(lambda: simulate(body, w0, t, method=m, dt=dt), 5)
@@ -112,7 +114,7 @@ def goal_speed(rows, target=1e-10):
             if r["problem"] == pname and r["error"] <= target and not r["method"].startswith("auto"):
                 if r["method"] not in best or r["time"] < best[r["method"]]["time"]:
                     best[r["method"]] = r
-        ours = min((best[m] for m in SPLITTINGS if m in best), key=lambda r: r["time"], default=None)
+        ours = min((best[m] for m in OURS if m in best), key=lambda r: r["time"], default=None)
         dop = best.get("DOP853")
         ratio = dop["time"] / ours["time"] if (ours and dop) else float("nan")
         print(f"{pname:>20}: ours {ours['method'] if ours else '-'} {ours['time'] if ours else float('nan'):.4g} s "
@@ -120,6 +122,59 @@ def goal_speed(rows, target=1e-10):
               f"({dop['param'] if dop else 'never reached'}) -> speed-up {ratio:.1f}x (goal >= 30x)")
         out.append(dict(problem=pname, ours=ours and ours["method"], ours_time=ours and ours["time"],
                         dop853_time=dop and dop["time"], speedup=ratio))
+    return out
+
+
+def ablation(rows, probs, target=1e-10):
+    """What each design choice of the splitting buys at error <= target (splitting8, warm JIT).
+
+    Starting from the plain Strang word (planes in paper order, no Casimir shift, compensated
+    storage of L), the choices are switched on one at a time: the Casimir shift (H - c C2),
+    the axis-disjoint plane order, plain arithmetic (the default for runs of <= 1e6 flows).
+    The internals are swapped with unittest.mock for this table only.
+    """
+    from unittest import mock
+
+    from hyperrotor.classical import integrate as integ
+
+    no_shift = mock.patch.object(integ, "casimir_shift", lambda moments, L=None: 0.0)
+    paper_order = mock.patch.object(integ, "_plane_sequence", lambda N, active: active)
+    configs = [
+        ("paper order, no shift, compensated", (no_shift, paper_order), True),
+        ("+ Casimir shift", (paper_order,), True),
+        ("+ axis-disjoint order", (), True),
+        ("+ plain arithmetic (default)", (), None),
+    ]
+    dts = [1.0, 0.6, 0.4, 0.3, 0.2, 0.15, 0.1, 0.07, 0.05]
+    print(f"\n== Ablation: cheapest splitting8 run with error <= {target:g}, one design choice at a time ==")
+    print(f"{'problem':>20} {'configuration':>36} {'steps':>6} {'flows/step':>10} {'ns/flow':>8} {'time [s]':>9} "
+          f"{'vs DOP853':>9}")
+    out = []
+    for pname, (body, w0, t, ref) in probs.items():
+        scale = np.abs(w0).max()
+        dop = min((r["time"] for r in rows if r["problem"] == pname and r["method"] == "DOP853"
+                   and r["error"] <= target), default=float("nan"))
+        for label, patches, comp in configs:
+            for p_ in patches:
+                p_.start()
+            try:
+                best = None
+                for dt in dts:
+                    el, tr = best_of(lambda: simulate(body, w0, t, method="splitting8", dt=dt, compensated=comp), 5)
+                    err = np.abs(tr.omega - ref).max() / scale
+                    if err <= target and (best is None or el < best[0]):
+                        best = (el, tr)
+            finally:
+                for p_ in patches:
+                    p_.stop()
+            el, tr = best
+            flows = tr.stats["steps"] * tr.stats["flows_per_step"]
+            row = dict(problem=pname, configuration=label, steps=tr.stats["steps"],
+                       flows_per_step=tr.stats["flows_per_step"], ns_per_flow=1e9 * el / flows, time=el,
+                       speedup_vs_dop853=dop / el)
+            out.append(row)
+            print(f"{pname:>20} {label:>36} {row['steps']:>6d} {row['flows_per_step']:>10d} "
+                  f"{row['ns_per_flow']:>8.1f} {el:>9.2e} {row['speedup_vs_dop853']:>8.1f}x")
     return out
 
 
@@ -137,14 +192,14 @@ def goal_casimir(quick):
     t = np.linspace(0, T, 1001)
     print(f"\n== Goal 2: relative Casimir / energy drift over {steps:.0e} steps (5D generic body, T = {T:g}) ==")
     rows = []
-    runs = [(m, dict(dt=0.01)) for m in ("splitting2", "splitting4", "splitting8")] + [
+    runs = [(m, dict(dt=0.01)) for m in ("splitting2", "splitting4", "splitting8", "moser-veselov")] + [
         ("DOP853", dict(rtol=1e-10)), ("DOP853", dict(rtol=1e-13))]
     for m, kw in runs:
         el, tr = best_of(lambda: simulate(body, w0, t, method=m, **kw), 1)
         c2, c4 = casimirs(tr.L)
         E = tr.energy()
         d2, d4, dE = (float(np.abs(x / x[0] - 1).max()) for x in (c2, c4, E))
-        work = tr.stats["steps"] if m.startswith("splitting") else tr.stats["nfev"]
+        work = tr.stats["steps"] if m in OURS else tr.stats["nfev"]
         rows.append(dict(method=m, setting=str(kw), work=work, time=el, casimir2=d2, casimir4=d4, energy=dE))
         print(f"{m:>11} {str(kw):>16} work {work:>9d}  time {el:7.3f} s   |dC2| {d2:.1e}  |dC4| {d4:.1e}  |dE| {dE:.1e}")
     return rows
@@ -209,10 +264,10 @@ def plot(rows, path):
     probs = sorted({r["problem"] for r in rows})
     fig, axes = plt.subplots(1, len(probs), figsize=(5 * len(probs), 4.2))
     for ax, p in zip(np.atleast_1d(axes), probs):
-        for m in SPLITTINGS + SCIPY:
+        for m in OURS + SCIPY:
             rr = sorted((r for r in rows if r["problem"] == p and r["method"] == m), key=lambda r: r["time"])
             if rr:
-                ax.loglog([max(r["error"], 1e-17) for r in rr], [r["time"] for r in rr], "o-" if m in SPLITTINGS else "s--",
+                ax.loglog([max(r["error"], 1e-17) for r in rr], [r["time"] for r in rr], "o-" if m in OURS else "s--",
                           label=m, ms=4)
         ax.axvline(1e-10, color="grey", lw=0.8)
         ax.set_xlabel("max error / max|omega0|")
@@ -231,12 +286,15 @@ def main(argv=None):
     RESULTS.mkdir(exist_ok=True)
     t0 = time.perf_counter()
     compile_times = cold_compile()
-    rows = work_precision(args.quick)
+    probs = problems()
+    rows = work_precision(args.quick, probs)
     speed = goal_speed(rows)
+    abl = ablation(rows, probs)
     cas = goal_casimir(args.quick)
     thr = goal_throughput(args.quick)
     write_csv(rows, RESULTS / "work_precision_classical.csv")
     write_csv(speed, RESULTS / "work_precision_classical_speedup.csv")
+    write_csv(abl, RESULTS / "work_precision_classical_ablation.csv")
     write_csv(cas, RESULTS / "work_precision_classical_casimir.csv")
     write_csv(thr, RESULTS / "work_precision_classical_throughput.csv")
     write_csv([dict(case=k, seconds=v) for k, v in compile_times.items()], RESULTS / "work_precision_classical_compile.csv")

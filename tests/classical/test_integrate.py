@@ -519,4 +519,4 @@ def test_bad_input_gives_clear_errors(kw, exc, match):
 
 
 def test_method_list_is_complete():
-    assert set(SIMULATION_METHODS) == {"auto", *SPLITTINGS, *SCIPY}
+    assert set(SIMULATION_METHODS) == {"auto", *SPLITTINGS, "moser-veselov", *SCIPY}

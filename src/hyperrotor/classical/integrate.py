@@ -46,6 +46,14 @@ Methods
     :math:`S_2(\gamma h)` (still symmetric, so the composed orders hold; the
     Casimirs are then of course not conserved). Callable torques need a
     scipy method.
+``"moser-veselov"``
+    The discrete Moser-Veselov algorithm (:mod:`hyperrotor.classical.moser_veselov`):
+    implicit, order 2, symplectic and time-reversible; ``L`` moves by exact
+    conjugation (Casimirs to round-off) and ``T`` by an exact rotation. Needs a
+    mass tensor (:math:`I_{ij} = J_i + J_j`) and no torque; ``dt`` or ``rtol`` (the
+    rule of :func:`_choose_step`). A reference method: per step it costs about as
+    much as a few hundred plane flows (Newton on the Cayley parameter), so the
+    splittings reach a given error much sooner (``benchmarks/work_precision_classical.py``).
 ``"DOP853"``, ``"RK45"``, ``"LSODA"``, ``"Radau"``
     :func:`scipy.integrate.solve_ivp` with ``rtol`` and
     ``atol_a = rtol * min(max|omega0|, |L0| / I_a)`` on the angular velocities (and the attitude
@@ -93,13 +101,14 @@ from hyperrotor.conventions import (
     to_matrix,
 )
 
-from . import _kernels
+from . import _kernels, moser_veselov
 from .inertia import body_moments
 
 __all__ = ["simulate", "Trajectory", "SIMULATION_METHODS", "splitting_coefficients", "casimir_shift"]
 
 #: Allowed ``method=`` names of :func:`simulate`.
-SIMULATION_METHODS = ("auto", "splitting2", "splitting4", "splitting6", "splitting8", "DOP853", "RK45", "LSODA", "Radau")
+SIMULATION_METHODS = ("auto", "splitting2", "splitting4", "splitting6", "splitting8", "moser-veselov",
+                      "DOP853", "RK45", "LSODA", "Radau")
 _SCIPY_METHODS = ("DOP853", "RK45", "LSODA", "Radau")
 _SPLITTING_ORDER = {"splitting2": 2, "splitting4": 4, "splitting6": 6, "splitting8": 8}
 
@@ -459,7 +468,7 @@ def _triples(N: int):
     return arr[:, 0], arr[:, 1], arr[:, 2]
 
 
-def _choose_step(L0, moments, rates, word, tables, order, T_total, rtol, torque_b, N, compensated):
+def _choose_step(L0, moments, order, T_total, rtol, torque_b, N, probe, ops_per_step):
     r"""Step size for a requested relative accuracy ``rtol`` (splitting methods).
 
     Rule: the global error of the order-``p`` method over the run is modelled as
@@ -506,11 +515,10 @@ def _choose_step(L0, moments, rates, word, tables, order, T_total, rtol, torque_
     if np.any(torque_b):  # rate a torque can build up within the run
         wmax = max(wmax, float(np.max(np.abs(torque_b) / moments)) * T_total, float(np.max(np.abs(torque_b) / moments)) ** 0.5)
     sel = np.argsort(wmax_b)[::-1][: min(8, L0.shape[0])]
-    L0s, Ms, Rs, Ts = L0[sel], moments[sel], rates[sel], torque_b[sel]
+    L0s, Ms = L0[sel], moments[sel]
     P = min(T_total, 20.0 / wmax)
     scale = float(np.max(np.abs(L0s / Ms))) or wmax  # rtol is relative to max|omega0| ...
     Lnorm = np.maximum(np.sqrt(np.sum(L0s * L0s, axis=1, keepdims=True)), 1e-300)  # ... and to |L0|
-    T0 = np.broadcast_to(np.eye(N), (L0s.shape[0], N, N))
     h = min(P, 1.0 / wmax)
     est = None
     for _ in range(24):
@@ -519,11 +527,14 @@ def _choose_step(L0, moments, rates, word, tables, order, T_total, rtol, torque_
             break
         h = P / m
         tg = np.array([0.0, P])
-        y1, _ = _run_split(L0s, Rs, word, tables, tg, np.array([m]), Ts, T0, False, compensated)
-        y2, _ = _run_split(L0s, Rs, word, tables, tg, np.array([2 * m]), Ts, T0, False, compensated)
+        y1 = probe(sel, tg, np.array([m]))
+        y2 = probe(sel, tg, np.array([2 * m])) if y1 is not None else None
+        if y1 is None or y2 is None:  # the method failed at this step size (implicit step): refine
+            h /= 4.0
+            continue
         dL = np.abs(y1[:, -1] - y2[:, -1])
         err = max(float(np.max(dL / Ms)) / scale, float(np.max(dL / Lnorm))) / (1.0 - 2.0 ** -order)
-        floor = 1e3 * np.finfo(float).eps * math.sqrt(2 * m * word[0].size)
+        floor = 1e3 * np.finfo(float).eps * math.sqrt(2 * m * max(ops_per_step, 1))
         if not np.isfinite(err) or err > 1e-2:
             h /= 4.0
             continue
@@ -544,6 +555,22 @@ def _choose_step(L0, moments, rates, word, tables, order, T_total, rtol, torque_
     err = max(err, 1e3 * np.finfo(float).eps)
     # no extrapolation far beyond the probed step (the error model is asymptotic in h)
     return min(8.0 * h, 0.8 * h * (rtol / (err * growth)) ** (1.0 / order))
+
+
+def _moser_veselov_step(L0, moments, J, T_total, rtol):
+    """Step of the Moser-Veselov method for ``rtol``: the rule of :func:`_choose_step` (order 2)."""
+    if T_total <= 0:
+        return 1.0
+    B, n = L0.shape
+    moments_b = np.broadcast_to(moments, (B, n))
+
+    def probe(sel, tg, ns):
+        try:
+            return moser_veselov.run(L0[sel], J, moments, tg, ns, None, False)[0]
+        except RuntimeError:  # no solution of the implicit step at this h
+            return None
+
+    return _choose_step(L0, moments_b, 2, T_total, rtol, np.zeros((B, n)), J.size, probe, 1)
 
 
 # ----------------------------------------------------------------------------
@@ -783,6 +810,13 @@ def simulate(
                 f"a callable torque breaks the splitting structure; use a scipy method "
                 f"({', '.join(_SCIPY_METHODS)}) or method='auto' (DOP853), or give constant components"
             )
+        if method == "moser-veselov":
+            if tq is not None and np.any(tq):
+                raise ValueError("method 'moser-veselov' integrates the free body only; for a torque use a "
+                                 "splitting method (constant torque) or a scipy method")
+            if compensated is not None:
+                raise ValueError("compensated applies to the splitting methods only, not to 'moser-veselov'")
+            J = moser_veselov.mass_tensor_of(body, moments)
         rtol_used = _DEFAULT_RTOL if (rtol is None and dt is None) else rtol
 
     B = int(np.prod(batch)) if batch else 1
@@ -796,6 +830,15 @@ def simulate(
         tqf = tq if (tq is None or callable(tq)) else tq.reshape(B, n)
         omega, att, nfev = _run_scipy(body, method, moments, N, w0f, t, rtol_used, tqf, T0_std, with_att)
         stats.update(order=None, steps=None, nfev=int(nfev), dt=None)
+    elif method == "moser-veselov":
+        L0 = w0f * moments
+        if dt is None:
+            dt = _moser_veselov_step(L0, moments, J, float(t[-1] - t[0]), rtol_used)
+        nsub = _nsub_for(t, dt)
+        Lout, att = moser_veselov.run(L0, J, moments, t, nsub, T0_std, with_att)
+        omega = Lout / moments
+        stats.update(order=2, steps=int(nsub.sum()), nfev=None,
+                     dt=float(np.max(np.diff(t) / nsub)) if t.size > 1 else None)
     else:
         order = _SPLITTING_ORDER[method]
         kick = bool(tq is not None and np.any(tq))
@@ -812,8 +855,15 @@ def simulate(
         if dt is None:
             T_total = float(t[-1] - t[0])
             if T_total > 0 and word[0].size:
-                dt = _choose_step(L0, np.broadcast_to(moments, (B, n)), rates_b, word, tables, order, T_total,
-                                  rtol_used, torque_b, N, tight if compensated is None else compensated)
+                comp = tight if compensated is None else compensated
+                T0_probe = np.broadcast_to(np.eye(N), (B, N, N))
+
+                def probe(sel, tg, ns):
+                    return _run_split(L0[sel], rates_b[sel], word, tables, tg, ns, torque_b[sel], T0_probe[sel],
+                                      False, comp)[0]
+
+                dt = _choose_step(L0, np.broadcast_to(moments, (B, n)), order, T_total, rtol_used, torque_b, N,
+                                  probe, word[0].size)
             else:
                 dt = max(T_total, 1.0)  # nothing to integrate (equal moments, no torque): L is constant
         nsub = _nsub_for(t, dt)

@@ -1,0 +1,205 @@
+r"""The discrete Moser-Veselov algorithm for the so(N) rigid body (``method="moser-veselov"``).
+
+Moser and Veselov (Commun. Math. Phys. 139, 217 (1991)) discretise the rigid
+body's Lagrangian :math:`\tfrac12\operatorname{tr}(\dot T^{\mathsf T} \dot T J)`
+(mass tensor :math:`J = \operatorname{diag}(J_1, \dots, J_N)`, plane moments
+:math:`I_{ij} = J_i + J_j`) as
+:math:`\operatorname{tr}(T_k J T_{k+1}^{\mathsf T})`. In the plain-matrix
+convention of :mod:`hyperrotor.classical.integrate` (:math:`L = JW + WJ`,
+:math:`\dot L = [W, L]`, :math:`\dot T = W T`) one step of length ``h`` reads
+
+.. math::
+
+    h L_k = J Q_k - Q_k^{\mathsf T} J, \qquad
+    L_{k+1} = Q_k L_k Q_k^{\mathsf T}, \qquad
+    T_{k+1} = Q_k T_k,
+
+with :math:`Q_k \in SO(N)` near the identity (:math:`Q_k = e^{hW} + O(h^2)`); the
+second relation is equivalent to :math:`h L_{k+1} = Q_k J - J Q_k^{\mathsf T}`.
+The map is symplectic on each coadjoint orbit, time-reversible and of order 2
+(McLachlan and Zanna, Found. Comput. Math. 5, 87 (2005)); ``L`` moves by exact
+conjugation, so its spectrum (the Casimirs) is kept to round-off, and ``T``
+stays orthogonal to round-off. The energy :math:`\sum_a L_a^2/(2I_a)` is kept to
+round-off as well, at any step size (measured for N = 3, 4, 5 in the tests:
+~2e-14 after 1e4 steps of ``dt = 0.1``, while the phase error is ~1e-1). It exists only for bodies with a mass tensor,
+:math:`I_{ij} = J_i + J_j` (every real body; any 3D body, with possibly
+negative :math:`J_i`).
+
+Solving for :math:`Q`
+---------------------
+Newton's method on the Cayley parameter :math:`Q = (1 - X/2)^{-1}(1 + X/2)`,
+:math:`X` antisymmetric, for :math:`F(X) = JQ - Q^{\mathsf T}J - hL = 0`, from
+:math:`X_0 = hW` (:math:`W_{ij} = L_{ij}/I_{ij}`, exact to first order). With
+:math:`A = 1 - X/2`, :math:`dQ = A^{-1}\,\delta\,(Q + 1)/2` and
+:math:`dF = J\,dQ - (J\,dQ)^{\mathsf T}`; for :math:`\delta = E_{pq}` the
+product is a rank-2 update, so the :math:`n \times n` Jacobian costs
+:math:`O(nN^2)`. Iterations stop when the Newton update is below ``4 eps``
+relative to :math:`X` (3-4 iterations for :math:`h|W| \lesssim 0.1`); a step
+that does not converge in 30 iterations (:math:`h|W|` of order 1) raises
+``RuntimeError``.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from hyperrotor._jit import jit, prange
+
+__all__: list[str] = []  # reached through simulate(method="moser-veselov")
+
+_MAX_NEWTON = 30
+
+
+def mass_tensor_of(body: Any, moments: np.ndarray) -> np.ndarray:
+    """The mass tensor ``J`` (``I_ij = J_i + J_j``) of ``body``, or ``ValueError`` if it has none."""
+    from .inertia import Inertia
+
+    inertia = getattr(body, "inertia", body)
+    if not isinstance(inertia, Inertia):
+        inertia = Inertia(moments)
+    J = inertia.mass_tensor
+    if J is None or not isinstance(J, np.ndarray):
+        raise ValueError(
+            "method 'moser-veselov' needs plane moments of the form I_ij = J_i + J_j (a mass tensor, "
+            f"as every real body has); these moments are not: {moments.tolist()}. Use a splitting method."
+        )
+    return J
+
+
+def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, outT, status):  # pragma: no cover
+    """Integrate ``B`` bodies over the output grid ``t`` (``nsub[k]`` equal steps per interval).
+
+    ``L0 (B, n)`` components in plane order; ``pair_i, pair_j (n,)`` 0-based axes of
+    plane ``a``. Writes ``outL[b, k]``, ``outT[b, k]`` (plain attitude) and
+    ``status[b]`` = 0, or 1 + the index of the first step whose Newton solve failed.
+    """
+    B = L0.shape[0]
+    n = L0.shape[1]
+    K = t.shape[0]
+    N = J.shape[0]
+    eps = np.finfo(np.float64).eps
+    for b in prange(B):
+        Lm = np.zeros((N, N))
+        for a in range(n):
+            Lm[pair_i[a], pair_j[a]] = L0[b, a]
+            Lm[pair_j[a], pair_i[a]] = -L0[b, a]
+            outL[b, 0, a] = L0[b, a]
+        T = np.empty((N, N))
+        if with_attitude:
+            for r in range(N):
+                for c in range(N):
+                    T[r, c] = T0[b, r, c]
+                    outT[b, 0, r, c] = T[r, c]
+        X = np.zeros((N, N))
+        A = np.empty((N, N))
+        Bp = np.empty((N, N))
+        Jac = np.empty((n, n))
+        Fv = np.empty(n)
+        eye = np.eye(N)
+        step = 0
+        failed = False
+        for k in range(K - 1):
+            if failed:
+                break
+            h = (t[k + 1] - t[k]) / nsub[k]
+            for _ in range(nsub[k]):
+                for a in range(n):  # X0 = h W, W_ij = L_ij / I_ij
+                    v = h * Lm[pair_i[a], pair_j[a]] / moments[a]
+                    X[pair_i[a], pair_j[a]] = v
+                    X[pair_j[a], pair_i[a]] = -v
+                converged = False
+                for it in range(_MAX_NEWTON):
+                    for r in range(N):
+                        for c in range(N):
+                            A[r, c] = eye[r, c] - 0.5 * X[r, c]
+                            Bp[r, c] = eye[r, c] + 0.5 * X[r, c]
+                    Ainv = np.linalg.inv(A)
+                    Q = Ainv @ Bp
+                    for a in range(n):  # F = J Q - Q^T J - h L, plane components
+                        i = pair_i[a]
+                        j = pair_j[a]
+                        Fv[a] = J[i] * Q[i, j] - Q[j, i] * J[j] - h * Lm[i, j]
+                    # Jacobian columns: delta = E_pq, dQ = Ainv delta (Q + 1) / 2 (rank 2)
+                    for c in range(n):
+                        p = pair_i[c]
+                        q = pair_j[c]
+                        for a in range(n):
+                            i = pair_i[a]
+                            j = pair_j[a]
+                            # (J dQ)_ij - (J dQ)_ji with dQ_rs = (Ainv[r,p] (Q+1)[q,s] - Ainv[r,q] (Q+1)[p,s]) / 2
+                            dij = Ainv[i, p] * (Q[q, j] + eye[q, j]) - Ainv[i, q] * (Q[p, j] + eye[p, j])
+                            dji = Ainv[j, p] * (Q[q, i] + eye[q, i]) - Ainv[j, q] * (Q[p, i] + eye[p, i])
+                            Jac[a, c] = 0.5 * (J[i] * dij - J[j] * dji)
+                    dx = np.linalg.solve(Jac, -Fv)
+                    size = 0.0
+                    upd = 0.0
+                    for a in range(n):
+                        i = pair_i[a]
+                        j = pair_j[a]
+                        X[i, j] += dx[a]
+                        X[j, i] -= dx[a]
+                        size = max(size, abs(X[i, j]))
+                        upd = max(upd, abs(dx[a]))
+                    if not (upd == upd) or upd > 1e3:  # NaN or diverging
+                        break
+                    if upd <= 4.0 * eps * size:
+                        converged = True
+                        break
+                if not converged:
+                    status[b] = 1 + step
+                    failed = True
+                    break
+                for r in range(N):
+                    for c in range(N):
+                        A[r, c] = eye[r, c] - 0.5 * X[r, c]
+                        Bp[r, c] = eye[r, c] + 0.5 * X[r, c]
+                Q = np.linalg.solve(A, Bp)
+                Lm = Q @ Lm @ Q.T
+                for r in range(N):  # keep L exactly antisymmetric
+                    Lm[r, r] = 0.0
+                    for c in range(r + 1, N):
+                        v = 0.5 * (Lm[r, c] - Lm[c, r])
+                        Lm[r, c] = v
+                        Lm[c, r] = -v
+                if with_attitude:
+                    T = Q @ T
+                step += 1
+            if failed:
+                break
+            for a in range(n):
+                outL[b, k + 1, a] = Lm[pair_i[a], pair_j[a]]
+            if with_attitude:
+                for r in range(N):
+                    for c in range(N):
+                        outT[b, k + 1, r, c] = T[r, c]
+
+
+mv_run = jit(parallel=True)(_mv_run)
+
+
+def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, t: np.ndarray, nsub: np.ndarray,
+        T0: np.ndarray, with_attitude: bool) -> tuple[np.ndarray, np.ndarray | None]:
+    """Moser-Veselov steps for the bodies ``L0 (B, n)``; returns ``(L (B, K, n), T (B, K, N, N) or None)``."""
+    from hyperrotor.conventions import planes
+
+    B, n = L0.shape
+    N = J.size
+    ps = planes(N)
+    pair_i = np.array([i - 1 for i, _ in ps], dtype=np.int64)
+    pair_j = np.array([j - 1 for _, j in ps], dtype=np.int64)
+    outL = np.empty((B, t.size, n))
+    outT = np.empty((B, t.size, N, N)) if with_attitude else np.empty((B, 1, N, N))
+    status = np.zeros(B, dtype=np.int64)
+    T0c = np.ascontiguousarray(T0) if with_attitude else np.zeros((1, N, N))
+    mv_run(np.ascontiguousarray(L0, dtype=float), np.ascontiguousarray(J, dtype=float),
+           np.ascontiguousarray(moments, dtype=float), pair_i, pair_j, t, nsub, T0c, bool(with_attitude),
+           outL, outT, status)
+    bad = np.flatnonzero(status)
+    if bad.size:
+        b = int(bad[0])
+        raise RuntimeError(
+            f"moser-veselov: the implicit step equation h L = J Q - Q^T J has no solution near Q = 1 "
+            f"at step {int(status[b]) - 1} of body {b} (h |W| too large); use a smaller dt or rtol"
+        )
+    return outL, (outT if with_attitude else None)
