@@ -155,6 +155,8 @@ def test_bad_input():
         simulate(generic, w0, t, method="moser-veselov", dt=0.1)
     with pytest.raises(ValueError, match="free body only"):
         simulate(Inertia.from_mass_tensor(J5), w0, t, method="moser-veselov", dt=0.1, torque=np.ones(10))
+    with pytest.raises(ValueError, match="free body only"):
+        simulate(MOM3, W3, t, method="moser-veselov", dt=0.1, torque=lambda tt, w: -w)
     with pytest.raises(ValueError, match="splitting methods only"):
         simulate(Inertia.from_mass_tensor(J5), w0, t, method="moser-veselov", dt=0.1, compensated=True)
     # a step far beyond the motion's time scale: the implicit equation has no solution near Q = 1

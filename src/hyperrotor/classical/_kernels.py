@@ -105,6 +105,28 @@ def sincos(x):  # pragma: no cover - jitted
     return x + (x * z) * ps, 1.0 + z * pc
 
 
+@jit
+def start_attitude(T0, b, with_attitude, outT):  # pragma: no cover - jitted
+    """Working copy of body ``b``'s initial attitude, also stored as output 0 (if ``with_attitude``)."""
+    N = T0.shape[1]
+    T = np.empty((N, N))
+    if with_attitude:
+        for r in range(N):
+            for c in range(N):
+                T[r, c] = T0[b, r, c]
+                outT[b, 0, r, c] = T[r, c]
+    return T
+
+
+@jit
+def store_attitude(T, b, k, outT):  # pragma: no cover - jitted
+    """``outT[b, k] = T``."""
+    N = T.shape[0]
+    for r in range(N):
+        for c in range(N):
+            outT[b, k, r, c] = T[r, c]
+
+
 def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j,
                t, nsub, torque, T0, with_attitude, compensated, outL, outT):  # pragma: no cover - jitted
     """Integrate ``B`` bodies over the output grid ``t`` with a composed splitting method.
@@ -130,12 +152,7 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
         for a in range(n):
             Lh[a] = L0[b, a]
             outL[b, 0, a] = Lh[a]
-        T = np.empty((N, N))
-        if with_attitude:
-            for r in range(N):
-                for c in range(N):
-                    T[r, c] = T0[b, r, c]
-                    outT[b, 0, r, c] = T[r, c]
+        T = start_attitude(T0, b, with_attitude, outT)
         for k in range(K - 1):
             ns = nsub[k]
             h = (t[k + 1] - t[k]) / ns
@@ -194,9 +211,7 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
             for a in range(n):
                 outL[b, k + 1, a] = Lh[a] + Ll[a]
             if with_attitude:
-                for r in range(N):
-                    for c2 in range(N):
-                        outT[b, k + 1, r, c2] = T[r, c2]
+                store_attitude(T, b, k + 1, outT)
 
 
 def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,

@@ -805,18 +805,18 @@ def simulate(
                 f"give either dt (fixed step) or rtol (step chosen from the accuracy) for {method!r}, not both "
                 f"(got dt={dt!r}, rtol={rtol!r})"
             )
-        if callable(tq):
-            raise ValueError(
-                f"a callable torque breaks the splitting structure; use a scipy method "
-                f"({', '.join(_SCIPY_METHODS)}) or method='auto' (DOP853), or give constant components"
-            )
         if method == "moser-veselov":
-            if tq is not None and np.any(tq):
+            if tq is not None and (callable(tq) or np.any(tq)):
                 raise ValueError("method 'moser-veselov' integrates the free body only; for a torque use a "
                                  "splitting method (constant torque) or a scipy method")
             if compensated is not None:
                 raise ValueError("compensated applies to the splitting methods only, not to 'moser-veselov'")
             J = moser_veselov.mass_tensor_of(body, moments)
+        if callable(tq):
+            raise ValueError(
+                f"a callable torque breaks the splitting structure; use a scipy method "
+                f"({', '.join(_SCIPY_METHODS)}) or method='auto' (DOP853), or give constant components"
+            )
         rtol_used = _DEFAULT_RTOL if (rtol is None and dt is None) else rtol
 
     B = int(np.prod(batch)) if batch else 1

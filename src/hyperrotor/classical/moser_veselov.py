@@ -46,6 +46,8 @@ import numpy as np
 
 from hyperrotor._jit import jit, prange
 
+from ._kernels import start_attitude, store_attitude
+
 __all__: list[str] = []  # reached through simulate(method="moser-veselov")
 
 _MAX_NEWTON = 30
@@ -85,12 +87,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
             Lm[pair_i[a], pair_j[a]] = L0[b, a]
             Lm[pair_j[a], pair_i[a]] = -L0[b, a]
             outL[b, 0, a] = L0[b, a]
-        T = np.empty((N, N))
-        if with_attitude:
-            for r in range(N):
-                for c in range(N):
-                    T[r, c] = T0[b, r, c]
-                    outT[b, 0, r, c] = T[r, c]
+        T = start_attitude(T0, b, with_attitude, outT)
         X = np.zeros((N, N))
         A = np.empty((N, N))
         Bp = np.empty((N, N))
@@ -170,9 +167,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
             for a in range(n):
                 outL[b, k + 1, a] = Lm[pair_i[a], pair_j[a]]
             if with_attitude:
-                for r in range(N):
-                    for c in range(N):
-                        outT[b, k + 1, r, c] = T[r, c]
+                store_attitude(T, b, k + 1, outT)
 
 
 mv_run = jit(parallel=True)(_mv_run)
