@@ -179,6 +179,10 @@ def _demo_motion(body, kappa: float, axis: int, omega, t_end: float) -> dict:
     freqs = quartet_frequencies(kappa, omega, axis=axis)
     lines.append("  frequencies Omega_1, Omega_2 (after eq. 118) = [" + ", ".join(_fmt(v) for v in freqs) + "]")
     runs = {}
+    start = time.perf_counter()
+    simulate(body, omega, t[:2], method="splitting8", dt=t[1])  # numba: compile, or load from the disk cache
+    lines.append(f"  (first splitting call, compiling or loading the numba kernel: {time.perf_counter() - start:.2f} s; "
+                 "the wall times below exclude it)")
     for name, kw in (("splitting8", {"rtol": 1e-12}), ("DOP853", {"rtol": 1e-10})):
         start = time.perf_counter()
         traj = simulate(body, omega, t, method=name, **kw)
