@@ -1,0 +1,41 @@
+"""The section checkers of the preprint verification, one module per paper section.
+
+Each checker takes no argument, returns a tuple of
+:class:`~hyperrotor.paper.verdicts.Verdict` and caches its result
+(:func:`hyperrotor.paper.verify.clear_cache` forgets it):
+
+* :mod:`~hyperrotor.paper.sections.tensor`: Sec. 1, eqs. (3)-(6), (26)-(27);
+* :mod:`~hyperrotor.paper.sections.euler`: Sec. 2.1, eq. (25), Tables 1-2, eqs. (28)-(38);
+* :mod:`~hyperrotor.paper.sections.reductions`: Sec. 2.2-2.5, eqs. (42)-(81);
+* :mod:`~hyperrotor.paper.sections.closed_form`: Sec. 3, eqs. (82)-(118);
+* :mod:`~hyperrotor.paper.sections.stability`: Sec. 4, eqs. (119)-(140);
+* :mod:`~hyperrotor.paper.sections.quantum`: Sec. 5, eqs. (141)-(147).
+
+Shared by several of them: :mod:`~hyperrotor.paper.sections.derived` (the
+symbolic body and its Euler equations) and
+:mod:`~hyperrotor.paper.sections.products` (the product check of eqs. 25 and
+144). :data:`SECTIONS` maps the section keys to their titles and checkers, in
+paper order.
+"""
+from __future__ import annotations
+
+from typing import Callable
+
+from hyperrotor.paper.sections.closed_form import _sec_closed_form
+from hyperrotor.paper.sections.euler import _sec_euler
+from hyperrotor.paper.sections.quantum import _sec_quantum
+from hyperrotor.paper.sections.reductions import _sec_reductions
+from hyperrotor.paper.sections.stability import _sec_stability
+from hyperrotor.paper.sections.tensor import _sec_tensor
+
+__all__ = ["SECTIONS"]
+
+#: Section key -> (title, checker).
+SECTIONS: dict[str, tuple[str, Callable[[], tuple]]] = {
+    "tensor": ("Sec. 1: inertia tensor, angular momentum, energy (eqs. 3-6, 26-27)", _sec_tensor),
+    "euler": ("Sec. 2.1: product (25), Tables 1-2, Euler equations (28)-(37), invariants (38)", _sec_euler),
+    "reductions": ("Sec. 2.2-2.5: reductions (42)-(81), headings and locked sets", _sec_reductions),
+    "closed-form": ("Sec. 3: closed-form solutions (82)-(118)", _sec_closed_form),
+    "stability": ("Sec. 4: stability (119)-(140)", _sec_stability),
+    "quantum": ("Sec. 5: quantum angular momentum (141)-(147)", _sec_quantum),
+}
