@@ -27,11 +27,12 @@ __all__ = ["best_of", "WorkPrecisionPoint", "work_precision", "speedup_at", "wri
 #: Problems of :func:`work_precision`.
 BENCH_PROBLEMS = ("quartet", "euler-poinsot")
 
-_SETTINGS = {  # method -> (keyword, values): splittings by step, scipy by tolerance
+_SETTINGS = {  # method -> (keyword, values): hyperrotor's integrators by step, scipy by tolerance
     "splitting2": ("dt", (0.02, 0.005, 0.001)),
     "splitting4": ("dt", (0.1, 0.03, 0.01, 0.003)),
     "splitting6": ("dt", (0.5, 0.3, 0.1, 0.05, 0.02)),
-    "splitting8": ("dt", (1.0, 0.6, 0.4, 0.3, 0.2, 0.1)),
+    "splitting8": ("dt", (1.0, 0.6, 0.4, 0.3, 0.2, 0.15, 0.1)),
+    "moser-veselov": ("dt", (0.03, 0.01, 0.003)),
     "DOP853": ("rtol", (1e-6, 1e-8, 1e-10, 1e-12, 1e-13)),
     "RK45": ("rtol", (1e-4, 1e-6, 1e-8)),
 }
@@ -90,7 +91,7 @@ def work_precision(problem: str = "quartet", methods: Sequence[str] | None = Non
     Parameters
     ----------
     problem : one of :data:`BENCH_PROBLEMS`.
-    methods : subset of ``splitting2/4/6/8``, ``DOP853``, ``RK45`` (default all).
+    methods : subset of ``splitting2/4/6/8``, ``moser-veselov``, ``DOP853``, ``RK45`` (default all).
     repeats : each run is timed ``repeats`` times after one warm-up call; the best time is kept.
     progress : called with a short message before each method (e.g. ``print``).
     """

@@ -355,7 +355,8 @@ def _configure_bench(p: argparse.ArgumentParser) -> None:
     p.add_argument("--problem", action="append", choices=BENCH_PROBLEMS,
                    help="problem with an exact solution (repeatable; default: all)")
     p.add_argument("--method", action="append", default=None,
-                   help="splitting2, splitting4, splitting6, splitting8, DOP853 or RK45 (repeatable; default: all)")
+                   help="splitting2, splitting4, splitting6, splitting8, moser-veselov, DOP853 or RK45 "
+                        "(repeatable; default: all)")
     p.add_argument("--repeats", type=int, default=2, help="timed repeats per run, best kept (default 2)")
     p.add_argument("--error", type=float, default=1e-10,
                    help="error level at which the speed-up over DOP853 is reported (default 1e-10)")
