@@ -46,7 +46,7 @@ import numpy as np
 
 from hyperrotor._jit import jit, prange
 
-from ._kernels import start_attitude, store_attitude
+from ._kernels import rotation_tables, start_attitude, store_attitude
 
 __all__: list[str] = []  # reached through simulate(method="moser-veselov")
 
@@ -67,6 +67,16 @@ def mass_tensor_of(body: Any, moments: np.ndarray) -> np.ndarray:
             f"as every real body has); these moments are not: {moments.tolist()}. Use a splitting method."
         )
     return J
+
+
+@jit
+def _cayley_factors(X, eye, A, Bp):  # pragma: no cover - jitted
+    """``A = 1 - X/2``, ``Bp = 1 + X/2`` (in place): the Cayley map is ``Q = A^{-1} Bp``."""
+    N = X.shape[0]
+    for r in range(N):
+        for c in range(N):
+            A[r, c] = eye[r, c] - 0.5 * X[r, c]
+            Bp[r, c] = eye[r, c] + 0.5 * X[r, c]
 
 
 def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, outT, status):  # pragma: no cover
@@ -97,8 +107,6 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
         step = 0
         failed = False
         for k in range(K - 1):
-            if failed:
-                break
             h = (t[k + 1] - t[k]) / nsub[k]
             for _ in range(nsub[k]):
                 for a in range(n):  # X0 = h W, W_ij = L_ij / I_ij
@@ -107,10 +115,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
                     X[pair_j[a], pair_i[a]] = -v
                 converged = False
                 for it in range(_MAX_NEWTON):
-                    for r in range(N):
-                        for c in range(N):
-                            A[r, c] = eye[r, c] - 0.5 * X[r, c]
-                            Bp[r, c] = eye[r, c] + 0.5 * X[r, c]
+                    _cayley_factors(X, eye, A, Bp)
                     Ainv = np.linalg.inv(A)
                     Q = Ainv @ Bp
                     for a in range(n):  # F = J Q - Q^T J - h L, plane components
@@ -147,10 +152,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
                     status[b] = 1 + step
                     failed = True
                     break
-                for r in range(N):
-                    for c in range(N):
-                        A[r, c] = eye[r, c] - 0.5 * X[r, c]
-                        Bp[r, c] = eye[r, c] + 0.5 * X[r, c]
+                _cayley_factors(X, eye, A, Bp)  # Q of the converged X
                 Q = np.linalg.solve(A, Bp)
                 Lm = Q @ Lm @ Q.T
                 for r in range(N):  # keep L exactly antisymmetric
@@ -176,13 +178,9 @@ mv_run = jit(parallel=True)(_mv_run)
 def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, t: np.ndarray, nsub: np.ndarray,
         T0: np.ndarray, with_attitude: bool) -> tuple[np.ndarray, np.ndarray | None]:
     """Moser-Veselov steps for the bodies ``L0 (B, n)``; returns ``(L (B, K, n), T (B, K, N, N) or None)``."""
-    from hyperrotor.conventions import planes
-
     B, n = L0.shape
     N = J.size
-    ps = planes(N)
-    pair_i = np.array([i - 1 for i, _ in ps], dtype=np.int64)
-    pair_j = np.array([j - 1 for _, j in ps], dtype=np.int64)
+    pair_i, pair_j = rotation_tables(N)[3:]  # 0-based axes i - 1, j - 1 of each plane
     outL = np.empty((B, t.size, n))
     outT = np.empty((B, t.size, N, N)) if with_attitude else np.empty((B, 1, N, N))
     status = np.zeros(B, dtype=np.int64)
