@@ -74,6 +74,8 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 import sympy as sp
 
+from . import _validate
+
 __all__ = [
     "CONVENTIONS",
     "planes",
@@ -93,27 +95,20 @@ __all__ = [
 ]
 
 #: The allowed values of every ``convention=`` keyword for matrices.
-CONVENTIONS = ("paper", "standard")
+CONVENTIONS = _validate.CONVENTIONS
 
 
 # ----------------------------------------------------------------------------
 # validation helpers (re-used by the rest of the package)
 # ----------------------------------------------------------------------------
 def check_dimension(N: Any, *, minimum: int = 2, name: str = "N") -> int:
-    """Return ``N`` as ``int`` or raise a ``TypeError``/``ValueError`` naming it."""
-    if isinstance(N, bool) or not isinstance(N, (Integral, sp.Integer)):
-        raise TypeError(f"{name} must be an integer >= {minimum}, got {N!r} of type {type(N).__name__}")
-    N = int(N)
-    if N < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {N}")
-    return N
+    """Return ``N`` as ``int`` or raise a ``TypeError``/``ValueError`` naming it (see :mod:`hyperrotor._validate`)."""
+    return _validate.dimension(N, minimum=minimum, name=name)
 
 
 def check_convention(convention: Any) -> str:
     """Return ``convention`` if it is one of :data:`CONVENTIONS`, else raise ``ValueError``."""
-    if convention not in CONVENTIONS:
-        raise ValueError(f"unknown convention {convention!r}; allowed: {', '.join(map(repr, CONVENTIONS))}")
-    return convention
+    return _validate.convention(convention)
 
 
 # ----------------------------------------------------------------------------

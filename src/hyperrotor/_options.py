@@ -1,0 +1,101 @@
+"""Documented tolerances and budgets: one table for the whole package (QuTiP ``CoreOptions`` style).
+
+Library code reads ``options["key"]`` instead of hard-coding a tolerance or a
+limit, so a user can see every default in one place (``print(hr.options)``)
+and change it for a block of code::
+
+    import hyperrotor as hr
+    with hr.options(max_steps=10**10):
+        hr.simulate(body, omega0, t, rtol=1e-12)
+
+or for the session (``hr.options["max_steps"] = 10**10``). Unknown keys raise
+``KeyError`` naming the allowed ones. Each entry of :data:`DEFAULTS` carries
+its meaning and why its default is what it is; modules add their entries with
+:func:`register` at import time, so the table stays the one source.
+"""
+from __future__ import annotations
+
+from contextlib import contextmanager
+from typing import Any, Iterator
+
+__all__ = ["options", "Options", "register"]
+
+
+class Options:
+    """The package's option table: mapping access, documented entries, a context manager.
+
+    ``options[key]`` reads, ``options[key] = value`` sets for the session,
+    ``with options(key=value, ...):`` sets for a block and restores afterwards.
+    ``options.describe(key)`` gives the documentation of an entry.
+    """
+
+    def __init__(self) -> None:
+        self._values: dict[str, Any] = {}
+        self._defaults: dict[str, Any] = {}
+        self._docs: dict[str, str] = {}
+
+    def register(self, key: str, default: Any, doc: str) -> None:
+        """Add an option ``key`` with its ``default`` and a one-paragraph ``doc``."""
+        if key in self._defaults and self._defaults[key] != default:
+            raise ValueError(f"option {key!r} is registered twice with different defaults")
+        self._defaults[key] = default
+        self._values.setdefault(key, default)
+        self._docs[key] = doc
+
+    def _check(self, key: str) -> None:
+        if key not in self._defaults:
+            raise KeyError(f"unknown option {key!r}; allowed: {', '.join(sorted(self._defaults))}")
+
+    def __getitem__(self, key: str) -> Any:
+        self._check(key)
+        return self._values[key]
+
+    def __setitem__(self, key: str, value: Any) -> None:
+        self._check(key)
+        self._values[key] = value
+
+    def __contains__(self, key: object) -> bool:
+        return key in self._defaults
+
+    def keys(self):
+        return self._defaults.keys()
+
+    def reset(self) -> None:
+        """Restore every default."""
+        self._values = dict(self._defaults)
+
+    def describe(self, key: str) -> str:
+        self._check(key)
+        return self._docs[key]
+
+    @contextmanager
+    def __call__(self, **changes: Any) -> Iterator["Options"]:
+        for k in changes:
+            self._check(k)
+        saved = {k: self._values[k] for k in changes}
+        self._values.update(changes)
+        try:
+            yield self
+        finally:
+            self._values.update(saved)
+
+    def __repr__(self) -> str:
+        rows = [f"  {k} = {self._values[k]!r}" + ("" if self._values[k] == self._defaults[k] else f"  (default {self._defaults[k]!r})")
+                for k in sorted(self._defaults)]
+        return "hyperrotor options:\n" + "\n".join(rows)
+
+
+#: The one option table of the package.
+options = Options()
+register = options.register
+
+
+# ----------------------------------------------------------------------------
+# The entries. Keep them here, grouped by area, each with its reason, so that the
+# table is complete without importing the modules that read it.
+# ----------------------------------------------------------------------------
+# --- classical ---------------------------------------------------------------
+
+# --- quantum -----------------------------------------------------------------
+
+# --- command line ------------------------------------------------------------

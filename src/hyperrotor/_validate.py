@@ -1,0 +1,334 @@
+"""The package's input checks: one place, one message style.
+
+Every public entry point of :mod:`hyperrotor` (classical and quantum) checks
+its arguments with these functions, so a given kind of input is accepted,
+normalised and refused the same way everywhere. A refusal is a ``TypeError``
+(wrong kind of object) or a ``ValueError`` (right kind, bad value) whose
+message names the argument, shows the offending value as a plain number
+(``2.0``, never ``np.float64(2.0)``) and says what is allowed.
+
+Nothing here imports SymPy, QuTiP or matplotlib: objects from those libraries
+are recognised by duck typing (``.moments``, ``.full()``), so validating an
+input never pays for a heavy import.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from numbers import Integral, Real
+from typing import Any, Sequence
+
+import numpy as np
+
+__all__ = [
+    "fmt",
+    "integer",
+    "dimension",
+    "real",
+    "positive",
+    "hbar",
+    "rng",
+    "choice",
+    "convention",
+    "time_grid",
+    "finite_array",
+    "plane",
+    "moments",
+    "axis_signs",
+]
+
+#: The allowed values of every ``convention=`` keyword for matrices (see :mod:`hyperrotor.conventions`).
+CONVENTIONS = ("paper", "standard")
+
+
+# ----------------------------------------------------------------------------
+# message formatting
+# ----------------------------------------------------------------------------
+def fmt(value: Any) -> str:
+    """Plain text of ``value`` for an error message.
+
+    NumPy scalars print as Python numbers (``2.0``, not ``np.float64(2.0)``),
+    floats with ``repr`` precision, containers element by element; anything else
+    falls back to ``repr`` (shortened past 80 characters).
+    """
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, bool) or value is None:
+        return repr(value)
+    if isinstance(value, Integral):
+        return str(int(value))
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, complex):
+        return repr(value)
+    if isinstance(value, str):
+        return repr(value)
+    if isinstance(value, np.ndarray):
+        if value.size <= 12:
+            return fmt(value.tolist())
+        return f"<array of shape {value.shape}, dtype {value.dtype}>"
+    if isinstance(value, tuple):
+        inner = ", ".join(fmt(v) for v in value)
+        return f"({inner},)" if len(value) == 1 else f"({inner})"
+    if isinstance(value, list):
+        return "[" + ", ".join(fmt(v) for v in value) + "]"
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _is_real_scalar(value: Any) -> bool:
+    return not isinstance(value, bool) and isinstance(value, (Real, np.floating, np.integer))
+
+
+# ----------------------------------------------------------------------------
+# scalars
+# ----------------------------------------------------------------------------
+def integer(name: str, value: Any, *, minimum: int | None = None, maximum: int | None = None) -> int:
+    """Return ``value`` as ``int``; refuse booleans, floats and out-of-range values.
+
+    SymPy integers are accepted (they are ``numbers.Integral`` subclasses only by
+    registration, so they are recognised by ``is_Integer``).
+    """
+    if isinstance(value, bool) or not (isinstance(value, (Integral, np.integer)) or getattr(value, "is_Integer", False)):
+        rng_txt = _range_text(minimum, maximum)
+        raise TypeError(f"{name} must be an integer{rng_txt}, got {fmt(value)} of type {type(value).__name__}")
+    value = int(value)
+    if (minimum is not None and value < minimum) or (maximum is not None and value > maximum):
+        raise ValueError(f"{name} must be an integer{_range_text(minimum, maximum)}, got {value}")
+    return value
+
+
+def _range_text(minimum: int | None, maximum: int | None) -> str:
+    if minimum is not None and maximum is not None:
+        return f" in {minimum}..{maximum}"
+    if minimum is not None:
+        return f" >= {minimum}"
+    if maximum is not None:
+        return f" <= {maximum}"
+    return ""
+
+
+def dimension(N: Any, *, minimum: int = 2, name: str = "N") -> int:
+    """The space dimension ``N`` of so(N), an integer ``>= minimum``."""
+    return integer(name, N, minimum=minimum)
+
+
+def real(name: str, value: Any, *, allow_none: bool = False) -> float | None:
+    """A finite real number as ``float`` (``None`` passes through when ``allow_none``)."""
+    if value is None and allow_none:
+        return None
+    if not _is_real_scalar(value):
+        raise TypeError(f"{name} must be a real number, got {fmt(value)} of type {type(value).__name__}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {fmt(value)}")
+    return value
+
+
+def positive(name: str, value: Any, *, allow_none: bool = False, allow_zero: bool = False) -> float | None:
+    """A finite real number ``> 0`` (``>= 0`` with ``allow_zero``) as ``float``."""
+    if value is None and allow_none:
+        return None
+    if not _is_real_scalar(value):
+        raise TypeError(f"{name} must be a positive real number, got {fmt(value)} of type {type(value).__name__}")
+    value = float(value)
+    ok = value >= 0 if allow_zero else value > 0
+    if not (math.isfinite(value) and ok):
+        raise ValueError(f"{name} must be finite and {'>= 0' if allow_zero else '> 0'}, got {fmt(value)}")
+    return value
+
+
+def hbar(value: Any) -> float:
+    """The reduced Planck constant: a finite number ``> 0`` (the package's default is ``1.0``)."""
+    return positive("hbar", value)
+
+
+def rng(value: Any = None) -> np.random.Generator:
+    """A :class:`numpy.random.Generator` from ``rng=``: ``None`` (fresh entropy), an integer seed,
+    a :class:`numpy.random.SeedSequence` or a ``Generator`` (used as is), as in SPEC 7."""
+    if isinstance(value, np.random.Generator):
+        return value
+    if value is None or isinstance(value, np.random.SeedSequence):
+        return np.random.default_rng(value)
+    if isinstance(value, bool) or not isinstance(value, (Integral, np.integer)):
+        raise TypeError(
+            f"rng must be None, an integer seed, a SeedSequence or a numpy.random.Generator, "
+            f"got {fmt(value)} of type {type(value).__name__}"
+        )
+    if int(value) < 0:
+        raise ValueError(f"rng seed must be a non-negative integer, got {int(value)}")
+    return np.random.default_rng(int(value))
+
+
+def choice(name: str, value: Any, allowed: Sequence[str], *, case_insensitive: bool = True) -> str:
+    """One of ``allowed`` (matched ignoring case when ``case_insensitive``), returned as spelled there."""
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be one of {', '.join(map(repr, allowed))}, got {fmt(value)}")
+    for a in allowed:
+        if value == a or (case_insensitive and value.lower() == a.lower()):
+            return a
+    raise ValueError(f"unknown {name} {value!r}; allowed: {', '.join(map(repr, allowed))}")
+
+
+def convention(value: Any) -> str:
+    """A matrix sign convention, one of :data:`CONVENTIONS` (``"paper"`` or ``"standard"``)."""
+    return choice("convention", value, CONVENTIONS)
+
+
+# ----------------------------------------------------------------------------
+# arrays
+# ----------------------------------------------------------------------------
+def finite_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = None, dtype: Any = float) -> np.ndarray:
+    """``value`` as a finite ndarray of ``dtype`` (and of ``ndim`` dimensions when given)."""
+    try:
+        arr = np.asarray(value, dtype=dtype)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a numeric array, got {fmt(value)} of type {type(value).__name__}") from None
+    if ndim is not None:
+        allowed = (ndim,) if isinstance(ndim, int) else tuple(ndim)
+        if arr.ndim not in allowed:
+            raise ValueError(
+                f"{name} must have {' or '.join(map(str, allowed))} dimension(s), got shape {arr.shape}"
+            )
+    if not np.all(np.isfinite(arr)):
+        bad = np.argwhere(~np.isfinite(arr))[0]
+        idx = tuple(int(b) for b in bad)
+        raise ValueError(f"{name} must be finite; {name}{list(idx)} = {fmt(arr[idx])}")
+    return arr
+
+
+def time_grid(t: Any, *, name: str = "t", allow_decreasing: bool = True) -> np.ndarray:
+    """Output times: a finite, strictly monotonic 1-D float array with at least one entry.
+
+    Time may run backwards (a strictly decreasing grid) unless ``allow_decreasing``
+    is ``False``. The returned array is a fresh float64 copy.
+    """
+    try:
+        arr = np.array(t, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a 1-D array of output times, got {fmt(t)}") from None
+    if arr.ndim != 1 or arr.size < 1:
+        raise ValueError(f"{name} must be a 1-D array of output times (at least one), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        k = int(np.argmax(~np.isfinite(arr)))
+        raise ValueError(f"{name} must be finite; {name}[{k}] = {fmt(arr[k])}")
+    if arr.size > 1:
+        d = np.diff(arr)
+        increasing = d[0] > 0
+        if not allow_decreasing and not increasing:
+            raise ValueError(f"{name} must be strictly increasing; {name}[0] = {fmt(arr[0])} >= {name}[1] = {fmt(arr[1])}")
+        bad = np.nonzero(d <= 0 if increasing else d >= 0)[0]
+        if bad.size:
+            k = int(bad[0])
+            word = "increasing" if increasing else "decreasing"
+            raise ValueError(
+                f"{name} must be strictly monotonic (here {word}, as set by its first two entries); "
+                f"{name}[{k}] = {fmt(arr[k])}, {name}[{k + 1}] = {fmt(arr[k + 1])}"
+            )
+    return arr
+
+
+# ----------------------------------------------------------------------------
+# so(N) labels and bodies
+# ----------------------------------------------------------------------------
+def plane(value: Any, N: int) -> tuple[int, int]:
+    """A rotation plane of so(N): a 1-based pair ``(i, j)`` with ``1 <= i < j <= N``.
+
+    Accepts a pair of integers or a digit string such as ``"12"`` (N < 10) or ``"1,10"``.
+    """
+    N = dimension(N)
+    pair: Any = value
+    if isinstance(value, str):
+        text = value.strip()
+        pair = text.split(",") if "," in text else (list(text) if len(text) == 2 else None)
+    try:
+        if pair is None or len(pair) != 2:
+            raise ValueError
+        i, j = (integer("plane index", v) if not isinstance(v, str) else int(v) for v in pair)
+    except (TypeError, ValueError):
+        raise ValueError(f"a plane is a pair (i, j) of integers with 1 <= i < j <= {N}, got {fmt(value)}") from None
+    if not 1 <= i < j <= N:
+        raise ValueError(f"unknown plane {fmt(value)} for N = {N}: planes are pairs (i, j) with 1 <= i < j <= {N}")
+    return i, j
+
+
+def _planes(N: int) -> list[tuple[int, int]]:
+    return [(i, j) for i in range(1, N + 1) for j in range(i + 1, N + 1)]
+
+
+def _dimension_from_count(count: int, name: str) -> int:
+    N = int(round((1 + math.sqrt(1 + 8 * count)) / 2))
+    if N < 2 or N * (N - 1) // 2 != count:
+        raise ValueError(
+            f"{name} has {count} plane moments; so(N) needs N(N-1)/2 of them (1, 3, 6, 10, 15, ... for N = 2, 3, 4, 5, 6, ...)"
+        )
+    return N
+
+
+def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.ndarray:
+    """Plane moments ``I_ij`` (float64, plane order) of so(N), finite and positive.
+
+    Accepts a :class:`~hyperrotor.RigidBody` (anything with ``.inertia.moments``),
+    an :class:`~hyperrotor.Inertia` (anything with ``.moments``), a mapping
+    ``{(i, j): I_ij}`` naming every plane once (needs ``N`` or infers it from the
+    largest index), or a 1-D sequence of ``N(N-1)/2`` numbers in plane order.
+    With ``N`` given, a mismatch is an error naming both dimensions.
+    """
+    src = value
+    if hasattr(value, "inertia") and hasattr(value.inertia, "moments"):
+        src = value.inertia.moments
+    elif hasattr(value, "moments") and not isinstance(value, Mapping):
+        src = value.moments
+    if isinstance(src, Mapping):
+        if N is None:  # infer N from the largest index named (validated against it just below)
+            labels = [plane(p, 10**6) for p in src]
+            n = max(j for _, j in labels)
+        else:
+            n = N
+        labels = [plane(p, n) for p in src]
+        missing = [p for p in _planes(n) if p not in labels]
+        if missing:
+            raise ValueError(
+                f"{name} mapping misses the planes {', '.join(f'{i}{j}' for i, j in missing[:6])}"
+                f"{' ...' if len(missing) > 6 else ''}; so({n}) needs a moment for each of its {n * (n - 1) // 2} planes"
+            )
+        if len(set(labels)) != len(labels):
+            raise ValueError(f"{name} mapping names a plane twice")
+        by_plane = dict(zip(labels, src.values()))
+        src = [by_plane[p] for p in _planes(n)]
+    if isinstance(src, (str, bytes)):
+        raise TypeError(f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, got {fmt(src)}")
+    try:
+        arr = np.asarray(src, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(
+            f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, "
+            f"got {type(value).__name__}"
+        ) from None
+    if arr.ndim != 1:
+        raise ValueError(f"{name}: plane moments must be a 1-D sequence of N(N-1)/2 values, got shape {arr.shape}")
+    n = _dimension_from_count(arr.size, name)
+    if N is not None and n != N:
+        raise ValueError(
+            f"{name} has {arr.size} plane moments (so({n})) but so({N}) needs {N * (N - 1) // 2}; "
+            f"they must act on the same dimension"
+        )
+    bad = {f"I_{i}{j}": float(m) for (i, j), m in zip(_planes(n), arr) if not (math.isfinite(m) and m > 0)}
+    if bad:
+        raise ValueError(f"{name}: moments of inertia must be finite and > 0, got {fmt(bad)}")
+    return arr
+
+
+def axis_signs(N: int, convention: str, axes: Sequence[int] | None = None) -> np.ndarray:
+    """Diagonal of ``S`` with ``X_paper = S X_standard S`` (eq. 21): ``(-1)^a`` per axis.
+
+    ``axes`` are the original 1-based axis labels of the body's ``N`` axes (a body
+    reduced by :meth:`~hyperrotor.RigidBody.lock` keeps its labels, so its signs
+    are those of the full body, not of ``1..N``). Ones for ``"standard"``.
+    """
+    if choice("convention", convention, CONVENTIONS) == "standard":
+        return np.ones(N)
+    labels = tuple(range(1, N + 1)) if axes is None else tuple(int(a) for a in axes)
+    if len(labels) != N:
+        raise ValueError(f"axes {fmt(labels)} must name exactly N = {N} axes")
+    return np.array([(-1.0) ** a for a in labels])
