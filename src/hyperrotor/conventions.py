@@ -72,9 +72,9 @@ from numbers import Integral
 from typing import Any, Callable, Iterable, Sequence
 
 import numpy as np
-import sympy as sp
 
-from . import _validate
+from . import _lazy, _validate
+from ._lazy import sympy as sp  # SymPy is imported on first symbolic use (light ``import hyperrotor``)
 
 __all__ = [
     "CONVENTIONS",
@@ -219,7 +219,12 @@ def plane_signs(N: int, convention: str = "paper") -> np.ndarray:
 # matrices <-> components
 # ----------------------------------------------------------------------------
 def is_symbolic(x: Any) -> bool:
-    """True when ``x`` holds SymPy objects (the symbolic path of the package's dual numpy/SymPy functions)."""
+    """True when ``x`` holds SymPy objects (the symbolic path of the package's dual numpy/SymPy functions).
+
+    Never imports SymPy: if it has not been imported yet, ``x`` cannot hold SymPy objects.
+    """
+    if not _lazy.loaded("sympy"):
+        return False
     if isinstance(x, (sp.Basic, sp.MatrixBase)):
         return True
     if isinstance(x, np.ndarray):

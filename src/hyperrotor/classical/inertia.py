@@ -41,7 +41,8 @@ from numbers import Real
 from typing import Any, Iterable, Sequence
 
 import numpy as np
-import sympy as sp
+
+from hyperrotor._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
 from hyperrotor.conventions import (
     check_dimension,

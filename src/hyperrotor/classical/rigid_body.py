@@ -46,8 +46,8 @@ from numbers import Integral
 from typing import Any, Sequence
 
 import numpy as np
-import sympy as sp
 
+from hyperrotor._lazy import sympy as sp  # SymPy loads on first symbolic use (light ``import hyperrotor``)
 from hyperrotor.conventions import (
     check_convention,
     is_symbolic,
@@ -58,10 +58,14 @@ from hyperrotor.conventions import (
 )
 from hyperrotor.classical.inertia import Inertia
 
-__all__ = ["RigidBody", "TIME"]
+__all__ = ["RigidBody"]  # and TIME, served by __getattr__ below (not star-imported: that would load SymPy)
 
-#: The time symbol of every symbolic equation (``sympy.Symbol("t")``).
-TIME = sp.Symbol("t")
+
+def __getattr__(name: str) -> Any:
+    """PEP 562: ``TIME``, the time symbol of every symbolic equation (``sympy.Symbol("t")``), made on first use."""
+    if name == "TIME":
+        return sp.Symbol("t")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _pfaffian(A: sp.Matrix) -> sp.Expr:
@@ -315,6 +319,7 @@ class RigidBody:
         -------
         list of sympy.Eq
         """
+        TIME = sp.Symbol("t")
         w = self.omega_symbols(function_of=TIME)
         I = self.inertia.symbolic_moments
         # sign_a * (I_a w_a' - rhs_a), with sign_a distributed over the terms
