@@ -4,6 +4,7 @@ from pathlib import Path
 
 import numpy as np
 import sympy as sp
+from tolerance import scaled_tol
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 
@@ -29,7 +30,8 @@ def test_readme_tour(capsys):
     assert sp.simplify(first.lhs - eq28) == 0 and first.rhs == sp.Symbol("mtilde_12")
     assert ns["err"] < 1e-10                                   # splitting8 vs the closed form
     drift = ns["body"].casimirs(ns["traj"].omega) - ns["body"].casimirs(ns["omega0"])
-    assert np.max(np.abs(drift)) < 1e-12
+    # splitting8 at rtol 1e-12 stores L compensated: the Casimirs drift by a few eps |c|, no random walk
+    assert np.max(np.abs(drift)) < scaled_tol(ns["body"].casimirs(ns["omega0"]), dim=5, k=16)
     assert ns["st"].stable is False                            # m_3 = 2 lies between m_1 = 1 and m_2 = 3
     assert ns["rep"].dim == 35
     levels, deg = ns["levels"], ns["degeneracies"]

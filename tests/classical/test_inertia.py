@@ -10,6 +10,7 @@ from scipy.stats import special_ortho_group
 import hyperrotor as hr
 from hyperrotor import Inertia
 from hyperrotor.classical.inertia import check_tensor_symmetries, inertia_tensor
+from tolerance import scaled_tol
 
 
 # ---------------------------------------------------------------- constructors
@@ -188,15 +189,15 @@ def test_from_points_rotated_ellipsoid(rng):
     I = Inertia.from_points(np.full(n, 1.0 / n), pts @ R.T)
     exact = Inertia.ellipsoid(1.0, semi)
     P = I.principal_axes
-    np.testing.assert_allclose(P.T @ P, np.eye(N), atol=1e-12)
-    assert np.linalg.det(P) == pytest.approx(1.0, abs=1e-12)
+    np.testing.assert_allclose(P.T @ P, np.eye(N), rtol=0, atol=scaled_tol(P, k=16))  # eigenvectors: ~ N eps
+    assert np.linalg.det(P) == pytest.approx(1.0, abs=scaled_tol(P, k=16))
     # moments come out in some axis order: compare the sorted mass tensors
     np.testing.assert_allclose(np.sort(I.mass_tensor), np.sort(exact.mass_tensor), rtol=1e-2)
     # the principal axes diagonalize the second moments
     c = pts @ R.T
     c = c - c.mean(axis=0)
     D = P.T @ (c.T @ c / n) @ P
-    np.testing.assert_allclose(D - np.diag(np.diag(D)), 0, atol=1e-12 * np.abs(D).max())
+    np.testing.assert_allclose(D - np.diag(np.diag(D)), 0, atol=scaled_tol(D, k=16))
     np.testing.assert_allclose(np.diag(D), I.mass_tensor, rtol=1e-12)
 
 
@@ -204,8 +205,8 @@ def test_from_points_discrete_exact():
     # two unit masses at +-e_1 and two at +-2 e_2 in 3D: m = (2, 8, 0)
     pos = [[1, 0, 0], [-1, 0, 0], [0, 2, 0], [0, -2, 0]]
     I = Inertia.from_points([1, 1, 1, 1], pos)
-    np.testing.assert_allclose(I.mass_tensor, [2, 8, 0], atol=1e-14)
-    np.testing.assert_allclose([I[(1, 2)], I[(1, 3)], I[(2, 3)]], [10, 2, 8], atol=1e-13)
+    np.testing.assert_allclose(I.mass_tensor, [2, 8, 0], rtol=0, atol=scaled_tol(8.0, dim=len(pos)))
+    np.testing.assert_allclose([I[(1, 2)], I[(1, 3)], I[(2, 3)]], [10, 2, 8], rtol=0, atol=scaled_tol(10.0, dim=len(pos)))
 
 
 def test_from_points_centre_of_mass():
@@ -236,15 +237,18 @@ def test_eq3_tensor_symmetries_and_normalization(rng):
     T = inertia_tensor(m, x)
     check_tensor_symmetries(T)
     # explicit symmetries (eq. 3)
-    np.testing.assert_allclose(T, -T.transpose(1, 0, 2, 3), atol=1e-14)
-    np.testing.assert_allclose(T, -T.transpose(0, 1, 3, 2), atol=1e-14)
-    np.testing.assert_allclose(T, T.transpose(2, 3, 0, 1), atol=1e-14)
-    np.testing.assert_allclose(T + T.transpose(0, 2, 3, 1) + T.transpose(0, 3, 1, 2), 0, atol=1e-13)
+    # each entry is a sum over the 40 points of products of coordinates: round-off ~ 40 eps max|T|
+    tol = scaled_tol(np.abs(T).max(), dim=len(m))
+    np.testing.assert_allclose(T, -T.transpose(1, 0, 2, 3), rtol=0, atol=tol)
+    np.testing.assert_allclose(T, -T.transpose(0, 1, 3, 2), rtol=0, atol=tol)
+    np.testing.assert_allclose(T, T.transpose(2, 3, 0, 1), rtol=0, atol=tol)
+    np.testing.assert_allclose(T + T.transpose(0, 2, 3, 1) + T.transpose(0, 3, 1, 2), 0, rtol=0, atol=3 * tol)
     # rotate to principal axes
     I = Inertia.from_points(m, x)
     R = I.principal_axes
     Tp = np.einsum("ai,bj,ck,dl,abcd->ijkl", R, R, R, R, T)
-    np.testing.assert_allclose(Tp, I.tensor(), atol=1e-12)
+    # four rotations of T: N^4 terms per entry whose absolute sum is <= N^2 max|T| (rows of R are unit vectors)
+    np.testing.assert_allclose(Tp, I.tensor(), rtol=0, atol=scaled_tol(np.abs(T).max() * N**2, dim=N**2, k=16))
     Jm = I.mass_tensor
     for i, j in itertools.permutations(range(N), 2):
         assert Tp[i, j, i, j] == pytest.approx((Jm[i] + Jm[j]) / 2, rel=1e-12)  # I^{ijij} = (m_i+m_j)/2
@@ -252,7 +256,7 @@ def test_eq3_tensor_symmetries_and_normalization(rng):
     w = hr.to_matrix(rng.standard_normal(hr.n_planes(N)), "standard")
     L = np.einsum("ijkl,kl->ij", Tp, w)
     Lexp = hr.to_matrix(I.moments * hr.to_components(w, "standard"), "standard")
-    np.testing.assert_allclose(L, Lexp, atol=1e-12)
+    np.testing.assert_allclose(L, Lexp, rtol=0, atol=scaled_tol(np.abs(Tp).max() * N**2 * np.abs(w).max(), dim=N**2, k=16))
     for (i, j), Iij in zip(I.planes, I.moments):
         assert Iij == pytest.approx(2 * Tp[i - 1, j - 1, i - 1, j - 1], rel=1e-12)
     # eq. (6) with full summation, 1/2 w_ij I^{ijkl} w_kl = 1/2 w_ij L^ij, counts each plane twice:

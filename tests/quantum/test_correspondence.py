@@ -26,6 +26,7 @@ from hyperrotor.quantum.coherent import (
     normal_form_rotation,
 )
 from hyperrotor.quantum.rotor import evolve, rotor_hamiltonian
+from tolerance import norm, scaled_tol
 
 
 def _reps():
@@ -69,15 +70,15 @@ def test_commutators_match_lie_poisson(make):
     Lb = [-x for x in Lh]
     C = structure_constants(rep.N)
     n = len(Lh)
-    scale = max(1.0, max(np.abs(x).max() for x in Lh)) ** 2
+    tol = scaled_tol(max(norm(x) for x in Lh) ** 2, dim=rep.dim, k=8)  # commutator of d x d matrices
     for a in range(n):
         for b in range(n):
             rhs = sum(C[a, b, c] * Lh[c] for c in range(n) if C[a, b, c])
             comm = Lh[a] @ Lh[b] - Lh[b] @ Lh[a]
-            np.testing.assert_allclose(comm, -1j * hbar * (rhs if np.ndim(rhs) else 0 * comm), atol=1e-12 * scale)
+            np.testing.assert_allclose(comm, -1j * hbar * (rhs if np.ndim(rhs) else 0 * comm), rtol=0, atol=tol)
             rhs_b = sum(C[a, b, c] * Lb[c] for c in range(n) if C[a, b, c])
             comm_b = Lb[a] @ Lb[b] - Lb[b] @ Lb[a]
-            np.testing.assert_allclose(comm_b, 1j * hbar * (rhs_b if np.ndim(rhs_b) else 0 * comm_b), atol=1e-12 * scale)
+            np.testing.assert_allclose(comm_b, 1j * hbar * (rhs_b if np.ndim(rhs_b) else 0 * comm_b), rtol=0, atol=tol)
 
 
 @pytest.mark.parametrize("make", _reps())
@@ -92,12 +93,13 @@ def test_heisenberg_equals_symmetrized_euler(make, rng):
     Lb = [-x for x in Lh]
     C = structure_constants(rep.N)
     n = len(Lh)
-    scale = max(1.0, np.abs(H).max()) * max(1.0, max(np.abs(x).max() for x in Lh))
+    # both sides: sums of ~n products of d x d matrices of size ||H|| ||L|| / hbar
+    tol = scaled_tol(norm(H) * max(norm(x) for x in Lh) / hbar, dim=rep.dim, k=8 * n)
     for a in range(n):
         sym_b = sum(C[b, c, a] * (Lb[b] @ Lb[c] + Lb[c] @ Lb[b]) / (2 * moments[b]) for b in range(n) for c in range(n) if C[b, c, a])
         sym_h = sum(C[b, c, a] * (Lh[b] @ Lh[c] + Lh[c] @ Lh[b]) / (2 * moments[b]) for b in range(n) for c in range(n) if C[b, c, a])
-        np.testing.assert_allclose((1j / hbar) * (H @ Lb[a] - Lb[a] @ H), sym_b, atol=1e-11 * scale)
-        np.testing.assert_allclose((1j / hbar) * (H @ Lh[a] - Lh[a] @ H), -sym_h, atol=1e-11 * scale)
+        np.testing.assert_allclose((1j / hbar) * (H @ Lb[a] - Lb[a] @ H), sym_b, rtol=0, atol=tol)
+        np.testing.assert_allclose((1j / hbar) * (H @ Lh[a] - Lh[a] @ H), -sym_h, rtol=0, atol=tol)
 
 
 def test_classical_component_ode_matches_simulate(rng):
@@ -140,15 +142,16 @@ def test_normal_form_rotation(N, rng):
     lam0 = np.sort(rng.uniform(0.5, 2, size=N // 2))[::-1]
     L = _bivector(Q0, lam0)
     Q, lam = normal_form_rotation(L)
-    assert abs(np.linalg.det(Q) - 1) < 1e-12
-    np.testing.assert_allclose(lam, lam0, atol=1e-12)
-    np.testing.assert_allclose(_bivector(Q, lam), L, atol=1e-12)
+    tol = scaled_tol(lam0, dim=N, k=16)  # a backward-stable decomposition of an N x N matrix of size |lam|
+    assert abs(np.linalg.det(Q) - 1) < scaled_tol(dim=N, k=16)
+    np.testing.assert_allclose(lam, lam0, rtol=0, atol=tol)
+    np.testing.assert_allclose(_bivector(Q, lam), L, rtol=0, atol=tol)
     if N % 2 == 0:  # opposite orientation: last lambda negative
         P = np.eye(N)
         P[0, 0] = -1
         Lr = _bivector(P @ Q0, lam0)  # P Q0 has det -1: the mirror-image bivector
         _, lam_r = normal_form_rotation(Lr)
-        np.testing.assert_allclose(lam_r, np.r_[lam0[:-1], -lam0[-1]], atol=1e-12)
+        np.testing.assert_allclose(lam_r, np.r_[lam0[:-1], -lam0[-1]], rtol=0, atol=tol)
 
 
 @pytest.mark.parametrize("N", [3, 4, 5])
@@ -157,7 +160,7 @@ def test_apply_rotation_is_the_group_action(N, rng):
     rep = vector_rep(N)
     Q = _random_rotation(rng, N)
     psi = rng.normal(size=N) + 1j * rng.normal(size=N)
-    np.testing.assert_allclose(apply_rotation(rep, Q, psi), Q @ psi, atol=1e-12)
+    np.testing.assert_allclose(apply_rotation(rep, Q, psi), Q @ psi, rtol=0, atol=scaled_tol(psi, dim=N, k=16))
 
 
 @pytest.mark.parametrize(
