@@ -32,6 +32,7 @@ __all__ = [
     "convention",
     "time_grid",
     "finite_array",
+    "components",
     "plane",
     "moments",
     "axis_signs",
@@ -194,6 +195,18 @@ def finite_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = 
         bad = np.argwhere(~np.isfinite(arr))[0]
         idx = tuple(int(b) for b in bad)
         raise ValueError(f"{name} must be finite; {name}{list(idx)} = {fmt(arr[idx])}")
+    return arr
+
+
+def components(name: str, value: Any, n: int, *, what: str = "plane components") -> np.ndarray:
+    """A finite float array of shape batch + ``(n,)`` (one vector of ``n`` components per member).
+
+    For ensembles of initial conditions such as ``omega0``: the last axis holds the ``n``
+    components (``what`` names them in the message), leading axes are the ensemble.
+    """
+    arr = finite_array(name, value)
+    if arr.ndim == 0 or arr.shape[-1] != n:
+        raise ValueError(f"{name} must have shape ({n},) or batch + ({n},) ({n} {what}), got shape {arr.shape}")
     return arr
 
 

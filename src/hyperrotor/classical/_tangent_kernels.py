@@ -1,0 +1,137 @@
+r"""Numba kernel of the splitting integrators' tangent flow (private; used by :mod:`.chaos`).
+
+Same data layout as :mod:`hyperrotor.classical._kernels` (``L0 (B, n)``, ``rates (B, n)``,
+the word ``seq_plane, seq_coef`` of one step, the tables ``pair_p, pair_q, pair_s`` of
+:func:`~hyperrotor.classical._kernels.rotation_tables`), plus ``k`` tangent vectors per
+body, ``W0 (B, k, n)``.
+
+Tangent map of one elementary flow
+----------------------------------
+The flow of :math:`\rho_a L_a^2/2` over ``t = coef * h`` keeps :math:`L_a` and rotates
+every pair :math:`(L_p, L_q) = (\sigma_p L_{ik}, \sigma_q L_{jk})` of plane ``a``
+(``sg = pair_s = sigma_p sigma_q``) by the angle :math:`\varphi = t\rho_a L_a`:
+
+.. math:: L_p' = c L_p + sg\,s L_q, \qquad L_q' = c L_q - sg\,s L_p,
+          \qquad c = \cos\varphi,\ s = \sin\varphi .
+
+The angle depends on the state, :math:`\delta\varphi = t\rho_a\,\delta L_a`, so the
+Jacobian is the same rotation plus a rank-one term along
+:math:`\partial L'/\partial\varphi`, which is again expressed by the *rotated* values
+(:math:`\partial L_p'/\partial\varphi = -s L_p + sg\,c L_q = sg\,L_q'`,
+:math:`\partial L_q'/\partial\varphi = -sg\,L_p'`):
+
+.. math:: \delta L_p' = c\,\delta L_p + sg\,s\,\delta L_q + sg\,L_q'\,\delta\varphi, \qquad
+          \delta L_q' = c\,\delta L_q - sg\,s\,\delta L_p - sg\,L_p'\,\delta\varphi,
+
+and :math:`\delta L_a' = \delta L_a` (every other component is unchanged). Composing
+these maps along the word gives the exact derivative of the discrete step map
+(the "discrete variational equation"): its Lyapunov exponents are those of the
+integrator, which shadows the flow with the same structure (each factor has unit
+determinant and preserves the Casimirs' level sets to first order).
+
+Benettin's algorithm
+--------------------
+``nren`` renormalisations, each after ``nsub[b]`` steps of length ``h[b]``: the ``k``
+tangent vectors are re-orthonormalised by modified Gram-Schmidt (the ``R`` of a QR
+factorisation), and ``log R_jj`` is added to ``acc[j]``. ``out[b, s, j]`` holds
+``acc[j]`` after renormalisation ``(s + 1) * stride`` (``s = 0 .. nstore-1``). Each
+body is integrated by the same arithmetic whichever rows share its call, so results
+do not depend on the chunking of an ensemble.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from hyperrotor._jit import jit
+
+from ._kernels import sincos
+
+__all__: list[str] = []  # private module
+
+
+def _tangent_run(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
+                 h, nsub, nren, stride, renormalize, out, Lout, Wout):  # pragma: no cover - jitted
+    """Integrate ``B`` bodies and their ``k`` tangent vectors; Benettin sums in ``out``.
+
+    Final states in ``Lout (B, n)`` and ``Wout (B, k, n)``. ``renormalize=False`` skips the
+    Gram-Schmidt step (``Wout`` is then the Jacobian of the whole run applied to ``W0``;
+    ``out`` is not written): the tests compare it with finite differences.
+    """
+    B = L0.shape[0]
+    n = L0.shape[1]
+    k = W0.shape[1]
+    m = seq_plane.shape[0]
+    npair = pair_p.shape[1]
+    L = np.empty(n)
+    W = np.empty((k, n))
+    fac = np.empty(m)
+    acc = np.empty(k)
+    for b in range(B):
+        for a in range(n):
+            L[a] = L0[b, a]
+        for j in range(k):
+            acc[j] = 0.0
+            for a in range(n):
+                W[j, a] = W0[b, j, a]
+        for r in range(m):  # half-angle per unit L_a of flow r (its angle is 2 * fac * L_a)
+            fac[r] = 0.5 * seq_coef[r] * h[b] * rates[b, seq_plane[r]]
+        s_out = 0
+        for ren in range(nren):
+            for _ in range(nsub[b]):
+                for r in range(m):
+                    a = seq_plane[r]
+                    f = fac[r]
+                    sh, chh = sincos(f * L[a])
+                    s = 2.0 * sh * chh       # sin(phi)
+                    v = 2.0 * sh * sh        # 1 - cos(phi)
+                    f2 = 2.0 * f             # d phi / d L_a
+                    for e in range(npair):
+                        p = pair_p[a, e]
+                        q = pair_q[a, e]
+                        sg = pair_s[a, e]
+                        ss = s * sg
+                        x = L[p]
+                        y = L[q]
+                        xn = x + (ss * y - v * x)
+                        yn = y - (ss * x + v * y)
+                        L[p] = xn
+                        L[q] = yn
+                        gp = sg * yn      # d L_p' / d phi
+                        gq = -sg * xn     # d L_q' / d phi
+                        for j in range(k):
+                            dphi = f2 * W[j, a]
+                            dx = W[j, p]
+                            dy = W[j, q]
+                            W[j, p] = dx + (ss * dy - v * dx) + gp * dphi
+                            W[j, q] = dy - (ss * dx + v * dy) + gq * dphi
+            if not renormalize:
+                continue
+            # modified Gram-Schmidt: W <- Q, acc += log diag(R)
+            for j in range(k):
+                for i in range(j):
+                    d = 0.0
+                    for a in range(n):
+                        d += W[i, a] * W[j, a]
+                    for a in range(n):
+                        W[j, a] -= d * W[i, a]
+                nrm = 0.0
+                for a in range(n):
+                    nrm += W[j, a] * W[j, a]
+                nrm = math.sqrt(nrm)
+                acc[j] += math.log(nrm)
+                inv = 1.0 / nrm
+                for a in range(n):
+                    W[j, a] *= inv
+            if (ren + 1) % stride == 0 and s_out < out.shape[1]:
+                for j in range(k):
+                    out[b, s_out, j] = acc[j]
+                s_out += 1
+        for a in range(n):
+            Lout[b, a] = L[a]
+            for j in range(k):
+                Wout[b, j, a] = W[j, a]
+
+
+tangent_run = jit(_tangent_run)

@@ -1,0 +1,304 @@
+"""Lyapunov exponents: tangent map, integrable vs generic bodies, spectrum structure, scale-out."""
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import hyperrotor as hr
+from hyperrotor._options import options
+from hyperrotor.classical import _tangent_kernels, chaos
+from hyperrotor.classical.chaos import lyapunov, lyapunov_sweep
+
+EPS = float(np.finfo(float).eps)
+N5, n5 = 5, 10
+
+
+def generic_5d(seed, M, L_norm=3.0):
+    """A 5D body with ten moments log-uniform in [0.3, 3] and M momenta of norm ~3 (random directions)."""
+    g = np.random.default_rng(seed)
+    moments = np.exp(g.uniform(math.log(0.3), math.log(3.0), n5))
+    L = g.standard_normal((M, n5))
+    L *= L_norm / np.linalg.norm(L, axis=1, keepdims=True)
+    return moments, L / moments
+
+
+# ----------------------------------------------------------------------------
+# independent reference: Euler equations and their linearisation as matrices, scipy DOP853
+# ----------------------------------------------------------------------------
+def _mat(v, N):
+    iu = np.triu_indices(N, 1)
+    A = np.zeros(v.shape[:-1] + (N, N))
+    A[..., iu[0], iu[1]] = v
+    return A - np.swapaxes(A, -1, -2)
+
+
+def scipy_benettin(moments, omega0, T, seed):
+    """Maximal exponents of the orbits omega0 (M, n): dL/dt = Om L - L Om (plain matrices,
+    Om_ij = L_ij / I_ij), tangent d(dL)/dt = dOm L + Om dL - dL Om - L dOm, renormalised
+    every time unit (Benettin); all orbits stacked in one solve_ivp system."""
+    n = moments.size
+    N = int(round((1 + math.sqrt(1 + 8 * n)) / 2))
+    iu = np.triu_indices(N, 1)
+    Imat = np.abs(_mat(moments, N)) + np.eye(N)
+    M = omega0.shape[0]
+
+    def rhs(_t, y):
+        Y = y.reshape(2, M, n)
+        L, D = _mat(Y[0], N), _mat(Y[1], N)
+        Om, dOm = L / Imat, D / Imat
+        dL = Om @ L - L @ Om
+        dD = dOm @ L + Om @ D - D @ Om - L @ dOm
+        return np.stack([dL[..., iu[0], iu[1]], dD[..., iu[0], iu[1]]]).ravel()
+
+    L = omega0 * moments
+    D = np.random.default_rng(seed).standard_normal((M, n))
+    D /= np.linalg.norm(D, axis=1, keepdims=True)
+    acc = np.zeros(M)
+    steps = int(round(T))
+    for k in range(steps):
+        sol = solve_ivp(rhs, (k, k + 1.0), np.stack([L, D]).ravel(), method="DOP853", rtol=1e-9, atol=1e-9)
+        Y = sol.y[:, -1].reshape(2, M, n)
+        L, D = Y[0], Y[1]
+        nrm = np.linalg.norm(D, axis=1)
+        acc += np.log(nrm)
+        D = D / nrm[:, None]
+    return acc / steps
+
+
+# ----------------------------------------------------------------------------
+# the tangent map of one step is the derivative of the step map
+# ----------------------------------------------------------------------------
+@pytest.mark.parametrize("jitted", [True, False], ids=["jit", "python"])
+@pytest.mark.parametrize("order", [2, 4])
+def test_tangent_map_is_derivative_of_step_map(jitted, order):
+    moments, w0 = generic_5d(11, 1)
+    L0 = w0 * moments
+    word = chaos.splitting_word(order, tuple(range(n5)))
+    pp, pq, ps = chaos.rotation_tables(N5)[:3]
+    rates = (1.0 / moments - chaos.casimir_shift(moments, L0)[0])[None]
+    kernel = _tangent_kernels.tangent_run if jitted else getattr(_tangent_kernels.tangent_run, "py_func",
+                                                                  _tangent_kernels.tangent_run)
+    nsteps = 4 if not jitted else 40
+
+    def run(L):
+        out, Lo, Wo = np.zeros((1, 1, n5)), np.empty((1, n5)), np.empty((1, n5, n5))
+        kernel(L, rates, np.eye(n5)[None], word[0], word[1], pp, pq, ps, np.array([0.05]),
+               np.array([nsteps], dtype=np.int64), 1, 1, False, out, Lo, Wo)
+        return Lo[0], Wo[0]
+
+    _, J = run(L0)  # row j: derivative of the final L along e_j
+    step = 1e-6
+    J_fd = np.empty((n5, n5))
+    for j in range(n5):
+        d = np.zeros((1, n5))
+        d[0, j] = step
+        J_fd[j] = (run(L0 + d)[0] - run(L0 - d)[0]) / (2 * step)
+    # central differences: truncation ~ step^2 |L'''| and round-off ~ eps |L| / step
+    assert np.abs(J - J_fd).max() < 1e-7 * max(1.0, np.abs(J).max())
+    # the map is volume-preserving: each plane flow's Jacobian is a rotation plus a nilpotent rank-one term
+    assert abs(np.linalg.det(J) - 1.0) < 1e3 * EPS * np.linalg.norm(J) ** n5
+
+
+def test_python_and_compiled_kernels_agree():
+    if not hasattr(_tangent_kernels.tangent_run, "py_func"):
+        pytest.skip("JIT disabled: one path only")
+    moments, w0 = generic_5d(5, 2)
+    L0 = w0 * moments
+    word = chaos.splitting_word(4, tuple(range(n5)))
+    tables = chaos.rotation_tables(N5)[:3]
+    rates = 1.0 / moments - chaos.casimir_shift(moments, L0)[:, None]
+    W0 = np.broadcast_to(np.eye(n5)[:3], (2, 3, n5)).copy()
+    res = []
+    for kern in (_tangent_kernels.tangent_run, _tangent_kernels.tangent_run.py_func):
+        out, Lo, Wo = np.zeros((2, 2, 3)), np.empty((2, n5)), np.empty((2, 3, n5))
+        kern(L0, rates, W0, word[0], word[1], *tables, np.array([0.02, 0.03]), np.array([5, 4], dtype=np.int64),
+             4, 2, True, out, Lo, Wo)
+        res.append(out)
+    assert np.allclose(res[0], res[1], rtol=0, atol=1e3 * EPS)
+
+
+# ----------------------------------------------------------------------------
+# integrable bodies: exponents ~ log T / T
+# ----------------------------------------------------------------------------
+def _integrable_cases():
+    g = np.random.default_rng(2026)
+    tops = [(hr.Inertia(g.uniform(0.5, 3.0, 3)), g.standard_normal((6, 3))) for _ in range(2)]
+    manakov = []
+    for _ in range(2):
+        body = hr.Inertia.from_mass_tensor(g.uniform(0.2, 1.5, 5))
+        L = g.standard_normal((6, n5))
+        L *= 3.0 / np.linalg.norm(L, axis=1, keepdims=True)
+        manakov.append((body, L / body.moments))
+    return tops + manakov
+
+
+@pytest.mark.parametrize("case", range(4), ids=["top-a", "top-b", "manakov-a", "manakov-b"])
+def test_integrable_exponents_decay_like_log_t_over_t(case):
+    body, w0 = _integrable_cases()[case]
+    T = 400.0
+    t, lam = lyapunov(body, w0, T, history=True, rng=case)
+    assert lam.shape == (w0.shape[0], t.size)
+    assert np.all(lam[:, -1] < 0.03)
+    # linear growth of tangent vectors, |dL(t)| ~ a t: lambda(t) t = log t + c(t) with c bounded
+    # (quasi-periodic wobble of a few units); a chaotic orbit adds lambda * t (next test)
+    late = t >= 25.0
+    drift = lam[:, late] * t[late] - np.log(t[late])
+    assert np.all(drift.max(axis=1) < 2.0), drift.max(axis=1)
+    assert np.all(np.ptp(drift, axis=1) < 4.0), np.ptp(drift, axis=1)
+    assert np.all(lam[:, -1] * T / math.log(T) < 1.5)
+
+
+def test_generic_body_is_not_log_t_over_t():
+    moments, w0 = generic_5d(1, 8)
+    t, lam = lyapunov(moments, w0, 200.0, history=True, rng=0)
+    late = t >= 25.0
+    drift = lam[:, late] * t[late] - np.log(t[late])
+    assert np.median(np.ptp(drift, axis=1)) > 20.0
+
+
+# ----------------------------------------------------------------------------
+# generic bodies: positive exponents, mean agrees with an independent variational computation
+# ----------------------------------------------------------------------------
+@pytest.mark.slow
+def test_generic_mean_agrees_with_scipy_variational():
+    moments, w0 = generic_5d(3, 32)
+    T = 100.0
+    ours = lyapunov(moments, w0, T, rng=4)
+    ref = scipy_benettin(moments, w0, T, seed=5)
+    assert np.mean(ours) > 0.2 and np.mean(ref) > 0.2
+    # the two estimates of each orbit's finite-time exponent differ by the choice of tangent
+    # vector and by the decorrelation of chaotic orbits: compare the means with their standard error
+    diff = ours - ref
+    se = np.std(diff, ddof=1) / math.sqrt(diff.size)
+    assert abs(np.mean(diff)) < 4.0 * se + 0.02, (np.mean(ours), np.mean(ref), se)
+    # and the distributions: same median within the spread
+    assert abs(np.median(ours) - np.median(ref)) < 0.5 * np.std(ref)
+
+
+# ----------------------------------------------------------------------------
+# full spectrum: +/- pairs and four zeros (two Casimirs, flow and energy) for so(5)
+# ----------------------------------------------------------------------------
+def test_spectrum_pairs_and_zeros():
+    moments, w0 = generic_5d(7, 3)
+    T = 400.0
+    spec = lyapunov(moments, w0, T, spectrum=True, rng=8)
+    assert spec.shape == (3, n5)
+    # volume preservation: the exponents sum to zero up to round-off of the log-sums
+    assert np.all(np.abs(spec.sum(axis=1)) < 1e3 * EPS * n5 * np.abs(spec).max())
+    pair_sums = spec + spec[:, ::-1]
+    assert np.all(np.abs(pair_sums) < 4 * math.log(T) / T), pair_sums
+    middle = spec[:, 3:7]
+    assert np.all(np.abs(middle) < 4 * math.log(T) / T), middle
+    # mixed phase space: a regular orbit has all exponents ~0; at least one of these is chaotic
+    assert spec[:, 0].max() > 10 * math.log(T) / T
+
+
+def test_spectrum_k_leading_matches_full_spectrum_start():
+    moments, w0 = generic_5d(9, 2)
+    full = lyapunov(moments, w0, 50.0, spectrum=True, rng=1)
+    three = lyapunov(moments, w0, 50.0, spectrum=3, rng=1)
+    assert three.shape == (2, 3)
+    # Gram-Schmidt: the first vectors do not see the later ones; same random start only in
+    # distribution, so compare the leading exponent loosely and the shapes exactly
+    assert np.all(np.abs(three[:, 0] - full[:, 0]) < 0.5 * np.abs(full[:, 0]) + 0.05)
+
+
+# ----------------------------------------------------------------------------
+# shapes, reproducibility, sweeps, errors
+# ----------------------------------------------------------------------------
+def test_shapes_and_seeded_reproducibility():
+    moments, w0 = generic_5d(2, 4)
+    one = lyapunov(moments, w0[0], 20.0, rng=3)
+    assert isinstance(one, float)
+    many = lyapunov(moments, w0.reshape(2, 2, n5), 20.0, rng=3)
+    assert many.shape == (2, 2)
+    again = lyapunov(moments, w0.reshape(2, 2, n5), 20.0, rng=3)
+    assert np.array_equal(many, again)
+    t, hist = lyapunov(moments, w0, 20.0, history=True, renorm_interval=2.0, rng=3)
+    assert np.allclose(t, np.arange(2.0, 21.0, 2.0)) and hist.shape == (4, 10)
+
+
+@pytest.mark.parametrize("workers,chunk_size", [(1, None), (2, 1), (2, 3), (None, 7)])
+def test_chunking_is_bit_identical(monkeypatch, workers, chunk_size):
+    moments, w0 = generic_5d(4, 12)
+    ref = lyapunov(moments, w0, 40.0, rng=6, chunk_size=12)
+    if workers is not None:
+        monkeypatch.setattr(chaos._parallel, "default_workers", lambda: workers)
+    out = lyapunov(moments, w0, 40.0, rng=6, chunk_size=chunk_size)
+    assert np.array_equal(out, ref)
+
+
+def test_sweep_rows_equal_single_body_calls():
+    g = np.random.default_rng(12)
+    bodies = np.exp(g.uniform(math.log(0.3), math.log(3.0), (3, n5)))
+    _, w0 = generic_5d(13, 4)
+    sweep = lyapunov_sweep(bodies, w0, 10.0, rng=2)
+    assert sweep.shape == (3, 4)
+    # the first body's orbits draw the first tangent vectors of the same generator
+    first = lyapunov(bodies[0], w0, 10.0, rng=2)
+    assert np.allclose(sweep[0], first, rtol=1e-9, atol=0)
+    per_body = lyapunov_sweep([hr.Inertia(b) for b in bodies], np.stack([w0] * 3), 10.0, rng=2)
+    assert np.array_equal(per_body, sweep)
+
+
+@pytest.mark.parametrize("kwargs, exc, words", [
+    (dict(omega0=np.ones(9)), ValueError, r"omega0 must have shape \(10,\)"),
+    (dict(omega0=[np.nan] * 10), ValueError, "finite"),
+    (dict(T=-1.0), ValueError, "T must be finite and > 0"),
+    (dict(method="RK45"), ValueError, "splitting6"),
+    (dict(spectrum=11), ValueError, "spectrum"),
+    (dict(spectrum=2.5), TypeError, "spectrum"),
+    (dict(dt=0.0), ValueError, "dt"),
+    (dict(client=object()), TypeError, "dask.distributed.Client"),
+])
+def test_bad_arguments_are_named(kwargs, exc, words):
+    moments, w0 = generic_5d(0, 1)
+    args = dict(omega0=w0[0], T=1.0)
+    args.update(kwargs)
+    with pytest.raises(exc, match=words):
+        lyapunov(moments, args.pop("omega0"), args.pop("T"), **args)
+
+
+def test_budget_refuses_with_estimate():
+    moments, w0 = generic_5d(0, 2)
+    with options(lyapunov_max_work=1e5):
+        with pytest.raises(ValueError, match="lyapunov_max_work"):
+            lyapunov(moments, w0, 100.0)
+
+
+def test_sweep_rejects_mixed_dimensions():
+    with pytest.raises(ValueError, match="same dimension"):
+        lyapunov_sweep([[1.0, 2.0, 3.0], np.ones(10)], np.ones((1, 3)), 1.0)
+
+
+# ----------------------------------------------------------------------------
+# scale-out: a LocalCluster of two worker processes gives the in-process numbers
+# ----------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def client():
+    dd = pytest.importorskip("dask.distributed")
+    with dd.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            dd.Client(cluster) as c:
+        yield c
+
+
+def test_client_equals_in_process(client):
+    moments, w0 = generic_5d(21, 10)
+    T = 30.0
+    local = lyapunov(moments, w0, T, rng=9)
+    remote = lyapunov(moments, w0, T, rng=9, client=client, chunk_size=3)
+    assert np.array_equal(remote, local)
+    spec_local = lyapunov(moments, w0[:3], T, spectrum=True, rng=9)
+    spec_remote = lyapunov(moments, w0[:3], T, spectrum=True, rng=9, client=client)
+    assert np.array_equal(spec_remote, spec_local)
+
+
+def test_sweep_on_client_equals_in_process(client):
+    g = np.random.default_rng(22)
+    bodies = np.exp(g.uniform(math.log(0.3), math.log(3.0), (2, n5)))
+    _, w0 = generic_5d(23, 5)
+    local = lyapunov_sweep(bodies, w0, 20.0, rng=1)
+    remote = lyapunov_sweep(bodies, w0, 20.0, rng=1, client=client)
+    assert remote.shape == (2, 5)
+    assert np.array_equal(remote, local)
