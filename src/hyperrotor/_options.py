@@ -95,6 +95,31 @@ register = options.register
 # table is complete without importing the modules that read it.
 # ----------------------------------------------------------------------------
 # --- classical ---------------------------------------------------------------
+register(
+    "max_steps", 10**8,
+    "Budget of hyperrotor.simulate: most integration steps per run (steps per trajectory times "
+    "ensemble members; scipy methods: right-hand-side evaluations). A run whose estimate exceeds it "
+    "is refused before it starts (scipy methods: stopped when they reach it). 1e8 steps of a 5D "
+    "splitting8 take a few minutes on one core; raise it (simulate(max_steps=...) or "
+    "hr.options(max_steps=...)) for longer runs.",
+)
+register(
+    "max_output_bytes", 2**31,
+    "Budget of hyperrotor.simulate: largest memory for the returned arrays (omega, L, attitude), "
+    "estimated before the run; 2 GiB by default, so that a mistyped output grid (e.g. 2e8 times) "
+    "is refused with a message instead of ending in MemoryError.",
+)
+register(
+    "chunk_seconds", 0.25,
+    "Target run time of one compiled chunk of hyperrotor.simulate: between chunks Python checks "
+    "for Ctrl-C (KeyboardInterrupt) and updates the progress bar. Smaller is more responsive, "
+    "larger has less overhead (each chunk costs about 10 microseconds).",
+)
+register(
+    "slow_run_warning_seconds", 60.0,
+    "hyperrotor.simulate warns (UserWarning) before a run whose estimated wall time exceeds this "
+    "many seconds (the estimate comes from the timed probe runs of the step control).",
+)
 
 # chaos indicators and ensembles (hyperrotor.classical.chaos, hyperrotor._parallel)
 register(

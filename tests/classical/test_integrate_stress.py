@@ -11,7 +11,7 @@ import pytest
 
 from hyperrotor import Inertia, RigidBody
 from hyperrotor.classical.closed_form import euler_poinsot
-from hyperrotor.classical.integrate import simulate
+from hyperrotor.classical.simulate import simulate
 from hyperrotor.conventions import to_matrix
 
 MOM3 = np.array([2.0, 3.0, 4.0])

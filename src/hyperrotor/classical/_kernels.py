@@ -12,7 +12,7 @@ Data layout (``n = N(N-1)/2`` planes, ``B`` bodies, ``K`` output times)
 ``rates (B, n)``
     rotation rate per unit momentum of each plane term, :math:`1/I_a - c` for the
     split Hamiltonian :math:`H - c\,C_2` (``c`` the Casimir shift of
-    :mod:`hyperrotor.classical.integrate`; rows may repeat one body).
+    :mod:`hyperrotor.classical.solvers.splitting`; rows may repeat one body).
 ``seq_plane (m,) int64``, ``seq_coef (m,) float64``
     one step of the composed method as a word of elementary flows: entry ``r``
     is the exact flow of :math:`L_a^2/(2I_a)` (``a = seq_plane[r] >= 0``) over
@@ -135,7 +135,7 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
     ``outL[b, k, :]`` (angular momentum at ``t[k]``) and, if ``with_attitude``,
     ``outT[b, k]`` (plain-matrix attitude, starting from ``T0[b]``). With ``compensated``
     the increments of ``L`` are added with error-free TwoSum (``L = Lh + Ll``), else in
-    plain arithmetic (~1.6x faster; see ``_COMPENSATE_ABOVE`` in ``integrate``).
+    plain arithmetic (~1.6x faster; see ``COMPENSATE_ABOVE`` in ``solvers/splitting.py``).
     Compiled twice: :func:`split_run` (``prange`` over bodies, threads) and
     :func:`split_run_serial` (no thread launch: cheaper for a few bodies).
     """

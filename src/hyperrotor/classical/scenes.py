@@ -45,6 +45,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from .._validate import axis_signs
 from ..conventions import dimension_from_count, plane_index, planes
 from . import closed_form as _cf
 
@@ -129,10 +130,6 @@ def locked_axes(omega0: Any, N: int | None = None) -> tuple[int, ...]:
     N = dimension_from_count(w.shape[-1]) if N is None else N
     nz = w != 0.0
     return tuple(k for k in range(1, N + 1) if not any(nz[..., q].any() for q, p in enumerate(planes(N)) if k in p))
-
-
-def _sign(N: int, convention: str) -> np.ndarray:
-    return np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
 
 
 # ----------------------------------------------------------------------------
@@ -281,7 +278,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     ``scene.method`` / ``scene.rtol`` otherwise; both routes agree to the
     integration accuracy.
     """
-    from .integrate import simulate
+    from .simulate import simulate
     from .rigid_body import RigidBody
 
     wall = time.perf_counter()
@@ -355,7 +352,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
         idx = np.array(keep_axes) - 1
         T_std = np.broadcast_to(np.eye(N), (t.size, N, N)).copy()
         T_std[:, idx[:, None], idx[None, :]] = U
-        S = _sign(N, conv)
+        S = axis_signs(N, conv, body.axes)
         if T0 is not None:
             T_std = T_std @ (S[:, None] * T0 * S[None, :])
         T = S[None, :, None] * T_std * S[None, None, :]

@@ -1,0 +1,380 @@
+r"""Numerical integration of the N-dimensional Euler equations: :func:`simulate`, :class:`Trajectory`.
+
+Equations (eqs. 24-26 of the paper, components; identical in the "paper" and
+"standard" matrix conventions, see :mod:`hyperrotor.conventions`)
+
+.. math:: \dot L_a = \sum_{b,c} C_{bc}^{\;a}\,\omega_b L_c + \tau_a,
+          \qquad L_a = I_a\,\omega_a, \qquad \dot T = \Omega\,T,
+
+i.e. :math:`\dot L = [\Omega, L] + \tau` with plain matrices, ``tau`` an optional
+body-frame torque (components in plane order, units of :math:`dL/dt`) and
+``T`` the attitude of eq. (19) (space to body: :math:`L_\text{body} = T L_\text{space} T^{\mathsf T}`),
+:math:`\Omega` the angular-velocity matrix in the body's convention.
+
+:func:`simulate` normalises its inputs once into a :class:`~.solvers.base.Problem` and
+hands it to a solver of :data:`~.solvers.SOLVERS` (see :mod:`hyperrotor.classical.solvers`
+for each method's order, invariants and options).
+"""
+from __future__ import annotations
+
+import time
+from typing import Any, Callable
+
+import numpy as np
+
+from hyperrotor import _validate
+from hyperrotor._options import options
+from hyperrotor.conventions import dimension_from_count
+
+from .solvers import SOLVERS, FixedStepSolver, Problem, ScipyIVP, Solver, solver_for
+from .solvers.base import power_of_two_scale
+from .solvers.step_control import ErrorTarget, FixedStep, StepBudgetError
+
+__all__ = ["simulate", "Trajectory", "SIMULATION_METHODS"]
+
+#: Allowed ``method=`` names of :func:`simulate`: ``"auto"`` and the keys of the solver registry.
+SIMULATION_METHODS = ("auto", *SOLVERS)
+
+#: rtol when neither ``rtol`` nor ``dt`` is given
+DEFAULT_RTOL = 1e-9
+#: ``method="auto"``: the splitting order for rtol at least these values (order 8 below the last);
+#: from the work-precision benchmark (order 8 is the cheapest from ~1e-6 down)
+AUTO_ORDER = ((1e-2, "splitting2"), (1e-4, "splitting4"), (1e-7, "splitting6"))
+
+
+class Trajectory:
+    r"""Result of :func:`simulate`.
+
+    Attributes
+    ----------
+    t : ndarray (K,)
+        output times (ends early after a terminal event).
+    omega : ndarray batch + (K, n)
+        angular velocities :math:`\omega_{ij}(t)` in plane order.
+    L : ndarray batch + (K, n)
+        body-frame angular momenta :math:`L^{ij} = I_{ij}\omega_{ij}`.
+    attitude : ndarray batch + (K, N, N) or None
+        :math:`T(t)` (eq. 19) in the body's matrix convention, ``None`` unless asked.
+    t_events : list of ndarray or None
+        with ``events=``: one array of event times per event function (as ``solve_ivp``).
+    L_events, omega_events : list of ndarray (m, n) or None
+        the states at those times; ``attitude_events`` too when the attitude is integrated.
+    body : object
+        the ``body`` argument.
+    moments : ndarray (n,)
+        the plane moments used.
+    stats : dict
+        ``method``, ``order``, ``steps`` (steps per trajectory of a fixed-step method,
+        ``None`` for scipy), ``nfev`` (scipy, summed over the ensemble), ``dt`` (largest
+        step used), ``rtol``, ``status`` (``"finished"`` or ``"terminated by event"``),
+        ``chunks`` (compiled calls of the run), ``wall_time`` (s); for the splittings also
+        ``flows_per_step`` (elementary plane flows in one step), ``casimir_shift`` and
+        ``compensated`` (see :mod:`hyperrotor.classical.solvers.splitting`).
+    """
+
+    def __init__(self, t, omega, L, attitude, body, moments, stats, *, dense=None, scale=1.0, signs=None,
+                 events=None):
+        self.t = t
+        self.omega = omega
+        self.L = L
+        self.attitude = attitude
+        self.body = body
+        self.moments = moments
+        self.stats = stats
+        self._dense = dense
+        self._scale = scale
+        self._signs = signs
+        self.t_events = self.L_events = self.omega_events = self.attitude_events = None
+        if events is not None:
+            t_ev, L_ev, T_ev = events
+            self.t_events = t_ev
+            self.L_events = L_ev
+            self.omega_events = [x / moments for x in L_ev]
+            if T_ev is not None:
+                S = signs
+                self.attitude_events = [S[:, None] * x * S[None, :] for x in T_ev]
+
+    def energy(self) -> np.ndarray:
+        r"""Kinetic energy :math:`\tfrac12\sum_{i<j} I_{ij}\omega_{ij}^2`, shape batch + (K,)."""
+        return 0.5 * np.sum(self.L * self.omega, axis=-1)
+
+    def sol(self, t: Any, what: str = "L") -> np.ndarray:
+        r"""Dense output: the solution at any times ``t`` within the run, of the method's accuracy.
+
+        Parameters
+        ----------
+        t : float or array_like (M,)
+            times between ``self.t[0]`` and ``self.t[-1]``.
+        what : {"L", "omega", "attitude"}
+            the quantity (``"attitude"`` only when the run integrated it).
+
+        Returns
+        -------
+        ndarray batch + (n,) / batch + (N, N) for a scalar ``t``, batch + (M, ...) for an array.
+
+        Notes
+        -----
+        Fixed-step methods re-integrate from the stored output state before ``t``: the
+        run's own steps up to the last step point, then one step of the method of the
+        remaining length (continuous in ``t``, equal to the run at its step points).
+        Cost: at most the steps of one output interval per interval queried, plus one
+        step per time. scipy methods use their interpolants (``dense_output=True``; the
+        first call re-runs the integration to build them).
+        """
+        what = _validate.choice("what", what, ("L", "omega", "attitude"))
+        if what == "attitude" and self.attitude is None:
+            raise ValueError("what='attitude' needs a run with attitude=True (or an initial attitude)")
+        tq = np.asarray(t, dtype=float)
+        if tq.ndim > 1 or not np.all(np.isfinite(tq)):
+            raise ValueError(f"t must be a finite number or 1-D array of times, got {_validate.fmt(t)}")
+        L, T = self._dense(np.atleast_1d(tq) * self._scale)
+        batch = self.omega.shape[:-2]
+        if what == "attitude":
+            S = self._signs
+            out = (S[:, None] * T * S[None, :]).reshape(batch + (tq.size, T.shape[-1], T.shape[-1]))
+        else:
+            out = (L * self._scale).reshape(batch + (tq.size, L.shape[-1]))
+            if what == "omega":
+                out = out / self.moments
+        return out[..., 0, :] if what != "attitude" and tq.ndim == 0 else (out[..., 0, :, :] if tq.ndim == 0 else out)
+
+    def __repr__(self) -> str:
+        return (f"Trajectory(method={self.stats.get('method')!r}, batch={self.omega.shape[:-2]}, "
+                f"len(t)={self.t.size}, n_planes={self.omega.shape[-1]}, attitude={self.attitude is not None})")
+
+
+# ----------------------------------------------------------------------------
+# normalising the inputs
+# ----------------------------------------------------------------------------
+def _broadcast_batch(name: str, arr: np.ndarray, core_ndim: int, batch: tuple) -> np.ndarray:
+    lead = arr.shape[: arr.ndim - core_ndim]
+    try:
+        out_shape = np.broadcast_shapes(lead, batch)
+    except ValueError:
+        out_shape = None
+    if out_shape != batch:
+        raise ValueError(f"{name} has batch axes {lead}, inconsistent with the batch axes {batch} of omega0 "
+                         f"(they must be equal or broadcast to it)")
+    return np.broadcast_to(arr, batch + arr.shape[arr.ndim - core_ndim:])
+
+
+def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Problem, np.ndarray]:
+    """Check and normalise the inputs once (scaled units, see :mod:`.solvers.base`)."""
+    moments = _validate.moments(body, name="body")
+    n = moments.size
+    N = dimension_from_count(n)
+    convention = _validate.convention(getattr(body, "convention", "paper"))
+    axes = getattr(body, "axes", None)
+    signs = _validate.axis_signs(N, convention, axes if axes is not None and len(axes) == N else None)
+    w0 = _validate.finite_array("omega0", omega0)
+    if w0.ndim == 0 or w0.shape[-1] != n:
+        raise ValueError(f"omega0 must have shape batch + ({n},) (n_planes of so({N})), got shape {w0.shape}")
+    batch = w0.shape[:-1]
+    t_user = _validate.time_grid(t)
+    B = int(np.prod(batch)) if batch else 1
+    with_att = attitude is not False and attitude is not None
+    nbytes = 8.0 * B * t_user.size * (2 * n + (N * N if with_att else 0))
+    if nbytes > max_output_bytes:
+        raise StepBudgetError(
+            f"the output of this run needs about {nbytes / 2**30:.3g} GiB ({B} member(s) x {t_user.size} output times), "
+            f"more than the budget max_output_bytes = {_validate.fmt(int(max_output_bytes))} bytes; ask for fewer "
+            f"output times (events= or Trajectory.sol give states between them) or raise "
+            f"hyperrotor.options['max_output_bytes']"
+        )
+    s = power_of_two_scale(float(np.abs(w0).max()) if w0.size else 0.0)
+    tq = None
+    if torque is not None:
+        if callable(torque):
+            def tq(tt, w, _f=torque, _s=s):
+                return np.asarray(_f(tt / _s, w * _s), dtype=float) / (_s * _s)
+        else:
+            tq = _validate.finite_array("torque", torque)
+            if tq.ndim == 0 or tq.shape[-1] != n:
+                raise ValueError(f"constant torque must have shape ({n},) or batch + ({n},), got {tq.shape}")
+            tq = np.ascontiguousarray(_broadcast_batch("torque", tq, 1, batch).reshape(B, n)) / s / s
+    T0 = None
+    if with_att:
+        if attitude is True:
+            T0 = np.broadcast_to(np.eye(N), (B, N, N))
+        else:
+            T0 = _validate.finite_array("attitude", attitude)
+            if T0.ndim < 2 or T0.shape[-2:] != (N, N):
+                raise ValueError(f"initial attitude must have shape ({N}, {N}) or batch + ({N}, {N}), got {T0.shape}")
+            dev = float(np.abs(np.swapaxes(T0, -1, -2) @ T0 - np.eye(N)).max()) if T0.size else 0.0
+            if dev > 1e-8:
+                raise ValueError(f"initial attitude must be orthogonal (max|T^T T - 1| = {dev:.3g})")
+            T0 = _broadcast_batch("attitude", T0, 2, batch).reshape(B, N, N)
+        T0 = signs[:, None] * T0 * signs[None, :]  # plain convention: T_conv = S T_plain S
+    ts = t_user * s
+    if not np.all(np.isfinite(ts)):
+        raise ValueError(f"t times max|omega0| overflows double precision (max|t| = {np.abs(t_user).max():.3g}, "
+                         f"max|omega0| = {float(np.abs(w0).max()):.3g})")
+    L0 = np.ascontiguousarray((w0.reshape(B, n) / s) * moments)
+    return Problem(body=body, moments=moments, N=N, n=n, convention=convention, signs=signs, batch=batch, L0=L0,
+                   T0=T0, torque=tq, t=ts, scale=s), t_user
+
+
+def _choose_solver(method, rtol, dt, torque, solver_options) -> Solver:
+    if isinstance(method, str) and method.lower() == "auto":
+        if callable(torque):
+            method = "DOP853"
+        elif rtol is None and dt is not None:
+            method = "splitting4"
+        else:
+            r = DEFAULT_RTOL if rtol is None else rtol
+            method = next((name for bound, name in AUTO_ORDER if r >= bound), "splitting8")
+    elif isinstance(method, str) and method.lower() not in {m.lower() for m in SOLVERS}:
+        raise ValueError(f"unknown method {method!r}; allowed: {', '.join(map(repr, SIMULATION_METHODS))}")
+    return solver_for(method, **solver_options)
+
+
+def simulate(
+    body: Any,
+    omega0: Any,
+    t: Any,
+    method: str | Solver = "auto",
+    rtol: float | None = None,
+    dt: float | None = None,
+    attitude: bool | Any = False,
+    torque: Callable | Any | None = None,
+    *,
+    events: Callable | list | None = None,
+    max_steps: int | None = None,
+    progress: bool | None = None,
+    client: Any = None,
+    **solver_options: Any,
+) -> Trajectory:
+    r"""Integrate the Euler equations (eqs. 24-26) of a rigid body in N dimensions.
+
+    Parameters
+    ----------
+    body : RigidBody, Inertia or array_like (n_planes,)
+        The body (its matrix convention is used for ``attitude``; plain
+        moments or an ``Inertia`` mean ``convention="paper"``).
+    omega0 : array_like batch + (n_planes,)
+        initial angular velocities :math:`\omega_{ij}(t_0)` in plane order;
+        leading axes are an ensemble integrated in one call.
+    t : array_like (K,)
+        strictly monotonic output times; ``t[0]`` is the initial time. A decreasing
+        grid integrates backwards in time (the flows are reversible).
+    method : str or Solver
+        ``"auto"`` or a name of :data:`hyperrotor.classical.solvers.SOLVERS` (case-insensitive:
+        ``"splitting2"`` ... ``"splitting8"``, ``"moser-veselov"``, ``"DOP853"``, ``"RK45"``,
+        ``"RK23"``, ``"LSODA"``, ``"Radau"``, ``"BDF"``), or a solver object such as
+        ``Splitting8(compensated=True)``. ``"auto"``: a callable torque -> ``"DOP853"``;
+        only ``dt`` -> ``"splitting4"``; else the splitting of order 2, 4, 6 or 8 for
+        ``rtol >= 1e-2``, ``>= 1e-4``, ``>= 1e-7``, smaller.
+    rtol : float, optional
+        requested accuracy. Fixed-step methods (splittings, Moser-Veselov): a bound on the
+        whole-run error, :math:`\max_t\|L - L_\text{exact}\|_\infty \le \mathrm{rtol}\max_t\|L\|_\infty`
+        (and the same for :math:`\omega`), met by the step chosen once before the run
+        (:mod:`hyperrotor.classical.solvers.step_control`). scipy methods: scipy's *local*
+        tolerance (the global error is typically 10-1000 times larger over long runs).
+        Default ``1e-9`` when neither ``rtol`` nor ``dt`` is given.
+    dt : float, optional
+        largest step of a fixed-step method; each output interval is split into
+        ``ceil(|gap| / dt)`` equal steps, so output times are hit exactly. Not with
+        ``rtol``, nor with a scipy method.
+    attitude : bool or array_like, optional
+        ``True`` integrates :math:`T(t)` from the identity; an array ``(N, N)`` or
+        batch + ``(N, N)`` (orthogonal, body convention) is the initial attitude.
+    torque : array_like or callable, optional
+        body-frame torque :math:`\tau_{ij}` added to :math:`\dot L^{ij}`: constant components
+        (n_planes,) or batch + (n_planes,) (splittings: exact kicks; scipy methods), or a
+        callable ``torque(t, omega)`` returning n_planes components (scipy methods).
+    events : callable or list of callables, optional
+        event functions ``g(t, L) -> float`` as in :func:`scipy.integrate.solve_ivp`
+        (attributes ``terminal``: bool or count, ``direction``: sign of the crossing);
+        their zeros are located to the method's accuracy and returned in
+        ``Trajectory.t_events`` / ``L_events``; a terminal event ends the run. One
+        trajectory only (1-D ``omega0``).
+    max_steps : int, optional
+        budget of the run (steps per trajectory times members; scipy: right-hand-side
+        evaluations); default ``hyperrotor.options["max_steps"]``. A run estimated above it
+        is refused before it starts (:class:`~hyperrotor.classical.solvers.StepBudgetError`,
+        naming the estimate). The output memory is bounded by
+        ``hyperrotor.options["max_output_bytes"]``.
+    progress : bool or None, optional
+        show a tqdm progress bar (``None``: only on a terminal, for runs longer than ~1 s).
+    client : dask.distributed.Client, optional
+        run the members of an ensemble (2-D ``omega0``) on a dask cluster in chunks
+        (:func:`hyperrotor._parallel.map_rows`); the same results as without it.
+    **solver_options
+        options of the chosen method (e.g. ``compensated=True`` for the splittings);
+        unknown ones are an error naming the allowed ones.
+
+    Returns
+    -------
+    Trajectory
+        ``omega``, ``L`` (batch + (K, n)), ``attitude`` (batch + (K, N, N) or ``None``),
+        ``t_events``/``L_events`` (with ``events``), ``sol(t)`` (dense output) and ``stats``.
+
+    Raises
+    ------
+    ValueError
+        unknown method, non-finite or mis-shaped inputs, ``t`` not strictly monotonic,
+        inconsistent batch axes, conflicting ``dt``/``rtol``, a torque the method cannot
+        integrate; :class:`~hyperrotor.classical.solvers.StepBudgetError` (a ValueError)
+        for a run over budget.
+    TypeError
+        non-numeric input, an unknown option of the method.
+    RuntimeError
+        ``"moser-veselov"`` with a step too long for its implicit equation; a scipy method
+        that fails. ``FloatingPointError``: the solution left double precision.
+    KeyboardInterrupt
+        Ctrl-C, honoured within about ``options["chunk_seconds"]``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> traj = simulate([2.0, 3.0, 4.0], [0.1, 1.0, 0.2], np.linspace(0, 10, 5), method="splitting4", dt=0.01)
+    >>> traj.omega.shape
+    (5, 3)
+    """
+    wall = time.perf_counter()
+    max_steps = options["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
+    rtol = _validate.positive("rtol", rtol, allow_none=True)
+    dt = _validate.positive("dt", dt, allow_none=True)
+    solver = _choose_solver(method, rtol, dt, torque, solver_options)
+    problem, t_user = _problem(body, omega0, t, attitude, torque, options["max_output_bytes"])
+    if isinstance(solver, ScipyIVP):
+        if dt is not None:
+            raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {solver.name!r} takes rtol only")
+        control = ErrorTarget(DEFAULT_RTOL if rtol is None else rtol)
+    else:
+        if dt is not None and rtol is not None:
+            raise ValueError(f"give either dt (fixed step) or rtol (step chosen from the accuracy) for "
+                             f"{solver.name!r}, not both (got dt={_validate.fmt(dt)}, rtol={_validate.fmt(rtol)})")
+        control = FixedStep(dt) if dt is not None else ErrorTarget(DEFAULT_RTOL if rtol is None else rtol)
+    if events is not None and problem.batch:
+        raise ValueError(f"events= needs one trajectory (1-D omega0), got an ensemble of shape {problem.batch}; "
+                         f"loop over the members")
+    if client is not None and problem.B > 1:
+        from ._distributed import run_distributed
+
+        res = run_distributed(solver, problem, control, client=client, max_steps=max_steps, progress=progress)
+    else:
+        res = solver.run(problem, control, events=events, max_steps=max_steps, progress=progress)
+    return _trajectory(solver, problem, control, res, t_user, wall)
+
+
+def _trajectory(solver, problem, control, res, t_user, wall) -> Trajectory:
+    s = problem.scale
+    K = res.t.size
+    batch = problem.batch
+    L = (res.L * s).reshape(batch + (K, problem.n))
+    omega = L / problem.moments
+    att = None
+    if res.T is not None:
+        S = problem.signs
+        att = (S[:, None] * res.T * S[None, :]).reshape(batch + (K, problem.N, problem.N))
+    stats: dict[str, Any] = {"method": solver.name, "order": solver.order, "rtol": getattr(control, "rtol", None)}
+    stats.update(res.stats)
+    if stats.get("dt") is not None:
+        stats["dt"] = stats["dt"] / s
+    if hasattr(solver, "stats") and isinstance(solver, FixedStepSolver):
+        stats.update(solver.stats(problem))
+    stats["wall_time"] = time.perf_counter() - wall
+    events = (res.t_events, res.L_events, res.T_events) if res.t_events is not None else None
+    return Trajectory(t_user[:K], omega, L, att, problem.body, problem.moments, stats, dense=res.dense, scale=s,
+                      signs=problem.signs, events=events)

@@ -1,0 +1,225 @@
+r"""The solver interface of :func:`hyperrotor.simulate`: :class:`Problem`, :class:`Solver`.
+
+A run is split the way scipy's ``solve_ivp`` (``OdeSolver``) and diffrax
+(``AbstractSolver`` + step-size controllers) split it:
+
+* :class:`Problem`: *what* is integrated, normalised once by ``simulate`` (moments,
+  dimension, sign convention, initial momenta and attitudes of the ensemble, torque,
+  time grid), in scaled units (see below);
+* a :class:`Solver` object: *how*, with its class attributes ``name``, ``order``,
+  ``preserves`` (invariants kept to round-off, and whether the map is symplectic /
+  time-reversible), ``adaptive`` and its own options (``Solver.option_docs``;
+  unknown options are an error naming the allowed ones);
+* a step control (:mod:`.step_control`): a fixed ``dt`` or an error target ``rtol``.
+
+Scaled units
+------------
+The free Euler equations are invariant under :math:`\omega \to s\,\omega`,
+:math:`t \to t/s`. ``simulate`` integrates with :math:`s = 2^k` close to
+``max|omega0|`` (a power of two, so scaling is exact in floating point), i.e. with
+angular velocities of order one: inputs such as ``1e200 * omega0`` with
+``t * 1e-200`` neither overflow nor underflow, and give exactly the scaled result.
+Torques scale as :math:`s^2`. A :class:`Problem` holds the scaled values; ``scale``
+converts back.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, ClassVar
+
+import numpy as np
+
+from hyperrotor import _validate
+
+__all__ = ["Problem", "Solver", "FixedStepSolver"]
+
+
+@dataclass
+class Problem:
+    """One normalised integration request (scaled units; see the module docstring).
+
+    Attributes
+    ----------
+    body : object
+        the ``body`` argument of ``simulate`` (``RigidBody``, ``Inertia`` or moments).
+    moments : ndarray (n,)
+        plane moments :math:`I_a`.
+    N, n : int
+        dimension and number of planes.
+    convention : str
+        matrix convention of the attitude (``"paper"`` or ``"standard"``).
+    signs : ndarray (N,)
+        diagonal of ``S`` with ``T_convention = S T_plain S`` (the body's own axis labels).
+    batch : tuple
+        ensemble shape of ``omega0``; ``B = prod(batch)`` members.
+    L0 : ndarray (B, n)
+        scaled initial momenta :math:`L_a = I_a\\omega_a / s`.
+    T0 : ndarray (B, N, N) or None
+        initial attitudes in the plain convention (``None``: attitude not integrated).
+    torque : None, ndarray (B, n) or callable
+        scaled body torque (constant components or ``torque(t, omega)`` in scaled units).
+    t : ndarray (K,)
+        scaled output times (``t_user * scale``), strictly monotonic.
+    scale : float
+        the power of two ``s``.
+    """
+
+    body: Any
+    moments: np.ndarray
+    N: int
+    n: int
+    convention: str
+    signs: np.ndarray
+    batch: tuple
+    L0: np.ndarray
+    T0: np.ndarray | None
+    torque: Any
+    t: np.ndarray
+    scale: float
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def B(self) -> int:
+        return self.L0.shape[0]
+
+    @property
+    def with_attitude(self) -> bool:
+        return self.T0 is not None
+
+    @property
+    def span(self) -> float:
+        """Length of the run (scaled time), ``|t[-1] - t[0]|``."""
+        return float(abs(self.t[-1] - self.t[0]))
+
+    @property
+    def kick(self) -> bool:
+        """A constant, non-zero torque."""
+        return isinstance(self.torque, np.ndarray) and bool(np.any(self.torque))
+
+
+class Solver:
+    """Base class of the integrators of :func:`hyperrotor.simulate` (one subclass per method).
+
+    Subclasses set the class attributes below, list their options in ``option_docs``
+    (name -> (default, one-line meaning)) and implement :meth:`run`. Construct with the
+    options as keywords: ``Splitting8(compensated=True)``; ``simulate(method=...)``
+    accepts the name or such an object.
+
+    Attributes
+    ----------
+    name : str
+        registry name (``simulate(method=name)``, matched ignoring case).
+    order : int or None
+        classical order of the global error (``None`` for variable-order methods).
+    preserves : frozenset of str
+        what the map keeps exactly (to round-off): ``"casimirs"``, ``"energy"``,
+        ``"orthogonality"`` (of the attitude), and the structural properties
+        ``"symplectic"`` (Poisson map on each coadjoint orbit) and ``"reversible"``.
+    adaptive : bool
+        whether the step adapts during the run (scipy methods) or is fixed (chosen once
+        from ``dt`` or ``rtol``).
+    supports_torque : {"none", "constant", "any"}
+        which torques the method integrates.
+    """
+
+    name: ClassVar[str] = ""
+    order: ClassVar[int | None] = None
+    preserves: ClassVar[frozenset] = frozenset()
+    adaptive: ClassVar[bool] = False
+    supports_torque: ClassVar[str] = "none"
+    option_docs: ClassVar[dict[str, tuple[Any, str]]] = {}
+
+    def __init__(self, **options: Any) -> None:
+        self.options = {k: v for k, (v, _) in self.option_docs.items()}
+        unknown = sorted(set(options) - set(self.option_docs))
+        if unknown:
+            allowed = ", ".join(sorted(self.option_docs)) or "none"
+            raise TypeError(f"method {self.name!r} has no option {', '.join(map(repr, unknown))}; allowed: {allowed}")
+        self.options.update(options)
+        self._check_options()
+
+    def _check_options(self) -> None:
+        """Validate ``self.options`` (subclasses)."""
+
+    def __repr__(self) -> str:
+        opts = ", ".join(f"{k}={_validate.fmt(v)}" for k, v in self.options.items())
+        return f"{type(self).__name__}({opts})"
+
+    def check(self, problem: Problem) -> None:
+        """Refuse a problem this method cannot integrate (torque kind, body kind)."""
+        tq = problem.torque
+        if tq is None:
+            return
+        if callable(tq) and self.supports_torque != "any":
+            raise ValueError(
+                f"a callable torque needs an adaptive scipy method (e.g. 'DOP853'); {self.name!r} integrates "
+                f"{'constant torques only' if self.supports_torque == 'constant' else 'the free body only'}"
+            )
+        if self.supports_torque == "none" and problem.kick:
+            raise ValueError(f"method {self.name!r} integrates the free body only; for a constant torque use a "
+                             f"splitting method, for any torque a scipy method")
+
+    def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None):
+        """Integrate ``problem`` with step ``control``; returns a :class:`RunResult`."""
+        raise NotImplementedError
+
+
+@dataclass
+class RunResult:
+    """What a solver hands back to ``simulate`` (scaled units)."""
+
+    L: np.ndarray  # (B, K', n)
+    T: np.ndarray | None  # (B, K', N, N) plain convention
+    t: np.ndarray  # (K',) output times reached (shorter after a terminal event)
+    stats: dict
+    dense: Callable | None = None  # dense(tq (M,)) -> (L (B, M, n), T (B, M, N, N) or None)
+    t_events: list | None = None
+    L_events: list | None = None
+    T_events: list | None = None
+
+
+class FixedStepSolver(Solver):
+    """A method with a fixed step (chosen once): splittings, Moser-Veselov.
+
+    Subclasses implement :meth:`advance` (integrate members ``L (B, n)``, ``T`` over a
+    grid with ``nsub[k]`` equal steps per interval) and :meth:`step_cost` (seconds per
+    step per member, for chunking); the generic driver (:mod:`.driver`) does chunking,
+    interruption, progress, events and dense output for all of them.
+    """
+
+    adaptive = False
+
+    def prepare(self, problem: Problem) -> None:
+        """Precompute what :meth:`advance` needs for ``problem`` (tables, words, shifts)."""
+
+    def advance(self, problem: Problem, L: np.ndarray, T: np.ndarray | None, t: np.ndarray, nsub: np.ndarray,
+                members: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+        """States ``(L (B, K, n), T (B, K, N, N) or None)`` on grid ``t`` from ``L``, ``T`` at ``t[0]``.
+
+        ``members`` selects the ensemble members the rows of ``L`` belong to (default: all).
+        May raise ``RuntimeError`` when a step is too long for the method (implicit methods).
+        """
+        raise NotImplementedError
+
+    def flows_per_step(self, problem: Problem) -> int:
+        """Rough cost unit per step and member (used for chunk sizes and budgets)."""
+        return 1
+
+    def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None):
+        from .driver import run_fixed_step
+
+        return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
+
+
+def nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
+    """Equal steps per output interval so that no step exceeds ``dt`` (output times hit exactly)."""
+    gaps = np.abs(np.diff(t))
+    return np.maximum(1, np.ceil(gaps / dt * (1 - 1e-12))).astype(np.int64)
+
+
+def power_of_two_scale(x: float) -> float:
+    """The power of two ``s`` with ``1 <= x / s < 2`` (exact: ``frexp``), or 1.0 for ``x == 0``."""
+    if not (x > 0 and math.isfinite(x)):
+        return 1.0
+    return math.ldexp(1.0, math.frexp(x)[1] - 1)

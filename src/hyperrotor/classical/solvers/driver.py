@@ -1,0 +1,305 @@
+r"""The run loop of the fixed-step methods: chunks, Ctrl-C, progress, events, dense output.
+
+One driver serves every :class:`~.base.FixedStepSolver` (splittings, Moser-Veselov):
+
+Chunks
+    The steps of the run are cut into chunks of about ``options["chunk_seconds"]`` of
+    compiled work (the chunk size adapts to the measured time of the previous chunk; a
+    run shorter than one chunk is one call). Between chunks Python runs its signal
+    handlers, so Ctrl-C raises :class:`KeyboardInterrupt` within about a chunk's time,
+    updates the progress bar (tqdm) and checks that the state is finite.
+Events
+    With event functions ``g(t, L)`` the state is kept at every step; a sign change of
+    ``g`` between two steps (with the requested ``direction``) is located by Brent's method
+    on :math:`s \mapsto g(t_j + s, \Phi_s(y_j))`, where :math:`\Phi_s` is *one step of the
+    method itself* of length ``s`` from the step state :math:`y_j`: the event time has the
+    method's accuracy. A ``terminal`` event ends the run there.
+Dense output
+    The state at any time :math:`\tau` in :math:`[t_k, t_{k+1}]` is rebuilt from the stored
+    output state at :math:`t_k`: the same steps as the run up to the last step point
+    :math:`t_j \le \tau`, then one step of length :math:`\tau - t_j` (so the result is
+    continuous in :math:`\tau`, equals the run at step points, and has the method's accuracy).
+    Cost: at most one output interval's steps per group of queries in it, plus one step
+    per query.
+"""
+from __future__ import annotations
+
+import math
+import sys
+import time
+from typing import Any
+
+import numpy as np
+
+from hyperrotor._options import options
+
+from .base import FixedStepSolver, Problem, RunResult, nsub_for
+
+__all__ = ["run_fixed_step", "EventSpec", "event_specs"]
+
+#: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
+#: are sized from its measured time to last ``options["chunk_seconds"]``
+FIRST_CHUNK_FLOWS = 2_000_000
+#: with events every step state is kept: at most this many steps per chunk (memory)
+EVENT_CHUNK_STEPS = 100_000
+
+
+class EventSpec:
+    """An event function with scipy's attributes: ``terminal`` (bool or count) and ``direction``."""
+
+    def __init__(self, fn, index):
+        if not callable(fn):
+            raise TypeError(f"events must be callables g(t, L) -> float (or a list of them), got {fn!r}")
+        self.fn = fn
+        term = getattr(fn, "terminal", False)
+        if isinstance(term, (bool, np.bool_)):
+            self.max_count = 1 if term else None
+        elif isinstance(term, (int, np.integer)) and term >= 0:
+            self.max_count = int(term) or None
+        else:
+            raise ValueError(f"event {index}: terminal must be a bool or a non-negative integer, got {term!r}")
+        d = getattr(fn, "direction", 0)
+        try:
+            d = float(d)
+        except (TypeError, ValueError):
+            raise ValueError(f"event {index}: direction must be a number (<0, 0, >0), got {d!r}") from None
+        self.direction = 0.0 if d == 0 else math.copysign(1.0, d)
+
+
+def event_specs(events) -> list[EventSpec]:
+    if events is None:
+        return []
+    if callable(events):
+        events = [events]
+    return [EventSpec(g, i) for i, g in enumerate(events)]
+
+
+def _progress_bar(progress, total):
+    if progress is False or (progress is None and not (hasattr(sys.stderr, "isatty") and sys.stderr.isatty())):
+        return None
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:  # pragma: no cover - tqdm is a dependency
+        return None
+    return tqdm(total=total, unit="step", desc="simulate", leave=False, delay=0 if progress else 1.0)
+
+
+def _step_times(t, cs, nsub, s):
+    """Times of the global step indices ``s`` (output times exactly where a step ends an interval)."""
+    k = np.clip(np.searchsorted(cs, s, side="right") - 1, 0, nsub.size - 1)
+    out = t[k] + (t[k + 1] - t[k]) * ((s - cs[k]) / nsub[k])
+    return np.where(s == cs[k + 1], t[k + 1], out)
+
+
+def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, events=None, max_steps: int,
+                   progress=None) -> RunResult:
+    solver.check(problem)
+    solver.prepare(problem)
+    t = problem.t
+    K = t.size
+    B, n, N = problem.B, problem.n, problem.N
+    h = control.step(solver, problem, max_steps) if K > 1 and B > 0 else 1.0
+    nsub = nsub_for(t, h) if K > 1 else np.zeros(0, dtype=np.int64)
+    steps = int(nsub.sum())
+    if hasattr(solver, "set_accuracy"):
+        solver.set_accuracy(problem, getattr(control, "rtol", None), steps)
+    specs = event_specs(events)
+    fps = solver.flows_per_step(problem)
+    outL = np.empty((B, K, n))
+    outT = np.empty((B, K, N, N)) if problem.with_attitude else None
+    outL[:, 0] = problem.L0
+    if outT is not None:
+        outT[:, 0] = problem.T0
+    cs = np.concatenate([[0], np.cumsum(nsub)])
+    stats = dict(steps=steps, nfev=None, dt=float(np.max(np.abs(np.diff(t)) / nsub)) if K > 1 else None,
+                 chunks=0)
+    t_events = [[] for _ in specs]
+    L_events = [[] for _ in specs]
+    T_events = [[] for _ in specs]
+    K_done = K
+    if B > 0 and steps > 0:
+        bar = _progress_bar(progress, steps)
+        try:
+            K_done = _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T_events, fps, bar,
+                           stats)
+        finally:
+            if bar is not None:
+                bar.close()
+    stats["status"] = "terminated by event" if K_done < K or (specs and stats.get("terminal")) else "finished"
+
+    def dense(tq):
+        return _dense(solver, problem, t, nsub, outL, outT, tq, K_done)
+
+    res = RunResult(L=outL[:, :K_done], T=None if outT is None else outT[:, :K_done], t=t[:K_done], stats=stats,
+                    dense=dense)
+    if specs:
+        res.t_events = [np.array(x, dtype=float) for x in t_events]
+        res.L_events = [np.array(x, dtype=float).reshape(-1, n) for x in L_events]
+        res.T_events = [np.array(x, dtype=float).reshape(-1, N, N) for x in T_events] if outT is not None else None
+    return res
+
+
+def _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T_events, fps, bar, stats):
+    """The chunked run; returns the number of output times reached."""
+    B = problem.B
+    steps = int(cs[-1])
+    target = float(options["chunk_seconds"])
+    if specs:
+        cap = max(1, min(EVENT_CHUNK_STEPS, FIRST_CHUNK_FLOWS // max(1, B * fps)))
+    else:
+        cap = steps if steps * B * fps <= FIRST_CHUNK_FLOWS else max(1, FIRST_CHUNK_FLOWS // max(1, B * fps))
+    Lc = problem.L0
+    Tc = problem.T0
+    s0 = 0
+    K = t.size
+    gprev = None  # event values at the state of s0
+    counts = [0 for _ in specs]
+    while s0 < steps:
+        t_start = time.perf_counter()
+        s1 = min(steps, s0 + cap)
+        outs = np.arange(np.searchsorted(cs, s0, side="right"), np.searchsorted(cs, s1, side="right"))
+        if specs:  # every step point
+            svals = np.arange(s0, s1 + 1)
+            grid = _step_times(t, cs, nsub, svals)
+            ns = np.ones(grid.size - 1, dtype=np.int64)
+            out_pos = {int(o): int(cs[o] - s0) for o in outs}
+        else:  # the chunk's start, the output times inside it, and its end (if inside an interval)
+            marks = cs[outs]
+            if marks.size == 0 or marks[-1] != s1:
+                marks = np.append(marks, s1)
+            grid = _step_times(t, cs, nsub, np.concatenate([[s0], marks]))
+            ns = np.diff(np.concatenate([[s0], marks])).astype(np.int64)
+            out_pos = {int(o): i + 1 for i, o in enumerate(outs)}
+        Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns)
+        if not np.all(np.isfinite(Ls[:, -1])):
+            bad = int(np.argmax(~np.all(np.isfinite(Ls), axis=(0, 2))))
+            raise FloatingPointError(
+                f"simulate: the solution became non-finite near t = {grid[bad] / problem.scale:.6g} "
+                f"(the inputs overflow double precision; max|L0| = {np.abs(problem.L0).max() * problem.scale:.3g})"
+            )
+        for o, i in out_pos.items():
+            outL[:, o] = Ls[:, i]
+            if outT is not None:
+                outT[:, o] = Ts[:, i]
+        if specs:
+            stop = _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_events, L_events,
+                                    T_events)
+            gprev = stop[1]
+            if stop[0] is not None:
+                stats["terminal"] = True
+                te = stop[0]
+                sgn = 1.0 if t[-1] >= t[0] else -1.0
+                return int(np.sum(sgn * (t - te) <= 0))
+        Lc = Ls[:, -1]
+        Tc = None if Ts is None else Ts[:, -1]
+        if bar is not None:
+            bar.update(s1 - s0)
+        stats["chunks"] += 1
+        s0 = s1
+        elapsed = time.perf_counter() - t_start
+        if s0 < steps:  # size the next chunk from this one's time (at most 8x growth)
+            cap = int(min(8 * cap, max(1, cap * target / max(elapsed, 1e-6))))
+            if specs:
+                cap = min(cap, EVENT_CHUNK_STEPS)
+    return problem.t.size
+
+
+def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_events, L_events, T_events):
+    """Evaluate the event functions at the chunk's step states; locate crossings. Returns
+    (time of a terminal event or None, event values at the chunk's last state)."""
+    from scipy.optimize import brentq
+
+    s = problem.scale
+    L = Ls[0]
+    vals = np.empty((grid.size, len(specs)))
+    for i in range(grid.size):
+        if i == 0 and gprev is not None:
+            vals[0] = gprev
+            continue
+        for e, sp in enumerate(specs):
+            vals[i, e] = float(sp.fn(grid[i] / s, L[i] * s))
+    hits = []
+    for e, sp in enumerate(specs):
+        v = vals[:, e]
+        up = (v[:-1] < 0) & (v[1:] >= 0)
+        down = (v[:-1] > 0) & (v[1:] <= 0)
+        cross = up if sp.direction > 0 else down if sp.direction < 0 else (up | down)
+        for j in np.flatnonzero(cross):
+            hits.append((int(j), e))
+    hits.sort()
+    T = None if Ts is None else Ts[0]
+    for j, e in hits:
+        sp = specs[e]
+        y, yT = L[j:j + 1], None if T is None else T[j:j + 1]
+        t0, t1 = grid[j], grid[j + 1]
+        if vals[j + 1, e] == 0.0:
+            te = t1
+        else:
+            def f(tau):
+                Lx = solver.advance(problem, y, None, np.array([t0, tau]), np.ones(1, dtype=np.int64))[0]
+                return float(sp.fn(tau / s, Lx[0, -1] * s))
+            lo, hi = (t0, t1) if t1 > t0 else (t1, t0)
+            te = brentq(f, lo, hi, xtol=4 * np.finfo(float).eps * max(abs(lo), abs(hi), 1e-300),
+                        rtol=4 * np.finfo(float).eps, maxiter=200) if f(t0) != 0.0 else t0
+        Lx, Tx = solver.advance(problem, y, yT, np.array([t0, te]), np.ones(1, dtype=np.int64))
+        t_events[e].append(te / s)
+        L_events[e].append(Lx[0, -1] * s)
+        if Tx is not None:
+            T_events[e].append(Tx[0, -1])
+        counts[e] += 1
+        if sp.max_count is not None and counts[e] >= sp.max_count:
+            return te, vals[-1]
+    return None, vals[-1]
+
+
+def _dense(solver, problem, t, nsub, outL, outT, tq, K_done):
+    """States at the scaled times ``tq`` (M,) by re-integration from stored output states."""
+    tq = np.asarray(tq, dtype=float)
+    B, n, N = problem.B, problem.n, problem.N
+    M = tq.size
+    L = np.empty((B, M, n))
+    T = np.empty((B, M, N, N)) if outT is not None else None
+    if t.size == 1 or K_done == 1:
+        bad = np.flatnonzero(tq != t[0])
+        if bad.size:
+            raise ValueError(f"dense output is defined on the run's time span only; t = {tq[bad[0]] / problem.scale:g} is outside")
+        L[:] = outL[:, :1]
+        if T is not None:
+            T[:] = outT[:, :1]
+        return L, T
+    sgn = 1.0 if t[-1] > t[0] else -1.0
+    lo, hi = sorted((t[0], t[K_done - 1]))
+    outside = np.flatnonzero((tq < lo) | (tq > hi))
+    if outside.size:
+        raise ValueError(
+            f"dense output is defined on the run's time span [{lo / problem.scale:g}, {hi / problem.scale:g}] only; "
+            f"got t = {tq[outside[0]] / problem.scale:g}"
+        )
+    k_of = np.clip(np.searchsorted(sgn * t[:K_done], sgn * tq, side="right") - 1, 0, K_done - 2)
+    one = np.ones(1, dtype=np.int64)
+    for k in np.unique(k_of):
+        idx = np.flatnonzero(k_of == k)
+        hk = (t[k + 1] - t[k]) / nsub[k]
+        j = np.clip(np.floor((tq[idx] - t[k]) / hk).astype(np.int64), 0, nsub[k])
+        js = np.unique(j)
+        # states at the step points t_k + j hk (same steps as the run)
+        pts = np.concatenate([[t[k]], t[k] + js[js > 0] * hk])
+        Lk, Tk = outL[:, k], (None if outT is None else outT[:, k])
+        if pts.size > 1:
+            Ls, Ts = solver.advance(problem, Lk, Tk, pts, np.diff(np.concatenate([[0], js[js > 0]])).astype(np.int64))
+        else:
+            Ls, Ts = Lk[:, None], (None if Tk is None else Tk[:, None])
+        pos = {int(v): i for i, v in enumerate(np.concatenate([[0], js[js > 0]]))}
+        for q, jq in zip(idx, j):
+            i = pos[int(jq)]
+            tj = pts[i]
+            if tq[q] == tj:
+                L[:, q] = Ls[:, i]
+                if T is not None:
+                    T[:, q] = Ts[:, i]
+                continue
+            Lx, Tx = solver.advance(problem, Ls[:, i], None if Ts is None else Ts[:, i], np.array([tj, tq[q]]), one)
+            L[:, q] = Lx[:, -1]
+            if T is not None:
+                T[:, q] = Tx[:, -1]
+    return L, T

@@ -1,0 +1,261 @@
+r"""scipy's adaptive integrators through :func:`scipy.integrate.solve_ivp` (``"DOP853"``, ``"RK45"``, ...).
+
+``rtol`` here is scipy's *local* tolerance (per step), not a bound on the whole-run
+error: the global error of these methods grows with the run length, typically to
+10-1000 times ``rtol`` over a few dozen periods (the measured factor is in the table
+of ``benchmarks/work_precision_classical.py``). ``atol`` is set per component,
+``atol_a = rtol * min(max|omega0|, |L0| / I_a)`` (error in :math:`\omega_a` below
+``rtol max|omega0|`` and in :math:`L_a` below ``rtol |L0|``), and ``rtol`` for the attitude
+entries. One ``solve_ivp`` call per ensemble member; events and dense output are scipy's
+(``solve_ivp(events=...)``, ``dense_output=True``: the methods' own interpolants; the first
+``Trajectory.sol`` call re-runs the members with ``dense_output=True``, which DOP853 pays
+with 3 extra stages per step, so that runs without it stay as fast as before). The
+right-hand side is ``body.rhs`` for a :class:`hyperrotor.RigidBody`, else an equivalent
+sparse evaluation of the component equations. Any torque, also ``torque(t, omega)``.
+
+The run is bounded: the right-hand side counts its evaluations and stops the run with
+:class:`~.step_control.StepBudgetError` past ``max_steps`` (scipy cannot estimate its steps
+in advance). Inputs are scaled to angular velocities of order one first (see
+:mod:`.base`), so huge or tiny scales neither overflow nor stall the step control.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from hyperrotor import _validate
+from hyperrotor.conventions import structure_constants, to_matrix
+
+from .base import Problem, RunResult, Solver, power_of_two_scale
+from .step_control import StepBudgetError
+
+__all__ = ["ScipyIVP", "DOP853", "RK45", "RK23", "LSODA", "Radau", "BDF"]
+
+#: solve_ivp warns below this rtol; requests are raised to it
+RTOL_FLOOR = 100 * np.finfo(float).eps
+
+
+class _SparseRHS:
+    """dw/dt of the component equations from moments and structure constants (used when ``body`` has no ``rhs``)."""
+
+    def __init__(self, moments: np.ndarray, N: int):
+        C = structure_constants(N)
+        b, c, a = np.nonzero(C)
+        self.b, self.c, self.a = b, c, a
+        self.coef = C[b, c, a].astype(float)
+        n = moments.size
+        A = np.zeros((b.size, n))
+        A[np.arange(b.size), a] = 1.0
+        self.A = A / moments[a][:, None]
+        self.moments = moments
+
+    def __call__(self, omega):
+        L = omega * self.moments
+        return (self.coef * omega[..., self.b] * L[..., self.c]) @ self.A
+
+
+class _Budget(Exception):
+    pass
+
+
+class ScipyIVP(Solver):
+    """A :func:`scipy.integrate.solve_ivp` method (see the module docstring); ``rtol`` is scipy's local tolerance.
+
+    Options
+    -------
+    first_step, max_step : float or None
+        passed to ``solve_ivp`` (user time units).
+    """
+
+    adaptive = True
+    supports_torque = "any"
+    scipy_method = ""
+    option_docs = {"first_step": (None, "initial step of solve_ivp (user time units)"),
+                   "max_step": (None, "largest step of solve_ivp (user time units)")}
+
+    def _check_options(self) -> None:
+        for k in ("first_step", "max_step"):
+            _validate.positive(k, self.options[k], allow_none=True)
+
+    def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None) -> RunResult:
+        from scipy.integrate import solve_ivp
+
+        from .driver import event_specs
+
+        self.check(problem)
+        if getattr(control, "rtol", None) is None:
+            raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {self.name!r} takes rtol only")
+        rtol = max(control.rtol, RTOL_FLOOR)
+        body, moments, N, n = problem.body, problem.moments, problem.N, problem.n
+        rhs = body.rhs if callable(getattr(body, "rhs", None)) else _SparseRHS(moments, N)
+        t = problem.t
+        B, K = problem.B, t.size
+        with_att = problem.with_attitude
+        torque = problem.torque
+        s = problem.scale
+        specs = event_specs(events)
+        Lout = np.empty((B, K, n))
+        Tout = np.empty((B, K, N, N)) if with_att else None
+        nfev = [0]
+        budget = int(max_steps)
+        sols: list = []
+        calls: list = []
+        t_events = L_events = T_events = None
+        K_done = K
+        rbs = []
+        for b in range(B):
+            # each member in its own scale (a power of two, exact): the same numbers alone or in an ensemble
+            rb = power_of_two_scale(float(np.max(np.abs(problem.L0[b] / moments))))
+            rbs.append(rb)
+            tau_b = None if torque is None or callable(torque) else torque[b] / (rb * rb)
+
+            def f(tt, y, tau_b=tau_b, rb=rb):
+                nfev[0] += 1
+                if nfev[0] > budget:
+                    raise _Budget
+                w = y[:n]
+                with np.errstate(over="ignore", invalid="ignore"):  # trial steps may overflow; scipy rejects them
+                    dw = np.asarray(rhs(w), dtype=float)
+                if torque is not None:
+                    tau = (np.asarray(torque(tt / rb, w * rb), dtype=float) / (rb * rb)) if callable(torque) else tau_b
+                    if tau.shape != (n,) or not np.all(np.isfinite(tau)):
+                        raise ValueError(f"torque(t, omega) must return {n} finite body-frame components, "
+                                         f"got {_validate.fmt(tau)}")
+                    dw = dw + tau / moments
+                if not with_att:
+                    return dw
+                Tm = y[n:].reshape(N, N)
+                return np.concatenate([dw, (to_matrix(w, "standard") @ Tm).ravel()])
+
+            w0 = problem.L0[b] / moments / rb
+            y0 = w0 if not with_att else np.concatenate([w0, problem.T0[b].ravel()])
+            wscale = float(np.max(np.abs(w0))) or 1.0
+            Lscale = float(np.linalg.norm(problem.L0[b] / rb)) or wscale * float(moments.min())
+            atol = rtol * np.minimum(wscale, Lscale / moments)
+            if with_att:
+                atol = np.concatenate([atol, np.full(N * N, rtol)])
+            Lout[b, 0] = problem.L0[b]
+            if with_att:
+                Tout[b, 0] = problem.T0[b]
+            if K == 1:
+                sols.append(None)
+                calls.append(None)
+                continue
+            ev = [_scaled_event(sp, s * rb, moments, n) for sp in specs] or None
+            kw = {k: v * s * rb for k, v in self.options.items() if v is not None}
+            tb = t * rb
+
+            def call(dense, f=f, y0=y0, atol=atol, ev=ev, kw=kw, tb=tb):
+                return solve_ivp(f, (tb[0], tb[-1]), y0, method=self.scipy_method, t_eval=tb, rtol=rtol, atol=atol,
+                                 events=ev, dense_output=dense, **kw)
+
+            calls.append(call)
+            try:
+                sol = call(bool(specs))
+            except _Budget:
+                raise StepBudgetError(
+                    f"scipy {self.name} stopped after {budget} right-hand-side evaluations (the budget max_steps = "
+                    f"{budget}) at member {b}; raise it with simulate(..., max_steps=...) or "
+                    f"hyperrotor.options(max_steps=...), or ask for less (shorter t, larger rtol)"
+                ) from None
+            if sol.status == -1:
+                raise RuntimeError(f"scipy {self.name} failed: {sol.message}")
+            if not np.all(np.isfinite(sol.y)):
+                raise FloatingPointError(f"scipy {self.name}: the solution became non-finite")
+            kb = sol.t.size
+            K_done = kb
+            Lout[b, :kb] = sol.y[:n].T * moments * rb
+            if with_att:
+                Tout[b, :kb] = sol.y[n:].T.reshape(kb, N, N)
+            sols.append(sol.sol)  # None unless events asked for scipy's dense output
+            if specs:
+                t_events = [te / (s * rb) for te in sol.t_events]
+                L_events = [ye[:, :n] * moments * (s * rb) if ye.size else np.empty((0, n)) for ye in sol.y_events]
+                T_events = ([ye[:, n:].reshape(-1, N, N) for ye in sol.y_events] if with_att else None)
+
+        def dense(tq):
+            tq = np.asarray(tq, dtype=float)
+            lo, hi = sorted((t[0], t[K_done - 1]))
+            bad = np.flatnonzero((tq < lo) | (tq > hi))
+            if bad.size:
+                raise ValueError(f"dense output is defined on the run's time span [{lo / s:g}, {hi / s:g}] only; "
+                                 f"got t = {tq[bad[0]] / s:g}")
+            L = np.empty((B, tq.size, n))
+            T = np.empty((B, tq.size, N, N)) if with_att else None
+            for b in range(B):
+                if calls[b] is None:  # a single output time: the initial state
+                    y0b = np.concatenate([problem.L0[b] / moments] + ([problem.T0[b].ravel()] if with_att else []))
+                    y = np.repeat(y0b[:, None], tq.size, axis=1)
+                else:
+                    if sols[b] is None:  # first dense request: re-run this member with scipy's interpolants
+                        nfev[0] = 0
+                        sols[b] = calls[b](True).sol
+                    y = sols[b](tq * rbs[b])
+                    y = np.concatenate([y[:n] * rbs[b], y[n:]])
+                L[b] = y[:n].T * moments
+                if with_att:
+                    T[b] = y[n:].T.reshape(tq.size, N, N)
+            return L, T
+
+        stats = dict(steps=None, nfev=int(nfev[0]), dt=None, rtol_used=rtol,
+                     status="terminated by event" if K_done < K else "finished")
+        return RunResult(L=Lout[:, :K_done], T=None if Tout is None else Tout[:, :K_done], t=t[:K_done], stats=stats,
+                         dense=dense, t_events=t_events, L_events=L_events, T_events=T_events)
+
+
+def _scaled_event(spec, s, moments, n):
+    def g(tt, y):
+        return float(spec.fn(tt / s, y[:n] * moments * s))
+
+    g.terminal = spec.max_count is not None and (spec.max_count if spec.max_count > 1 else True)
+    g.direction = spec.direction
+    return g
+
+
+class DOP853(ScipyIVP):
+    """Dormand-Prince 8(5,3) explicit Runge-Kutta (scipy), order 8."""
+
+    name = "DOP853"
+    scipy_method = "DOP853"
+    order = 8
+
+
+class RK45(ScipyIVP):
+    """Dormand-Prince 5(4) explicit Runge-Kutta (scipy), order 5."""
+
+    name = "RK45"
+    scipy_method = "RK45"
+    order = 5
+
+
+class RK23(ScipyIVP):
+    """Bogacki-Shampine 3(2) explicit Runge-Kutta (scipy), order 3."""
+
+    name = "RK23"
+    scipy_method = "RK23"
+    order = 3
+
+
+class LSODA(ScipyIVP):
+    """Adams / BDF with automatic stiffness detection (scipy, ODEPACK); variable order."""
+
+    name = "LSODA"
+    scipy_method = "LSODA"
+    order = None
+
+
+class Radau(ScipyIVP):
+    """Implicit Radau IIA (scipy), order 5; for stiff moment ratios."""
+
+    name = "Radau"
+    scipy_method = "Radau"
+    order = 5
+
+
+class BDF(ScipyIVP):
+    """Implicit backward differentiation formulas (scipy), variable order 1-5; for stiff moment ratios."""
+
+    name = "BDF"
+    scipy_method = "BDF"
+    order = None

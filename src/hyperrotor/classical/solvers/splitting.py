@@ -1,0 +1,364 @@
+r"""Lie-Poisson splittings of order 2, 4, 6, 8 (``method="splitting2"`` ... ``"splitting8"``).
+
+The Hamiltonian, shifted by a multiple of the Casimir :math:`C_2 = \tfrac12\sum_a L_a^2`
+(same motion of ``L``, see :func:`casimir_shift`),
+:math:`H - c\,C_2 = \sum_a \rho_a L_a^2/2` with :math:`\rho_a = 1/I_a - c`,
+is split into one term per plane; the flow of :math:`\rho_a L_a^2/2` keeps
+:math:`L_a` fixed and rotates :math:`L` (and ``T``) exactly by the angle
+:math:`h \rho_a L_a` in plane ``a`` (the kernels of :mod:`hyperrotor.classical._kernels`).
+Planes with :math:`\rho_a = 0` (those whose moment equals ``1/c``) drop out;
+the attitude is corrected for the shift exactly; with a torque there is no shift.
+The basic method :math:`S_2(h)` is Strang's symmetric product over the remaining
+planes in paper order followed by the reverse order (order 2). Orders 4, 6, 8 are
+symmetric compositions :math:`S_2(\gamma_s h)\cdots S_2(\gamma_1 h)`
+(:func:`splitting_coefficients`):
+
+* order 4: Yoshida's / Suzuki's triple jump (Yoshida, Phys. Lett. A 150, 262 (1990));
+* order 6: Kahan & Li's 9-stage set ``s9odr6a``;
+* order 8: Kahan & Li's 17-stage set ``s17odr8a`` (W. Kahan and R.-C. Li,
+  Math. Comp. 66, 1089 (1997); coefficients as tabulated in Hairer, Lubich,
+  Wanner, *Geometric Numerical Integration*, 2nd ed., Sec. V.3.2, p. 157).
+
+Every elementary flow is an exact coadjoint rotation, so the Casimirs
+(coefficients of the characteristic polynomial of ``L``, eq. 38) are kept
+to round-off, the maps are Poisson (symplectic on each coadjoint orbit),
+symmetric and time-reversible, and the energy error stays bounded (no
+drift) over long runs. ``T`` stays orthogonal to round-off. Fixed steps
+(``dt``, or chosen once from ``rtol`` by :mod:`.step_control`).
+A *constant* body torque is supported as an exact kick
+:math:`L \mapsto L + \tfrac{\gamma h}{2}\tau` on both sides of each
+:math:`S_2(\gamma h)` (still symmetric, so the composed orders hold; the
+Casimirs are then of course not conserved). Callable torques need a scipy method.
+
+Performance notes
+-----------------
+The kernels are compiled by numba on first use and cached on disk: a cold first
+call costs about 1.3 s (one body), 2.8 s (ensemble kernel) and 2.5 s (ensemble
+with attitude) on the reference machine, a cached one about 0.1 s. One body (or
+fewer than 32) runs a serial kernel; ensembles without attitude run a chunked
+kernel with the bodies innermost (vectorised, threads over chunks); ensembles
+with attitude run one thread per body. With the option ``compensated`` (automatic
+for runs of more than 1e6 elementary flows per trajectory or ``rtol < 1e-11``) the
+rotation increments are added with error-free TwoSum (compensated storage of
+``L``), so round-off does not random-walk the Casimirs: their relative drift stays
+~1e-15 after 1e6 steps, and the trajectory's round-off floor stays ~1e-15.
+Otherwise plain arithmetic (~1.6x faster per flow): the Casimirs' round-off
+random-walks as ~0.1-0.4 eps sqrt(flows) (< 1e-13), the trajectory's floor is
+~1e-13 .. 1e-12, like scipy's DOP853. Long runs are cut into chunks of about
+``options["chunk_seconds"]`` (Ctrl-C between chunks); the compensated low part is
+restarted at each chunk boundary (one rounding per chunk). Measured work-precision
+and throughput: ``benchmarks/work_precision_classical.py``.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from hyperrotor import _validate
+from hyperrotor.conventions import to_matrix
+
+from .. import _kernels
+from .base import FixedStepSolver, Problem
+
+__all__ = ["Splitting", "Splitting2", "Splitting4", "Splitting6", "Splitting8", "splitting_coefficients",
+           "casimir_shift"]
+
+#: ensembles at least this large use the threaded kernel (thread launch costs ~ms on a busy machine)
+_PARALLEL_MIN_BODIES = 32
+_ENSEMBLE_CHUNK = 128  # bodies per chunk of the ensemble kernel (working set fits in L1/L2)
+#: ``compensated=None``: runs of more elementary flows than this (per trajectory) keep L in
+#: compensated storage (plain round-off of the Casimirs random-walks as ~0.1-0.4 eps sqrt(flows)) ...
+COMPENSATE_ABOVE = 1_000_000
+#: ... and so do runs asked for an rtol below this (plain round-off of omega reaches ~1e-13..1e-12)
+COMPENSATE_BELOW_RTOL = 1e-11
+
+# Half of each symmetric coefficient set (the middle one last); see the module docstring.
+_KAHAN_LI_6 = (
+    0.39216144400731413927925056,
+    0.33259913678935943859974864,
+    -0.70624617255763935980996482,
+    0.08221359629355080023149045,
+)
+_KAHAN_LI_8 = (
+    0.13020248308889008087881763,
+    0.56116298177510838456196441,
+    -0.38947496264484728640807860,
+    0.15884190655515560089621075,
+    -0.39590389413323757733623154,
+    0.18453964097831570709183254,
+    0.25837438768632204729397911,
+    0.29501172360931029887096624,
+)
+
+
+def splitting_coefficients(order: int) -> np.ndarray:
+    r"""Composition coefficients :math:`\gamma_1, \dots, \gamma_s` of the splitting of ``order``.
+
+    The step is :math:`S_2(\gamma_s h) \cdots S_2(\gamma_1 h)` with Strang's
+    :math:`S_2`; the sets are symmetric and sum to 1 (the middle coefficient is
+    computed as ``1 - 2 * sum(others)`` so that the sum is exact to round-off).
+
+    ====== ====== ==========================================================
+    order  stages set
+    ====== ====== ==========================================================
+    2      1      Strang
+    4      3      Yoshida / Suzuki triple jump
+    6      9      Kahan & Li ``s9odr6a`` (Math. Comp. 66, 1089 (1997))
+    8      17     Kahan & Li ``s17odr8a`` (same reference)
+    ====== ====== ==========================================================
+    """
+    if order == 2:
+        return np.array([1.0])
+    if order == 4:
+        g = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
+        return np.array([g, 1.0 - 2.0 * g, g])
+    if order in (6, 8):
+        half = np.array(_KAHAN_LI_6 if order == 6 else _KAHAN_LI_8)
+        return np.concatenate([half, [1.0 - 2.0 * half.sum()], half[::-1]])
+    raise ValueError(f"splitting order must be one of 2, 4, 6, 8, got {order!r}")
+
+
+def casimir_shift(moments: Any, L: Any = None) -> float | np.ndarray:
+    r"""The shift ``c`` of the split Hamiltonian :math:`H - c\,C_2` used by the splitting methods.
+
+    :math:`C_2 = \tfrac12\sum_a L_a^2` is a Casimir, so :math:`H` and
+    :math:`H - c\,C_2 = \sum_a \rho_a L_a^2/2`, :math:`\rho_a = 1/I_a - c`, generate the
+    same motion of ``L`` for every ``c``; only the angles :math:`h\rho_a L_a` of the
+    elementary flows change. The splitting error is built from brackets of the plane
+    terms, each proportional to products of these angles, so small :math:`|\rho_a L_a|`
+    make it small, and a plane with :math:`\rho_a = 0` drops out of the step altogether.
+
+    The rule: ``c`` minimises :math:`\sum_a w_a\,|1/I_a - c|` with the weights
+    :math:`w_a = \min(|L|, \sqrt{2EI_a})/|L|` (the bound on :math:`|L_a|` over the orbit,
+    from the Casimir and the energy; equal weights without ``L`` or for ``L = 0``), i.e.
+    ``c`` is the weighted median of the :math:`1/I_a`, which is one of them (ties go to
+    the value shared by most planes, then to the smaller). On the 5D work-precision
+    problems this cuts the cost at error 1e-10 by about 2x (generic body) and 8x (quartet,
+    whose six planes of equal moment all drop out; ``benchmarks/work_precision_classical.py``);
+    with moments spread over 12 decades the weights keep ``c`` among the heavy planes,
+    which carry the momentum. With equal moments every plane drops out and ``L`` is
+    (exactly) constant.
+
+    :func:`hyperrotor.simulate` takes one ``c`` per ensemble member (a member's result does not
+    depend on the others) and none with a torque (the weights would be stale). The
+    attitude feels the shift: the flow of :math:`c\,C_2` turns ``T`` at the rate
+    :math:`c\,L`; :func:`hyperrotor.simulate` puts it back exactly.
+
+    Parameters
+    ----------
+    moments : array_like (n,)
+        plane moments :math:`I_a` (finite, positive).
+    L : array_like (n,) or (B, n), optional
+        angular momenta (one row per ensemble member).
+
+    Returns
+    -------
+    float, or ndarray (B,) for a 2-D ``L``
+        ``c``, equal to one of the :math:`1/I_a`.
+    """
+    moments = _validate.moments(moments, name="moments")
+    n = moments.size
+    rates = 1.0 / moments
+    values, counts = np.unique(rates, return_counts=True)
+    if L is None:
+        Lb = np.zeros((1, n))
+    else:
+        Lb = _validate.finite_array("L", L, ndim=(1, 2))
+        if Lb.shape[-1] != n:
+            raise ValueError(f"L must have shape ({n},) or (B, {n}) for these {n} moments, got {Lb.shape}")
+    L2 = np.atleast_2d(Lb)
+    norm = np.sqrt(np.sum(L2 * L2, axis=1, keepdims=True))
+    E2 = np.sum(L2 * L2 / moments, axis=1, keepdims=True)
+    safe = np.where(norm > 0, norm, 1.0)
+    weights = np.where(norm > 0, np.minimum(norm, np.sqrt(E2 * moments)) / safe, 1.0)  # (B, n)
+    cost = weights @ np.abs(rates[:, None] - values[None, :])  # (B, V)
+    cost = np.round(cost / np.maximum(cost.max(axis=1, keepdims=True), 1e-300), 12)  # equal to round-off: tie
+    score = np.where(cost == cost.min(axis=1, keepdims=True), counts[None, :], -1)
+    c = values[np.argmax(score, axis=1)]  # first maximum: most planes, then the smaller value
+    return float(c[0]) if L is None or Lb.ndim == 1 else c
+
+
+@lru_cache(maxsize=None)
+def splitting_word(order: int, seq: tuple[int, ...], kick: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """One step as a word of elementary flows (plane index, fraction of h); -1 = torque kick.
+
+    Strang's :math:`S_2` runs the planes of ``seq`` forward with half steps, the last
+    one with a full step, and back; adjacent flows of the same plane are merged (they
+    commute, the sum is exact).
+    """
+    word: list[list] = []
+
+    def push(a, c):
+        if word and word[-1][0] == a:
+            word[-1][1] += c
+        else:
+            word.append([a, c])
+
+    for g in splitting_coefficients(order):
+        if kick:
+            push(-1, g / 2)
+        if seq:
+            for a in seq[:-1]:
+                push(a, g / 2)
+            push(seq[-1], g)
+            for a in seq[-2::-1]:
+                push(a, g / 2)
+        if kick:
+            push(-1, g / 2)
+    word = [w for w in word if w[1] != 0.0]
+    planes_ = np.array([w[0] for w in word], dtype=np.int64)
+    coefs = np.array([w[1] for w in word], dtype=np.float64)
+    planes_.setflags(write=False)
+    coefs.setflags(write=False)
+    return planes_, coefs
+
+
+def unshift_attitude(att: np.ndarray, L0: np.ndarray, T0: np.ndarray, t: np.ndarray, c: np.ndarray) -> np.ndarray:
+    r"""Attitude of :math:`H` from the attitude ``att`` (B, K, N, N) of :math:`H - c\,C_2` (plain convention).
+
+    The flows of :math:`H - cC_2` and :math:`cC_2` commute; the latter keeps ``L`` and
+    turns the attitude, :math:`\dot T = c\,L\,T`. With the conserved space-frame momentum
+    :math:`\Lambda = T_0^{\mathsf T} L_0 T_0` (``L = T \Lambda T^T``) this gives
+    :math:`T(t) = T'(t)\,\exp\bigl(c\,(t - t_0)\,\Lambda\bigr)`, evaluated exactly from one
+    eigen-decomposition of the Hermitian :math:`i\Lambda` per body (orthogonal to round-off);
+    ``c`` has one entry per body.
+    """
+    Lam = np.swapaxes(T0, -1, -2) @ to_matrix(L0, "standard") @ T0  # (B, N, N)
+    lam, U = np.linalg.eigh(1j * Lam)  # Lam = U diag(-i lam) U^H
+    phase = np.exp(-1j * c[:, None, None] * (t - t[0])[None, :, None] * lam[:, None, :])  # (B, K, N)
+    E = np.einsum("brm,bkm,bsm->bkrs", U, phase, U.conj()).real
+    return att @ E
+
+
+@lru_cache(maxsize=None)
+def rotation_tables(N: int):
+    tables = _kernels.rotation_tables(N)
+    for arr in tables:
+        arr.setflags(write=False)
+    return tables
+
+
+def run_kernel(L0, rates_b, word, tables, t, nsub, torque_b, T0, with_att, compensated):
+    """Dispatch to a kernel: one body or a few -> serial; an ensemble without attitude ->
+    bodies-innermost chunks over threads; an ensemble with attitude -> threads over bodies.
+    ``compensated``: TwoSum storage of ``L`` (see the performance notes)."""
+    B, n = L0.shape
+    N = T0.shape[-1]
+    outL = np.empty((B, t.size, n))
+    L0 = np.ascontiguousarray(L0)
+    rates_b = np.ascontiguousarray(rates_b)
+    torque_b = np.ascontiguousarray(torque_b)
+    t = np.ascontiguousarray(t)
+    if B >= _PARALLEL_MIN_BODIES and not with_att:
+        chunk = max(1, min(_ENSEMBLE_CHUNK, -(-B // 8)))
+        _kernels.split_run_ensemble(L0, rates_b, word[0], word[1], *tables[:3], t, nsub, torque_b, chunk,
+                                    compensated, outL)
+        return outL, None
+    outT = np.empty((B, t.size, N, N)) if with_att else np.empty((B, 1, N, N))
+    kernel = _kernels.split_run if B >= _PARALLEL_MIN_BODIES else _kernels.split_run_serial
+    kernel(L0, rates_b, word[0], word[1], *tables, t, nsub, torque_b, np.ascontiguousarray(T0),
+           bool(with_att), compensated, outL, outT)
+    return outL, (outT if with_att else None)
+
+
+class Splitting(FixedStepSolver):
+    """Lie-Poisson splitting of order 2, 4, 6 or 8 (see the module docstring).
+
+    Symplectic (Poisson) and time-reversible; keeps the Casimirs and the attitude's
+    orthogonality to round-off, the energy error bounded (no drift). Fixed step.
+    Integrates constant torques (exact kicks); no callable torques.
+
+    Options
+    -------
+    compensated : bool or None
+        keep ``L`` in compensated (TwoSum) storage (~1.6x slower per step, round-off
+        ~1e-15 instead of ~1e-13); ``None``: automatic (runs of more than 1e6 elementary
+        flows per trajectory or ``rtol < 1e-11``).
+    """
+
+    order = 2
+    preserves = frozenset({"casimirs", "orthogonality", "symplectic", "reversible"})
+    supports_torque = "constant"
+    option_docs = {"compensated": (None, "TwoSum storage of L: True, False or None (automatic)")}
+
+    def _check_options(self) -> None:
+        c = self.options["compensated"]
+        if c is not None and not isinstance(c, (bool, np.bool_)):
+            raise TypeError(f"compensated must be True, False or None (automatic), got {_validate.fmt(c)}")
+
+    def prepare(self, problem: Problem) -> None:
+        B, n = problem.L0.shape
+        kick = problem.kick
+        # one shift per member; none with a torque (it moves L away from the state the weights
+        # describe, and the space-frame momentum that un-shifts the attitude)
+        shift = np.zeros(B) if (kick or B == 0) else np.atleast_1d(casimir_shift(problem.moments, problem.L0))
+        rates_b = 1.0 / problem.moments - shift[:, None]
+        # a plane drops out when its rate vanishes for every member (for the others its flow is exact identity)
+        seq = tuple(int(a) for a in np.flatnonzero(np.any(rates_b != 0.0, axis=0)))
+        self._state = dict(
+            shift=shift, rates=rates_b, word=splitting_word(self.order, seq, kick=kick),
+            tables=rotation_tables(problem.N),
+            torque=np.zeros((B, n)) if not kick else np.ascontiguousarray(problem.torque),
+            compensated=self.options["compensated"],
+        )
+
+    def set_accuracy(self, problem: Problem, rtol: float | None, steps: int) -> None:
+        """Fix the automatic ``compensated`` choice once the step is known."""
+        if self.options["compensated"] is None:
+            tight = rtol is not None and rtol < COMPENSATE_BELOW_RTOL
+            self._state["compensated"] = bool(tight or steps * self.flows_per_step(problem) > COMPENSATE_ABOVE)
+
+    def flows_per_step(self, problem: Problem) -> int:
+        return max(1, int(self._state["word"][0].size))
+
+    def advance(self, problem, L, T, t, nsub, members=None):
+        st = self._state
+        sel = slice(None) if members is None else members
+        comp = st["compensated"]
+        comp = False if comp is None else comp
+        with_att = T is not None
+        N = problem.N
+        T_run = np.ascontiguousarray(T) if with_att else np.zeros((1, N, N))
+        outL, outT = run_kernel(L, st["rates"][sel], st["word"], st["tables"], t, nsub, st["torque"][sel],
+                                T_run, with_att, comp)
+        shift = st["shift"][sel]
+        if with_att and np.any(shift != 0.0):
+            outT = unshift_attitude(outT, L, T, t, shift)
+        return outL, outT
+
+    def stats(self, problem: Problem) -> dict:
+        st = self._state
+        shift = st["shift"]
+        return dict(flows_per_step=int(st["word"][0].size),
+                    casimir_shift=float(shift[0]) if not problem.batch and shift.size else shift.reshape(problem.batch),
+                    compensated=bool(st["compensated"]))
+
+
+class Splitting2(Splitting):
+    """Strang splitting over the planes, order 2 (1 stage)."""
+
+    name = "splitting2"
+    order = 2
+
+
+class Splitting4(Splitting):
+    """Yoshida / Suzuki triple jump of Strang steps, order 4 (3 stages)."""
+
+    name = "splitting4"
+    order = 4
+
+
+class Splitting6(Splitting):
+    """Kahan & Li ``s9odr6a`` composition of Strang steps, order 6 (9 stages)."""
+
+    name = "splitting6"
+    order = 6
+
+
+class Splitting8(Splitting):
+    """Kahan & Li ``s17odr8a`` composition of Strang steps, order 8 (17 stages)."""
+
+    name = "splitting8"
+    order = 8
