@@ -35,6 +35,8 @@ __all__ = ["simulate", "Trajectory", "SIMULATION_METHODS"]
 #: Allowed ``method=`` names of :func:`simulate`: ``"auto"`` and the keys of the solver registry.
 SIMULATION_METHODS = ("auto", *SOLVERS)
 
+#: largest scaled momentum (angular velocities of order one): its square must stay finite
+MAX_SCALED_MOMENTUM = 1e150
 #: rtol when neither ``rtol`` nor ``dt`` is given
 DEFAULT_RTOL = 1e-9
 #: ``method="auto"``: the splitting order for rtol at least these values (order 8 below the last);
@@ -210,6 +212,13 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Probl
         raise ValueError(f"t times max|omega0| overflows double precision (max|t| = {np.abs(t_user).max():.3g}, "
                          f"max|omega0| = {float(np.abs(w0).max()):.3g})")
     L0 = np.ascontiguousarray((w0.reshape(B, n) / s) * moments)
+    big = float(np.abs(L0).max()) if L0.size else 0.0
+    if big > MAX_SCALED_MOMENTUM:
+        raise FloatingPointError(
+            f"the angular momenta overflow double precision arithmetic: with angular velocities scaled to "
+            f"order one (t * {_validate.fmt(s)}) |L| still reaches {big:.3g} (moments up to "
+            f"{float(moments.max()):.3g}); squares and products of L must stay finite. Rescale the moments"
+        )
     return Problem(body=body, moments=moments, N=N, n=n, convention=convention, signs=signs, batch=batch, L0=L0,
                    T0=T0, torque=tq, t=ts, scale=s), t_user
 

@@ -1,0 +1,348 @@
+"""The solver registry of hyperrotor.simulate: every registered method, looped over the table.
+
+No hand-kept method lists: each test takes the methods from ``SOLVERS`` and their
+properties (order, preserves, adaptive, supports_torque) from the classes. Errors are
+compared with closed forms (3D Euler-Poinsot, the 5D quartet) or a tight reference run, with
+tolerances that scale with the requested rtol, the run length and the norm of the state.
+"""
+import numpy as np
+import pytest
+from scipy import special
+
+import hyperrotor as hr
+from hyperrotor import Inertia, RigidBody
+from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+from hyperrotor.classical.solvers import SOLVERS, FixedStepSolver, ScipyIVP, StepBudgetError, solver_for
+from hyperrotor.conventions import to_matrix
+from tolerance import EPS, scaled_tol
+
+ALL = list(SOLVERS)
+FIXED = [m for m, c in SOLVERS.items() if issubclass(c, FixedStepSolver)]
+ADAPTIVE = [m for m, c in SOLVERS.items() if c.adaptive]
+PRESERVES = {"casimirs", "energy", "orthogonality", "symplectic", "reversible"}
+
+MOM3 = np.array([2.0, 3.0, 4.0])  # I12, I13, I23
+W3 = np.array([0.6, 1.0, -0.5])
+J5 = np.array([0.3, 0.55, 0.9, 1.4, 2.1])
+J7 = np.array([0.25, 0.4, 0.7, 1.0, 1.3, 1.9, 2.6])
+
+
+def cheap_kw(method, rtol=1e-8):
+    """Moser-Veselov is order 2 and implicit: keep its runs short by a looser rtol."""
+    return dict(rtol=max(rtol, 1e-6)) if method == "moser-veselov" else dict(rtol=rtol)
+
+
+def casimirs(L):
+    M = to_matrix(L, "standard")
+    M2 = M @ M
+    return np.trace(M2, axis1=-2, axis2=-1), np.trace(M2 @ M2, axis1=-2, axis2=-1)
+
+
+# ----------------------------------------------------------------------------- the table itself
+@pytest.mark.parametrize("method", ALL)
+def test_every_solver_states_its_properties(method):
+    cls = SOLVERS[method]
+    assert cls.name == method
+    assert cls.order is None or cls.order in range(1, 9)
+    assert set(cls.preserves) <= PRESERVES
+    assert isinstance(cls.adaptive, bool) and cls.adaptive == issubclass(cls, ScipyIVP)
+    assert cls.supports_torque in ("none", "constant", "any")
+    assert cls.__doc__
+    # names are matched ignoring case; the instance is accepted as method=
+    assert type(solver_for(method.upper())) is cls
+    tr = hr.simulate(MOM3, W3, [0.0, 0.5], method=cls(), **cheap_kw(method, 1e-6))
+    assert tr.stats["method"] == method
+
+
+@pytest.mark.parametrize("method", ALL)
+def test_unknown_option_names_the_allowed_ones(method):
+    allowed = ", ".join(sorted(SOLVERS[method].option_docs)) or "none"
+    with pytest.raises(TypeError, match=f"no option 'bogus'; allowed: {allowed}"):
+        hr.simulate(MOM3, W3, [0.0, 1.0], method=method, bogus=1)
+
+
+def test_unknown_method_names_the_registry():
+    with pytest.raises(ValueError, match="allowed: 'auto', 'splitting2'"):
+        hr.simulate(MOM3, W3, [0.0, 1.0], method="euler")
+
+
+# ----------------------------------------------------------------------------- order
+@pytest.mark.parametrize("method", FIXED)
+def test_empirical_order_when_the_step_halves(method):
+    """Error ratio at dt and dt/2 against the elliptic solution: 2^order within +-0.5 in the exponent."""
+    p = SOLVERS[method].order
+    t = np.linspace(0.0, 10.0, 11)
+    exact = euler_poinsot(MOM3, W3, t)
+    dt = {2: 0.02, 4: 0.1, 6: 0.5, 8: 0.5}[p]  # steps dividing the output gaps (asymptotic, above round-off)
+    e1, e2 = (np.abs(hr.simulate(MOM3, W3, t, method=method, dt=h).omega - exact).max() for h in (dt, dt / 2))
+    assert e2 > 100 * EPS  # still above round-off: the ratio measures the order
+    assert p - 0.5 <= np.log2(e1 / e2) <= p + 0.7, (e1, e2)
+
+
+# ----------------------------------------------------------------------------- invariants
+@pytest.mark.parametrize("method", ALL)
+def test_preserved_invariants_hold_to_round_off(method, rng):
+    """What a solver claims to preserve stays at round-off on a coarse run (error itself far larger)."""
+    cls = SOLVERS[method]
+    body = RigidBody(Inertia.from_mass_tensor(J5))
+    w0 = rng.normal(size=10)
+    t = np.linspace(0.0, 20.0, 21)
+    kw = dict(dt=0.05) if issubclass(cls, FixedStepSolver) else dict(rtol=1e-6)
+    tr = hr.simulate(body, w0, t, method=method, attitude=True, **kw)
+    steps = tr.stats["steps"] or 1
+    c2, c4 = casimirs(tr.L)
+    E = tr.energy()
+    T = tr.attitude
+    orth = np.abs(np.swapaxes(T, -1, -2) @ T - np.eye(5)).max()
+    checks = {
+        "casimirs": max(np.abs(c2 - c2[0]).max() / c2[0], np.abs(c4 - c4[0]).max() / c4[0]),
+        "energy": np.abs(E - E[0]).max() / E[0],
+        "orthogonality": orth,
+    }
+    for name, value in checks.items():
+        if name in cls.preserves:
+            assert value <= scaled_tol(1.0, k=16, dim=5, steps=steps * 20), (name, value)
+
+
+# ----------------------------------------------------------------------------- rtol is a whole-run bound
+def _generic(J, rng):
+    body = RigidBody(Inertia.from_mass_tensor(J))
+    n = body.inertia.moments.size
+    return body, rng.normal(size=n)
+
+
+def _reference(body, w0, t):
+    return hr.simulate(body, w0, t, method="splitting8", dt=0.01, compensated=True).L
+
+
+CASES = ["3d", "quartet", "generic5", "generic7"]
+
+
+def _case(name, rng):
+    t = np.linspace(0.0, 20.0, 81)
+    if name == "3d":
+        return RigidBody(MOM3), W3, t, euler_poinsot(MOM3, W3, t) * MOM3
+    if name == "quartet":
+        w0 = rng.normal(size=10)
+        return RigidBody(Inertia.quartet(0.5)), w0, t, quartet_solution(0.5, w0, t) * Inertia.quartet(0.5).moments
+    body, w0 = _generic(J5 if name == "generic5" else J7, rng)
+    return body, w0, t, _reference(body, w0, t)
+
+
+@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("method", FIXED)
+@pytest.mark.parametrize("rtol", [1e-6, 1e-9])
+def test_rtol_bounds_the_whole_run_error(method, case, rtol, rng):
+    if method == "moser-veselov" and rtol < 1e-6:
+        pytest.skip("order 2 implicit: 1e-9 would take minutes (the benchmark measures it)")
+    body, w0, t, Lref = _case(case, rng)
+    tr = hr.simulate(body, w0, t, method=method, rtol=rtol)
+    err = np.abs(tr.L - Lref).max() / np.abs(Lref).max()
+    assert err <= rtol, (err, tr.stats["steps"])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("method", ["splitting2", "splitting4"])
+def test_rtol_bound_on_the_issue_example(method):
+    """The example of the issue: a generic 5D body, T = 20 (splitting2 reached 4.5e-5 at rtol 1e-6)."""
+    body = RigidBody(Inertia.from_mass_tensor(J5))
+    for seed in range(3):
+        w0 = np.random.default_rng(seed).normal(size=10)
+        t = np.linspace(0.0, 20.0, 201)
+        Lref = _reference(body, w0, t)
+        for rtol in (1e-6, 1e-8):
+            tr = hr.simulate(body, w0, t, method=method, rtol=rtol)
+            assert np.abs(tr.L - Lref).max() / np.abs(Lref).max() <= rtol
+
+
+# ----------------------------------------------------------------------------- backward time
+@pytest.mark.parametrize("method", ALL)
+def test_backward_time_returns_to_the_start(method, rng):
+    body, w0 = _generic(J5, rng)
+    t = np.linspace(0.0, 5.0, 6)
+    kw = cheap_kw(method, 1e-9)
+    orthogonal = "orthogonality" in SOLVERS[method].preserves  # else T drifts off SO(N): no initial attitude
+    fwd = hr.simulate(body, w0, t, method=method, attitude=orthogonal, **kw)
+    back = hr.simulate(body, fwd.omega[-1], t[::-1], method=method,
+                       attitude=fwd.attitude[-1] if orthogonal else False, **kw)
+    np.testing.assert_array_equal(back.t, t[::-1])
+    scale = np.abs(fwd.L).max()
+    # global error bounds: rtol each way for the fixed-step methods, scipy's local rtol grows with the run
+    factor = 2 if issubclass(SOLVERS[method], FixedStepSolver) else 1e3
+    assert np.abs(back.L[-1] - fwd.L[0]).max() <= factor * kw["rtol"] * scale
+    if orthogonal:
+        assert np.abs(back.attitude[-1] - np.eye(5)).max() <= factor * kw["rtol"] * 5 * max(1.0, scale)
+
+
+# ----------------------------------------------------------------------------- events
+def _textbook_period_3d(mom3, w3):
+    """4K(k)/lambda of the free 3D top (Landau-Lifshitz section 37), from scipy.special.ellipk only.
+
+    Principal moments I1 < I2 < I3 are the plane moments I12 < I13 < I23 here; the component of
+    the middle axis is proportional to sn(lambda t, k), so its upward zeros are 4K/lambda apart."""
+    I1, I2, I3 = mom3
+    W = np.array(w3)
+    E2 = float(np.sum(mom3 * W**2))
+    M2 = float(np.sum((mom3 * W) ** 2))
+    if M2 < E2 * I2:  # the other case: swap the roles of axes 1 and 3
+        I1, I3 = I3, I1
+    lam = np.sqrt((I3 - I2) * (M2 - E2 * I1) / (I1 * I2 * I3))
+    m = (I2 - I1) * (E2 * I3 - M2) / ((I3 - I2) * (M2 - E2 * I1))
+    return 4 * special.ellipk(m) / lam
+
+
+@pytest.mark.parametrize("method", ALL)
+def test_event_times_against_the_elliptic_period(method):
+    period = _textbook_period_3d(MOM3, W3)
+
+    def middle_axis(t, L):
+        return L[1]  # L13: the middle moment's component
+
+    middle_axis.direction = 1.0
+    t = np.linspace(0.0, 3.3 * period, 12)
+    kw = cheap_kw(method, 1e-10)
+    tr = hr.simulate(MOM3, W3, t, method=method, events=middle_axis, **kw)
+    te, Le = tr.t_events[0], tr.L_events[0]
+    assert te.size == 3 or te.size == 4
+    tol = (1 if issubclass(SOLVERS[method], FixedStepSolver) else 1e3) * kw["rtol"] * t[-1] * 10
+    np.testing.assert_allclose(np.diff(te), period, rtol=0, atol=tol)
+    # the state at each event is the exact state there, and the event function vanishes
+    np.testing.assert_allclose(Le / MOM3, euler_poinsot(MOM3, W3, te), rtol=0, atol=tol)
+    np.testing.assert_allclose(Le[:, 1], 0.0, atol=scaled_tol(Le, k=64))
+    np.testing.assert_allclose(tr.omega_events[0], Le / MOM3)
+
+
+@pytest.mark.parametrize("method", ALL)
+def test_terminal_event_ends_the_run(method):
+    def g(t, L):
+        return L[1]
+
+    g.terminal = True
+    g.direction = -1
+    t = np.linspace(0.0, 40.0, 41)
+    tr = hr.simulate(MOM3, W3, t, method=method, events=[g], **cheap_kw(method))
+    assert tr.t_events[0].size == 1
+    assert tr.t[-1] <= tr.t_events[0][0] < tr.t[-1] + 1.0
+    assert tr.stats["status"] == "terminated by event"
+    assert tr.omega.shape == (tr.t.size, 3)
+
+
+def test_events_need_one_trajectory():
+    with pytest.raises(ValueError, match="one trajectory"):
+        hr.simulate(MOM3, np.ones((2, 3)), [0.0, 1.0], events=lambda t, L: L[0])
+
+
+# ----------------------------------------------------------------------------- dense output
+@pytest.mark.parametrize("method", ALL)
+def test_dense_output_between_and_at_the_output_times(method):
+    t = np.linspace(0.0, 10.0, 6)
+    kw = cheap_kw(method, 1e-9)
+    tr = hr.simulate(MOM3, W3, t, method=method, attitude=True, **kw)
+    tq = np.array([0.0, 0.3, 1.7, 4.0, 9.99, 10.0])
+    factor = 1 if issubclass(SOLVERS[method], FixedStepSolver) else 1e3
+    np.testing.assert_allclose(tr.sol(tq, "omega"), euler_poinsot(MOM3, W3, tq), rtol=0, atol=factor * kw["rtol"])
+    # at the stored times dense output gives the stored states (to round-off for the fixed steps)
+    np.testing.assert_allclose(tr.sol(t), tr.L, rtol=0, atol=factor * scaled_tol(tr.L, k=64, steps=1000))
+    assert tr.sol(4.0, "attitude").shape == (3, 3)
+    # continuous across a step point: both sides agree to the method's accuracy
+    h = tr.stats["dt"] or 0.01
+    left, right = tr.sol(np.array([2.0 + h - 1e-9, 2.0 + h + 1e-9]))
+    assert np.abs(left - right).max() <= factor * kw["rtol"] + 1e-8
+    with pytest.raises(ValueError, match="time span"):
+        tr.sol(11.0)
+
+
+# ----------------------------------------------------------------------------- bounded runs
+def test_a_run_over_the_step_budget_is_refused_before_it_starts():
+    body = RigidBody(Inertia.from_mass_tensor(J5))
+    w0 = np.linspace(-1, 1, 10)
+    with pytest.raises(StepBudgetError, match=r"about [0-9.e+]+ integration steps .* max_steps = 100000000"):
+        hr.simulate(body, w0, [0.0, 1e12], method="splitting8", rtol=1e-12)
+    with pytest.raises(StepBudgetError, match="max_steps = 1000"):
+        hr.simulate(body, w0, [0.0, 100.0], method="splitting4", dt=0.01, max_steps=1000)
+    with hr.options(max_steps=1000), pytest.raises(StepBudgetError, match="max_steps = 1000"):
+        hr.simulate(body, w0, [0.0, 100.0], method="splitting4", dt=0.01)
+
+
+@pytest.mark.parametrize("method", ADAPTIVE)
+def test_scipy_methods_stop_at_the_budget(method):
+    with pytest.raises(StepBudgetError, match="right-hand-side evaluations"):
+        hr.simulate(MOM3, W3, [0.0, 1000.0], method=method, rtol=1e-10, max_steps=200)
+
+
+def test_too_many_output_times_are_refused_not_a_memory_error():
+    t = np.linspace(0.0, 1.0, 100_001)
+    with hr.options(max_output_bytes=10**6), pytest.raises(StepBudgetError, match=r"GiB .* 100001 output times"):
+        hr.simulate(MOM3, W3, t)
+    # the estimate of the issue's example, 2e8 output times of a 3D body: 9.6 GB > 2 GiB default
+    assert 8.0 * 2e8 * 2 * 3 > hr.options["max_output_bytes"]
+
+
+def test_huge_and_tiny_scales_neither_overflow_nor_stall(rng):
+    """omega -> s omega, t -> t / s is a symmetry: 1e200 * omega0 on t * 1e-200 is the scaled run."""
+    I = Inertia.from_mass_tensor(J5)
+    w0 = rng.normal(size=10)
+    t = np.linspace(0.0, 20.0, 11)
+    for method, kw in (("auto", {}), ("splitting4", dict(dt=0.01)), ("DOP853", dict(rtol=1e-8))):
+        ref = hr.simulate(I, w0, t, method=method, **kw).omega
+        for s in (1e200, 1e160, 1e-150):
+            kws = {k: (v / s if k == "dt" else v) for k, v in kw.items()}
+            tr = hr.simulate(I, s * w0, t / s, method=method, **kws)
+            np.testing.assert_allclose(tr.omega / s, ref, rtol=0, atol=1e-6 * np.abs(ref).max())
+
+
+@pytest.mark.parametrize("method", ALL)
+def test_momenta_beyond_double_precision_are_a_clear_error(method):
+    body = [1e-300, 1.0, 1e300]  # |L| ~ 1e300 even with the rates scaled to one: L * L overflows
+    with pytest.raises(FloatingPointError, match="overflow double precision .* reaches 1e\\+300"):
+        hr.simulate(body, [1.0, 1.0, 1.0], [0.0, 1.0], method=method)
+
+
+def test_chunked_runs_equal_one_call_and_progress_changes_nothing(rng):
+    body = RigidBody(Inertia.from_mass_tensor(J5))
+    w0 = rng.normal(size=10)
+    t = np.linspace(0.0, 50.0, 7)
+    one = hr.simulate(body, w0, t, method="splitting4", dt=0.001)
+    assert one.stats["chunks"] >= 1
+    with hr.options(chunk_seconds=1e-4):
+        many = hr.simulate(body, w0, t, method="splitting4", dt=0.001, progress=False)
+    assert many.stats["chunks"] > one.stats["chunks"]
+    np.testing.assert_allclose(many.L, one.L, rtol=0, atol=scaled_tol(one.L, k=64, steps=one.stats["steps"]))
+    with_bar = hr.simulate(body, w0, t, method="splitting4", dt=0.001, progress=True)
+    np.testing.assert_array_equal(with_bar.L, one.L)
+
+
+@pytest.mark.slow
+def test_ctrl_c_interrupts_a_long_run(tmp_path):
+    """SIGINT to a process in a long compiled run raises KeyboardInterrupt there (chunks)."""
+    import os
+    import signal
+    import subprocess
+    import sys
+
+    code = (
+        "import numpy as np, sys, hyperrotor as hr\n"
+        "body = hr.RigidBody(hr.Inertia.from_mass_tensor([0.3, 0.55, 0.9, 1.4, 2.1]))\n"
+        "hr.simulate(body, np.ones(10), [0.0, 0.1], method='splitting8', dt=0.01)  # JIT\n"
+        "print('running', flush=True)\n"
+        "try:\n"
+        "    hr.simulate(body, np.ones(10), [0.0, 1e6], method='splitting8', dt=0.01, max_steps=10**9)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n"
+        "    sys.exit(3)\n"
+        "print('finished', flush=True)\n"
+    )
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    try:
+        assert proc.stdout.readline().strip() == "running"
+        import time
+
+        time.sleep(1.0)
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=60)  # a guard against a hang, not a timing assertion
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 3, (out, err)
+    assert "interrupted" in out
