@@ -107,7 +107,7 @@ def test_docs_content(docs_build):
     # the API reference really contains the documented objects (autodoc imported them)
     classical = (html / "api" / "classical.html").read_text()
     for anchor in ["hyperrotor.classical.inertia.Inertia", "hyperrotor.classical.rigid_body.RigidBody",
-                   "hyperrotor.classical.integrate.simulate"]:
+                   "hyperrotor.classical.simulate.simulate"]:
         assert f'id="{anchor}"' in classical, anchor
     assert 'id="hyperrotor.conventions.to_matrix"' in (html / "api" / "conventions.html").read_text()
     # conventions: the N = 5 sign row of eq. (21) as rendered
