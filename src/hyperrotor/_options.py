@@ -123,11 +123,11 @@ register(
 
 # chaos indicators and ensembles (hyperrotor.classical.chaos, hyperrotor._parallel)
 register(
-    "lyapunov_step", 0.2,
+    "lyapunov_step", 0.4,
     "Default step of hyperrotor.lyapunov, in units of 1/w_max (w_max: the bound "
     "max_a min(|L|, sqrt(2 E I_a)) / I_a on the angular velocities of the orbit). With the "
-    "default splitting6, 0.2 keeps finite-time exponents of strongly chaotic 5D orbits within "
-    "~1e-3 of the converged value over 20 time units (halving it costs 2x).",
+    "default splitting8, 0.4 keeps finite-time exponents of strongly chaotic 5D orbits within "
+    "~1e-7 of the converged value over 10 time units and ~1e-4 over 20 (halving it costs 2x).",
 )
 register(
     "lyapunov_max_work", 3e10,
@@ -135,12 +135,6 @@ register(
     "plane flows times (1 + number of tangent vectors), estimated before the run (about 10 ns "
     "each on the reference machine, so 3e10 is ~5 minutes). A run over it is refused with the "
     "estimate; raise it with hr.options(lyapunov_max_work=...) or add workers (client=).",
-)
-register(
-    "parallel_chunk_seconds", 0.25,
-    "Target run time of one chunk of an ensemble cut by hyperrotor._parallel (lyapunov, "
-    "lyapunov_sweep): small enough that Ctrl-C and the progress bar respond within about that "
-    "time, large enough that the per-chunk overhead (~1 ms with dask) stays negligible.",
 )
 
 
