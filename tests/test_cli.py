@@ -1,5 +1,11 @@
 """Tests of the ``hyperrotor`` command line (``hyperrotor.cli.main``)."""
+import os
 import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -8,7 +14,7 @@ import sympy as sp
 import hyperrotor as hr
 
 from hyperrotor import Inertia, RigidBody
-from hyperrotor.cli import SUBCOMMANDS, main
+from hyperrotor.cli import EXIT_CODES, SUBCOMMANDS, bench_paths, main, scene_estimate
 
 
 def _run(capsys, argv):
@@ -34,14 +40,15 @@ def test_demo_invariants_recomputed(capsys):
     assert code == 0
     omega = _vector(out, "omega")
     body = RigidBody(Inertia.quartet(sp.Rational(1, 2)))
-    assert _value(out, "energy E = 1/2 sum I_ij w_ij^2") == pytest.approx(float(body.energy(omega)), rel=1e-15)
+    # numbers are printed with 12 significant digits
+    assert _value(out, "energy E = 1/2 sum I_ij w_ij^2") == pytest.approx(float(body.energy(omega)), rel=1e-11)
     # independent: c_2 = sum of squared L components, c_4 from numpy's characteristic polynomial
     L = body.inertia.moments * omega
     assert _value(out, "Casimir c_2 = sum (L^ij)^2") == pytest.approx(float(np.sum(L**2)), rel=1e-12)
     poly = np.poly(body.matrix(L))
     assert _value(out, "Casimir c_4 (lambda^1 coefficient of det(lambda - L))") == pytest.approx(poly[4], rel=1e-10)
-    np.testing.assert_allclose(_vector(out, "  L"), L, rtol=1e-15)
-    np.testing.assert_allclose(_vector(out, "d omega/dt"), body.rhs(omega), rtol=1e-15)
+    np.testing.assert_allclose(_vector(out, "  L"), L, rtol=1e-11)
+    np.testing.assert_allclose(_vector(out, "d omega/dt"), body.rhs(omega), rtol=1e-11)
     A = hr.to_matrix(L, "standard") + np.diag([1, 1, 1, 1, 0.25]) ** 2  # L + J^2, J = (1, 1, 1, 1, kappa^2)
     for k in range(2, 6):
         assert _value(out, f"Manakov tr((L + J^2)^{k})") == pytest.approx(
@@ -71,7 +78,7 @@ def test_demo_options(capsys):
 
 @pytest.mark.parametrize("argv,msg", [
     (["demo", "--kappa", "abc"], "--kappa"),
-    (["demo", "--omega", "1,2"], "10 components"),
+    (["demo", "--omega", "1,2"], "--omega needs 10 comma-separated numbers, got 2"),
     (["demo", "--omega", "a,b"], "--omega"),
     (["demo", "--axis", "7"], "axis"),
 ])
@@ -90,9 +97,9 @@ def test_help_lists_subcommands(capsys):
 
 
 def test_missing_subcommand_is_an_error(capsys):
-    with pytest.raises(SystemExit) as exc:
-        main([])
-    assert exc.value.code == 2
+    assert main([]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "the following arguments are required: COMMAND" in err
 
 
 def test_demo_motion_matches_closed_form_and_writes_png(capsys, tmp_path):
@@ -141,13 +148,13 @@ def test_scene_gif(capsys, tmp_path):
     (["scene", "--axes", "1,2,9"], "--axes must be three different axes in 1..5"),
     (["scene", "--lock", "0"], "--lock axes must be in 1..5"),
     (["scene", "--omega", "1,2,3"], "needs N(N-1)/2 = 10 components"),
-    (["scene", "--output", "x.jpg"], "--output must end in .png or .gif"),
-    (["scene", "--N", "2"], "--N must be >= 3"),
-    (["scene", "--frames", "1"], "--frames must be >= 2"),
+    (["scene", "--output", "x.jpg"], "--output 'x.jpg' has extension '.jpg'; allowed: .png, .gif"),
+    (["scene", "--N", "2"], "--N must be an integer >= 3, got 2"),
+    (["scene", "--frames", "1"], "--frames must be an integer >= 2, got 1"),
 ])
 def test_scene_bad_options(capsys, argv, msg):
     code, _, err = _run(capsys, argv)
-    assert code == 2 and msg in err
+    assert code == 2 and msg in err and err.count("\n") == 1
 
 
 def test_verify_json_matches_function(capsys):
@@ -165,7 +172,236 @@ def test_verify_json_matches_function(capsys):
 
 
 def test_verify_bad_section(capsys):
-    with pytest.raises(SystemExit) as exc:
-        main(["verify", "--section", "nope"])
-    assert exc.value.code == 2
-    assert "invalid choice: 'nope'" in capsys.readouterr().err
+    assert main(["verify", "--section", "nope"]) == 2
+    err = capsys.readouterr().err
+    assert "invalid choice: 'nope'" in err and err.count("\n") == 1
+
+
+# ----------------------------------------------------------------------------
+# The command line as a user meets it (issue #15): a subprocess per finding,
+# asserting the exit status, a one-line stderr and the files present afterwards.
+# ----------------------------------------------------------------------------
+def _cli(args, cwd, timeout=300, **kw):
+    """Run ``python -m hyperrotor.cli *args`` in ``cwd``; returns (status, stdout, stderr)."""
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONWARNINGS="ignore")
+    p = subprocess.run([sys.executable, "-m", "hyperrotor.cli", *map(str, args)], cwd=cwd, env=env,
+                       capture_output=True, text=True, timeout=timeout, **kw)
+    return p.returncode, p.stdout, p.stderr
+
+
+def _one_line(err):
+    """stderr is exactly one line, with no traceback."""
+    assert err.endswith("\n") and err.count("\n") == 1, repr(err)
+    assert "Traceback" not in err
+    return err
+
+
+def _files(folder):
+    return sorted(p.name for p in folder.iterdir())
+
+
+#: The findings of issue #15 that used to end in a traceback, a wrong exit status or work done for nothing.
+FINDINGS = [
+    (["demo", "--png", "x.txt"], ["--png 'x.txt'", "'.txt'", "allowed: .png"]),
+    (["demo", "--png", "/nonexistent/d/x.png"], ["'/nonexistent/d'", "does not exist"]),  # was exit 0
+    (["verify", "--markdown", "-o", "/nonexistent/r.md"], ["'/nonexistent'", "does not exist"]),
+    (["scene", "--output", "/nonexistent/x.png"], ["'/nonexistent'", "does not exist"]),
+    (["bench", "--output", "/nonexistent/d/b"], ["'/nonexistent/d'", "does not exist"]),  # was: after the run
+    (["scene", "--N", "40"], ["--N 40", "TiB of memory", "budget of 2 GiB", "--max-memory"]),  # was 8 TiB alloc
+    (["bench", "--error", "-1"], ["--error must be finite and > 0, got -1.0"]),  # was accepted
+]
+
+#: More refusals, checked in-process (same code path, no interpreter start-up).
+MORE = [
+    (["verify", "--json", "-o", "r.md"], ["'.md'", "allowed: .json"]),
+    (["scene", "--output", "x.jpg"], ["'.jpg'", "allowed: .png, .gif"]),
+    (["bench", "--repeats", "0"], ["--repeats must be an integer >= 1, got 0"]),
+    (["bench", "--error", "2"], ["--error is a relative error level and must be < 1, got 2.0"]),
+    (["scene", "--frames", "100000000", "--shape", "simplex"], ["GiB of memory", "budget", "fewer --frames"]),
+    (["bench", "--repeats", "100000"], ["days", "budget of 10 min", "--max-seconds"]),
+    (["demo", "--t-end", "1e9"], ["--t-end 1000000000", "budget"]),
+    (["scene", "--inertia", "box", "--sides=-2,1,1,1,1"], ["--sides", "got [-2.0]"]),
+    (["scene", "--sides=1,2"], ["--sides applies to --inertia box only"]),
+    (["scene", "--kappa", "nan"], ["--kappa must be finite, got nan"]),
+    (["scene", "--frames", "x"], ["argument --frames: invalid int value: 'x'"]),
+    (["scene", "--colour-axis", "2"], ["--colour-axis 2 is one of the drawn --axes"]),
+    (["scene", "--max-seconds", "-1"], ["--max-seconds must be finite and > 0, got -1.0"]),
+    (["scene", "--max-memory", "lots"], ["argument --max-memory: expected a size such as 2G"]),
+]
+
+
+def _check_refusal(args, words, code, out, err, folder):
+    assert code == EXIT_CODES["usage"] == 2
+    assert out == ""
+    _one_line(err)
+    assert err.startswith(f"hyperrotor {args[0]}: error: ")
+    for w in words:
+        assert w in err
+    assert "np.float64" not in err
+    assert _files(folder) == []  # nothing written, no temporary file left
+
+
+@pytest.mark.parametrize("args,words", FINDINGS)
+def test_bad_argument_or_path_is_one_line_before_any_work(tmp_path, args, words):
+    code, out, err = _cli(args, tmp_path)
+    _check_refusal(args, words, code, out, err, tmp_path)
+
+
+@pytest.mark.parametrize("args,words", MORE)
+def test_more_refusals_in_process(capsys, tmp_path, monkeypatch, args, words):
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _run(capsys, args)
+    _check_refusal(args, words, code, out, err, tmp_path)
+
+
+def test_folder_that_is_a_file_or_unwritable(tmp_path):
+    (tmp_path / "f").write_text("x")
+    code, _, err = _cli(["scene", "--output", "f/x.png"], tmp_path)
+    assert code == 2 and "'f' is not a folder" in _one_line(err)
+    if os.geteuid() == 0:
+        return  # root writes everywhere: no unwritable folder to test with
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    ro.chmod(0o500)
+    try:
+        code, _, err = _cli(["verify", "-o", "ro/r.md"], tmp_path)
+        assert code == 2 and "cannot write in the folder" in _one_line(err)
+        assert _files(ro) == []
+    finally:
+        ro.chmod(0o700)
+
+
+@pytest.mark.parametrize("args,target", [
+    (["demo", "--ascii", "--png", "out.png"], "out.png"),
+    (["verify", "--section", "euler", "-o", "out.md"], "out.md"),
+    (["scene", "--frames", "4", "--output", "out.png"], "out.png"),
+    (["bench", "--problem", "euler-poinsot", "--method", "splitting8", "--repeats", "1", "--output", "out"], "out.csv"),
+])
+def test_existing_output_is_kept_without_force(tmp_path, args, target):
+    (tmp_path / target).write_text("old")
+    code, out, err = _cli(args, tmp_path)
+    assert code == 2 and out == ""
+    assert f"'{target}' exists; pass --force to replace it" in _one_line(err)
+    assert (tmp_path / target).read_text() == "old"
+    assert _files(tmp_path) == [target]
+
+
+def test_force_replaces_the_file(tmp_path):
+    (tmp_path / "out.md").write_text("old")
+    code, out, err = _cli(["verify", "--section", "euler", "-o", "out.md", "--force"], tmp_path)
+    assert code == 0 and err == ""
+    assert "written: out.md" in out
+    from hyperrotor.paper.verify import render, verify
+
+    assert (tmp_path / "out.md").read_text() == render(verify(["euler"]), "markdown").rstrip("\n") + "\n"
+    assert _files(tmp_path) == ["out.md"]
+    assert (tmp_path / "out.md").stat().st_mode & 0o777 == 0o666 & ~_umask()
+
+
+def _umask():
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_a_gif_keeps_the_old_file(tmp_path):
+    old = tmp_path / "x.gif"
+    old.write_bytes(b"old animation")
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONWARNINGS="ignore")
+    p = subprocess.Popen([sys.executable, "-m", "hyperrotor.cli", "scene", "--output", "x.gif", "--frames", "400",
+                          "--force"], cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while not any(n.startswith(".x.gif.") for n in os.listdir(tmp_path)):  # reserved: the work has begun
+            assert p.poll() is None, p.communicate()
+            assert time.monotonic() < deadline
+            time.sleep(0.05)
+        time.sleep(1.0)  # well inside the 400 frames (they take tens of seconds)
+        assert p.poll() is None
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=60)
+    finally:
+        if p.poll() is None:
+            p.kill()
+    assert p.returncode == EXIT_CODES["interrupted"] == 130
+    assert "interrupted" in _one_line(err) and out == ""
+    assert old.read_bytes() == b"old animation"
+    assert _files(tmp_path) == ["x.gif"]  # no temporary file left
+
+
+def test_closed_pipe_ends_quietly(tmp_path):
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONWARNINGS="ignore")
+    p = subprocess.Popen([sys.executable, "-m", "hyperrotor.cli", "demo", "--no-png"], cwd=tmp_path, env=env,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    p.stdout.close()  # the reader is gone before the first line (as 'hyperrotor demo | head -0')
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == EXIT_CODES["broken-pipe"] == 141
+    assert err == b""
+
+
+@pytest.mark.slow
+def test_bench_output_is_a_stem_or_a_folder(tmp_path):
+    base = ["bench", "--problem", "euler-poinsot", "--method", "splitting8", "--repeats", "1"]
+    code, out, err = _cli([*base, "--output", "b.png"], tmp_path)
+    assert code == 0 and err == ""
+    assert _files(tmp_path) == ["b.csv", "b.png"]
+    assert "relative error" in out
+    (tmp_path / "d").mkdir()
+    code, out, err = _cli([*base, "--output", "d/"], tmp_path)
+    assert code == 0 and err == ""
+    assert _files(tmp_path / "d") == ["hyperrotor-bench.csv", "hyperrotor-bench.png"]
+
+
+def test_bench_paths_naming():
+    assert bench_paths("b") == (Path("b.csv"), Path("b.png"))
+    assert bench_paths("b.png") == bench_paths("b.CSV") == (Path("b.csv"), Path("b.png"))
+    assert bench_paths("runs/x.2026") == (Path("runs/x.2026.csv"), Path("runs/x.2026.png"))
+    assert bench_paths("new/") == (Path("new/hyperrotor-bench.csv"), Path("new/hyperrotor-bench.png"))
+
+
+def test_progress_only_when_asked_or_on_a_terminal(tmp_path):
+    code, _, err = _cli(["scene", "--frames", "4", "--output", "a.png"], tmp_path)
+    assert code == 0 and err == ""  # stderr is a pipe here: no bar
+    code, _, err = _cli(["scene", "--frames", "4", "--output", "b.png", "--progress"], tmp_path)
+    assert code == 0 and "scene: drawing snapshots" in err and "/4 [" in err
+    code, _, err = _cli(["verify", "--section", "euler", "--progress"], tmp_path)
+    assert code == 0 and "verify: sections" in err and "1/1" in err
+
+
+def test_plain_numbers_in_output_and_messages(tmp_path):
+    code, out, err = _cli(["demo", "--ascii", "--no-png"], tmp_path)
+    assert code == 0
+    # d omega_15/dt = (I_12 - I_25)/I_15 ... = -0.33 exactly in decimal; no float noise, no numpy reprs
+    assert "d omega/dt = [0, 0, 0, -0.33, 0, 0, -0.606, 0, -0.222, 0.756]" in out
+    assert "np." not in out and "0.32999999" not in out
+
+
+def test_debug_shows_the_traceback(tmp_path):
+    code, _, err = _cli(["scene", "--N", "40", "--debug"], tmp_path)
+    assert code == 2 and "Traceback" in err and err.rstrip().splitlines()[-1].startswith("hyperrotor scene: error:")
+
+
+def test_runtime_failure_exits_1_and_leaves_no_file(capsys, tmp_path, monkeypatch):
+    import hyperrotor.plotting as plotting
+
+    old = tmp_path / "s.png"
+    old.write_bytes(b"old")
+
+    def broken(path, *a, **k):
+        with open(path, "wb") as fh:  # half a file, then a failure
+            fh.write(b"\x89PNG partial")
+        raise RuntimeError("disk full")
+
+    monkeypatch.setattr(plotting, "save_projection_frames", broken)
+    code, out, err = _run(capsys, ["scene", "--frames", "4", "--output", str(old), "--force"])
+    assert code == EXIT_CODES["failed"] == 1
+    assert err.count("\n") == 1 and "failed: disk full" in err
+    assert old.read_bytes() == b"old" and _files(tmp_path) == ["s.png"]
+
+
+def test_scene_estimate_of_the_40_cube():
+    memory, seconds = scene_estimate("cube", 40, 60, gif=False, integrate=False)
+    assert memory >= 2**40 * 40 * 8  # the vertex array alone: 8 TiB
+    small, quick = scene_estimate("cube", 5, 60, gif=False, integrate=False)
+    assert small < 2**27 and quick < 10

@@ -141,3 +141,17 @@ register(
 # --- quantum -----------------------------------------------------------------
 
 # --- command line ------------------------------------------------------------
+register(
+    "cli_max_seconds", 600.0,
+    "Budget of the command line (hyperrotor demo/scene/bench): a run whose wall time, estimated "
+    "from its arguments before any work, exceeds this many seconds is refused with the estimate "
+    "(exit status 2). The estimates are rough (factor ~3, measured on a 2-core machine); "
+    "--max-seconds overrides the budget for one run.",
+)
+register(
+    "cli_max_memory", 2**31,
+    "Budget of the command line (hyperrotor scene): largest memory in bytes that a run may need, "
+    "estimated before any work from the body points, frames and drawn edges (e.g. scene --N 40 "
+    "would need 2^40 cube vertices, about 8 TiB); 2 GiB by default, since the machine is shared. "
+    "--max-memory overrides it for one run.",
+)

@@ -1,18 +1,34 @@
-"""Pictures of rotating bodies: 3D projections of N-dimensional point sets (matplotlib, optional).
+"""Pictures of rotating bodies and of integrator accuracy (matplotlib, optional).
 
 matplotlib is imported lazily; install it with ``pip install 'hyperrotor[viz]'``.
-The projections themselves come from :func:`hyperrotor.classical.scenes.evaluate_scene`
-(``observables=("projection",)``): body points ``x_body`` are carried to space by
-``x_space = T(t)^T x_body`` (see :mod:`hyperrotor.conventions`, "Attitude") and
-the chosen space axes are kept.
+
+* :func:`save_projection_frames`, :func:`save_projection_animation`: 3D
+  projections of N-dimensional point sets. The projections come from
+  :func:`hyperrotor.classical.scenes.evaluate_scene` (``observables=("projection",)``):
+  body points ``x_body`` are carried to space by ``x_space = T(t)^T x_body``
+  (see :mod:`hyperrotor.conventions`, "Attitude") and the chosen space axes are
+  kept. A fourth projected axis, when given, colours the points (the position
+  along a space axis that is not drawn), with a labelled colour bar.
+* :func:`save_motion_comparison`: angular velocity components, closed form
+  against numerical runs, and the *relative* error of each run (the
+  ``hyperrotor demo`` picture).
+
+Every figure keeps its legends outside the data area, labels its axes and says
+whether an error is absolute or relative.
 """
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-__all__ = ["body_edges", "draw_projection", "save_projection_frames", "save_projection_animation"]
+__all__ = [
+    "body_edges",
+    "draw_projection",
+    "save_projection_frames",
+    "save_projection_animation",
+    "save_motion_comparison",
+]
 
 
 def _pyplot():
@@ -30,9 +46,10 @@ def _pyplot():
 def body_edges(points: np.ndarray, kind: str) -> list[tuple[int, int]]:
     """Edges to draw between body points.
 
-    ``kind="cube"``: pairs of hypercube vertices differing in exactly one
-    coordinate; ``"simplex"``: all pairs; ``"points"`` (e.g. an ellipsoid
-    sample): none.
+    ``kind="cube"``: pairs of vertices differing in exactly one coordinate
+    (the edges of an axis-aligned hypercube, found in ``O(P N^2)`` by grouping
+    the vertices on their other coordinates); ``"simplex"``: all pairs;
+    ``"points"`` (e.g. an ellipsoid sample): none.
     """
     pts = np.asarray(points, dtype=float)
     if kind == "points":
@@ -41,67 +58,208 @@ def body_edges(points: np.ndarray, kind: str) -> list[tuple[int, int]]:
     if kind == "simplex":
         return [(a, b) for a in range(n) for b in range(a + 1, n)]
     if kind == "cube":
-        diff = np.sum(~np.isclose(pts[:, None, :], pts[None, :, :]), axis=-1)
-        return [(int(a), int(b)) for a, b in zip(*np.nonzero(np.triu(diff == 1)))]
+        keys = np.round(pts, 9)
+        edges = []
+        for d in range(pts.shape[1]):
+            groups: dict[tuple, list[int]] = {}
+            rest = np.delete(keys, d, axis=1)
+            for idx, key in enumerate(map(tuple, rest)):
+                groups.setdefault(key, []).append(idx)
+            for members in groups.values():
+                for x, a in enumerate(members):
+                    for b in members[x + 1:]:
+                        if keys[a, d] != keys[b, d]:
+                            edges.append((min(a, b), max(a, b)))
+        return sorted(edges)
     raise ValueError(f"unknown body kind {kind!r}; allowed: 'cube', 'simplex', 'points'")
 
 
+def _hidden_colour(projection: np.ndarray):
+    """Split a projection ``(K, P, 3 or 4)`` into drawn coordinates and colour values (or None)."""
+    projection = np.asarray(projection, dtype=float)
+    if projection.ndim != 3 or projection.shape[-1] not in (3, 4):
+        raise ValueError(f"projection must have shape (len(t), n_points, 3) or (len(t), n_points, 4), "
+                         f"got {projection.shape}")
+    if projection.shape[-1] == 4:
+        return projection[..., :3], projection[..., 3]
+    return projection, None
+
+
 def draw_projection(ax, frame: np.ndarray, edges: Sequence[tuple[int, int]], *, limit: float | None = None,
-                    axes_labels: Sequence[int] = (1, 2, 3), color: str = "tab:blue") -> None:
-    """Draw one projected frame (``(n_points, 3)``) on a matplotlib 3D axis."""
-    frame = np.asarray(frame)
-    for a, b in edges:
-        ax.plot(*frame[[a, b]].T, color=color, lw=0.8, alpha=0.8)
-    ax.scatter(*frame.T, s=6 if not edges else 10, color="tab:red" if edges else color, depthshade=False)
+                    axes_labels: Sequence[int] = (1, 2, 3), colour: np.ndarray | None = None, norm=None,
+                    cmap: str = "coolwarm", edge_colour: str = "0.35"):
+    """Draw one projected frame (``(n_points, 3)``) on a matplotlib 3D axis.
+
+    Edges are one ``Line3DCollection`` (fast for thousands of edges); points are
+    coloured by ``colour`` (one value per point, mapped through ``norm`` and
+    ``cmap``) when given. Returns the scatter artist (a colour-bar mappable).
+    """
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    frame = np.asarray(frame, dtype=float)
+    if len(edges):
+        e = np.asarray(edges, dtype=int)
+        segs = np.stack([frame[e[:, 0]], frame[e[:, 1]]], axis=1)
+        lw = 0.8 if len(e) <= 500 else 0.3
+        ax.add_collection3d(Line3DCollection(segs, colors=edge_colour, linewidths=lw, alpha=0.7))
+    size = 18 if len(frame) <= 64 else (5 if len(frame) <= 1024 else 1.5)
+    if colour is None:
+        sc = ax.scatter(*frame.T, s=size, color="tab:blue", depthshade=False)
+    else:
+        sc = ax.scatter(*frame.T, s=size, c=colour, cmap=cmap, norm=norm, depthshade=False,
+                        edgecolors="k", linewidths=0.2)
     lim = limit if limit is not None else float(np.max(np.abs(frame))) * 1.05
     ax.set(xlim=(-lim, lim), ylim=(-lim, lim), zlim=(-lim, lim))
-    ax.set_xlabel(f"x{axes_labels[0]}", labelpad=-8)
-    ax.set_ylabel(f"x{axes_labels[1]}", labelpad=-8)
-    ax.set_zlabel(f"x{axes_labels[2]}", labelpad=-8)
-    ax.tick_params(labelsize=0, length=0)
+    tick = float(f"{lim / 1.05:.1g}")  # a round coordinate inside the box: the scale of the picture
+    for setter in (ax.set_xticks, ax.set_yticks, ax.set_zticks):
+        setter([-tick, 0.0, tick])
+    ax.set_xlabel(f"x{axes_labels[0]}", labelpad=-6, fontsize=9)
+    ax.set_ylabel(f"x{axes_labels[1]}", labelpad=-6, fontsize=9)
+    ax.set_zlabel(f"x{axes_labels[2]}", labelpad=-6, fontsize=9)
+    ax.tick_params(labelsize=6, pad=-2, length=0)
+    return sc
 
 
-def save_projection_frames(path: str, t: np.ndarray, projection: np.ndarray, edges, *, n_frames: int = 6,
-                           title: str = "", axes_labels: Sequence[int] = (1, 2, 3)) -> str:
-    """Write a PNG with ``n_frames`` snapshots of a projection ``(len(t), n_points, 3)``."""
+def _colour_setup(colour: np.ndarray | None):
+    if colour is None:
+        return None
+    from matplotlib.colors import Normalize
+
+    top = float(np.max(np.abs(colour))) or 1.0
+    return Normalize(-top, top)
+
+
+def _colour_label(axes_labels: Sequence[int], colour_axis: int | None) -> str:
+    if colour_axis is None:
+        return ""
+    return f"x{colour_axis}: position along space axis {colour_axis} (not drawn)"
+
+
+def save_projection_frames(path, t: np.ndarray, projection: np.ndarray, edges, *, n_frames: int = 6,
+                           title: str = "", axes_labels: Sequence[int] = (1, 2, 3),
+                           colour_axis: int | None = None, progress: Callable[[], object] | None = None,
+                           format: str | None = "png") -> str:
+    """Write a PNG with ``n_frames`` snapshots of a projection ``(len(t), n_points, 3 or 4)``.
+
+    Each panel is titled with its time; the space axes drawn are labelled
+    ``x<axis>``. With a fourth projected coordinate (the space axis
+    ``colour_axis``), points are coloured by it on a symmetric scale shared by
+    all panels, explained by a labelled colour bar. ``progress`` is called
+    after each panel is drawn; ``format`` is passed to ``savefig`` (so ``path``
+    may carry any suffix, e.g. a temporary name).
+    """
     plt = _pyplot()
-    projection = np.asarray(projection)
-    if projection.ndim != 3 or projection.shape[-1] != 3:
-        raise ValueError(f"projection must have shape (len(t), n_points, 3), got {projection.shape}")
-    idx = np.linspace(0, len(t) - 1, n_frames).round().astype(int)
-    cols = min(n_frames, 3)
-    rows = -(-n_frames // cols)
-    fig = plt.figure(figsize=(3.2 * cols, 3.2 * rows + 0.4))
-    lim = float(np.max(np.abs(projection))) * 1.05
+    xyz, colour = _hidden_colour(projection)
+    if colour is not None and colour_axis is None:
+        raise ValueError("a projection with 4 coordinates needs colour_axis (the space axis of the 4th)")
+    idx = np.linspace(0, len(t) - 1, min(n_frames, len(t))).round().astype(int)
+    cols = min(len(idx), 3)
+    rows = -(-len(idx) // cols)
+    fig = plt.figure(figsize=(3.3 * cols + (1.0 if colour is not None else 0.0), 3.3 * rows + 0.5))
+    lim = float(np.max(np.abs(xyz))) * 1.05
+    norm = _colour_setup(colour)
+    sc = None
+    axs = []
     for k, i in enumerate(idx):
         ax = fig.add_subplot(rows, cols, k + 1, projection="3d")
-        draw_projection(ax, projection[i], edges, limit=lim, axes_labels=axes_labels)
-        ax.set_title(f"t = {t[i]:.3g}", fontsize=9)
+        sc = draw_projection(ax, xyz[i], edges, limit=lim, axes_labels=axes_labels,
+                             colour=None if colour is None else colour[i], norm=norm)
+        ax.set_title(f"t = {t[i]:.3g}", fontsize=9, pad=0)
+        axs.append(ax)
+        if progress is not None:
+            progress()
+    right = 0.88 if colour is not None else 0.98
+    fig.subplots_adjust(left=0.02, right=right, bottom=0.03, top=0.9 if title else 0.95, wspace=0.05, hspace=0.12)
     if title:
         fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
+    if colour is not None:
+        cax = fig.add_axes((0.9, 0.15, 0.015, 0.65))
+        fig.colorbar(sc, cax=cax).set_label(_colour_label(axes_labels, colour_axis), fontsize=9)
+    try:
+        fig.savefig(path, dpi=100, format=format)
+    finally:
+        plt.close(fig)
+    return str(path)
 
 
-def save_projection_animation(path: str, t: np.ndarray, projection: np.ndarray, edges, *, fps: int = 15,
-                              title: str = "", axes_labels: Sequence[int] = (1, 2, 3)) -> str:
-    """Write an animated GIF (Pillow writer) of a projection ``(len(t), n_points, 3)``."""
+def save_projection_animation(path, t: np.ndarray, projection: np.ndarray, edges, *, fps: int = 15,
+                              title: str = "", axes_labels: Sequence[int] = (1, 2, 3),
+                              colour_axis: int | None = None, progress: Callable[[], object] | None = None) -> str:
+    """Write an animated GIF (Pillow) of a projection ``(len(t), n_points, 3 or 4)``.
+
+    Frames are drawn one by one (``progress`` is called after each); the file
+    is written only after the last frame, so an interrupt leaves nothing
+    behind. ``path`` must end in ``.gif`` (Pillow picks the format from it).
+    Colours and the colour bar as in :func:`save_projection_frames`.
+    """
     plt = _pyplot()
-    from matplotlib.animation import FuncAnimation, PillowWriter
+    from matplotlib.animation import PillowWriter
 
-    projection = np.asarray(projection)
-    lim = float(np.max(np.abs(projection))) * 1.05
-    fig = plt.figure(figsize=(4.5, 4.5))
-    ax = fig.add_subplot(projection="3d")
+    xyz, colour = _hidden_colour(projection)
+    if colour is not None and colour_axis is None:
+        raise ValueError("a projection with 4 coordinates needs colour_axis (the space axis of the 4th)")
+    lim = float(np.max(np.abs(xyz))) * 1.05
+    norm = _colour_setup(colour)
+    fig = plt.figure(figsize=(5.4 if colour is not None else 4.6, 4.8))
+    ax = fig.add_axes((0.0, 0.0, 0.78 if colour is not None else 1.0, 0.9), projection="3d")
+    writer = PillowWriter(fps=fps)
+    try:
+        writer.setup(fig, str(path), dpi=100)
+        if colour is not None:
+            cax = fig.add_axes((0.84, 0.15, 0.025, 0.6))
+            sm = plt.cm.ScalarMappable(norm=norm, cmap="coolwarm")
+            fig.colorbar(sm, cax=cax).set_label(_colour_label(axes_labels, colour_axis), fontsize=8)
+            cax.tick_params(labelsize=7)
+        for i in range(len(t)):
+            ax.cla()
+            draw_projection(ax, xyz[i], edges, limit=lim, axes_labels=axes_labels,
+                            colour=None if colour is None else colour[i], norm=norm)
+            fig.suptitle(f"{title}\nt = {t[i]:.3g}" if title else f"t = {t[i]:.3g}", fontsize=8)
+            writer.grab_frame()
+            if progress is not None:
+                progress()
+        writer.finish()  # writes the file
+    finally:
+        plt.close(fig)
+    return str(path)
 
-    def update(i):
-        ax.cla()
-        draw_projection(ax, projection[i], edges, limit=lim, axes_labels=axes_labels)
-        ax.set_title(f"{title}  t = {t[i]:.3g}", fontsize=9)
 
-    anim = FuncAnimation(fig, update, frames=len(t))
-    anim.save(path, writer=PillowWriter(fps=fps))
-    plt.close(fig)
-    return path
+def save_motion_comparison(path, t: np.ndarray, exact: np.ndarray, runs: Mapping[str, np.ndarray], *,
+                           components: Sequence[int], labels: Sequence[str], scale: float, title: str = "",
+                           marked: str | None = None, format: str | None = "png") -> str:
+    r"""Closed form against numerical runs: chosen components and the relative error of each run.
+
+    Top: ``exact[:, k]`` for ``k`` in ``components`` (lines) with the run
+    ``marked`` as dots. Bottom: the relative error
+    :math:`\max_{ij} |\omega_{ij}(t) - \omega^\text{exact}_{ij}(t)| / \text{scale}`
+    of every run (``scale`` is :math:`\lVert\omega_0\rVert_\infty`, the same
+    normalisation as the printed "max relative error"). Legends sit outside the
+    data, to the right of each panel.
+    """
+    plt = _pyplot()
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(10, 6.5), sharex=True, height_ratios=(3, 1.6))
+    step = max(1, len(t) // 50)
+    for k, label in zip(components, labels):
+        line, = ax1.plot(t, exact[:, k], lw=1.2, label=f"{label} closed form")
+        if marked is not None:
+            ax1.plot(t[::step], runs[marked][::step, k], "o", ms=3, color=line.get_color())
+    if marked is not None:
+        ax1.plot([], [], "o", ms=3, color="0.4", label=f"dots: {marked}")
+    ax1.set_ylabel("angular velocity $\\omega_{ij}$")
+    if title:
+        ax1.set_title(title, fontsize=10)
+    ax1.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    floor = np.finfo(float).eps / 10
+    for name, omega in runs.items():
+        err = np.max(np.abs(omega - exact), axis=-1) / scale
+        ax2.semilogy(t[1:], np.maximum(err[1:], floor), lw=1, label=name)
+    ax2.set_xlabel("t")
+    ax2.set_ylabel("relative error\n$\\max_{ij}|\\omega - \\omega_{exact}|\\,/\\,\\max|\\omega_0|$", fontsize=8)
+    ax2.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    ax2.grid(True, which="major", alpha=0.3)
+    fig.tight_layout()
+    try:
+        fig.savefig(path, dpi=110, format=format)
+    finally:
+        plt.close(fig)
+    return str(path)
