@@ -139,6 +139,82 @@ register(
 
 
 # --- quantum -----------------------------------------------------------------
+register(
+    "quantum_hermiticity_rtol", 1e-12,
+    "Hermiticity check of hyperrotor.quantum (evolve, spectrum: H = H^dagger; from_qobj, "
+    "rotor_hamiltonian: X^dagger = -X), relative to max|H|: max|H - H^dagger| must not exceed it. "
+    "A Hamiltonian assembled from N(N-1)/2 sparse products has round-off ~1e-15 relative; 1e-12 "
+    "leaves a factor ~1000 for large sums while any genuinely non-Hermitian input is O(1) off.",
+)
+register(
+    "quantum_bracket_rtol", 1e-10,
+    "Bracket check of Representation.from_qobj / check_brackets: max|[X_a, X_b] - sum_c C_ab^c X_c| "
+    "relative to (max_a max|X_a|)^2. A product of two sparse matrices with entries up to m carries "
+    "round-off ~ (nonzeros per row) * eps * m^2, far below 1e-10 m^2; a wrong basis, sign or form "
+    "misses by O(m^2).",
+)
+register(
+    "quantum_psi0_norm_rtol", 1e-10,
+    "hyperrotor.quantum.evolve: an initial state whose norm differs from 1 by more than this is "
+    "normalized with a UserWarning (smaller deviations are round-off of a normalized state and are "
+    "normalized silently). 1e-10 is far above the round-off of building a state (~dim * eps) "
+    "and far below any deliberate unnormalized input.",
+)
+register(
+    "quantum_krylov_atol", 1e-12,
+    "Default 'atol' of the Krylov (Lanczos) propagator of evolve: a-posteriori error bound, in the "
+    "2-norm of the state, allowed per restart (Saad 1992). 1e-12 keeps the total error of typical "
+    "runs (tens of restarts) near 1e-11, below QuTiP's tightest practical tolerances, at a cost "
+    "only ~20% above 1e-8 (benchmarks/quantum_evolution.py).",
+)
+register(
+    "quantum_krylov_dim", 30,
+    "Default 'krylov_dim' of the Krylov propagator: largest Krylov space per restart. 30 vectors "
+    "cover a time step of ~20/||H|| per restart at 1e-12; larger spaces cost memory (dim x m) and "
+    "re-orthogonalization time (m^2 dim) for little gain.",
+)
+register(
+    "quantum_max_dense_dim", 6000,
+    "Largest invariant block of a Hamiltonian that hyperrotor.quantum diagonalizes densely (spectrum, "
+    "evolve method 'eigen'); larger blocks are refused with a message. A dense eigh of dimension 6000 "
+    "needs ~0.6 GB and ~1 min on one core; the one home of this limit.",
+)
+register(
+    "quantum_eigen_max_block", 400,
+    "evolve method 'auto': blocks up to this dimension are propagated by dense diagonalization, larger "
+    "ones by Krylov (measured crossover on this machine, benchmarks/quantum_evolution.py: eigh of 400 "
+    "costs about what Krylov needs for 51 output times).",
+)
+register(
+    "quantum_block_rtol", 1e-14,
+    "symmetry_blocks / evolve blocks: entries with |H_kl| <= this * max|H| count as zero when the "
+    "invariant blocks (connected components of the sparsity graph) are found. They remove round-off "
+    "couplings (~1e-16 relative) such as those of C_2/(2I) in a non-diagonal basis, while any "
+    "physical coupling is many orders larger.",
+)
+register(
+    "quantum_level_rtol", 1e-9,
+    "hyperrotor.quantum.spectrum: eigenvalues closer than this * max(1, max|E|) are one degenerate "
+    "level. Far above the round-off of eigh (~1e-15 * dim * max|E|) and below any physical "
+    "splitting of interest; pass atol= to spectrum for another choice.",
+)
+register(
+    "quantum_harmonic_drop", 1e-13,
+    "harmonic_rep: generator entries below this * max(1, max|X|) are round-off of exact zeros and "
+    "are dropped (symmetrically, the matrices stay exactly antisymmetric). Exact nonzero entries are "
+    "sqrt(n_a/n_b) q with small rationals q, of order 1e-2 and more for every degree in reach.",
+)
+register(
+    "quantum_real_form_drop", 1e-13,
+    "real_form: entries of the real generators below this * max(1, max|Y|) are round-off of exact "
+    "zeros and are dropped (symmetrically; antisymmetry is exact). The change of basis is unitary, so "
+    "the round-off is ~dim * eps * max|Y|, below 1e-13 up to dimensions ~500 where real_form is meant.",
+)
+register(
+    "quantum_real_form_rtol", 1e-10,
+    "real_form: internal consistency check, the imaginary part left in the real generators relative "
+    "to max(1, max|Y|) must not exceed it (it is round-off, ~dim * eps, when the construction works).",
+)
 
 # --- command line ------------------------------------------------------------
 register(

@@ -36,7 +36,13 @@ __all__ = [
     "plane",
     "moments",
     "axis_signs",
+    "form",
+    "form_hbar",
+    "old_keywords",
 ]
+
+#: The allowed values of every ``form=`` keyword (Hermitian vs anti-Hermitian generators, docs/conventions.md).
+FORMS = ("antihermitian", "hermitian")
 
 #: The allowed values of every ``convention=`` keyword for matrices (see :mod:`hyperrotor.conventions`).
 CONVENTIONS = ("paper", "standard")
@@ -174,6 +180,46 @@ def choice(name: str, value: Any, allowed: Sequence[str], *, case_insensitive: b
 def convention(value: Any) -> str:
     """A matrix sign convention, one of :data:`CONVENTIONS` (``"paper"`` or ``"standard"``)."""
     return choice("convention", value, CONVENTIONS)
+
+
+def form(value: Any) -> str:
+    """Which generators: ``"antihermitian"`` (real antisymmetric X, eq. 142) or
+    ``"hermitian"`` (-i hbar X, eq. 141), one of :data:`FORMS`."""
+    return choice("form", value, FORMS)
+
+
+def form_hbar(form_value: Any, hbar_value: Any) -> tuple[str, Any]:
+    """Check ``form=`` and the ``hbar=`` that goes with it; returns ``(form, hbar)``.
+
+    ``hbar`` only applies to ``form="hermitian"`` (``None`` there means 1.0).
+    Given with ``form="antihermitian"`` it is refused: passing ``hbar`` alone
+    used to select the Hermitian operators, and ignoring it would silently
+    return the other form. ``hbar`` itself is returned unchanged (it may be
+    symbolic); numeric callers check it with :func:`hbar`.
+    """
+    f = form(form_value)
+    if f == "antihermitian":
+        if hbar_value is not None:
+            raise TypeError(
+                f'hbar={fmt(hbar_value)} applies to form="hermitian" only (-i hbar X); '
+                f'pass form="hermitian" for the Hermitian generators (docs/conventions.md)'
+            )
+        return f, None
+    return f, (1.0 if hbar_value is None else hbar_value)
+
+
+def old_keywords(where: str, given: dict, renamed: dict) -> None:
+    """Refuse keywords a function no longer takes, naming their new spelling.
+
+    ``given`` are the extra keyword arguments a function collected (``**old``);
+    ``renamed`` maps each old spelling to the text of its replacement. Raises
+    ``TypeError`` for the first old keyword (naming the new one), or for an
+    unknown keyword (as Python would).
+    """
+    for key in given:
+        if key in renamed:
+            raise TypeError(f"{where}() no longer takes {key}=; use {renamed[key]} (docs/conventions.md)")
+        raise TypeError(f"{where}() got an unexpected keyword argument {key!r}")
 
 
 # ----------------------------------------------------------------------------

@@ -44,7 +44,7 @@ def _reps():
 
 def _dense(rep, hbar):
     """Hermitian (space-frame) generators -i hbar X_a as dense arrays, plane order."""
-    return [rep.hermitian(p, hbar).toarray() for p in planes(rep.N)]
+    return [rep.generator(p, form="hermitian", hbar=hbar).toarray() for p in planes(rep.N)]
 
 
 # ----------------------------------------------------------------------------
@@ -192,7 +192,7 @@ def test_coherent_state_simple_bivector(make, hw, rng):
         ex = generator_expectations(rep, psi, hbar=hbar)
         np.testing.assert_allclose(sign * ex, hbar * l * L / 1.7, atol=1e-9)
         v = psi.full().ravel()
-        second = sum(np.vdot(v, (x @ (x @ v))).real for x in (rep.hermitian(p, hbar) for p in planes(N)))
+        second = sum(np.vdot(v, (x @ (x @ v))).real for x in (rep.generator(p, form="hermitian", hbar=hbar) for p in planes(N)))
         rho = [N / 2 - k for k in range(1, N // 2 + 1)]
         np.testing.assert_allclose(second - ex @ ex, hbar**2 * 2 * np.dot(hw, rho), atol=1e-9)
 
@@ -253,7 +253,7 @@ def _ehrenfest_errors(N, ls, moments, L0, times):
         hbar = 1.0 / l
         H = rotor_hamiltonian(rep, moments, hbar=hbar)
         psi = coherent_state(rep, L0, hbar=hbar, frame="body")
-        e_ops = [qutip.Qobj(-rep.hermitian(p, hbar)) for p in planes(N)]
+        e_ops = [qutip.Qobj(-rep.generator(p, form="hermitian", hbar=hbar)) for p in planes(N)]
         res = evolve(H, psi, times, e_ops=e_ops, hbar=hbar)
         q = np.array(res.expect).T.real
         rows.append((l, rep.dim, np.abs(q - ref).max(), np.abs(q - back).max()))

@@ -86,7 +86,7 @@ def test_brackets_casimir_dimension(reps, N, m):
     for p in rep.planes:
         X = rep.generator(p)
         assert abs(X + X.conj().T).max() <= scaled_tol(max(1.0, abs(X).max()), dim=row_length(X))
-        L = rep.hermitian(p, hbar=0.7)
+        L = rep.generator(p, form="hermitian", hbar=0.7)
         assert abs(L - L.conj().T).max() <= scaled_tol(max(1.0, abs(L).max()), dim=row_length(L))
         assert abs(L - (-0.7j) * X).max() == 0
 
@@ -117,7 +117,7 @@ def test_contraction_identity(reps, N, m):
 @pytest.mark.parametrize("N, m", [(5, (2, 1)), (6, (H, H, -H)), (7, (1, 1, 0)), (4, (1, 1))], ids=str)
 def test_ladder_operators(reps, N, m):
     rep = _rep(reps, N, m)
-    Hs = rep.cartan_generators(hermitian=True)
+    Hs = rep.cartan_generators(form="hermitian")
     for root, E in rep.ladder_operators().items():
         for k, Hk in enumerate(Hs):
             res = Hk @ E - E @ Hk - root[k] * E

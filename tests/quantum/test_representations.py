@@ -89,7 +89,7 @@ def test_hermiticity_reality_casimir_weights(make):
     for p in rep.planes:
         X = rep.generator(p, format="dense")
         assert np.abs(X + X.conj().T).max() <= scaled_tol(X)  # numerically built entries: round-off ~ eps |X|
-        L = rep.hermitian(p, hbar=2.0, format="dense")
+        L = rep.generator(p, form="hermitian", hbar=2.0, format="dense")
         assert np.abs(L - L.conj().T).max() <= scaled_tol(L)
         np.testing.assert_array_equal(L, -2.0j * X)
     if rep.highest_weight is not None:
@@ -228,21 +228,21 @@ def test_exact_generators_of_constructors():
 
 def test_to_qobj():
     rep = irrep(5, (1, 1))
-    q = rep.to_qobj((2, 3), hbar=0.5)
+    q = rep.to_qobj((2, 3), form="hermitian", hbar=0.5)
     assert isinstance(q, qutip.Qobj) and q.dims == [[10], [10]] and q.isherm
-    np.testing.assert_allclose(q.full(), rep.hermitian((2, 3), hbar=0.5, format="dense"), rtol=0, atol=0)
-    allq = rep.to_qobj()
+    np.testing.assert_allclose(q.full(), rep.generator((2, 3), form="hermitian", hbar=0.5, format="dense"), rtol=0, atol=0)
+    allq = rep.to_qobj(form="hermitian")
     assert list(allq) == list(planes(5))
     # Casimir from QuTiP operators: sum L^2 = c for hbar = 1
     cas = sum(L * L for L in allq.values())
     np.testing.assert_allclose(cas.full(), 6 * np.eye(10), atol=scaled_tol(len(allq) * 6.0, dim=10))
-    qa = rep.to_qobj((1, 2), hermitian=False)
+    qa = rep.to_qobj((1, 2), form="antihermitian")
     np.testing.assert_allclose(qa.full(), rep.generator((1, 2), format="dense"), atol=0)
 
 
 def test_cartan_and_ladders_vector():
     rep = vector_rep(5)
-    Hs = rep.cartan_generators(hermitian=True, format="dense")
+    Hs = rep.cartan_generators(form="hermitian", format="dense")
     assert len(Hs) == 2
     for root, E in rep.ladder_operators(format="dense").items():
         for k, Hk in enumerate(Hs):

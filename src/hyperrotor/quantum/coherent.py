@@ -34,8 +34,9 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 import scipy.sparse.linalg as spla
 
+from .. import _validate
 from ..conventions import n_planes, planes, to_matrix
-from .rotor import _krylov_propagator, _single_thread_blas
+from .evolve import _krylov_propagator, _single_thread_blas
 
 __all__ = [
     "generator_expectations",
@@ -53,21 +54,25 @@ def _vector(psi: Any, dim: int) -> np.ndarray:
     return vec.astype(complex)
 
 
-def generator_expectations(rep: Any, psi: Any, hbar: float = 1.0) -> np.ndarray:
+def generator_expectations(rep: Any, psi: Any, *args: Any, hbar: float = 1.0) -> np.ndarray:
     r"""Expectation values :math:`\langle\psi|\hat L_a|\psi\rangle/\langle\psi|\psi\rangle`, plane order.
 
     Parameters
     ----------
     rep : hyperrotor.quantum.Representation
     psi : qutip.Qobj (ket) or array_like of length ``rep.dim``
-    hbar : float, default 1
-        :math:`\hat L_a = -i\hbar\rho(E_a)` (eq. 141).
+    hbar : float, keyword-only, default 1
+        :math:`\hat L_a = -i\hbar\rho(E_a)` (eq. 141): the expectation values
+        are those of the Hermitian generators (``form="hermitian"``).
 
     Returns
     -------
     ndarray of shape ``(N(N-1)/2,)``, real. The body-frame values are the
-    negatives (see :mod:`hyperrotor.quantum.rotor`).
+    negatives (see :mod:`hyperrotor.quantum.hamiltonian`).
     """
+    if args:
+        raise TypeError("generator_expectations() takes hbar as a keyword only: generator_expectations(rep, psi, hbar=...)")
+    hbar = _validate.hbar(hbar)
     vec = _vector(psi, int(rep.dim))
     gens = rep.generators()
     nrm = np.vdot(vec, vec).real
@@ -197,7 +202,7 @@ def apply_rotation(rep: Any, Q: Any, psi: Any) -> np.ndarray:
 
     ``Q`` is factored into plane rotations :math:`\prod_k \exp(\theta_k E_{p_k})`
     (Givens) and each factor :math:`e^{\theta_k X_{p_k}}\psi` is applied by the
-    Lanczos propagator of :mod:`hyperrotor.quantum.rotor` (Krylov, tolerance
+    Lanczos propagator of :mod:`hyperrotor.quantum.evolve` (Krylov, tolerance
     1e-14; ``scipy.sparse.linalg.expm_multiply`` gives the same vectors but was
     ~10x slower here).
     """
@@ -226,7 +231,7 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1.0, frame: str = "space",
         An irreducible representation of so(N) (``.N``, ``.dim``, ``.generators()``).
     L : array_like, shape ``(N(N-1)/2,)``
         Classical angular momentum, components in plane order.
-    hbar : float, default 1
+    hbar : float, keyword-only, default 1
         Scale of the Hermitian generators :math:`\hat L_a = -i\hbar\rho(E_a)`.
     frame : {"space", "body"}
         ``"space"``: :math:`\langle\hat L_a\rangle = c\,L_a`; ``"body"``:
@@ -249,8 +254,8 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1.0, frame: str = "space",
         proportional to the highest weight of ``rep`` (e.g. a non-simple
         bivector in an irrep :math:`(l, 0, \dots)`).
     """
-    if frame not in ("space", "body"):
-        raise ValueError(f"frame must be 'space' or 'body', got {frame!r}")
+    _validate.hbar(hbar)
+    frame = _validate.choice("frame", frame, ("space", "body"))
     N = int(rep.N)
     comps = np.asarray(L, dtype=float).ravel()
     if comps.shape != (n_planes(N),):

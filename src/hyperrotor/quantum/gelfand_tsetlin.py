@@ -453,7 +453,7 @@ def irrep(
         :math:`[X_a, X_b] = \sum_c C_{ab}^{\;c} X_c`, with
         :math:`\sum_a X_a^2 = -\sum_i m_i (m_i + N - 2i)\,\mathbb 1`.
         The Hermitian angular momenta of eq. (141) are
-        ``rep.hermitian((i, j), hbar)`` :math:`= -i\hbar X_{(ij)}`.
+        ``rep.generator((i, j), form="hermitian", hbar=hbar)`` :math:`= -i\hbar X_{(ij)}`.
 
     Notes
     -----
@@ -472,7 +472,7 @@ def irrep(
     >>> irrep(5, dynkin=[0, 1]).dim     # the spinor, highest weight (1/2, 1/2)
     4
     """
-    from .representations import Representation, _check_format
+    from .representation import Representation, _check_format
 
     N = check_dimension(N)
     _check_format(format)

@@ -8,7 +8,8 @@ Two forms of the generators
 
   .. math:: L^{ij} = x_i\,\partial_j - x_j\,\partial_i, \qquad 1 \le i < j \le N,
 
-  returned by :func:`angular_momentum_operators` with ``hbar=None``. They obey
+  returned by :func:`angular_momentum_operators` with ``form="antihermitian"``
+  (the default). They obey
 
   .. math:: [L^{ij}, L^{kl}] = \delta_{jk} L^{il} - \delta_{ik} L^{jl}
             - \delta_{jl} L^{ik} + \delta_{il} L^{jk},
@@ -19,7 +20,8 @@ Two forms of the generators
   :math:`E_{(ij)} = e_i e_j^{\mathsf T} - e_j e_i^{\mathsf T}` under the Lie-algebra
   homomorphism :math:`M \mapsto -\sum_{ab} M_{ab}\, x_b\, \partial_a`.
 * **Hermitian (physics) form, eq. (141)**: :math:`\mathbb L^{ij} = -i\hbar\,L^{ij}`
-  (``hbar=`` argument or :meth:`DifferentialOperator.hermitian`), with
+  (``form="hermitian"`` with keyword-only ``hbar``, default 1, a number or a
+  SymPy symbol; or :meth:`DifferentialOperator.as_form`), with
 
   .. math:: [\mathbb L^{ij}, \mathbb L^{kl}] = i\hbar\,(\delta_{ik}\mathbb L^{jl}
             + \delta_{jl}\mathbb L^{ik} - \delta_{il}\mathbb L^{jk}
@@ -37,27 +39,22 @@ an exact operator identity.
 
 Where the printed paper differs (Section 5)
 -------------------------------------------
-* Eq. (141) prints the entries as :math:`\mathbb 1^{ij}`; they are the operators
-  :math:`\mathbb L^{ij}` of eq. (142), times :math:`-i\hbar`, with the checkerboard
-  signs of eq. (21). Eq. (143) reuses the symbol :math:`\mathbb L` for the matrix
-  *without* :math:`-i\hbar`; eqs. (145)-(147) hold for that real matrix.
-* Eq. (144) copies eq. (25) with three index typos (entries 12, 25, 45), see
-  :func:`operator_product`.
-* Eqs. (145)-(147), :math:`\mathbb L\Omega = -(N-2)\mathbb L` with
-  :math:`\Omega = \mathbb L^{\mathsf T}`, are not true for the ordinary matrix
-  product (its entries are second-order operators); they hold for the
-  antisymmetrized product :math:`(\mathbb L\Omega)_{ij} - (\mathbb L\Omega)_{ji}`.
-  With the eq. (144) product itself the sign is opposite (``+(N-2)``) for
-  :math:`\Omega = \mathbb L^{\mathsf T}` and ``-(N-2)`` for :math:`\Omega = \mathbb L`.
-  For the Hermitian matrix of eq. (141) the factor is :math:`i\hbar(N-2)`
-  (:func:`contraction_identity`).
-* Cross references in the text: "operator (144)" should be (141), "operators
-  ... from (146)" should be (143), "products in (147)" and "From Equation (147)"
-  should be (144), "Equation (148)" should be (145).
+The operator product of eq. (144) (with its three index typos) and the
+contraction identities of eqs. (145)-(147) are checked in
+:mod:`hyperrotor.paper.operator_products` (``operator_product``,
+``contraction_identity``): paper-specific material lives in
+:mod:`hyperrotor.paper`, not here.
+
+Symbols
+-------
+Operators act on the coordinate symbols *by name*: ``x1`` created with any
+assumptions (``sympy.symbols("x1:4")`` gives symbols without ``real=True``) is
+the coordinate ``x1``, and the result is written in the caller's symbols
+(:meth:`DifferentialOperator.apply`). Two different symbols with one
+coordinate's name in one expression are refused (``ValueError``).
 """
 from __future__ import annotations
 
-from collections import namedtuple
 from fractions import Fraction
 from functools import lru_cache
 from numbers import Integral, Number
@@ -66,8 +63,9 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
+from .. import _validate
 from ..conventions import check_convention, check_dimension, planes
-from .normal_form import WeylElement, _norm_scalar, _to_sympy_scalar, dict_to_polynomial, polynomial_to_dict
+from .normal_form import WeylElement, dict_to_polynomial, polynomial_to_dict
 
 __all__ = [
     "DifferentialOperator",
@@ -81,11 +79,22 @@ __all__ = [
     "casimir_operator",
     "textbook_so3",
     "operator_matrix",
-    "operator_product",
-    "contraction_identity",
-    "ContractionIdentity",
     "PAPER_COORDINATES",
 ]
+
+#: Old keyword spellings of the operator constructors and their replacement (TypeError naming it).
+_OLD = {"hermitian": 'form="hermitian" or form="antihermitian"'}
+#: Names moved to hyperrotor.paper.operator_products (served with a DeprecationWarning).
+_MOVED = ("operator_product", "contraction_identity", "ContractionIdentity")
+
+
+def __getattr__(name: str) -> Any:
+    """PEP 562: the eq. (144)-(147) material moved to :mod:`hyperrotor.paper.operator_products`."""
+    if name in _MOVED:  # old import path kept working; new code imports from hyperrotor.paper.operator_products
+        import importlib
+
+        return getattr(importlib.import_module("hyperrotor.paper.operator_products"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 #: The paper's Cartesian coordinate names in 5D (Section 5): x, y, z, w, v.
 PAPER_COORDINATES = ("x", "y", "z", "w", "v")
@@ -166,6 +175,31 @@ def _hbar(hbar: Any):
 # ----------------------------------------------------------------------------
 # the operator class
 # ----------------------------------------------------------------------------
+def _to_coordinates(expr: Any, coordinates: Sequence[sp.Symbol]) -> tuple[Any, dict]:
+    """Replace the symbols of ``expr`` named like a coordinate (but with other assumptions) by it.
+
+    Returns ``(expr in the coordinates, map back to the caller's symbols)``.
+    Raises ``ValueError`` if two different symbols of ``expr`` share a coordinate's name.
+    """
+    if not isinstance(expr, sp.Basic):
+        return expr, {}
+    by_name = {str(x): x for x in coordinates}
+    fwd: dict = {}
+    for s in expr.free_symbols:
+        c = by_name.get(str(s))
+        if c is None or s == c:
+            continue
+        if c in expr.free_symbols or any(o != s and str(o) == str(s) for o in fwd):
+            raise ValueError(
+                f"the expression holds two different symbols named {str(s)!r} (e.g. with different "
+                f"assumptions); the operator acts on the coordinate {str(s)!r}: use one of them"
+            )
+        fwd[s] = c
+    if not fwd:
+        return expr, {}
+    return expr.xreplace(fwd), {c: s for s, c in fwd.items()}
+
+
 def _is_scalar(c: Any) -> bool:
     if isinstance(c, bool):
         return False
@@ -194,8 +228,8 @@ class DifferentialOperator:
         Exact operator identity (equal normal forms).
     ``sympy.latex(A)``, ``A._repr_latex_()``
         LaTeX of the normal form.
-    :meth:`hermitian`
-        :math:`-i\hbar A` (eq. 141).
+    :meth:`as_form`
+        ``as_form("hermitian", hbar=...)`` is :math:`-i\hbar A` (eq. 141).
 
     Combining operators on different coordinates raises ``ValueError``.
     """
@@ -246,7 +280,8 @@ class DifferentialOperator:
         raise TypeError(f"cannot combine a DifferentialOperator with {other!r} of type {type(other).__name__}")
 
     def _check_scalar(self, c: Any) -> None:
-        if isinstance(c, sp.Basic) and c.has(*self.coordinates):
+        names = {str(x) for x in self.coordinates}
+        if isinstance(c, sp.Basic) and (c.has(*self.coordinates) or any(str(s) in names for s in c.free_symbols)):
             raise ValueError(
                 f"scalar {c} depends on the coordinates; use multiplication_operator(...) for a "
                 "position-dependent factor"
@@ -321,26 +356,41 @@ class DifferentialOperator:
         """``[self, other] = self*other - other*self`` as an operator."""
         return commutator(self, other)
 
-    def hermitian(self, hbar: Any = 1) -> "DifferentialOperator":
-        r"""The Hermitian form :math:`-i\hbar\,\cdot` ``self`` (eq. 141).
+    def as_form(self, form: str, *, hbar: Any = None) -> "DifferentialOperator":
+        r"""``self`` (``form="antihermitian"``) or :math:`-i\hbar\,\cdot` ``self`` (``form="hermitian"``, eq. 141).
 
-        ``hbar`` is a SymPy symbol/expression, a number, or a name (a positive
-        symbol of that name). For the anti-Hermitian :math:`L^{ij}` of eq. (142)
-        this is the physical angular momentum :math:`\mathbb L^{ij}`.
+        ``hbar`` (keyword-only, default 1, only with ``"hermitian"``) is a SymPy
+        symbol/expression, a number, or a name (a positive symbol of that name). For the
+        anti-Hermitian :math:`L^{ij}` of eq. (142) ``"hermitian"`` gives the
+        physical angular momentum :math:`\mathbb L^{ij}`.
         """
+        form, hbar = _validate.form_hbar(form, hbar)
+        if form == "antihermitian":
+            return self
         return self * (-sp.I * _hbar(hbar))
+
+    def hermitian(self, *args: Any, **kwargs: Any) -> "DifferentialOperator":
+        """Removed: use ``op.as_form("hermitian", hbar=...)`` (one keyword for the form)."""
+        raise TypeError('DifferentialOperator.hermitian(hbar) is now as_form("hermitian", hbar=...) (docs/conventions.md)')
 
     # ------------------------------------------------------------ action
     def apply(self, f: Any) -> sp.Expr:
         """Apply to a SymPy expression ``f`` (any function of the coordinates).
 
-        Raises ``TypeError`` for anything that is not a SymPy expression or a number.
+        Symbols of ``f`` named like a coordinate *are* that coordinate, whatever
+        their assumptions (``sympy.symbols("x1:4")`` works with the default
+        real coordinates ``x1, x2, x3``); the result is written in the symbols
+        of ``f``. Raises ``TypeError`` for anything that is not a SymPy
+        expression or a number, ``ValueError`` if ``f`` holds two different
+        symbols with one coordinate's name.
         """
         if isinstance(f, bool) or not isinstance(f, (sp.Expr, Integral, Fraction)):
             raise TypeError(
                 f"a DifferentialOperator applies to SymPy expressions, got {f!r} of type {type(f).__name__}"
             )
-        return self.element.apply(f, self.coordinates)
+        f, back = _to_coordinates(f, self.coordinates)
+        out = self.element.apply(f, self.coordinates)
+        return out.xreplace(back) if back else out
 
     def __call__(self, f: Any) -> sp.Expr:
         return self.apply(f)
@@ -363,8 +413,9 @@ class DifferentialOperator:
 
     @classmethod
     def from_polynomial(cls, expr: Any, coordinates: Sequence[sp.Symbol]) -> "DifferentialOperator":
-        """Multiplication by the polynomial ``expr`` (order 0)."""
+        """Multiplication by the polynomial ``expr`` (order 0); symbols named like a coordinate are that coordinate."""
         coords = tuple(coordinates)
+        expr, _ = _to_coordinates(expr, coords)
         return cls(WeylElement.multiplication(polynomial_to_dict(expr, coords), len(coords)), coords)
 
     def apply_to_polynomial(self, poly: Any):
@@ -376,8 +427,10 @@ class DifferentialOperator:
         """
         if isinstance(poly, Mapping):
             return self.element.apply_to_poly(poly)
+        poly, back = _to_coordinates(poly, self.coordinates)
         d = polynomial_to_dict(poly, self.coordinates)
-        return dict_to_polynomial(self.element.apply_to_poly(d), self.coordinates)
+        out = dict_to_polynomial(self.element.apply_to_poly(d), self.coordinates)
+        return out.xreplace(back) if back else out
 
     # ------------------------------------------------------------ printing
     def _sorted_groups(self):
@@ -450,31 +503,43 @@ def _plane_pair(plane: Any, N: int) -> tuple[int, int]:
     return i, j
 
 
-def angular_momentum_operator(plane: Any, N: int, hbar: Any = None, coordinates: Any = None) -> DifferentialOperator:
+def angular_momentum_operator(plane: Any, N: int, *, form: str = "antihermitian", hbar: Any = None,
+                              coordinates: Any = None, **old: Any) -> DifferentialOperator:
     r"""One generator :math:`L^{ij} = x_i\partial_j - x_j\partial_i` (eq. 142), or :math:`-i\hbar L^{ij}`.
 
     ``plane = (i, j)`` is 1-based; ``i > j`` is allowed and gives
     :math:`L^{ij} = -L^{ji}`. See :func:`angular_momentum_operators`.
+
+    Examples
+    --------
+    >>> x1, x2, x3 = sp.symbols("x1:4")        # no assumptions: still the coordinates
+    >>> angular_momentum_operator((1, 2), 3)(x1 * x2)
+    x1**2 - x2**2
     """
+    _validate.old_keywords("angular_momentum_operator", old, _OLD)
     N = check_dimension(N)
     coords = coordinate_symbols(N, coordinates)
     i, j = _plane_pair(plane, N)
     op = DifferentialOperator(WeylElement.rotation(N, i - 1, j - 1), coords)
-    return op if hbar is None else op.hermitian(hbar)
+    return op.as_form(form, hbar=hbar)
 
 
-def angular_momentum_operators(N: int, hbar: Any = None, coordinates: Any = None) -> dict:
+def angular_momentum_operators(N: int, *, form: str = "antihermitian", hbar: Any = None, coordinates: Any = None,
+                               **old: Any) -> dict:
     r"""The so(N) angular-momentum operators of eqs. (141)-(142), keyed by plane.
 
     Parameters
     ----------
     N : int
         Dimension, ``N >= 2``.
-    hbar : None, SymPy expression, number or str
-        ``None`` (default): the real, anti-Hermitian generators of eq. (142),
-        :math:`L^{ij} = x_i\,\partial/\partial x_j - x_j\,\partial/\partial x_i`.
-        Otherwise the Hermitian operators :math:`\mathbb L^{ij} = -i\hbar L^{ij}`
-        of eq. (141) (a string is turned into a positive symbol of that name).
+    form : {"antihermitian", "hermitian"}, keyword-only
+        ``"antihermitian"`` (default): the real generators of eq. (142),
+        :math:`L^{ij} = x_i\,\partial/\partial x_j - x_j\,\partial/\partial x_i`;
+        ``"hermitian"``: :math:`\mathbb L^{ij} = -i\hbar L^{ij}` of eq. (141).
+    hbar : SymPy expression, number or str, keyword-only, default 1
+        Only with ``form="hermitian"`` (given with the anti-Hermitian form it is
+        refused, since it used to select the Hermitian operators; a string is turned into a positive symbol
+        of that name).
     coordinates : None, "paper" or sequence of N symbols/names
         See :func:`coordinate_symbols`; ``"paper"`` gives x, y, z, w, v for N = 5.
 
@@ -498,12 +563,13 @@ def angular_momentum_operators(N: int, hbar: Any = None, coordinates: Any = None
     >>> L[(1, 2)](x**2 + y)
     -2*x*y + x
     """
+    _validate.old_keywords("angular_momentum_operators", old, _OLD)
     N = check_dimension(N)
     coords = coordinate_symbols(N, coordinates)
     out = {}
     for i, j in planes(N):
         op = DifferentialOperator(WeylElement.rotation(N, i - 1, j - 1), coords)
-        out[(i, j)] = op if hbar is None else op.hermitian(hbar)
+        out[(i, j)] = op.as_form(form, hbar=hbar)
     return out
 
 
@@ -544,20 +610,22 @@ def multiplication_operator(poly: Any, N: int, coordinates: Any = None) -> Diffe
     return DifferentialOperator.from_polynomial(poly, coords)
 
 
-def casimir_operator(N: int, hbar: Any = None, coordinates: Any = None) -> DifferentialOperator:
+def casimir_operator(N: int, *, form: str = "antihermitian", hbar: Any = None, coordinates: Any = None,
+                     **old: Any) -> DifferentialOperator:
     r"""The quadratic Casimir :math:`C_2 = \sum_{i<j} (L^{ij})^2`.
 
-    With ``hbar=None`` (anti-Hermitian generators) the exact operator identity
+    With ``form="antihermitian"`` (default) the exact operator identity
 
     .. math:: C_2 = r^2\,\Delta - E\,(E + N - 2), \qquad r^2 = \sum_i x_i^2,
               \quad E = \sum_i x_i\partial_i
 
     holds, so on a harmonic homogeneous polynomial of degree ``l``
-    :math:`C_2 = -l(l+N-2)`. With ``hbar`` given it is
+    :math:`C_2 = -l(l+N-2)`. With ``form="hermitian"`` it is
     :math:`\sum (\mathbb L^{ij})^2 = -\hbar^2 C_2`, with eigenvalue
     :math:`\hbar^2 l(l+N-2)`.
     """
-    ops = angular_momentum_operators(N, hbar=hbar, coordinates=coordinates)
+    _validate.old_keywords("casimir_operator", old, _OLD)
+    ops = angular_momentum_operators(N, form=form, hbar=hbar, coordinates=coordinates)
     it = iter(ops.values())
     first = next(it)
     total = first * first
@@ -566,7 +634,7 @@ def casimir_operator(N: int, hbar: Any = None, coordinates: Any = None) -> Diffe
     return total
 
 
-def textbook_so3(hbar: Any = 1, coordinates: Any = None) -> tuple:
+def textbook_so3(*, hbar: Any = None, coordinates: Any = None) -> tuple:
     r"""The textbook 3D components ``(Lx, Ly, Lz)`` (Hermitian).
 
     :math:`L_x = \mathbb L^{23}`, :math:`L_y = \mathbb L^{31} = -\mathbb L^{13}`,
@@ -574,7 +642,7 @@ def textbook_so3(hbar: Any = 1, coordinates: Any = None) -> tuple:
     e.g. :math:`L_z = -i\hbar(x\partial_y - y\partial_x)`, and
     :math:`[L_x, L_y] = i\hbar L_z` (cyclic).
     """
-    L = angular_momentum_operators(3, hbar=hbar, coordinates=coordinates)
+    L = angular_momentum_operators(3, form="hermitian", hbar=hbar, coordinates=coordinates)
     return L[(2, 3)], -L[(1, 3)], L[(1, 2)]
 
 
@@ -585,22 +653,24 @@ def _zero_like(op: DifferentialOperator) -> DifferentialOperator:
     return op._wrap(WeylElement(op.N, {}))
 
 
-def operator_matrix(N: int, convention: str = "paper", hbar: Any = None, coordinates: Any = None) -> np.ndarray:
-    r"""The antisymmetric ``N x N`` matrix of operators of eq. (143) (``hbar=None``) or eq. (141).
+def operator_matrix(N: int, convention: str = "paper", *, form: str = "antihermitian", hbar: Any = None,
+                    coordinates: Any = None, **old: Any) -> np.ndarray:
+    r"""The antisymmetric ``N x N`` matrix of operators of eq. (143) (``form="antihermitian"``) or eq. (141).
 
     Entry ``(i, j)`` (1-based, ``i < j``) is :math:`(-1)^{i+j} L^{ij}` for
     ``convention="paper"`` (the checkerboard of eqs. 21, 141, 143) and
     :math:`L^{ij}` for ``"standard"``; entry ``(j, i)`` is its negative and the
-    diagonal is the zero operator. With ``hbar`` the entries are the Hermitian
-    :math:`-i\hbar L^{ij}` (eq. 141).
+    diagonal is the zero operator. With ``form="hermitian"`` the entries are the
+    Hermitian :math:`-i\hbar L^{ij}` (eq. 141).
 
     Returns
     -------
     numpy.ndarray of dtype object, shape ``(N, N)`` (0-based indexing), entries
     :class:`DifferentialOperator`.
     """
+    _validate.old_keywords("operator_matrix", old, _OLD)
     check_convention(convention)
-    L = angular_momentum_operators(N, hbar=hbar, coordinates=coordinates)
+    L = angular_momentum_operators(N, form=form, hbar=hbar, coordinates=coordinates)
     N = check_dimension(N)
     M = np.empty((N, N), dtype=object)
     zero = _zero_like(next(iter(L.values())))
@@ -611,155 +681,3 @@ def operator_matrix(N: int, convention: str = "paper", hbar: Any = None, coordin
         M[i - 1, j - 1] = op if s == 1 else -op
         M[j - 1, i - 1] = -op if s == 1 else op
     return M
-
-
-def _check_operator_matrix(A: Any, name: str) -> np.ndarray:
-    A = np.asarray(A, dtype=object)
-    if A.ndim != 2 or A.shape[0] != A.shape[1] or A.shape[0] < 2:
-        raise ValueError(f"{name} must be a square N x N matrix of operators, got shape {A.shape}")
-    for v in A.flat:
-        if not isinstance(v, DifferentialOperator):
-            raise TypeError(f"{name} must contain DifferentialOperators, found {type(v).__name__}")
-    return A
-
-
-_FORMS = ("eq144", "antisymmetrized")
-
-
-def operator_product(A: Any, B: Any, form: str = "eq144") -> np.ndarray:
-    r"""The product of two operator matrices of eq. (144) (corrected), or its antisymmetrized variant.
-
-    Parameters
-    ----------
-    A, B : N x N object arrays of :class:`DifferentialOperator` (e.g. :func:`operator_matrix`).
-    form : {"eq144", "antisymmetrized"}
-        ``"eq144"`` (default): the operator version of eq. (25), entry by entry
-
-        .. math:: P_{ij} = \sum_k \bigl(A_{kj}\circ B_{ik} - A_{ik}\circ B_{kj}\bigr),
-
-        the ``A`` factor always written (and composed) on the **left**, as in the
-        printed eq. (144). For commuting entries this is :math:`(BA - AB)_{ij}`,
-        the :math:`\omega L - L\omega` of eq. (24) with :math:`L \to A`,
-        :math:`\omega \to B`.
-
-        ``"antisymmetrized"``: :math:`Q_{ij} = (AB)_{ij} - (AB)_{ji}
-        = \sum_k \bigl(A_{ik}\circ B_{kj} - A_{jk}\circ B_{ki}\bigr)` (ordinary
-        matrix product, ``A`` entries composed on the left, minus its
-        transpose). For antisymmetric ``A``, ``B`` one has exactly ``Q = -P``.
-
-    Returns
-    -------
-    numpy.ndarray (object) of second-order operators (first order when the
-    second-order parts cancel, as in :func:`contraction_identity`).
-
-    Notes
-    -----
-    Printed eq. (144) is eq. (25) with :math:`L \to \mathbb L`, :math:`\omega \to \Omega`
-    and copies its typos. Its reversed labels (:math:`\Omega^{31}`, :math:`\Omega^{21}`,
-    :math:`\mathbb L^{31}`) must be read as the *same* components as
-    :math:`\Omega^{13}`, :math:`\Omega^{12}`, :math:`\mathbb L^{13}` (not their
-    negatives; eq. (28) fixes this sign). With that reading seven of the ten
-    entries are right and three carry index typos:
-
-    * :math:`\mathbb L\Omega^{12}`: printed :math:`\mathbb L^{24}\Omega^{34} + \mathbb L^{25}\Omega^{35}`,
-      correct :math:`\mathbb L^{24}\Omega^{14} + \mathbb L^{25}\Omega^{15}`, i.e.
-
-      .. math:: -\mathbb L^{13}\Omega^{23} - \mathbb L^{14}\Omega^{24} - \mathbb L^{15}\Omega^{25}
-                + \mathbb L^{23}\Omega^{13} + \mathbb L^{24}\Omega^{14} + \mathbb L^{25}\Omega^{15};
-
-    * :math:`\mathbb L\Omega^{25}`: printed :math:`+\mathbb L^{35}\Omega^{21}`, correct
-      :math:`+\mathbb L^{15}\Omega^{12}`;
-    * :math:`\mathbb L\Omega^{45}`: printed :math:`-\mathbb L^{13}\Omega^{15}`, correct
-      :math:`-\mathbb L^{14}\Omega^{15}`.
-
-    The same three typos are in eq. (25). For operators the order of the
-    factors matters; the printed order (``A`` left) is kept here, see
-    :func:`contraction_identity` for what it implies for eqs. (145)-(147).
-    """
-    if form not in _FORMS:
-        raise ValueError(f"unknown form {form!r}; allowed: {', '.join(map(repr, _FORMS))}")
-    A = _check_operator_matrix(A, "A")
-    B = _check_operator_matrix(B, "B")
-    if A.shape != B.shape:
-        raise ValueError(f"A and B have different shapes {A.shape} and {B.shape}")
-    A[0, 0]._same_space(B[0, 0])
-    N = A.shape[0]
-    out = np.empty((N, N), dtype=object)
-    for i in range(N):
-        for j in range(N):
-            acc = A[0, 0]._wrap(WeylElement(A[0, 0].N, {}))
-            for k in range(N):
-                if form == "eq144":
-                    acc = acc + A[k, j] * B[i, k] - A[i, k] * B[k, j]
-                else:
-                    acc = acc + A[i, k] * B[k, j] - A[j, k] * B[k, i]
-            out[i, j] = acc
-    return out
-
-
-ContractionIdentity = namedtuple("ContractionIdentity", ["factor", "holds", "product", "matrix", "definition"])
-ContractionIdentity.__doc__ = """Result of :func:`contraction_identity`.
-
-factor : sympy.Rational, the ``c`` with ``product == c * matrix`` (entrywise, exact)
-holds : bool, whether every entry satisfies it exactly
-product : the operator matrix computed from the definition
-matrix : the operator matrix of eq. (143)
-definition : str, the definition used
-"""
-
-
-def contraction_identity(N: int, convention: str = "paper", form: str = "antisymmetrized",
-                         transpose: bool = True, coordinates: Any = None) -> ContractionIdentity:
-    r"""Compute and verify the contraction identities of eqs. (145)-(147) for any N.
-
-    With :math:`\mathbb L` the operator matrix of eq. (143) and
-    :math:`\Omega = \mathbb L^{\mathsf T}`, the **antisymmetrized** product
-
-    .. math:: (\mathbb L\,\Omega)_{ij} - (\mathbb L\,\Omega)_{ji}
-              = \sum_k \bigl(\mathbb L_{ik}\circ\Omega_{kj} - \mathbb L_{jk}\circ\Omega_{ki}\bigr)
-              = \sum_k [\mathbb L_{ik}, \mathbb L_{jk}] = -(N-2)\,\mathbb L_{ij}
-
-    (matrix entries, :math:`\mathbb L` factor composed on the left, the second
-    factor transposed, summed over the middle index ``k``): ``-L`` in 3D
-    (eq. 147), ``-2L`` in 4D (eq. 146), ``-3L`` in 5D (eq. 145). The second-order
-    parts cancel, which is the paper's "shortening of the second-order powers".
-    Proof: for ``k != i, j``, :math:`[L^{ik}, L^{kj}] = L^{ij}` (commutation
-    relations), so :math:`\sum_k [L^{ik}, L^{kj}] = (N-2) L^{ij}`; the checkerboard
-    signs factor out as :math:`(-1)^{i+j}` (they are a conjugation), so the
-    identity holds in both conventions.
-
-    With the eq. (144)/(25) pattern (``form="eq144"``, :func:`operator_product`,
-    ``A`` composed on the left) the same contraction gives ``+(N-2) L`` for
-    :math:`\Omega = \mathbb L^{\mathsf T}` and ``-(N-2) L`` for
-    :math:`\Omega = \mathbb L` (``transpose=False``).
-
-    Relation to :math:`\mathbf L\times\mathbf L = i\hbar\mathbf L`: for the Hermitian
-    :math:`-i\hbar L^{ij}` (eq. 141) the same contraction gives
-    :math:`\sum_k[\mathbb L_{ik}, \mathbb L_{jk}] = i\hbar(N-2)\,\mathbb L_{ij}`; in 3D
-    with :math:`L_x = \mathbb L^{23}`, :math:`L_y = \mathbb L^{31}`, :math:`L_z = \mathbb L^{12}`
-    the (1,2) entry reads :math:`[L_x, L_y] = i\hbar L_z`, i.e. the z component of
-    :math:`\mathbf L\times\mathbf L = \tfrac12\epsilon_{zab}[L_a, L_b] = i\hbar L_z`.
-    Eqs. (145)-(147) hold for the real operators of eq. (142)/(143), not for the
-    :math:`-i\hbar`-scaled matrix of eq. (141) (there the factor is :math:`i\hbar(N-2)`).
-
-    Returns
-    -------
-    ContractionIdentity
-        ``factor`` is computed (not assumed) from the (1, 2) entries; ``holds``
-        says whether ``product == factor * matrix`` exactly in every entry.
-    """
-    M = operator_matrix(N, convention=convention, coordinates=coordinates)
-    Om = M.T.copy() if transpose else M.copy()
-    P = operator_product(M, Om, form=form)
-    # factor from entry (0, 1): compare the coefficient of one term
-    ref = M[0, 1].element.terms
-    key, cref = next(iter(ref.items()))
-    got = P[0, 1].element.terms.get(key, 0)
-    factor = sp.Rational(_to_sympy_scalar(Fraction(got) / Fraction(cref))) if not isinstance(got, sp.Basic) else got / cref
-    holds = all(P[i, j] == M[i, j] * factor for i in range(M.shape[0]) for j in range(M.shape[0]))
-    tname = "L^T" if transpose else "L"
-    if form == "antisymmetrized":
-        definition = f"(L Omega)_ij - (L Omega)_ji = sum_k (L_ik o Omega_kj - L_jk o Omega_ki), Omega = {tname}"
-    else:
-        definition = f"sum_k (L_kj o Omega_ik - L_ik o Omega_kj)  [eq. 144 pattern], Omega = {tname}"
-    return ContractionIdentity(factor, bool(holds), P, M, definition)

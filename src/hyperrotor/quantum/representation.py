@@ -1,0 +1,512 @@
+r"""Finite-dimensional matrix representations of so(N).
+
+Conventions (the contract of every :class:`Representation`)
+-----------------------------------------------------------
+A representation assigns to each plane ``(i, j)``, ``i < j``, a matrix
+:math:`X_{(ij)}` (anti-Hermitian; real antisymmetric when the basis allows)
+with the brackets of the plane basis :math:`E_{(ij)} = e_i e_j^{\mathsf T} - e_j e_i^{\mathsf T}`
+of :mod:`hyperrotor.conventions`:
+
+.. math:: [X_a, X_b] = \sum_c C_{ab}^{\;c} X_c, \qquad C = \texttt{structure\_constants(N)}.
+
+``vector_rep(N).generator((i, j))`` *is* :math:`E_{(ij)}`. The differential
+operators :math:`\mathbb L^{ij} = x_i\partial_j - x_j\partial_i` of eq. (142)
+obey the same brackets (they are the vector fields of :math:`-E_{(ij)}`, and
+vector fields of linear maps form an anti-homomorphism), so
+:func:`harmonic_rep` represents them directly. The Hermitian angular momenta
+of eq. (141) are :math:`L^{ij} = -i\hbar X_{(ij)}`: every method returning
+generators takes ``form="antihermitian"`` (default, :math:`X_{(ij)}`) or
+``form="hermitian"`` (:math:`-i\hbar X_{(ij)}`, keyword-only ``hbar``, default 1),
+the package's one spelling (docs/conventions.md).
+
+QuTiP both ways: :meth:`Representation.to_qobj` gives ``qutip.Qobj`` operators,
+:meth:`Representation.from_qobj` builds a representation from ``{plane: Qobj}``
+(or sparse/dense matrices), checking anti-Hermiticity and the brackets.
+
+Consequences checked in the tests for every representation:
+
+* quadratic Casimir :math:`\sum_{i<j} X_{(ij)}^2 = -c\,\mathbb 1` on an irrep of
+  highest weight :math:`m` with :math:`c = \sum_i m_i (m_i + N - 2i)`
+  (:func:`.weights.casimir_eigenvalue`), i.e. :math:`\sum (L^{ij})^2 = \hbar^2 c`;
+* contraction identity :math:`\sum_{k \ne i,j} [X_{(ik)}, X_{(kj)}] = (N-2)\,X_{(ij)}`
+  (with :math:`X_{(ba)} = -X_{(ab)}`), from :math:`[E_{ik}, E_{kj}] = E_{ij}` for
+  distinct :math:`i, j, k`; equivalently
+  :math:`\sum_k (X_{(ik)} X_{(jk)} - X_{(jk)} X_{(ik)}) = -(N-2)\,X_{(ij)}`, which
+  is the paper's "contraction" :math:`\mathbb L\Omega = -3\mathbb L, -2\mathbb L, -\mathbb L`
+  for :math:`\Omega = \mathbb L^{\mathsf T}` in 5D, 4D, 3D (eqs. 145-147),
+  valid for the anti-Hermitian operators of eq. (142) and in every
+  representation. For the Hermitian operators of eq. (141),
+  :math:`L^{ij} = -i\hbar X_{(ij)}`, the factor becomes
+  :math:`\sum_k (L^{ik}L^{jk} - L^{jk}L^{ik}) = +i\hbar(N-2)\,L^{ij}`
+  (the paper's form does not carry over to eq. 141 unchanged).
+
+Cartan subalgebra and weights
+-----------------------------
+Cartan generators :math:`X_{(12)}, X_{(34)}, \dots`; weights are eigenvalues of
+:math:`H_k = -i X_{(2k-1,2k)}` (orthogonal basis, :mod:`.weights`). Root
+vectors of the Cartan-Weyl basis: for the root :math:`\alpha = s e_k + t e_l`
+put :math:`u = f_k^{s}`, :math:`v = f_l^{t}` with
+:math:`f_k^{\pm} = e_{2k-1} \pm i e_{2k}` (and :math:`v = e_N` for the short
+roots :math:`\pm e_k` of odd N); then
+:math:`E_\alpha = \sum_{a<b} (u_a v_b - u_b v_a) X_{(ab)}` satisfies
+:math:`[H_k, E_\alpha] = \alpha_k E_\alpha` (:meth:`Representation.ladder`).
+"""
+from __future__ import annotations
+from fractions import Fraction
+from typing import Any, Callable, Mapping, Sequence
+
+import numpy as np
+import scipy.sparse as sps
+
+from .. import _lazy, _validate
+from .._options import options
+from ..conventions import check_dimension, plane_index, planes, structure_constants
+from .weights import casimir_eigenvalue, check_highest_weight, positive_roots
+
+__all__ = ["Representation", "as_csr", "check_antihermitian"]
+
+_FORMATS = ("csr", "dense")
+
+#: Old keyword spellings of the generator methods and their replacement (TypeError naming it).
+_OLD = {
+    "hermitian": 'form="hermitian" or form="antihermitian"',
+}
+
+
+def _check_format(format: str) -> str:
+    if format is None:
+        return "csr"
+    if format not in _FORMATS:
+        raise ValueError(f"unknown format {format!r}; allowed: 'csr' (scipy.sparse CSR) or 'dense' (numpy array)")
+    return format
+
+
+def _as_format(M, format: str):
+    if format == "dense":
+        return M.toarray()
+    return M.tocsr() if not sps.isspmatrix_csr(M) else M
+
+
+def as_csr(M: Any, name: str = "operator") -> sps.csr_matrix:
+    """A square operator given as ``qutip.Qobj``, scipy.sparse matrix or 2-D array, as CSR.
+
+    The package's one converter of user operators (QuTiP is recognised by duck
+    typing, so no QuTiP import is needed for sparse or dense input). Integer
+    matrices become float; complex ones with zero imaginary part become real.
+    """
+    if hasattr(M, "isoper") and hasattr(M, "to") and hasattr(M, "dims"):  # qutip.Qobj
+        if not M.isoper:
+            raise ValueError(f"{name} must be an operator, got a Qobj of type {M.type!r}")
+        mat = M.to("CSR").data.as_scipy().tocsr()
+    elif sps.issparse(M):
+        mat = sps.csr_matrix(M)
+    elif isinstance(M, np.ndarray):
+        arr = np.asarray(M)
+        if arr.ndim != 2:
+            raise ValueError(f"{name} must be a 2-D matrix, got an array of shape {arr.shape}")
+        if arr.dtype.kind not in "biufc":
+            raise TypeError(f"{name} must be numeric, got dtype {arr.dtype}")
+        mat = sps.csr_matrix(arr)
+    else:
+        raise TypeError(f"{name} must be a qutip.Qobj, a scipy.sparse matrix or a 2-D ndarray, got {type(M).__name__}")
+    if mat.shape[0] != mat.shape[1]:
+        raise ValueError(f"{name} must be square, got shape {mat.shape}")
+    if mat.dtype.kind not in "fc":
+        mat = mat.astype(float)
+    return _real_if_possible(mat)
+
+
+def _real_if_possible(mat: sps.csr_matrix) -> sps.csr_matrix:
+    if mat.dtype.kind == "c" and (mat.nnz == 0 or not np.any(mat.data.imag)):
+        return sps.csr_matrix(mat.real)
+    return mat
+
+
+def _max_abs(M: sps.spmatrix) -> float:
+    return float(abs(M).max()) if M.nnz else 0.0
+
+
+def check_antihermitian(generators: Mapping, *, form: str = "antihermitian") -> None:
+    r"""Raise ``ValueError`` unless every :math:`X` of ``{plane: X}`` satisfies :math:`X^\dagger = -X`.
+
+    Tolerance: ``options["quantum_hermiticity_rtol"]`` times :math:`\max|X|`.
+    When a generator is Hermitian instead, the message says to pass
+    ``form="hermitian"`` (``form`` names what the caller declared).
+    """
+    rtol = options["quantum_hermiticity_rtol"]
+    for p, X in generators.items():
+        X = sps.csr_matrix(X)
+        scale = max(1.0, _max_abs(X))
+        anti = _max_abs(X + X.conj().T)
+        if anti > rtol * scale:
+            herm = _max_abs(X - X.conj().T) <= rtol * scale
+            hint = (
+                f'; it is Hermitian: the operators look like L = -i hbar X, pass form="hermitian"'
+                if herm and form == "antihermitian" else ""
+            )
+            raise ValueError(
+                f"generator of plane {p} is not anti-Hermitian: max |X + X^dagger| = {anti:.3g} "
+                f"> {rtol:.3g} * max|X| (options['quantum_hermiticity_rtol']){hint}"
+            )
+
+
+class Representation:
+    r"""A finite-dimensional representation of so(N) by matrices :math:`X_{(ij)}`.
+
+    Prefer the constructors (:func:`vector_rep`, :func:`adjoint_rep`,
+    :func:`spinor_rep`, :func:`harmonic_rep`, :func:`~.gelfand_tsetlin.irrep`,
+    :func:`tensor`, :func:`direct_sum`) over calling the class directly.
+
+    Parameters
+    ----------
+    N : int
+    generators : mapping plane -> matrix
+        One square matrix (scipy.sparse or array) per plane ``(i, j)`` of so(N),
+        all of the same size, satisfying the brackets of the module docstring
+        (not checked here; the tests check them).
+    highest_weight : sequence, optional
+        Highest weight (orthogonal basis) when the representation is irreducible;
+        ``None`` for a reducible one.
+    exact_generators : mapping or callable, optional
+        Exact SymPy matrices (or a function computing them on demand).
+    name : str
+    format : {"csr", "dense"}
+        Default matrix format of :meth:`generator`, :meth:`generators`,
+        :meth:`casimir`, ... when their ``format`` is not given.
+
+    Attributes
+    ----------
+    N : int
+    dim : int
+    highest_weight : tuple of fractions.Fraction or None
+    name : str
+    format : str
+    """
+
+    def __init__(
+        self,
+        N: int,
+        generators: Mapping[tuple[int, int], Any],
+        *,
+        highest_weight: Sequence[Any] | None = None,
+        exact_generators: Mapping | Callable[[], Mapping] | None = None,
+        name: str = "",
+        format: str = "csr",
+    ):
+        self.format = _check_format(format)
+        self.N = check_dimension(N)
+        self.planes = planes(self.N)
+        keys = {tuple(int(v) for v in p) for p in generators}
+        if keys != set(self.planes):
+            missing = sorted(set(self.planes) - keys)
+            extra = sorted(keys - set(self.planes))
+            raise ValueError(f"generators must be given for exactly the planes of so({self.N}); missing {missing}, unknown {extra}")
+        gens = {}
+        dim = None
+        for p, M in generators.items():
+            M = sps.csr_matrix(M)
+            if M.shape[0] != M.shape[1] or (dim is not None and M.shape[0] != dim):
+                raise ValueError(f"generator of plane {p} has shape {M.shape}; all must be square of one size")
+            dim = M.shape[0]
+            gens[tuple(int(v) for v in p)] = M
+        self.dim = int(dim)
+        self._gens = {p: gens[p] for p in self.planes}
+        self.highest_weight = None if highest_weight is None else check_highest_weight(self.N, highest_weight)
+        self._exact = exact_generators
+        self.name = name or f"so({self.N}) representation of dimension {self.dim}"
+
+    def __repr__(self) -> str:
+        hw = None if self.highest_weight is None else "(" + ", ".join(str(x) for x in self.highest_weight) + ")"
+        return f"Representation(N={self.N}, dim={self.dim}, highest_weight={hw}, name={self.name!r})"
+
+    def _fmt(self, format):
+        return self.format if format is None else _check_format(format)
+
+    # -- basic access -----------------------------------------------------
+    @property
+    def rank(self) -> int:
+        """Rank ``floor(N/2)`` of so(N)."""
+        return self.N // 2
+
+    @property
+    def is_real(self) -> bool:
+        """Whether every generator is a real (antisymmetric) matrix in this basis."""
+        return all(not np.iscomplexobj(M.data) or not np.any(M.data.imag) for M in self._gens.values())
+
+    def _plane(self, plane) -> tuple[int, int]:
+        k = plane_index(plane, self.N)
+        return self.planes[k]
+
+    def generator(self, plane: Sequence[int], *, form: str = "antihermitian", hbar: float | None = None,
+                  format: str | None = None, exact: bool = False, **old):
+        r"""The generator of ``plane = (i, j)``: :math:`X_{(ij)}` or :math:`L^{ij} = -i\hbar X_{(ij)}`.
+
+        Parameters
+        ----------
+        plane : (i, j) with 1 <= i < j <= N
+        form : {"antihermitian", "hermitian"}, keyword-only
+            ``"antihermitian"`` (default): :math:`X_{(ij)}`, with the brackets of
+            :math:`E_{(ij)}`; ``"hermitian"``: the angular momentum
+            :math:`L^{ij} = -i\hbar X_{(ij)}` of eq. (141).
+        hbar : float, keyword-only, default 1
+            Only with ``form="hermitian"`` (refused with the anti-Hermitian form,
+            where it would be ignored).
+        format : {"csr", "dense"}, optional
+            scipy.sparse CSR or numpy array; default :attr:`format` of the
+            representation (``"csr"`` unless chosen at construction).
+        exact : bool
+            Return an exact ``sympy.Matrix`` instead (small dims only; with
+            ``form="hermitian"`` a symbolic ``hbar`` such as ``sympy.Symbol("hbar")`` is allowed).
+        """
+        _validate.old_keywords("generator", old, _OLD)
+        form, hbar = _validate.form_hbar(form, hbar)
+        p = self._plane(plane)
+        if exact:
+            X = self._exact_generators()[p]
+            return X if form == "antihermitian" else X * (-_lazy.sympy.I * _lazy.sympy.sympify(hbar))
+        M = self._gens[p]
+        if form == "hermitian":
+            M = (-1j * _validate.hbar(hbar)) * M
+        return _as_format(M, self._fmt(format))
+
+    def generators(self, *, form: str = "antihermitian", hbar: float | None = None, format: str | None = None,
+                   exact: bool = False, **old) -> dict:
+        """All generators as ``{plane: matrix}`` in plane order (see :meth:`generator`)."""
+        _validate.old_keywords("generators", old, _OLD)
+        return {p: self.generator(p, form=form, hbar=hbar, format=format, exact=exact) for p in self.planes}
+
+    def _exact_generators(self) -> dict:
+        if self._exact is None:
+            raise ValueError(f"no exact (SymPy) generators are available for {self.name}")
+        if callable(self._exact):
+            self._exact = dict(self._exact())
+        return self._exact
+
+    def hermitian(self, *args: Any, **kwargs: Any):
+        """Removed: use ``generator(plane, form="hermitian", hbar=...)`` (one keyword for the form)."""
+        raise TypeError(
+            'Representation.hermitian(plane, hbar) is now generator(plane, form="hermitian", hbar=...) '
+            "(docs/conventions.md)"
+        )
+
+    # -- Cartan, weights, ladders ------------------------------------------
+    def cartan_generators(self, *, form: str = "antihermitian", hbar: float | None = None, format: str | None = None,
+                          **old) -> list:
+        r"""Cartan generators :math:`X_{(12)}, X_{(34)}, \dots` (``form="hermitian"``: :math:`H_k = -i\hbar X_{(2k-1,2k)}`)."""
+        _validate.old_keywords("cartan_generators", old, _OLD)
+        return [self.generator((2 * k - 1, 2 * k), form=form, hbar=hbar, format=format) for k in range(1, self.rank + 1)]
+
+    def weights(self, *, return_vectors: bool = False):
+        r"""Weights (orthogonal basis) of a basis of simultaneous eigenvectors of the Cartan generators.
+
+        The Hermitian :math:`H_k = -iX_{(2k-1,2k)}` commute; if they are all
+        diagonal in this basis the weights of the basis vectors are returned in
+        basis order. Otherwise a generic combination :math:`\sum_k c_k H_k` is
+        diagonalized (dense, :math:`O(\dim^3)`) and the weights of its
+        eigenvectors are returned.
+
+        Returns
+        -------
+        weights : ndarray, shape (dim, rank)
+            Rounded to the nearest half-integer (the deviation is checked to be
+            < 1e-6).
+        vectors : ndarray, shape (dim, dim), only with ``return_vectors=True``
+            Unitary; column ``a`` has weight ``weights[a]``.
+        """
+        H = self.cartan_generators(form="hermitian", format="csr")
+        n = self.rank
+        diag = all((Hk - sps.diags(Hk.diagonal())).count_nonzero() == 0 for Hk in H)
+        if diag:
+            w = np.stack([Hk.diagonal().real for Hk in H], axis=1) if n else np.zeros((self.dim, 0))
+            V = np.eye(self.dim, dtype=complex)
+        else:
+            bound = max(float(abs(Hk).sum(axis=1).max()) for Hk in H)
+            R = 4 * (int(np.ceil(bound)) + 1) + 1
+            Hc = sum((float(R) ** (-k)) * Hk.toarray() for k, Hk in enumerate(H))
+            _, V = np.linalg.eigh(Hc)
+            w = np.stack([np.einsum("ia,ia->a", V.conj(), Hk @ V).real for Hk in H], axis=1)
+        w2 = np.rint(2 * w) / 2
+        if w.size and np.max(np.abs(w - w2)) > 1e-6:
+            raise ArithmeticError(f"weights of {self.name} are not half-integers (max deviation {np.max(np.abs(w - w2)):.2e})")
+        return (w2, V) if return_vectors else w2
+
+    def weight_multiplicities(self) -> dict[tuple[Fraction, ...], int]:
+        """``{weight: multiplicity}`` from :meth:`weights` (compare :func:`.weights.weight_multiplicities`)."""
+        out: dict = {}
+        for row in self.weights():
+            key = tuple(Fraction(int(round(2 * x)), 2) for x in row)
+            out[key] = out.get(key, 0) + 1
+        return out
+
+    def roots(self) -> list[tuple[int, ...]]:
+        """All roots (positive then negative) of so(N), orthogonal basis."""
+        pos = positive_roots(self.N)
+        return pos + [tuple(-a for a in r) for r in pos]
+
+    def ladder(self, root: Sequence[int], *, format: str | None = None):
+        r"""Root vector :math:`E_\alpha` of the Cartan-Weyl basis (module docstring).
+
+        ``root`` in the orthogonal basis, e.g. ``(1, -1)`` or ``(0, 1)`` for so(5).
+        :math:`[H_k, E_\alpha] = \alpha_k E_\alpha`; :math:`E_\alpha` raises
+        weights by :math:`\alpha`, and :math:`E_{-\alpha} = \overline{E_\alpha}`
+        (entrywise conjugate of the coefficients).
+        """
+        alpha = tuple(int(a) for a in root)
+        if alpha not in self.roots():
+            raise ValueError(f"{tuple(root)!r} is not a root of so({self.N}); roots: {self.roots()}")
+        coeff = _root_coefficients(self.N, alpha)
+        M = sps.csr_matrix((self.dim, self.dim), dtype=complex)
+        for p, c in coeff.items():
+            M = M + c * self._gens[p]
+        return _as_format(M, self._fmt(format))
+
+    def ladder_operators(self, *, format: str | None = None) -> dict:
+        """``{root: E_root}`` for all roots (:meth:`ladder`)."""
+        return {r: self.ladder(r, format=format) for r in self.roots()}
+
+    # -- Casimir, QuTiP ------------------------------------------------------
+    def casimir(self, *, format: str | None = None):
+        r"""Quadratic Casimir :math:`\sum_{i<j} X_{(ij)}^2` (anti-Hermitian convention).
+
+        Equals :math:`-c\,\mathbb 1` with :math:`c = \sum_i m_i(m_i + N - 2i)` on an
+        irrep of highest weight ``m`` (:meth:`casimir_value`). The Hermitian
+        :math:`\sum (L^{ij})^2` is :math:`+\hbar^2 c`.
+        """
+        C = sum((M @ M for M in self._gens.values()), sps.csr_matrix((self.dim, self.dim)))
+        return _as_format(sps.csr_matrix(C), self._fmt(format))
+
+    def casimir_value(self) -> Fraction | None:
+        r""":math:`c = \sum_i m_i(m_i + N - 2i)` for an irrep (``None`` if reducible)."""
+        if self.highest_weight is None:
+            return None
+        return casimir_eigenvalue(self.N, self.highest_weight)
+
+    def to_qobj(self, plane: Sequence[int] | None = None, *, form: str | None = None, hbar: float | None = None, **old):
+        r"""QuTiP operators with ``dims = [[dim], [dim]]``; the inverse of :meth:`from_qobj`.
+
+        Parameters
+        ----------
+        plane : (i, j), optional
+            One operator; ``None`` (default) gives ``{plane: Qobj}`` over all planes.
+        form : {"antihermitian", "hermitian"}, keyword-only, required
+            ``"hermitian"``: :math:`L^{ij} = -i\hbar X_{(ij)}` (eq. 141; what
+            ``to_qobj()`` returned before the keyword was unified);
+            ``"antihermitian"``: :math:`X_{(ij)}`. Required here (no default) so
+            that old calls do not silently change meaning.
+        hbar : float, keyword-only, default 1
+        """
+        _validate.old_keywords("to_qobj", old, _OLD)
+        if form is None:
+            raise TypeError(
+                'to_qobj() needs form="hermitian" (L = -i hbar X, eq. 141) or form="antihermitian" (X); '
+                "there is no default (docs/conventions.md)"
+            )
+        qutip = _lazy.qutip
+
+        def one(p):
+            M = self.generator(p, form=form, hbar=hbar, format="csr")
+            return qutip.Qobj(sps.csr_matrix(M, dtype=complex), dims=[[self.dim], [self.dim]])
+
+        if plane is None:
+            return {p: one(p) for p in self.planes}
+        return one(plane)
+
+    @classmethod
+    def from_qobj(cls, generators: Mapping, *, form: str = "antihermitian", hbar: float | None = None, check: bool = True,
+                  highest_weight: Sequence[Any] | None = None, name: str = "", format: str = "csr") -> "Representation":
+        r"""A :class:`Representation` from ``{plane: operator}`` (``qutip.Qobj``, scipy.sparse or 2-D array).
+
+        The way back from QuTiP: ``Representation.from_qobj(rep.to_qobj(form=f), form=f)``
+        reproduces ``rep``.
+
+        Parameters
+        ----------
+        generators : mapping plane -> operator
+            One operator per plane ``(i, j)`` of so(N) (plane labels as in
+            :func:`hyperrotor.planes`; ``N`` is inferred from their number).
+        form : {"antihermitian", "hermitian"}, keyword-only, default "antihermitian"
+            What the operators are: :math:`X_{(ij)}` or :math:`L^{ij} = -i\hbar X_{(ij)}`
+            (then :math:`X = i L/\hbar` is stored).
+        hbar : float, keyword-only, default 1
+        check : bool, default True
+            Verify anti-Hermiticity and the brackets
+            :math:`[X_a, X_b] = \sum_c C_{ab}^{\;c} X_c`
+            (relative tolerance ``options["quantum_bracket_rtol"]``). For
+            ``qutip.jmat`` operators use :func:`jmat_generators` (the so(3) map).
+        highest_weight, name, format
+            As in the constructor.
+
+        Raises
+        ------
+        ValueError
+            Missing/unknown planes, operators of different sizes, generators that
+            are not anti-Hermitian (with a hint when they are Hermitian: pass
+            ``form="hermitian"``), or brackets that fail (naming the pair of planes).
+        """
+        if not isinstance(generators, Mapping):
+            raise TypeError(
+                f"generators must be a mapping plane -> operator (qutip.Qobj, scipy.sparse or 2-D array), "
+                f"got {type(generators).__name__}"
+            )
+        form, hbar = _validate.form_hbar(form, hbar)
+        N = _validate._dimension_from_count(len(generators), "generators")
+        mats = {}
+        for p, M in generators.items():
+            q = _validate.plane(p, N)
+            if q in mats:
+                raise ValueError(f"generators name the plane {q} twice")
+            mats[q] = as_csr(M, f"generator of plane {q}")
+        if form == "hermitian":
+            mats = {p: (1j / _validate.hbar(hbar)) * M for p, M in mats.items()}
+        mats = {p: _real_if_possible(M) for p, M in mats.items()}
+        rep = cls(N, mats, highest_weight=highest_weight, name=name, format=format)
+        if check:
+            check_antihermitian(rep.generators(format="csr"), form=form)
+            rep.check_brackets()
+        return rep
+
+    def check_brackets(self, *, rtol: float | None = None) -> None:
+        r"""Raise ``ValueError`` unless :math:`[X_a, X_b] = \sum_c C_{ab}^{\;c} X_c` for all planes.
+
+        The residual is compared with ``rtol`` (default
+        ``options["quantum_bracket_rtol"]``) times :math:`\max_a \|X_a\|_{\max}^2`.
+        """
+        rtol = options["quantum_bracket_rtol"] if rtol is None else _validate.positive("rtol", rtol)
+        C = structure_constants(self.N)
+        G = [self._gens[p] for p in self.planes]
+        scale = max([1.0] + [float(abs(M).max()) for M in G if M.nnz]) ** 2
+        for a in range(len(G)):
+            for b in range(a + 1, len(G)):
+                R = (G[a] @ G[b] - G[b] @ G[a]).tocsr()
+                for c in np.nonzero(C[a, b])[0]:
+                    R = R - int(C[a, b, c]) * G[c]
+                res = float(abs(R).max()) if R.nnz else 0.0
+                if res > rtol * scale:
+                    pa, pb = self.planes[a], self.planes[b]
+                    raise ValueError(
+                        f"the generators do not satisfy the so({self.N}) brackets: [X{pa}, X{pb}] misses "
+                        f"sum_c C_ab^c X_c by {res:.3g} (tolerance {rtol * scale:.3g}); check the plane labels, "
+                        f"the form (antihermitian/hermitian) and, for qutip.jmat, use jmat_generators(j)"
+                    )
+
+
+def _root_coefficients(N: int, alpha: tuple[int, ...]) -> dict:
+    nz = [(k, s) for k, s in enumerate(alpha) if s]
+    f = []
+    for k, s in nz:
+        v = np.zeros(N, dtype=complex)
+        v[2 * k] = 1
+        v[2 * k + 1] = 1j * s
+        f.append(v)
+    if len(f) == 1:
+        e = np.zeros(N, dtype=complex)
+        e[N - 1] = 1
+        f.append(e)
+    u, v = f
+    out = {}
+    for a, b in planes(N):
+        c = u[a - 1] * v[b - 1] - u[b - 1] * v[a - 1]
+        if c != 0:
+            out[(a, b)] = complex(c)
+    return out
+

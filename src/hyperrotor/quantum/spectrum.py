@@ -1,0 +1,108 @@
+r"""Energy levels of rotor Hamiltonians (block-wise dense diagonalization)."""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .. import _validate
+from .._options import options
+from .hamiltonian import blocks_of, hermitian_matrix
+
+__all__ = ["spectrum"]
+
+
+def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, rep: Any = None,
+             **old: Any) -> tuple[np.ndarray, np.ndarray]:
+    r"""Energy levels of a Hermitian ``H`` with their degeneracies.
+
+    ``H`` is split into its invariant blocks (:func:`~hyperrotor.quantum.symmetry_blocks`),
+    and each block is diagonalized densely; a block larger than
+    ``options["quantum_max_dense_dim"]`` (default 6000, the one home of that
+    limit, shared with ``evolve(method="eigen")``) is refused.
+
+    Parameters
+    ----------
+    H : qutip.Qobj, scipy.sparse matrix or ndarray
+        Hermitian operator.
+    atol, rtol : float, optional, keyword-only
+        Eigenvalues closer than ``atol`` to their neighbour are one level
+        (chained clustering of the sorted eigenvalues); without ``atol`` the
+        threshold is ``rtol * max(1, max|E|)``, ``rtol`` defaulting to
+        ``options["quantum_level_rtol"]`` (1e-9: far above the round-off of
+        ``eigh``, ~``1e-15 * dim * max|E|``, and below any physical splitting of interest).
+    rep : Representation, keyword-only, optional
+        The representation ``H`` was built from (default: the one
+        :func:`~hyperrotor.quantum.rotor_hamiltonian` recorded on ``H``). When it
+        is known and the largest sparsity block exceeds
+        ``options["quantum_eigen_max_block"]`` (a generic inertia), the blocks
+        are the symmetry sectors of :func:`hyperrotor.quantum.sectors.sector_blocks`
+        (when that module provides them), each diagonalized once and counted
+        with its degeneracy.
+
+    Returns
+    -------
+    levels : ndarray
+        Increasing distinct energies (the mean of each cluster).
+    degeneracies : ndarray of int
+        Multiplicity of each level; they sum to ``dim``.
+    """
+    _validate.old_keywords("spectrum", old, {
+        "tol": "atol= (absolute) or rtol= (relative to max|E|)",
+        "max_dense_dim": 'hyperrotor.options["quantum_max_dense_dim"] (e.g. with hr.options(quantum_max_dense_dim=...))',
+    })
+    mat, _ = hermitian_matrix(H)
+    rep = rep if rep is not None else getattr(H, "_hyperrotor_rep", None)
+    blocks = blocks_of(mat)
+    big = max(len(b) for b in blocks)
+    limit = int(options["quantum_max_dense_dim"])
+    evs = _sector_eigenvalues(mat, rep) if rep is not None and big > int(options["quantum_eigen_max_block"]) else None
+    if evs is not None:
+        return _levels(np.sort(evs), atol, rtol)
+    if big > limit:
+        raise ValueError(
+            f"spectrum would diagonalize a dense block of dimension {big} > options['quantum_max_dense_dim'] = {limit}; "
+            f"raise it with hyperrotor.options(quantum_max_dense_dim=...) if the memory ({8 * big * big / 2**30:.2g} GiB) is available"
+        )
+    evs = []
+    for b in blocks:
+        if len(b) == 1:
+            evs.append(np.array([mat[b[0], b[0]].real]))
+        else:
+            evs.append(np.linalg.eigvalsh(mat[b][:, b].toarray()))
+    return _levels(np.sort(np.concatenate(evs).real), atol, rtol)
+
+
+def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
+    """All eigenvalues (with multiplicity) from the symmetry sectors of ``rep``, or ``None`` if there are none."""
+    from . import sectors
+
+    sector_blocks = getattr(sectors, "sector_blocks", None)
+    if sector_blocks is None:
+        return None
+    parts = sector_blocks(mat, rep)
+    if parts is None:
+        return None
+    limit = int(options["quantum_max_dense_dim"])
+    evs = []
+    for basis, degeneracy, label in parts:
+        if basis.shape[1] > limit:
+            raise ValueError(
+                f"spectrum would diagonalize the sector {label} of dimension {basis.shape[1]} > "
+                f"options['quantum_max_dense_dim'] = {limit}"
+            )
+        block = (basis.conj().T @ (mat @ basis)).toarray() if hasattr(basis, "toarray") else basis.conj().T @ (mat @ basis)
+        e = np.linalg.eigvalsh(0.5 * (block + block.conj().T))
+        evs.append(np.repeat(e, int(degeneracy)))
+    return np.concatenate(evs).real
+
+
+def _levels(E: np.ndarray, atol: float | None, rtol: float | None) -> tuple[np.ndarray, np.ndarray]:
+    if atol is None:
+        r = options["quantum_level_rtol"] if rtol is None else _validate.positive("rtol", rtol, allow_zero=True)
+        tol = r * max(1.0, float(np.max(np.abs(E))))
+    else:
+        tol = _validate.positive("atol", atol, allow_zero=True)
+    cuts = np.nonzero(np.diff(E) > tol)[0] + 1
+    groups = np.split(E, cuts)
+    return np.array([g.mean() for g in groups]), np.array([g.size for g in groups], dtype=int)
