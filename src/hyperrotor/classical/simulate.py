@@ -359,7 +359,7 @@ def simulate(
         raise ValueError(f"events= needs one trajectory (1-D omega0), got an ensemble of shape {problem.batch}; "
                          f"loop over the members")
     if client is not None and problem.B > 1:
-        from ._distributed import run_distributed
+        from .solvers.distributed import run_distributed
 
         res = run_distributed(solver, problem, control, client=client, max_steps=max_steps, progress=progress)
     else:
