@@ -75,6 +75,18 @@ CHECKS: dict[str, dict[str, tuple[str, object]]] = {
         "best_classical_error": ("<=", 1e-10),
         "best_quantum_error": ("<=", 1e-8),
     },
+    "09_lyapunov_map": {
+        "manakov_max_exponent": ("<=", 0.1),
+        "generic_mean_exponent": (">=", 0.2),
+        "generic_chaotic_fraction": (">=", 0.5),
+        "regular_orbit_exponent": ("<=", 0.05),
+        "chaotic_orbit_exponent": (">=", 0.3),
+        "regular_thickness": ("<=", 0.05),
+        "chaotic_thickness": (">=", 0.2),
+        "section_casimir_drift": ("<=", 1e-12),
+        "locked_components_max": ("==", 0.0),
+        "sweep_matches_lyapunov": ("==", True),
+    },
 }
 
 
