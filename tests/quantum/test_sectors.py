@@ -1,0 +1,315 @@
+"""Symmetry sectors of the sign rotations (hyperrotor.quantum.sectors, issue #16).
+
+Every assertion is an invariant that a wrong construction breaks: the monomial
+matrices equal the dense exponentials exp(pi X), they conjugate every generator
+with the right signs, the sector bases are orthonormal and H-invariant, the class
+sizes of D2 follow the closed formulas, and the union of the sector spectra (with
+the forced degeneracies) is the dense spectrum.
+"""
+from __future__ import annotations
+
+from fractions import Fraction as F
+
+import numpy as np
+import pytest
+import scipy.linalg as sla
+import scipy.sparse as sps
+
+import hyperrotor as hr
+from hyperrotor.quantum import (
+    adjoint_rep,
+    direct_sum,
+    harmonic_rep,
+    irrep,
+    rotor_hamiltonian,
+    spinor_rep,
+    tensor,
+    vector_rep,
+)
+from hyperrotor.quantum.sectors import (
+    pi_rotation,
+    sector_blocks,
+    sector_hamiltonian,
+    sector_spectra,
+    symmetry_sectors,
+)
+from tolerance import norm, scaled_tol
+
+H_ = F(1, 2)
+
+#: (N, highest weight) of GT irreps covering odd/even N, tensor/spinor
+GT_CASES = [
+    (3, (3,)), (3, (F(5, 2),)), (4, (2, 1)), (4, (2, -1)), (4, (F(3, 2), -H_)),
+    (5, (2, 1)), (5, (3, 0)), (5, (F(3, 2), H_)), (6, (1, 1, 0)), (6, (F(3, 2), H_, -H_)),
+    (7, (1, 1, 0)),
+]
+
+
+def _ids(cases):
+    return [f"so{N}-{'-'.join(str(x) for x in hw)}" for N, hw in cases]
+
+
+def _moments(N, rng):
+    return 0.5 + rng.random(N * (N - 1) // 2)
+
+
+def _dense_H(rep, moments):
+    return rotor_hamiltonian(rep, moments).full()
+
+
+def _sign_of(plane, i, j):
+    """s_i s_j for the rotation by pi in ``plane`` (s = -1 on the plane's two axes)."""
+    s = {plane[0]: -1, plane[1]: -1}
+    return s.get(i, 1) * s.get(j, 1)
+
+
+# ----------------------------------------------------------------------------
+# the monomial matrices D(g) = exp(pi X)
+# ----------------------------------------------------------------------------
+@pytest.mark.parametrize("N, hw", GT_CASES, ids=_ids(GT_CASES))
+def test_pi_rotation_is_the_exponential(N, hw):
+    rep = irrep(N, hw)
+    for k in range(1, N):
+        X = rep.generator((k, k + 1), format="dense")
+        E = sla.expm(np.pi * X)
+        D = pi_rotation(rep, (k, k + 1))
+        assert sps.issparse(D) and D.nnz == rep.dim  # monomial: one entry per column
+        # expm of a d x d matrix of norm pi ||X||: round-off ~ d eps (pi ||X||) (k absorbs the Pade steps)
+        tol = scaled_tol(np.pi * norm(X), k=64, dim=rep.dim)
+        np.testing.assert_allclose(D.toarray(), E, rtol=0, atol=tol)
+
+
+@pytest.mark.parametrize("N, hw", GT_CASES, ids=_ids(GT_CASES))
+def test_pi_rotation_conjugates_every_generator_with_signs(N, hw):
+    """D X_ij D^-1 = s_i s_j X_ij for every plane (not only the chain planes the construction uses)."""
+    rep = irrep(N, hw)
+    spin = any(F(x).denominator == 2 for x in hw)
+    for k in range(1, N):
+        D = pi_rotation(rep, (k, k + 1))
+        # D^2 = +1 (tensor) or -1 (spinor): exact, the entries are 0, +-1, +-i
+        D2 = (D @ D).toarray()
+        np.testing.assert_array_equal(D2, (-1 if spin else 1) * np.eye(rep.dim))
+        Dinv = D.conj().T
+        for (i, j), X in rep.generators().items():
+            lhs = (D @ X @ Dinv).toarray()
+            rhs = _sign_of((k, k + 1), i, j) * X.toarray()
+            np.testing.assert_allclose(lhs, rhs, rtol=0, atol=scaled_tol(X, k=8, dim=1))
+
+
+def test_pi_rotation_other_plane_and_rep_use_dense_exponential():
+    rep = vector_rep(4)
+    D = pi_rotation(rep, (1, 3), format="dense")
+    np.testing.assert_allclose(D, np.diag([-1.0, 1.0, -1.0, 1.0]), rtol=0, atol=1e-14)
+
+
+# ----------------------------------------------------------------------------
+# 3D: the D2 classes of the asymmetric top
+# ----------------------------------------------------------------------------
+def _d2_sizes(J):
+    if J % 2 == 0:
+        return {"A": J // 2 + 1, "B1": J // 2, "B2": J // 2, "B3": J // 2}
+    return {"A": (J - 1) // 2, "B1": (J + 1) // 2, "B2": (J + 1) // 2, "B3": (J + 1) // 2}
+
+
+@pytest.mark.parametrize("J", range(1, 9))
+def test_3d_four_sectors_with_d2_class_sizes(J):
+    rep = irrep(3, (J,))
+    secs = symmetry_sectors(rep)
+    assert [s.label for s in secs] == ["A", "B1", "B2", "B3"]
+    assert {s.label: s.dim for s in secs} == _d2_sizes(J)
+    moments = [1.0, 1.7, 2.9]  # I_12, I_13, I_23: asymmetric top
+    spec = sector_spectra(rep, moments)
+    full = np.linalg.eigvalsh(_dense_H(rep, moments))
+    np.testing.assert_allclose(spec.eigenvalues(), full, rtol=0, atol=1e-10 * np.abs(full).max())
+
+
+def test_3d_class_labels_are_the_c2_characters():
+    """B1 is even under C2(z) = rotation by pi in plane 12 and odd under C2(x) (plane 23), etc."""
+    rep = irrep(3, (4,))
+    expected = {"A": (1, 1), "B1": (1, -1), "B2": (-1, -1), "B3": (-1, 1)}
+    D12, D23 = pi_rotation(rep, (1, 2)), pi_rotation(rep, (2, 3))
+    for s in symmetry_sectors(rep):
+        c12, c23 = expected[s.label]
+        B = s.basis.toarray()
+        np.testing.assert_allclose(D12 @ B, c12 * B, atol=1e-13)
+        np.testing.assert_allclose(D23 @ B, c23 * B, atol=1e-13)
+
+
+@pytest.mark.parametrize("twoj", [1, 3, 5, 7, 15])
+def test_3d_half_integer_kramers_doublets(twoj):
+    rep = irrep(3, (F(twoj, 2),))
+    (s,) = symmetry_sectors(rep)
+    assert (s.label, s.degeneracy, s.dim) == ("E1/2", 2, (twoj + 1) // 2)
+    moments = [1.0, 1.7, 2.9]
+    full = np.linalg.eigvalsh(_dense_H(rep, moments))
+    levels = sector_spectra(rep, moments)["E1/2"]
+    # every dense eigenvalue comes in a pair equal to one sector level
+    np.testing.assert_allclose(full[0::2], levels, rtol=0, atol=1e-10 * np.abs(full).max())
+    np.testing.assert_allclose(full[1::2], levels, rtol=0, atol=1e-10 * np.abs(full).max())
+
+
+# ----------------------------------------------------------------------------
+# so(5) and general N
+# ----------------------------------------------------------------------------
+def _check_sectors(rep, secs, H, *, complete):
+    dim = rep.dim
+    covered = 0
+    for s in secs:
+        B = s.basis.toarray() if sps.issparse(s.basis) else s.basis
+        covered += s.dim * (1 if complete else s.degeneracy)
+        if s.dim == 0:
+            continue
+        # orthonormal columns (entries are sums of at most 2^(N-1) phases: exact to a few eps)
+        np.testing.assert_allclose(B.conj().T @ B, np.eye(s.dim), rtol=0, atol=scaled_tol(k=16, dim=dim))
+        # invariant under H: H B = B (B^H H B)
+        Hs = sector_hamiltonian(H, s)
+        np.testing.assert_allclose(H @ B, B @ Hs, rtol=0, atol=scaled_tol(norm(H), k=16, dim=dim))
+        if s.real:
+            assert Hs.dtype == np.float64
+    assert covered == dim
+    if complete:  # the sectors together are an orthonormal basis of the whole space
+        Q = np.hstack([s.basis.toarray() if sps.issparse(s.basis) else s.basis for s in secs if s.dim])
+        np.testing.assert_allclose(Q.conj().T @ Q, np.eye(dim), rtol=0, atol=scaled_tol(k=16, dim=dim))
+
+
+@pytest.mark.parametrize("hw", [(6, 3), (4, 0)])
+def test_so5_tensor_sixteen_sectors(hw, rng):
+    rep = irrep(5, hw)
+    secs = symmetry_sectors(rep)
+    assert len(secs) == 16
+    assert len({s.label for s in secs}) == 16
+    assert all(s.dim > 0 and s.degeneracy == 1 and s.real for s in secs)
+    moments = _moments(5, rng)
+    H = _dense_H(rep, moments)
+    _check_sectors(rep, secs, H, complete=True)
+    full = np.linalg.eigvalsh(H)
+    spec = sector_spectra(rep, moments)
+    np.testing.assert_allclose(spec.eigenvalues(), full, rtol=1e-10)
+
+
+@pytest.mark.parametrize("hw", [(F(5, 2), F(3, 2)), (F(7, 2), H_)])
+def test_so5_spinor_four_fold_degenerate(hw, rng):
+    rep = irrep(5, hw)
+    (s,) = symmetry_sectors(rep)
+    assert (s.label, s.degeneracy, 4 * s.dim) == ("spinor", 4, rep.dim)
+    moments = _moments(5, rng)
+    H = _dense_H(rep, moments)
+    _check_sectors(rep, [s], H, complete=False)
+    full = np.linalg.eigvalsh(H)
+    levels = sector_spectra(rep, moments)["spinor"]
+    for q in range(4):  # each level exactly four times in the dense spectrum
+        np.testing.assert_allclose(full[q::4], levels, rtol=1e-10)
+    # the complete decomposition: four copies (characters of the Cartan-plane rotations) span the space
+    copies = symmetry_sectors(rep, complete=True)
+    assert len(copies) == 4
+    _check_sectors(rep, copies, H, complete=True)
+
+
+@pytest.mark.parametrize("N, hw", GT_CASES, ids=_ids(GT_CASES))
+def test_gt_sectors_invariant_and_spectrum(N, hw, rng):
+    rep = irrep(N, hw)
+    spin = any(F(x).denominator == 2 for x in hw)
+    secs = symmetry_sectors(rep)
+    if spin:
+        assert len(secs) == 1 and secs[0].degeneracy == 2 ** ((N - 1) // 2)
+    else:  # (Z2)^(N-1); for even N the centre -1 fixes one more sign
+        assert len(secs) == 2 ** (N - 1 if N % 2 else N - 2)
+    moments = _moments(N, rng)
+    H = _dense_H(rep, moments)
+    _check_sectors(rep, secs, H, complete=not spin)
+    np.testing.assert_allclose(sector_spectra(rep, moments).eigenvalues(), np.linalg.eigvalsh(H), rtol=1e-10,
+                               atol=1e-12 * np.abs(H).max())
+
+
+def test_sector_characters_are_eigenvalues_of_the_rotations():
+    rep = irrep(5, (3, 1))
+    for s in symmetry_sectors(rep):
+        B = s.basis.toarray()
+        assert len(s.character) == 4
+        for (i, j), lam in s.character.items():
+            np.testing.assert_allclose(pi_rotation(rep, (i, j)) @ B, lam * B, atol=1e-13)
+        assert s.label == tuple(s.character[(k, k + 1)] for k in range(1, 5))
+
+
+def test_sectors_commute_with_any_inertia_including_physical_bodies(rng):
+    """The symmetry holds for every inertia: a mass-tensor body and a random one share the sectors."""
+    rep = irrep(4, (3, 1))
+    secs = symmetry_sectors(rep)
+    for inertia in (hr.Inertia.from_mass_tensor([1.0, 2.0, 3.5, 5.0]), _moments(4, rng)):
+        moments = inertia.moments if hasattr(inertia, "moments") else inertia
+        _check_sectors(rep, secs, _dense_H(rep, moments), complete=True)
+
+
+# ----------------------------------------------------------------------------
+# other representations: dense fallback
+# ----------------------------------------------------------------------------
+@pytest.mark.parametrize(
+    "make",
+    [lambda: vector_rep(5), lambda: spinor_rep(5), lambda: adjoint_rep(4), lambda: harmonic_rep(4, 2),
+     lambda: tensor(vector_rep(3), vector_rep(3)), lambda: spinor_rep(4, chirality=1)],
+    ids=["vector5", "spinor5", "adjoint4", "harmonic4-2", "vec3xvec3", "spinor4+"],
+)
+def test_dense_fallback_sectors(make, rng):
+    rep = make()
+    secs = symmetry_sectors(rep, complete=True)
+    moments = _moments(rep.N, rng)
+    H = _dense_H(rep, moments)
+    _check_sectors(rep, secs, H, complete=True)
+    spec = sector_spectra(rep, moments)
+    np.testing.assert_allclose(spec.eigenvalues(), np.linalg.eigvalsh(H), rtol=1e-10, atol=1e-12)
+
+
+def test_sector_blocks_hook_for_spectrum_and_evolve(rng):
+    rep = irrep(5, (F(3, 2), H_))
+    H = rotor_hamiltonian(rep, _moments(5, rng))
+    blocks = sector_blocks(H, rep, complete=True)  # for evolution: the copies span the space, weight 1
+    assert sum(B.shape[1] for B, _, _ in blocks) == rep.dim and {w for _, w, _ in blocks} == {1}
+    one = sector_blocks(H, rep)  # for spectra: one copy, each level 4 times
+    assert [(w, lab) for _, w, lab in one] == [(4, "spinor")]
+    for parts in (blocks, one):
+        E = np.sort(np.concatenate([np.repeat(np.linalg.eigvalsh(sector_hamiltonian(H, B)), w) for B, w, _ in parts]))
+        np.testing.assert_allclose(E, np.linalg.eigvalsh(H.full()), rtol=1e-10)
+
+
+def test_parallel_threads_agree_with_serial(rng):
+    rep = irrep(5, (4, 2))
+    moments = _moments(5, rng)
+    a = sector_spectra(rep, moments)
+    b = sector_spectra(rep, moments, parallel=True, workers=2)
+    assert list(a) == list(b)
+    for k in a:
+        np.testing.assert_allclose(a[k], b[k], rtol=1e-12, atol=1e-12 * np.abs(a[k]).max())
+
+
+def test_hbar_scales_levels(rng):
+    rep = irrep(3, (5,))
+    moments = _moments(3, rng)
+    a, b = sector_spectra(rep, moments), sector_spectra(rep, moments, hbar=0.5)
+    for k in a:
+        np.testing.assert_allclose(b[k], 0.25 * a[k], rtol=1e-13)
+
+
+# ----------------------------------------------------------------------------
+# errors
+# ----------------------------------------------------------------------------
+def test_errors():
+    with pytest.raises(TypeError, match="Representation"):
+        symmetry_sectors(np.eye(3))
+    with pytest.raises(TypeError, match="complete"):
+        symmetry_sectors(irrep(3, (1,)), complete=1)
+    with pytest.raises(ValueError, match="mixes tensor and spinor"):
+        symmetry_sectors(direct_sum(vector_rep(3), spinor_rep(3)))
+    with hr.options(sectors_dense_max_dim=3):
+        with pytest.raises(ValueError, match="sectors_dense_max_dim"):
+            symmetry_sectors(vector_rep(5))
+    with hr.options(sectors_max_block_dim=2):
+        with pytest.raises(ValueError, match="sectors_max_block_dim"):
+            sector_spectra(irrep(5, (3, 1)), np.ones(10))
+    with pytest.raises(ValueError, match="hbar"):
+        sector_spectra(irrep(3, (1,)), [1, 2, 3], hbar=0.0)
+    with pytest.raises(ValueError, match="so\\(3\\) needs 3"):
+        sector_spectra(irrep(3, (1,)), [1, 2, 3, 4, 5, 6])
+    with pytest.raises(TypeError, match="parallel"):
+        sector_spectra(irrep(3, (1,)), [1, 2, 3], parallel="yes")
+    with pytest.raises(ValueError, match="plane"):
+        pi_rotation(irrep(3, (1,)), (2, 2))
