@@ -205,7 +205,7 @@ def form_hbar(form_value: Any, hbar_value: Any) -> tuple[str, Any]:
                 f'pass form="hermitian" for the Hermitian generators (docs/conventions.md)'
             )
         return f, None
-    return f, (1.0 if hbar_value is None else hbar_value)
+    return f, (1 if hbar_value is None else hbar_value)  # exact 1: symbolic callers keep integer coefficients
 
 
 def old_keywords(where: str, given: dict, renamed: dict) -> None:

@@ -429,11 +429,15 @@ class _QutipSolver(Propagator):
 
 @register_propagator
 class Sesolve(_QutipSolver):
+    """``qutip.sesolve`` on ``H / hbar``; options are QuTiP's (``atol``/``rtol``: the ODE tolerances)."""
+
     name = "sesolve"
 
 
 @register_propagator
 class Mesolve(_QutipSolver):
+    """``qutip.mesolve`` on ``H / hbar`` with ``c_ops``; options are QuTiP's (``atol``/``rtol``: the ODE tolerances)."""
+
     name = "mesolve"
 
 

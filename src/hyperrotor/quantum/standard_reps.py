@@ -381,7 +381,7 @@ def intertwiner(a: Representation, b: Representation, *, rtol: float = 1e-9) -> 
     return T
 
 
-def real_form(rep: Representation, *, rtol: float | None = None) -> Representation:
+def real_form(rep: Representation, *, rtol: float | None = None, **old: Any) -> Representation:
     r"""An equivalent representation with real antisymmetric generators (irreps of real type).
 
     Let :math:`T` intertwine the complex-conjugate representation with ``rep``,
@@ -406,6 +406,7 @@ def real_form(rep: Representation, *, rtol: float | None = None) -> Representati
         If ``rep`` is reducible, not self-conjugate (complex type, e.g. so(6)
         (1, 1, 1)) or quaternionic.
     """
+    _validate.old_keywords("real_form", old, {"atol": "rtol= (the check is relative to max|Y|)"})
     if not isinstance(rep, Representation):
         raise TypeError(f"real_form takes a Representation, got {type(rep).__name__}")
     if rep.is_real:
