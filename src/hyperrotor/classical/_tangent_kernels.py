@@ -46,7 +46,7 @@ import numpy as np
 
 from hyperrotor._jit import jit
 
-from ._kernels import sincos
+from ._kernels import _C1, _C2, _C3, _C4, _C5, _C6, _C7, _S1, _S2, _S3, _S4, _S5, _S6, _S7, sincos
 
 __all__: list[str] = []  # private module
 
@@ -135,3 +135,125 @@ def _tangent_run(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
 
 
 tangent_run = jit(_tangent_run)
+
+
+def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
+                       h, nsub, nren, stride, lanes, out, Lout, Wout):  # pragma: no cover - jitted
+    """:func:`_tangent_run` for bodies that share ``nsub`` (steps per renormalisation), bodies innermost.
+
+    Blocks of ``lanes`` bodies advance together, the loop over the bodies of a block being the
+    innermost one: the independent rotations of different bodies overlap in the CPU pipeline
+    and vectorise (as ``_kernels._split_run_ensemble``). Every body sees exactly the arithmetic
+    of :func:`_tangent_run` (same operations in the same order; the half-angle polynomial is
+    the one of :func:`~hyperrotor.classical._kernels.sincos`, libm beyond 0.5), so the results
+    agree with it bit for bit, whichever bodies share a block. ``nsub[0]`` is used for all.
+    """
+    B = L0.shape[0]
+    n = L0.shape[1]
+    k = W0.shape[1]
+    m = seq_plane.shape[0]
+    npair = pair_p.shape[1]
+    ns = nsub[0]
+    nblocks = (B + lanes - 1) // lanes
+    for bi in range(nblocks):
+        b0 = bi * lanes
+        nb = min(B, b0 + lanes) - b0
+        L = np.empty((n, nb))
+        W = np.empty((k, n, nb))
+        fac = np.empty((m, nb))
+        acc = np.zeros((k, nb))
+        S = np.empty(nb)
+        V = np.empty(nb)
+        F2 = np.empty(nb)
+        D = np.empty(nb)
+        for j in range(nb):
+            for a in range(n):
+                L[a, j] = L0[b0 + j, a]
+                for i in range(k):
+                    W[i, a, j] = W0[b0 + j, i, a]
+            for r in range(m):
+                fac[r, j] = 0.5 * seq_coef[r] * h[b0 + j] * rates[b0 + j, seq_plane[r]]
+        s_out = 0
+        for ren in range(nren):
+            for _ in range(ns):
+                for r in range(m):
+                    a = seq_plane[r]
+                    big = False
+                    for j in range(nb):  # branch-free polynomial sincos of the half-angle
+                        x = fac[r, j] * L[a, j]
+                        z = x * x
+                        z2 = z * z
+                        z4 = z2 * z2
+                        ps = (_S1 + z * _S2) + z2 * (_S3 + z * _S4) + z4 * ((_S5 + z * _S6) + z2 * _S7)
+                        pc = (_C1 + z * _C2) + z2 * (_C3 + z * _C4) + z4 * ((_C5 + z * _C6) + z2 * _C7)
+                        sh = x + (x * z) * ps
+                        chh = 1.0 + z * pc
+                        S[j] = 2.0 * sh * chh
+                        V[j] = 2.0 * sh * sh
+                        F2[j] = 2.0 * fac[r, j]
+                        big |= z > 0.25
+                    if big:  # some half-angle beyond 0.5: those with libm, as sincos does
+                        for j in range(nb):
+                            x = fac[r, j] * L[a, j]
+                            if abs(x) > 0.5:
+                                sh, chh = sincos(x)
+                                S[j] = 2.0 * sh * chh
+                                V[j] = 2.0 * sh * sh
+                    for e in range(npair):
+                        p = pair_p[a, e]
+                        q = pair_q[a, e]
+                        sg = pair_s[a, e]
+                        for j in range(nb):
+                            ss = S[j] * sg
+                            v = V[j]
+                            x = L[p, j]
+                            y = L[q, j]
+                            L[p, j] = x + (ss * y - v * x)
+                            L[q, j] = y - (ss * x + v * y)
+                        for i in range(k):
+                            for j in range(nb):
+                                ss = S[j] * sg
+                                v = V[j]
+                                gp = sg * L[q, j]
+                                gq = -sg * L[p, j]
+                                dphi = F2[j] * W[i, a, j]
+                                dx = W[i, p, j]
+                                dy = W[i, q, j]
+                                W[i, p, j] = dx + (ss * dy - v * dx) + gp * dphi
+                                W[i, q, j] = dy - (ss * dx + v * dy) + gq * dphi
+            # modified Gram-Schmidt per body
+            for i2 in range(k):
+                for i1 in range(i2):
+                    for j in range(nb):
+                        D[j] = 0.0
+                    for a in range(n):
+                        for j in range(nb):
+                            D[j] += W[i1, a, j] * W[i2, a, j]
+                    for a in range(n):
+                        for j in range(nb):
+                            W[i2, a, j] -= D[j] * W[i1, a, j]
+                for j in range(nb):
+                    D[j] = 0.0
+                for a in range(n):
+                    for j in range(nb):
+                        D[j] += W[i2, a, j] * W[i2, a, j]
+                for j in range(nb):
+                    nrm = math.sqrt(D[j])
+                    acc[i2, j] += math.log(nrm)
+                    D[j] = 1.0 / nrm
+                for a in range(n):
+                    for j in range(nb):
+                        W[i2, a, j] *= D[j]
+            if (ren + 1) % stride == 0 and s_out < out.shape[1]:
+                for j in range(nb):
+                    for i in range(k):
+                        out[b0 + j, s_out, i] = acc[i, j]
+                s_out += 1
+        for j in range(nb):
+            for a in range(n):
+                Lout[b0 + j, a] = L[a, j]
+                for i in range(k):
+                    Wout[b0 + j, i, a] = W[i, a, j]
+
+
+tangent_run_lanes = jit(_tangent_run_lanes)
