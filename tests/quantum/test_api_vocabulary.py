@@ -230,3 +230,14 @@ def test_rotor_hamiltonian_records_rep_for_sectors():
     assert not hasattr(H + H, "_hyperrotor_rep")
     sp_H = sps.csr_matrix(H.full())
     assert np.allclose(hq.spectrum(sp_H, rep=rep)[0], hq.spectrum(H)[0], rtol=0, atol=scaled_tol(3.0, dim=3))
+
+
+@pytest.mark.parametrize("N, hw", [(4, (3, 1)), (5, (2, 1))])
+def test_spectrum_through_symmetry_sectors_matches_dense(N, hw):
+    rep = hq.irrep(N, hw)
+    H = hq.rotor_hamiltonian(rep, np.linspace(1.0, 2.0, N * (N - 1) // 2))
+    E = np.linalg.eigvalsh(H.full())
+    with hr.options(quantum_eigen_max_block=1):  # force the sector path (issue #16 hook)
+        levels, deg = hq.spectrum(H)
+    assert deg.sum() == rep.dim
+    assert np.abs(np.repeat(levels, deg) - E).max() <= scaled_tol(E, dim=rep.dim, k=16)

@@ -11,22 +11,20 @@ allowed ones. Defaults written ``None`` are read from the package's option
 table :data:`hyperrotor.options` (e.g. ``quantum_krylov_atol``) at call time;
 the largest dense block, ``quantum_max_dense_dim``, lives only there.
 
-========================  ==================================================
-method                    what it does
-========================  ==================================================
-``"auto"``                ``"mesolve"`` with collapse operators; otherwise the
-                          symmetry-adapted native propagation: ``"eigen"`` for
-                          blocks up to ``eigen_max_block``, ``"krylov"`` on the
-                          union of the larger populated blocks
-``"eigen"``               exact diagonalization (dense ``eigh``) of each block
-``"krylov"``              Lanczos with full re-orthogonalization and the
-                          a-posteriori error estimate of Saad (1992) /
-                          Hochbruck & Lubich (1997): one Krylov space serves
-                          every output time it reaches within ``atol``
-``"expm_multiply"``       :func:`scipy.sparse.linalg.expm_multiply` over the
-                          grid (Al-Mohy & Higham 2011)
-``"sesolve"``/``"mesolve"`` QuTiP's solvers (``H/hbar``); options are QuTiP's
-========================  ==================================================
+``"auto"``
+    ``"mesolve"`` with collapse operators; otherwise the symmetry-adapted
+    native propagation: ``"eigen"`` for blocks up to ``eigen_max_block``,
+    ``"krylov"`` on the union of the larger populated blocks.
+``"eigen"``
+    Exact diagonalization (dense ``eigh``) of each block.
+``"krylov"``
+    Lanczos with full re-orthogonalization and the a-posteriori error
+    estimate of Saad (1992) / Hochbruck & Lubich (1997): one Krylov space
+    serves every output time it reaches within ``atol``.
+``"expm_multiply"``
+    :func:`scipy.sparse.linalg.expm_multiply` over the grid (Al-Mohy & Higham 2011).
+``"sesolve"``, ``"mesolve"``
+    QuTiP's solvers on ``H/hbar``; their options are QuTiP's.
 
 Symmetry-adapted evolution: the native methods split ``H`` into its invariant
 blocks (:func:`~hyperrotor.quantum.symmetry_blocks`) and propagate only the
@@ -49,7 +47,7 @@ from .. import _lazy, _validate
 from .._options import options as _options
 from .hamiltonian import blocks_of, hermitian_matrix
 
-__all__ = ["EVOLVE_METHODS", "PROPAGATORS", "RESULT_OPTIONS", "Propagator", "evolve", "evolve_options"]
+__all__ = ["EVOLVE_METHODS", "PROPAGATORS", "RESULT_OPTIONS", "Propagator", "evolve", "evolve_options", "register_propagator"]
 
 #: Options of every method: what the returned ``qutip.solver.Result`` keeps and the progress bar.
 RESULT_OPTIONS: dict[str, tuple[Any, str]] = {

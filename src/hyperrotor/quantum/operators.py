@@ -37,8 +37,8 @@ Operators are :class:`DifferentialOperator` objects wrapping the exact normal
 form :class:`hyperrotor.quantum.normal_form.WeylElement`; equality ``A == B`` is
 an exact operator identity.
 
-Where the printed paper differs (Section 5)
--------------------------------------------
+Paper material
+--------------
 The operator product of eq. (144) (with its three index typos) and the
 contraction identities of eqs. (145)-(147) are checked in
 :mod:`hyperrotor.paper.operator_products` (``operator_product``,

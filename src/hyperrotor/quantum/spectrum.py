@@ -36,9 +36,8 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
         :func:`~hyperrotor.quantum.rotor_hamiltonian` recorded on ``H``). When it
         is known and the largest sparsity block exceeds
         ``options["quantum_eigen_max_block"]`` (a generic inertia), the blocks
-        are the symmetry sectors of :func:`hyperrotor.quantum.sectors.sector_blocks`
-        (when that module provides them), each diagonalized once and counted
-        with its degeneracy.
+        are the symmetry sectors of :func:`hyperrotor.quantum.sectors.sector_blocks`,
+        each diagonalized once and counted with its degeneracy.
 
     Returns
     -------
@@ -77,10 +76,7 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
     """All eigenvalues (with multiplicity) from the symmetry sectors of ``rep``, or ``None`` if there are none."""
     from . import sectors
 
-    sector_blocks = getattr(sectors, "sector_blocks", None)
-    if sector_blocks is None:
-        return None
-    parts = sector_blocks(mat, rep)
+    parts = sectors.sector_blocks(mat, rep)
     if parts is None:
         return None
     limit = int(options["quantum_max_dense_dim"])
@@ -91,8 +87,8 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
                 f"spectrum would diagonalize the sector {label} of dimension {basis.shape[1]} > "
                 f"options['quantum_max_dense_dim'] = {limit}"
             )
-        block = (basis.conj().T @ (mat @ basis)).toarray() if hasattr(basis, "toarray") else basis.conj().T @ (mat @ basis)
-        e = np.linalg.eigvalsh(0.5 * (block + block.conj().T))
+        block = sectors.sector_hamiltonian(mat, basis)  # real symmetric for tensor irreps (cheaper eigvalsh)
+        e = np.linalg.eigvalsh(block)
         evs.append(np.repeat(e, int(degeneracy)))
     return np.concatenate(evs).real
 
