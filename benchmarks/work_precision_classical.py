@@ -11,7 +11,11 @@ Time = wall time of the warm call (min of repeats), JIT already compiled.
 Goals checked side by side in one run:
   1. best method reaches error <= 1e-10 >= 30x faster than DOP853 tuned to the same error;
   2. splitting keeps the Casimir drift <= 1e-13 (relative) over 1e6 steps (DOP853 beside it);
-  3. ensemble throughput >= 1e7 trajectory-steps/s for 1e4 bodies.
+  3. ensemble throughput >= 1e7 trajectory-steps/s for 1e4 bodies;
+  4. rtol requested vs achieved: for the fixed-step methods rtol bounds the whole-run error
+     (max|L - L_ref| / max|L| over the output grid, must be <= rtol), timed including the
+     step choice; for the scipy methods rtol is scipy's local tolerance and the table shows
+     the measured global/requested factor.
 Also the cold JIT compile time (fresh process, on-disk cache disabled).
 
 Usage: python benchmarks/work_precision_classical.py [--quick]
@@ -31,12 +35,13 @@ import numpy as np
 from hyperrotor import Inertia, RigidBody, simulate
 from hyperrotor.bench import best_of, write_csv
 from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+from hyperrotor.classical.solvers import SOLVERS, FixedStepSolver, Splitting
 from hyperrotor.conventions import to_matrix
 
 RESULTS = Path(__file__).resolve().parent / "results"
-SPLITTINGS = ["splitting2", "splitting4", "splitting6", "splitting8"]
-OURS = SPLITTINGS + ["moser-veselov"]  # hyperrotor's own integrators
-SCIPY = ["DOP853", "RK45", "LSODA", "Radau"]
+SPLITTINGS = [m for m, c in SOLVERS.items() if issubclass(c, Splitting)]
+OURS = [m for m, c in SOLVERS.items() if issubclass(c, FixedStepSolver)]  # hyperrotor's own integrators
+SCIPY = ["DOP853", "RK45", "LSODA", "Radau"]  # the scipy peers timed (RK23 and BDF are slower still)
 
 
 def problems():
@@ -92,8 +97,9 @@ def work_precision(quick, probs):
             for rtol in rtols[m]:
                 el, tr = best_of(lambda: simulate(body, w0, t, method=m, rtol=rtol), 2 if m != "Radau" else 1)
                 err = np.abs(tr.omega - ref).max() / scale
-                rows.append(dict(problem=pname, method=m, param=f"rtol={rtol:g}", work=tr.stats["nfev"], time=el, error=err))
-                print(f"{m:>11} {rtol:>9.3g} {tr.stats['nfev']:>11d} {el:>10.4g} {err:>9.2e}")
+                rows.append(dict(problem=pname, method=m, param=f"rtol={rtol:g}", work=tr.stats["nfev"], time=el, error=err,
+                                 error_over_rtol=err / rtol))
+                print(f"{m:>11} {rtol:>9.3g} {tr.stats['nfev']:>11d} {el:>10.4g} {err:>9.2e}  global/rtol {err / rtol:.3g}")
         # the auto step rule: requested vs reached
         for rtol in (1e-6, 1e-10):
             el, tr = best_of(lambda: simulate(body, w0, t, rtol=rtol), 5)
@@ -103,6 +109,28 @@ def work_precision(quick, probs):
             print(f"{'auto':>11} {rtol:>9.3g} {tr.stats['steps']:>11d} {el:>10.4g} {err:>9.2e}  -> {tr.stats['method']}, "
                   f"incl. step-rule probe")
     return rows
+
+
+def rtol_table(probs, quick):
+    """Goal 4: requested rtol vs achieved whole-run error, timed including the step choice."""
+    print("\n== Goal 4: rtol requested vs achieved (error = max|L - L_ref| / max|L|; fixed-step: must be <= rtol) ==")
+    print(f"{'problem':>20} {'method':>13} {'rtol':>7} {'achieved':>9} {'ach/rtol':>8} {'steps/nfev':>10} {'time [s]':>9}")
+    out = []
+    for pname, (body, w0, t, ref) in probs.items():
+        Lref = ref * body.inertia.moments
+        scale = np.abs(Lref).max()
+        for m in OURS + ["DOP853", "RK45"]:
+            rtols = [1e-6] if m == "moser-veselov" else [1e-6, 1e-8, 1e-10]
+            for rtol in rtols:
+                el, tr = best_of(lambda: simulate(body, w0, t, method=m, rtol=rtol), 1 if m == "moser-veselov" else 3)
+                err = np.abs(tr.L - Lref).max() / scale
+                work = tr.stats["steps"] if tr.stats["steps"] is not None else tr.stats["nfev"]
+                kind = "whole-run bound" if m in OURS else "scipy local tol"
+                out.append(dict(problem=pname, method=m, rtol=rtol, achieved=err, ratio=err / rtol, work=work, time=el,
+                                meaning=kind))
+                flag = "" if m not in OURS or err <= rtol else "  <-- bound missed"
+                print(f"{pname:>20} {m:>13} {rtol:>7.0e} {err:>9.2e} {err / rtol:>8.3f} {work:>10d} {el:>9.4f}{flag}")
+    return out
 
 
 def goal_speed(rows, target=1e-10):
@@ -135,7 +163,7 @@ def ablation(rows, probs, target=1e-10):
     """
     from unittest import mock
 
-    from hyperrotor.classical import integrate as integ
+    from hyperrotor.classical.solvers import splitting as integ
 
     no_shift = mock.patch.object(integ, "casimir_shift", lambda moments, L=None: np.zeros(np.atleast_2d(L).shape[0]))
     configs = [
@@ -292,11 +320,13 @@ def main(argv=None):
     probs = problems()
     rows = work_precision(args.quick, probs)
     speed = goal_speed(rows)
+    rt = rtol_table(probs, args.quick)
     abl = ablation(rows, probs)
     cas = goal_casimir(args.quick)
     thr = goal_throughput(args.quick)
     write_csv(rows, RESULTS / "work_precision_classical.csv")
     write_csv(speed, RESULTS / "work_precision_classical_speedup.csv")
+    write_csv(rt, RESULTS / "work_precision_classical_rtol.csv")
     write_csv(abl, RESULTS / "work_precision_classical_ablation.csv")
     write_csv(cas, RESULTS / "work_precision_classical_casimir.csv")
     write_csv(thr, RESULTS / "work_precision_classical_throughput.csv")

@@ -346,3 +346,10 @@ def test_ctrl_c_interrupts_a_long_run(tmp_path):
             proc.kill()
     assert proc.returncode == 3, (out, err)
     assert "interrupted" in out
+
+
+def test_a_slow_request_is_announced_before_it_runs():
+    """Moser-Veselov (order 2, implicit) at a tight rtol: the estimated wall time is given up front."""
+    body = RigidBody(Inertia.from_mass_tensor(J5))
+    with hr.options(slow_run_warning_seconds=0.0), pytest.warns(UserWarning, match=r"needs about [0-9.e+-]+ s"):
+        hr.simulate(body, np.linspace(-1, 1, 10), [0.0, 2.0], method="moser-veselov", rtol=1e-5)
