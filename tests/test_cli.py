@@ -227,6 +227,11 @@ MORE = [
     (["scene", "--colour-axis", "2"], ["--colour-axis 2 is one of the drawn --axes"]),
     (["scene", "--max-seconds", "-1"], ["--max-seconds must be finite and > 0, got -1.0"]),
     (["scene", "--max-memory", "lots"], ["argument --max-memory: expected a size such as 2G"]),
+    (["scene", "--kappa", "1e300"], ["--kappa must have magnitude <= 1e+100, got 1e+300"]),
+    (["scene", "--N", "1000000000"], ["2^1000000000 points", "budget of 2 GiB"]),
+    (["demo", "--omega=1e100,1e100,1,1,1,1,1,1,1,1"], ["fastest rate 1.6e+100", "budget of 10 min"]),
+    (["demo", "--kappa", "1e50"], ["fastest rate 5e+99", "budget"]),
+    (["demo", "--omega=1e308,1,1,1,1,1,1,1,1,1"], ["--omega values must be finite with magnitude <= 1e+100"]),
 ]
 
 

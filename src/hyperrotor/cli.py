@@ -38,6 +38,8 @@ Conventions of every subcommand
 * **Progress** bars (tqdm) go to stderr, for work that can take more than a few
   seconds (scene, bench, verify), when stderr is a terminal or with
   ``--progress`` (``--no-progress`` turns them off).
+* **Warnings** (e.g. numerical ones from NumPy) are reported after the work,
+  one line each (``hyperrotor demo: warning: RuntimeWarning: ...``).
 * **Numbers** print as plain values with 12 significant digits (``-0.33``, not
   ``-0.32999999999999996``); values in error messages via
   :func:`hyperrotor._validate.fmt`.
@@ -51,6 +53,7 @@ import re
 import signal
 import sys
 import time
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Sequence
@@ -112,8 +115,21 @@ def _usage(fn, *a, **kw):
         raise UsageError(str(err)) from None
 
 
+#: Largest magnitude of a number given on the command line (kappa, omega, sides): squares and
+#: products of a few of them must stay far inside double precision.
+MAX_MAGNITUDE = 1e100
+
+
+def _bounded(option: str, value: float) -> float:
+    """A finite real number with ``|value| <= MAX_MAGNITUDE`` (else :class:`UsageError`)."""
+    value = _usage(_validate.real, option, value)
+    if abs(value) > MAX_MAGNITUDE:
+        raise UsageError(f"{option} must have magnitude <= {MAX_MAGNITUDE:g}, got {_validate.fmt(value)}")
+    return value
+
+
 def _number_list(text: str, option: str, count: int | None = None, *, positive: bool = False) -> np.ndarray:
-    """Comma-separated finite numbers (exactly ``count`` of them when given)."""
+    """Comma-separated finite numbers of magnitude <= :data:`MAX_MAGNITUDE` (exactly ``count`` when given)."""
     parts = [v.strip() for v in text.split(",") if v.strip()]
     try:
         arr = np.array([float(v) for v in parts])
@@ -121,9 +137,10 @@ def _number_list(text: str, option: str, count: int | None = None, *, positive: 
         raise UsageError(f"{option} must be comma-separated numbers, got {text!r}") from None
     if count is not None and arr.size != count:
         raise UsageError(f"{option} needs {count} comma-separated numbers, got {arr.size} ({text!r})")
-    bad = [float(v) for v in arr if not math.isfinite(v) or (positive and v <= 0)]
+    bad = [float(v) for v in arr if not math.isfinite(v) or (positive and v <= 0) or abs(v) > MAX_MAGNITUDE]
     if bad:
-        raise UsageError(f"{option} values must be finite{' and > 0' if positive else ''}, got {_validate.fmt(bad)}")
+        raise UsageError(f"{option} values must be finite{' and > 0' if positive else ''} with magnitude <= "
+                         f"{MAX_MAGNITUDE:g}, got {_validate.fmt(bad)}")
     return arr
 
 
@@ -261,6 +278,7 @@ def _parse_number(text: str):
         raise UsageError(f"--kappa must be a real number such as 1/2 or 0.7, got {text!r}") from None
     if not value.is_real or not value.is_finite:
         raise UsageError(f"--kappa must be a finite real number, got {text!r}")
+    _bounded("--kappa", float(value))
     return value
 
 
@@ -283,8 +301,12 @@ def _run_demo(args: argparse.Namespace) -> int:
     _usage(_validate.integer, "--axis", args.axis, minimum=1, maximum=5)
     t_end = _usage(_validate.positive, "--t-end", args.t_end)
     inertia = _usage(Inertia.quartet, kappa, axis=args.axis, N=5)
-    _check_budget(args, f"demo --t-end {_num(t_end)}", 1.0 + _DEMO_SECONDS_PER_TIME * t_end,
-                  hint="choose a shorter --t-end")
+    # the integrators' work grows with t_end times the fastest rate of the motion, at most
+    # max|omega| * max(I) / min(I) (the Euler coefficients are moment differences over moments)
+    moments = np.asarray(inertia.moments, dtype=float)
+    rate = max(1.0, float(np.max(np.abs(omega))) * float(np.max(moments) / np.min(moments)))
+    _check_budget(args, f"demo --t-end {_num(t_end)} (fastest rate {_num(rate, 3)})",
+                  1.0 + _DEMO_SECONDS_PER_TIME * t_end * rate, hint="choose a shorter --t-end or smaller --omega")
     with Outputs() as outs:
         png = None
         if not args.no_png:
@@ -515,7 +537,8 @@ def _configure_scene(p: argparse.ArgumentParser) -> None:
 def _scene_size(shape: str, N: int) -> tuple[float, float]:
     """Number of body points and of drawn edges (floats: 2^N may be huge)."""
     if shape == "cube":
-        return 2.0**N, N * 2.0 ** (N - 1)
+        n = min(N, 200)  # past 2^200 nothing fits anyway; keeps every estimate a finite float
+        return 2.0**n, n * 2.0 ** (n - 1)
     if shape == "simplex":
         return N + 1.0, (N + 1.0) * N / 2
     return float(_ELLIPSOID_POINTS), 0.0
@@ -567,7 +590,7 @@ def _scene_check(args: argparse.Namespace):
     if bad:
         raise UsageError(f"--lock axes must be in 1..{N}, got {_validate.fmt(bad)}")
     if args.inertia == "quartet":
-        _usage(_validate.real, "--kappa", args.kappa)
+        _bounded("--kappa", args.kappa)
         if args.axis is not None:
             _usage(_validate.integer, "--axis", args.axis, minimum=1, maximum=N)
     elif args.axis is not None:
@@ -577,7 +600,8 @@ def _scene_check(args: argparse.Namespace):
     gif = args.output.lower().endswith(".gif")
     memory, seconds = scene_estimate(args.shape, N, frames, gif, args.inertia == "box" or bool(lock))
     P, E = _scene_size(args.shape, N)
-    what = f"scene --N {N} --shape {args.shape} ({P:.4g} points, {E:.4g} edges, {frames} frames)"
+    count = f"2^{N} points, {N} x 2^{N - 1} edges" if args.shape == "cube" and N > 30 else f"{P:.4g} points, {E:.4g} edges"
+    what = f"scene --N {N} --shape {args.shape} ({count}, {frames} frames)"
     hint = "use a smaller --N" + (", --shape simplex" if args.shape == "cube" else "") + " or fewer --frames"
     _check_budget(args, what, seconds, memory, hint)
     sides = None
@@ -808,7 +832,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         old_term = None
     try:
         args = build_parser().parse_args(argv)
-        code = int(args._run(args))
+        with warnings.catch_warnings(record=True) as caught:  # reported one line each, after the work
+            warnings.simplefilter("default")
+            code = int(args._run(args))
+        for w in caught:
+            _say(prog, f"warning: {w.category.__name__}: {w.message} ({Path(w.filename).name}:{w.lineno})")
         sys.stdout.flush()
         return code
     except UsageError as err:
