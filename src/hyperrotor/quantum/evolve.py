@@ -629,13 +629,15 @@ def _evolve_native(cls, opt, mat, dims, vec, t, e_ops, hbar, rep=None):
         ) from None
     ket_dims = [dims[0], [1]]
     full = np.zeros(dim, dtype=complex)
-    for tk in t:
-        full[:] = 0
-        with _single_thread_blas():
+    # one BLAS-thread limit for the whole run: threadpoolctl scans the loaded libraries on every
+    # entry (~7 ms here), which per output time was most of the run time of small problems
+    with _single_thread_blas():
+        for tk in t:
+            full[:] = 0
             for idx, gen in props:
                 full[idx] = next(gen)
-        result.add(float(tk), qutip.Qobj(full.reshape(-1, 1).copy(), dims=ket_dims, copy=False))
-        bar.update()
+            result.add(float(tk), qutip.Qobj(full.reshape(-1, 1).copy(), dims=ket_dims, copy=False))
+            bar.update()
     bar.finished()
     stats["run time"] = _time.perf_counter() - t_start
     return result
