@@ -65,7 +65,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import sympy as sp
+from .._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, plane_label, plane_symbols, planes, structure_constants
 from .inertia import body_moments
@@ -321,7 +321,7 @@ def perturbation_growth(body: Any, plane: Any, Omega: float, t: Any, *, eps: flo
     -------
     numpy.ndarray, shape (len(t),)
     """
-    from .integrate import simulate
+    from .simulate import simulate
 
     I = body_moments(body)
     N = dimension_from_count(I.size)

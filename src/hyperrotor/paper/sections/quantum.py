@@ -7,7 +7,7 @@ constants; the operator matrices (141), (143) against
 :func:`hyperrotor.quantum.operators.operator_matrix`; the operator product (144)
 entry by entry (:mod:`hyperrotor.paper.sections.products`), naming the errors it
 shares with eq. (25); the contraction identities (145)-(147) against
-:func:`hyperrotor.quantum.operators.contraction_identity`; and the section's
+:func:`hyperrotor.paper.operator_products.contraction_identity`; and the section's
 cross-references.
 """
 from __future__ import annotations
@@ -25,11 +25,11 @@ from hyperrotor.paper.verdicts import Verdict
 
 @lru_cache(maxsize=None)
 def _sec_quantum() -> tuple:
+    from hyperrotor.paper.operator_products import contraction_identity
     from hyperrotor.quantum.operators import (
         DifferentialOperator,
         angular_momentum_operators,
         commutator,
-        contraction_identity,
         operator_matrix,
     )
 
@@ -62,7 +62,7 @@ def _sec_quantum() -> tuple:
     # (141), (143): sign patterns and prefactor
     for k, hb in (("141", hbar), ("143", None)):
         pk = ps.printed(k)
-        M = operator_matrix(5, "paper", hbar=hb, coordinates=coords)
+        M = operator_matrix(5, "paper", form="antihermitian" if hb is None else "hermitian", hbar=hb, coordinates=coords)
         wrong = []
         for r in range(5):
             for c in range(5):
@@ -72,7 +72,7 @@ def _sec_quantum() -> tuple:
                 if pl is None:
                     wrong.append((r + 1, c + 1))
                     continue
-                base = ops[pl] if hb is None else ops[pl].hermitian(hbar)
+                base = ops[pl] if hb is None else ops[pl].as_form("hermitian", hbar=hbar)
                 if not (M[r, c] == base * int(pk["sign"][r, c])):
                     wrong.append((r + 1, c + 1))
         pref_ok = sp.simplify(pk["prefactor"] - (-sp.I * sp.Symbol("hbar"))) == 0 if k == "141" else True
@@ -94,7 +94,7 @@ def _sec_quantum() -> tuple:
                        (f"entries {', '.join(bad_lines)} are wrong"
                         + (", term for term the same errors as in (25) (see the verdicts 25 [ij], with L -> LOp, w -> OmegaOp)"
                            if same else "") + f"; e.g. [{first.equation.split('[')[1]} {first.detail}"
-                        + ". Corrected product: hyperrotor.quantum.operator_product(A, B, form='eq144')"),
+                        + ". Corrected product: hyperrotor.paper.operator_products.operator_product(A, B, form='eq144')"),
                        None, None, sec))
     # (145)-(147)
     for k in ("145", "146", "147"):
@@ -103,7 +103,7 @@ def _sec_quantum() -> tuple:
         anti = contraction_identity(N, form="antisymmetrized")
         e144 = contraction_identity(N, form="eq144")
         herm_factor = sp.I * (N - 2)  # for -i hbar L (stated in contraction_identity docs); recomputed below
-        Lh = operator_matrix(N, "paper", hbar=1)
+        Lh = operator_matrix(N, "paper", form="hermitian")
         Lr = operator_matrix(N, "paper")
         c01 = sum((Lh[0, kk] * Lh[1, kk] - Lh[1, kk] * Lh[0, kk] for kk in range(N)), Lh[0, 0])
         herm_ok = c01 == Lh[0, 1] * herm_factor
