@@ -54,7 +54,7 @@ import signal
 import sys
 import time
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Callable, Sequence
 
@@ -217,13 +217,14 @@ def _have_matplotlib() -> bool:
 
 
 def _add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool = False) -> None:
-    g = p.add_argument_group("behaviour (all subcommands)")
+    g = p.add_argument_group("behaviour")
     g.add_argument("--force", action="store_true",
                    help="replace existing output files (default: refuse and leave them as they are)")
     g.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bars on stderr (default: only when stderr is a terminal)")
     g.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
     if budget:
+        g = p.add_argument_group("budget (checked against estimates before any work)")
         g.add_argument("--max-seconds", type=float, default=None, metavar="S",
                        help="refuse a run estimated to take longer (default hr.options['cli_max_seconds'] "
                             f"= {options['cli_max_seconds']:g} s)")
@@ -641,7 +642,9 @@ def _run_scene(args: argparse.Namespace) -> int:
             args.shape]()
         t = np.linspace(0.0, s["t_end"], s["frames"])
         proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
-        scene = Scene(RigidBody(inertia), s["omega"], t, observables=("projection",), points=points, axes=proj_axes)
+        extra = {"progress": args.progress} if "progress" in {f.name for f in fields(Scene)} else {}
+        scene = Scene(RigidBody(inertia), s["omega"], t, observables=("projection",), points=points, axes=proj_axes,
+                      **extra)  # progress of an integrated motion, once Scene forwards it to simulate
         res = scene.evaluate()
         edges = body_edges(points, "points" if args.shape == "ellipsoid" else args.shape)
         title = (f"{args.shape} in {N}D, {args.inertia} inertia: space axes {', '.join(map(str, s['axes']))} drawn"
