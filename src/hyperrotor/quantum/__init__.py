@@ -8,7 +8,7 @@ imports this one. The vocabulary (``form=``, keyword-only ``hbar``, ``t``,
 ``rtol``/``atol``, ``rng``) is documented in docs/conventions.md.
 """
 from . import (coherent, evolve as _evolve_module, gelfand_tsetlin, hamiltonian, harmonic, normal_form, operators,
-               representation, sectors, spectrum as _spectrum_module, standard_reps, weights)
+               representation, sectors, spectrum as _spectrum_module, standard_reps, statistics, weights)
 from . import representations, rotor  # noqa: F401  (old module names, re-exports)
 from .coherent import *  # noqa: F401,F403
 from .evolve import *  # noqa: F401,F403
@@ -21,6 +21,7 @@ from .representation import *  # noqa: F401,F403
 from .sectors import *  # noqa: F401,F403
 from .spectrum import *  # noqa: F401,F403
 from .standard_reps import *  # noqa: F401,F403
+from .statistics import *  # noqa: F401,F403
 from .weights import *  # noqa: F401,F403
 
 __all__ = [
@@ -36,4 +37,5 @@ __all__ = [
     *_spectrum_module.__all__,
     *coherent.__all__,
     *sectors.__all__,
+    *statistics.__all__,
 ]
