@@ -120,7 +120,7 @@ def rtol_table(probs, quick):
         Lref = ref * body.inertia.moments
         scale = np.abs(Lref).max()
         for m in OURS + ["DOP853", "RK45"]:
-            rtols = [1e-6] if m == "moser-veselov" else [1e-6, 1e-8, 1e-10]
+            rtols = [1e-4] if m == "moser-veselov" else [1e-6, 1e-8, 1e-10]  # MV: 1e-6 takes ~1 min on (b)
             for rtol in rtols:
                 el, tr = best_of(lambda: simulate(body, w0, t, method=m, rtol=rtol), 1 if m == "moser-veselov" else 3)
                 err = np.abs(tr.L - Lref).max() / scale
@@ -165,7 +165,7 @@ def ablation(rows, probs, target=1e-10):
 
     from hyperrotor.classical.solvers import splitting as integ
 
-    no_shift = mock.patch.object(integ, "casimir_shift", lambda moments, L=None: np.zeros(np.atleast_2d(L).shape[0]))
+    no_shift = mock.patch.object(integ, "shift_rule", lambda moments, L2: np.zeros(L2.shape[0]))
     configs = [
         ("no shift, compensated", (no_shift,), True),
         ("+ Casimir shift", (), True),

@@ -111,9 +111,10 @@ register(
 )
 register(
     "chunk_seconds", 0.25,
-    "Target run time of one compiled chunk of hyperrotor.simulate: between chunks Python checks "
-    "for Ctrl-C (KeyboardInterrupt) and updates the progress bar. Smaller is more responsive, "
-    "larger has less overhead (each chunk costs about 10 microseconds).",
+    "Target run time of one compiled chunk of hyperrotor.simulate and of the ensemble chunks of "
+    "lyapunov / _parallel.map_rows: between chunks Python checks for Ctrl-C (KeyboardInterrupt) "
+    "and updates the progress bar. Smaller is more responsive, larger has less overhead (each "
+    "chunk costs about 10 microseconds).",
 )
 register(
     "slow_run_warning_seconds", 60.0,

@@ -18,6 +18,7 @@ for each method's order, invariants and options).
 from __future__ import annotations
 
 import time
+from functools import lru_cache
 from typing import Any, Callable
 
 import numpy as np
@@ -35,6 +36,7 @@ __all__ = ["simulate", "Trajectory", "SIMULATION_METHODS"]
 #: Allowed ``method=`` names of :func:`simulate`: ``"auto"`` and the keys of the solver registry.
 SIMULATION_METHODS = ("auto", *SOLVERS)
 
+_LOWER_NAMES = frozenset(m.lower() for m in SOLVERS)
 #: largest scaled momentum (angular velocities of order one): its square must stay finite
 MAX_SCALED_MOMENTUM = 1e150
 #: rtol when neither ``rtol`` nor ``dt`` is given
@@ -160,6 +162,14 @@ def _broadcast_batch(name: str, arr: np.ndarray, core_ndim: int, batch: tuple) -
     return np.broadcast_to(arr, batch + arr.shape[arr.ndim - core_ndim:])
 
 
+@lru_cache(maxsize=64)
+def _signs(N: int, convention: str, axes: tuple | None) -> np.ndarray:
+    """Diagonal of S (``T_convention = S T_plain S``), cached (read-only)."""
+    S = _validate.axis_signs(N, convention, axes)
+    S.setflags(write=False)
+    return S
+
+
 def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Problem, np.ndarray]:
     """Check and normalise the inputs once (scaled units, see :mod:`.solvers.base`)."""
     moments = _validate.moments(body, name="body")
@@ -167,7 +177,7 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Probl
     N = dimension_from_count(n)
     convention = _validate.convention(getattr(body, "convention", "paper"))
     axes = getattr(body, "axes", None)
-    signs = _validate.axis_signs(N, convention, axes if axes is not None and len(axes) == N else None)
+    signs = _signs(N, convention, tuple(axes) if axes is not None and len(axes) == N else None)
     w0 = _validate.finite_array("omega0", omega0)
     if w0.ndim == 0 or w0.shape[-1] != n:
         raise ValueError(f"omega0 must have shape batch + ({n},) (n_planes of so({N})), got shape {w0.shape}")
@@ -232,7 +242,7 @@ def _choose_solver(method, rtol, dt, torque, solver_options) -> Solver:
         else:
             r = DEFAULT_RTOL if rtol is None else rtol
             method = next((name for bound, name in AUTO_ORDER if r >= bound), "splitting8")
-    elif isinstance(method, str) and method.lower() not in {m.lower() for m in SOLVERS}:
+    elif isinstance(method, str) and method.lower() not in _LOWER_NAMES:
         raise ValueError(f"unknown method {method!r}; allowed: {', '.join(map(repr, SIMULATION_METHODS))}")
     return solver_for(method, **solver_options)
 

@@ -207,8 +207,6 @@ class FixedStepSolver(Solver):
         return 1
 
     def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None):
-        from .driver import run_fixed_step
-
         return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
 
 
@@ -223,3 +221,6 @@ def power_of_two_scale(x: float) -> float:
     if not (x > 0 and math.isfinite(x)):
         return 1.0
     return math.ldexp(1.0, math.frexp(x)[1] - 1)
+
+
+from .driver import run_fixed_step  # noqa: E402  (the driver builds on the classes above)

@@ -34,6 +34,7 @@ import numpy as np
 from hyperrotor._options import options
 
 from .base import FixedStepSolver, Problem, RunResult, nsub_for
+from .step_control import refuse_steps
 
 __all__ = ["run_fixed_step", "EventSpec", "event_specs"]
 
@@ -101,6 +102,7 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
     h = control.step(solver, problem, max_steps) if K > 1 and B > 0 else 1.0
     nsub = nsub_for(t, h) if K > 1 else np.zeros(0, dtype=np.int64)
     steps = int(nsub.sum())
+    refuse_steps(steps, B, max_steps, f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
     if hasattr(solver, "set_accuracy"):
         solver.set_accuracy(problem, getattr(control, "rtol", None), steps)
     specs = event_specs(events)
@@ -148,6 +150,16 @@ def _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T
         cap = max(1, min(EVENT_CHUNK_STEPS, FIRST_CHUNK_FLOWS // max(1, B * fps)))
     else:
         cap = steps if steps * B * fps <= FIRST_CHUNK_FLOWS else max(1, FIRST_CHUNK_FLOWS // max(1, B * fps))
+    if not specs and cap >= steps:  # one call (most runs): no chunk grid to build
+        Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub)
+        _check_finite(Ls, t, problem)
+        outL[:] = Ls
+        if outT is not None:
+            outT[:] = Ts
+        stats["chunks"] = 1
+        if bar is not None:
+            bar.update(steps)
+        return t.size
     Lc = problem.L0
     Tc = problem.T0
     s0 = 0
@@ -171,12 +183,7 @@ def _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T
             ns = np.diff(np.concatenate([[s0], marks])).astype(np.int64)
             out_pos = {int(o): i + 1 for i, o in enumerate(outs)}
         Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns)
-        if not np.all(np.isfinite(Ls[:, -1])):
-            bad = int(np.argmax(~np.all(np.isfinite(Ls), axis=(0, 2))))
-            raise FloatingPointError(
-                f"simulate: the solution became non-finite near t = {grid[bad] / problem.scale:.6g} "
-                f"(the inputs overflow double precision; max|L0| = {np.abs(problem.L0).max() * problem.scale:.3g})"
-            )
+        _check_finite(Ls, grid, problem)
         for o, i in out_pos.items():
             outL[:, o] = Ls[:, i]
             if outT is not None:
@@ -202,6 +209,15 @@ def _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T
             if specs:
                 cap = min(cap, EVENT_CHUNK_STEPS)
     return problem.t.size
+
+
+def _check_finite(Ls, grid, problem):
+    if not np.all(np.isfinite(Ls[:, -1])):
+        bad = int(np.argmax(~np.all(np.isfinite(Ls), axis=(0, 2))))
+        raise FloatingPointError(
+            f"simulate: the solution became non-finite near t = {grid[bad] / problem.scale:.6g} "
+            f"(the inputs overflow double precision; max|L0| = {np.abs(problem.L0).max() * problem.scale:.3g})"
+        )
 
 
 def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_events, L_events, T_events):

@@ -160,15 +160,20 @@ def casimir_shift(moments: Any, L: Any = None) -> float | np.ndarray:
     """
     moments = _validate.moments(moments, name="moments")
     n = moments.size
-    rates = 1.0 / moments
-    values, counts = np.unique(rates, return_counts=True)
     if L is None:
         Lb = np.zeros((1, n))
     else:
         Lb = _validate.finite_array("L", L, ndim=(1, 2))
         if Lb.shape[-1] != n:
             raise ValueError(f"L must have shape ({n},) or (B, {n}) for these {n} moments, got {Lb.shape}")
-    L2 = np.atleast_2d(Lb)
+    c = shift_rule(moments, np.atleast_2d(Lb))
+    return float(c[0]) if L is None or Lb.ndim == 1 else c
+
+
+def shift_rule(moments: np.ndarray, L2: np.ndarray) -> np.ndarray:
+    """:func:`casimir_shift` for checked inputs: ``moments (n,)``, ``L2 (B, n)``; one ``c`` per row."""
+    rates = 1.0 / moments
+    values, counts = np.unique(rates, return_counts=True)
     norm = np.sqrt(np.sum(L2 * L2, axis=1, keepdims=True))
     E2 = np.sum(L2 * L2 / moments, axis=1, keepdims=True)
     safe = np.where(norm > 0, norm, 1.0)
@@ -177,7 +182,7 @@ def casimir_shift(moments: Any, L: Any = None) -> float | np.ndarray:
     cost = np.round(cost / np.maximum(cost.max(axis=1, keepdims=True), 1e-300), 12)  # equal to round-off: tie
     score = np.where(cost == cost.min(axis=1, keepdims=True), counts[None, :], -1)
     c = values[np.argmax(score, axis=1)]  # first maximum: most planes, then the smaller value
-    return float(c[0]) if L is None or Lb.ndim == 1 else c
+    return c
 
 
 @lru_cache(maxsize=None)
@@ -293,7 +298,7 @@ class Splitting(FixedStepSolver):
         kick = problem.kick
         # one shift per member; none with a torque (it moves L away from the state the weights
         # describe, and the space-frame momentum that un-shifts the attitude)
-        shift = np.zeros(B) if (kick or B == 0) else np.atleast_1d(casimir_shift(problem.moments, problem.L0))
+        shift = np.zeros(B) if (kick or B == 0) else shift_rule(problem.moments, problem.L0)
         rates_b = 1.0 / problem.moments - shift[:, None]
         # a plane drops out when its rate vanishes for every member (for the others its flow is exact identity)
         seq = tuple(int(a) for a in np.flatnonzero(np.any(rates_b != 0.0, axis=0)))
