@@ -474,7 +474,7 @@ def _run_verify(args: argparse.Namespace) -> int:
                 out = outs.add(output_file(args.output, option="--output", suffixes=suffixes, force=args.force))
             except ValueError as err:
                 msg = str(err)
-                if "has extension" in msg or "has no extension" in msg:
+                if (args.json or args.markdown) and ("has extension" in msg or "has no extension" in msg):
                     msg += f" (the {kind} report, {flag})"
                 raise UsageError(msg) from None
         verdicts = []
