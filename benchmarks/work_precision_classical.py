@@ -91,7 +91,8 @@ def work_precision(quick, probs):
             for dt in dts[m]:
                 el, tr = best_of(lambda: simulate(body, w0, t, method=m, dt=dt), 5)
                 err = np.abs(tr.omega - ref).max() / scale
-                rows.append(dict(problem=pname, method=m, param=f"dt={dt:g}", work=tr.stats["steps"], time=el, error=err))
+                rows.append(dict(problem=pname, method=m, param=f"dt={dt:g}", work=tr.stats["steps"], time=el, error=err,
+                                 error_over_rtol=None))
                 print(f"{m:>11} {dt:>9.3g} {tr.stats['steps']:>11d} {el:>10.4g} {err:>9.2e}")
         for m in SCIPY:
             for rtol in rtols[m]:
@@ -105,7 +106,7 @@ def work_precision(quick, probs):
             el, tr = best_of(lambda: simulate(body, w0, t, rtol=rtol), 5)
             err = np.abs(tr.omega - ref).max() / scale
             rows.append(dict(problem=pname, method=f"auto({tr.stats['method']})", param=f"rtol={rtol:g}",
-                             work=tr.stats["steps"], time=el, error=err))
+                             work=tr.stats["steps"], time=el, error=err, error_over_rtol=err / rtol))
             print(f"{'auto':>11} {rtol:>9.3g} {tr.stats['steps']:>11d} {el:>10.4g} {err:>9.2e}  -> {tr.stats['method']}, "
                   f"incl. step-rule probe")
     return rows
