@@ -37,13 +37,14 @@ _SETTINGS = {  # method -> (keyword, values): hyperrotor's integrators by step, 
     "RK45": ("rtol", (1e-4, 1e-6, 1e-8)),
 }
 
-#: Seconds of one call of every setting of a method together (warm, 2-core machine); used by
+#: Seconds of one call of every setting of a method together (best of 2, measured with
+#: ``hyperrotor bench`` on the shared 2-core machine, 46 s wall in all); used by
 #: :func:`estimate_seconds` only, to refuse absurd runs before they start.
 _TYPICAL_SECONDS = {
-    "quartet": {"splitting2": 0.2, "splitting4": 0.1, "splitting6": 0.05, "splitting8": 0.05,
-                "moser-veselov": 0.5, "DOP853": 0.5, "RK45": 0.5},
-    "euler-poinsot": {"splitting2": 0.1, "splitting4": 0.05, "splitting6": 0.03, "splitting8": 0.03,
-                      "moser-veselov": 0.3, "DOP853": 0.3, "RK45": 0.3},
+    "quartet": {"splitting2": 0.15, "splitting4": 0.13, "splitting6": 0.06, "splitting8": 0.05,
+                "moser-veselov": 3.1, "DOP853": 2.5, "RK45": 1.1},
+    "euler-poinsot": {"splitting2": 0.02, "splitting4": 0.02, "splitting6": 0.015, "splitting8": 0.01,
+                      "moser-veselov": 0.9, "DOP853": 1.6, "RK45": 0.45},
 }
 
 
@@ -104,12 +105,12 @@ def estimate_seconds(problems: Sequence[str], methods: Sequence[str] | None = No
 
     Each setting is called ``repeats + 1`` times (one warm-up); the per-call
     times of :data:`_TYPICAL_SECONDS` were measured on a 2-core machine (the
-    estimate is good to a factor of about 3), plus a few seconds for the first
-    numba kernel load.
+    estimate is good to a factor of about 3), plus a few seconds for the imports
+    and the first numba kernel load.
     """
     methods = list(_SETTINGS) if methods is None else list(methods)
     per_call = sum(_TYPICAL_SECONDS.get(p, {}).get(m, 1.0) for p in problems for m in methods)
-    return 3.0 + (int(repeats) + 1) * per_call
+    return 5.0 + (int(repeats) + 1) * per_call
 
 
 def work_precision(problem: str = "quartet", methods: Sequence[str] | None = None, *, repeats: int = 2,
