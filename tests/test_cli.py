@@ -411,3 +411,14 @@ def test_scene_estimate_of_the_40_cube():
     assert memory >= 2**40 * 40 * 8  # the vertex array alone: 8 TiB
     small, quick = scene_estimate("cube", 5, 60, gif=False, integrate=False)
     assert small < 2**27 and quick < 10
+
+
+@pytest.mark.slow
+def test_scene_12_cube_shows_progress_and_finishes(tmp_path):
+    # was: over a minute with no output (24576 edges drawn one plot call each); now one collection per frame
+    code, out, err = _cli(["scene", "--N", "12", "--output", "c12.png", "--progress"], tmp_path)
+    assert code == 0
+    assert "4096 body points, 24576 edges" in out and "written: c12.png" in out
+    assert "scene: drawing snapshots" in err and "Traceback" not in err
+    assert _files(tmp_path) == ["c12.png"]
+    assert (tmp_path / "c12.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
