@@ -50,7 +50,7 @@ from hyperrotor.bench import write_csv  # noqa: E402
 from hyperrotor.conventions import planes  # noqa: E402
 from hyperrotor.quantum import irrep  # noqa: E402
 from hyperrotor.quantum.coherent import coherent_state  # noqa: E402
-from hyperrotor.quantum.rotor import evolve, rotor_hamiltonian  # noqa: E402
+from hyperrotor.quantum import evolve, rotor_hamiltonian  # noqa: E402
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
 TARGET = 1e-8
