@@ -182,17 +182,18 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Probl
     if w0.ndim == 0 or w0.shape[-1] != n:
         raise ValueError(f"omega0 must have shape batch + ({n},) (n_planes of so({N})), got shape {w0.shape}")
     batch = w0.shape[:-1]
-    t_user = _validate.time_grid(t)
     B = int(np.prod(batch)) if batch else 1
     with_att = attitude is not False and attitude is not None
-    nbytes = 8.0 * B * t_user.size * (2 * n + (N * N if with_att else 0))
+    K = int(np.size(t)) if isinstance(t, (np.ndarray, list, tuple)) else 1  # before any copy of a huge grid
+    nbytes = 8.0 * B * K * (2 * n + (N * N if with_att else 0))
     if nbytes > max_output_bytes:
         raise StepBudgetError(
-            f"the output of this run needs about {nbytes / 2**30:.3g} GiB ({B} member(s) x {t_user.size} output times), "
+            f"the output of this run needs about {nbytes / 2**30:.3g} GiB ({B} member(s) x {K} output times), "
             f"more than the budget max_output_bytes = {_validate.fmt(int(max_output_bytes))} bytes; ask for fewer "
             f"output times (events= or Trajectory.sol give states between them) or raise "
             f"hyperrotor.options['max_output_bytes']"
         )
+    t_user = _validate.time_grid(t)
     s = power_of_two_scale(float(np.abs(w0).max()) if w0.size else 0.0)
     tq = None
     if torque is not None:
