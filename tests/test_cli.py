@@ -422,3 +422,21 @@ def test_scene_12_cube_shows_progress_and_finishes(tmp_path):
     assert "scene: drawing snapshots" in err and "Traceback" not in err
     assert _files(tmp_path) == ["c12.png"]
     assert (tmp_path / "c12.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_file_appearing_during_the_run_is_not_clobbered(capsys, tmp_path, monkeypatch):
+    import hyperrotor.plotting as plotting
+
+    target = tmp_path / "s.png"
+    real = plotting.save_projection_frames
+
+    def racing(path, *a, **k):
+        out = real(path, *a, **k)
+        target.write_bytes(b"written by someone else meanwhile")
+        return out
+
+    monkeypatch.setattr(plotting, "save_projection_frames", racing)
+    code, out, err = _run(capsys, ["scene", "--frames", "4", "--output", str(target)])
+    assert code == 1 and out == ""
+    assert err.count("\n") == 1 and "appeared while this command ran" in err
+    assert target.read_bytes() == b"written by someone else meanwhile" and _files(tmp_path) == ["s.png"]
