@@ -313,3 +313,19 @@ def test_errors():
         sector_spectra(irrep(3, (1,)), [1, 2, 3], parallel="yes")
     with pytest.raises(ValueError, match="plane"):
         pi_rotation(irrep(3, (1,)), (2, 2))
+
+
+def test_spectrum_uses_sectors_for_a_generic_inertia(rng):
+    """spectrum(H) of a rotor Hamiltonian knows its representation and diagonalizes sector by sector:
+    with a dense limit below the sparsity blocks but above the sectors it still returns every level."""
+    rep = irrep(5, (6, 3))
+    moments = _moments(5, rng)
+    H = rotor_hamiltonian(rep, moments)
+    dense = np.linalg.eigvalsh(H.full())
+    with hr.options(quantum_max_dense_dim=100, quantum_eigen_max_block=60):
+        levels, degeneracies = hr.quantum.spectrum(H)
+    np.testing.assert_allclose(np.repeat(levels, degeneracies), dense, rtol=1e-10)
+    spin = irrep(5, (F(5, 2), F(3, 2)))
+    with hr.options(quantum_eigen_max_block=8):
+        _, deg = hr.quantum.spectrum(rotor_hamiltonian(spin, moments))
+    assert set(deg.tolist()) == {4}
