@@ -317,8 +317,9 @@ def simulate(
     progress : bool or None, optional
         show a tqdm progress bar (``None``: only on a terminal, for runs longer than ~1 s).
     client : dask.distributed.Client, optional
-        run the members of an ensemble (2-D ``omega0``) on a dask cluster in chunks
-        (:func:`hyperrotor._parallel.map_rows`); the same results as without it.
+        run the members of an ensemble (2-D ``omega0``) on a dask cluster in chunks of
+        about a second of work each (see ``docs/scaling-out.md``); the same results as
+        without it.
     **solver_options
         options of the chosen method (e.g. ``compensated=True`` for the splittings);
         unknown ones are an error naming the allowed ones.

@@ -1,4 +1,4 @@
-"""Ensembles of :func:`hyperrotor.simulate` on a dask cluster (``client=``), via :func:`hyperrotor._parallel.map_rows`.
+"""Ensembles of :func:`hyperrotor.simulate` on a dask cluster (``client=``), cut into chunks by the package's dask helper.
 
 The step is chosen once for the whole ensemble (as without a client), then the members
 are cut into chunks of about a second of work each and every chunk runs the same solver

@@ -5,7 +5,7 @@ The Hamiltonian, shifted by a multiple of the Casimir :math:`C_2 = \tfrac12\sum_
 :math:`H - c\,C_2 = \sum_a \rho_a L_a^2/2` with :math:`\rho_a = 1/I_a - c`,
 is split into one term per plane; the flow of :math:`\rho_a L_a^2/2` keeps
 :math:`L_a` fixed and rotates :math:`L` (and ``T``) exactly by the angle
-:math:`h \rho_a L_a` in plane ``a`` (the kernels of :mod:`hyperrotor.classical._kernels`).
+:math:`h \rho_a L_a` in plane ``a`` (compiled numba kernels).
 Planes with :math:`\rho_a = 0` (those whose moment equals ``1/c``) drop out;
 the attitude is corrected for the shift exactly; with a torque there is no shift.
 The basic method :math:`S_2(h)` is Strang's symmetric product over the remaining
