@@ -346,17 +346,22 @@ def test_closed_pipe_ends_quietly(tmp_path):
     assert err == b""
 
 
-@pytest.mark.slow
-def test_bench_output_is_a_stem_or_a_folder(tmp_path):
-    base = ["bench", "--problem", "euler-poinsot", "--method", "splitting8", "--repeats", "1"]
-    code, out, err = _cli([*base, "--output", "b.png"], tmp_path)
+BENCH_QUICK = ["bench", "--problem", "euler-poinsot", "--method", "splitting8", "--repeats", "1"]
+
+
+def test_bench_output_stem_with_extension(tmp_path):
+    code, out, err = _cli([*BENCH_QUICK, "--output", "b.png"], tmp_path)
     assert code == 0 and err == ""
-    assert _files(tmp_path) == ["b.csv", "b.png"]
+    assert _files(tmp_path) == ["b.csv", "b.png"]  # not b.png.csv / b.png.png
     assert "relative error" in out
+
+
+def test_bench_output_folder(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
     (tmp_path / "d").mkdir()
-    code, out, err = _cli([*base, "--output", "d/"], tmp_path)
+    code, out, err = _run(capsys, [*BENCH_QUICK, "--output", "d/"])
     assert code == 0 and err == ""
-    assert _files(tmp_path / "d") == ["hyperrotor-bench.csv", "hyperrotor-bench.png"]
+    assert _files(tmp_path / "d") == ["hyperrotor-bench.csv", "hyperrotor-bench.png"]  # no hidden .csv/.png
 
 
 def test_bench_paths_naming():
