@@ -241,3 +241,22 @@ def test_spectrum_through_symmetry_sectors_matches_dense(N, hw):
         levels, deg = hq.spectrum(H)
     assert deg.sum() == rep.dim
     assert np.abs(np.repeat(levels, deg) - E).max() <= scaled_tol(E, dim=rep.dim, k=16)
+
+
+def test_sphere_inner_product_and_weyl_action_on_plain_symbols():
+    x1, x2, x3 = sp.symbols("x1:4")
+    # <x1, x1> on S^2 (normalized measure) is 1/3; plain x1 was a constant before (gave x1**2)
+    assert hq.sphere_inner_product(x1, x1, 3, normalized=True) == sp.Rational(1, 3)
+    L = hq.angular_momentum_operator((1, 2), 3)
+    assert hq.apply_to_polynomial(L.element, x1 * x2) == x1**2 - x2**2
+
+
+def test_old_module_names_still_export_the_same_objects():
+    from hyperrotor.quantum import representations, rotor
+
+    assert rotor.evolve is hq.evolve and rotor.rotor_hamiltonian is hq.rotor_hamiltonian
+    assert rotor.spectrum is hq.spectrum and representations.Representation is hq.Representation
+    assert representations.harmonic_rep is hq.harmonic_rep
+    from hyperrotor.paper.operator_products import contraction_identity
+
+    assert contraction_identity(3).factor == -1

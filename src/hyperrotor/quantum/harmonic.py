@@ -34,7 +34,7 @@ import sympy as sp
 
 from ..conventions import check_dimension
 from .normal_form import WeylElement, dict_to_polynomial, polynomial_to_dict
-from .operators import DifferentialOperator, coordinate_symbols
+from .operators import DifferentialOperator, _to_coordinates, coordinate_symbols
 
 __all__ = [
     "harmonic_dimension",
@@ -213,6 +213,7 @@ def sphere_monomial_integral(exponents: Any, *, normalized: bool = False):
 def _as_dict(p: Any, coords: tuple) -> dict:
     if isinstance(p, Mapping):
         return dict(p)
+    p, _ = _to_coordinates(p, coords)  # symbols named like a coordinate are that coordinate
     return polynomial_to_dict(p, coords)
 
 
@@ -362,5 +363,7 @@ def apply_to_polynomial(op: Any, poly: Any, coordinates: Any = None):
         if isinstance(poly, Mapping):
             return op.apply_to_poly(poly)
         coords = coordinate_symbols(op.N, coordinates)
-        return dict_to_polynomial(op.apply_to_poly(polynomial_to_dict(poly, coords)), coords)
+        poly, back = _to_coordinates(poly, coords)
+        out = dict_to_polynomial(op.apply_to_poly(polynomial_to_dict(poly, coords)), coords)
+        return out.xreplace(back) if back else out
     raise TypeError(f"op must be a DifferentialOperator or a WeylElement, got {type(op).__name__}")
