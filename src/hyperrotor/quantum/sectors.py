@@ -85,6 +85,7 @@ __all__ = [
     "symmetry_sectors",
     "sector_blocks",
     "sector_hamiltonian",
+    "evolution_blocks",
     "sector_spectra",
 ]
 
@@ -719,6 +720,34 @@ def sector_blocks(H, rep, *, complete: bool = False):
     if M.shape[0] != rep.dim:
         raise ValueError(f"H has dimension {M.shape[0]} but the representation has dimension {rep.dim}")
     return [(s.basis, 1 if complete else s.degeneracy, s.label) for s in secs if s.dim]
+
+
+def evolution_blocks(H, rep, psi0):
+    r"""The populated sectors of ``psi0``: ``[(basis, block, c0)]`` for propagating in sector coordinates.
+
+    ``H`` commutes with every sector projector, so
+    :math:`e^{-iHt/\hbar}\psi_0 = \sum_s B_s\, e^{-iH_s t/\hbar} c_s` with
+    :math:`c_s = B_s^\dagger \psi_0` and :math:`H_s = B_s^\dagger H B_s`
+    (``block``, CSR, real for the real sectors); the sectors of
+    ``symmetry_sectors(rep, complete=True)`` span the whole space. Sectors where
+    ``psi0`` vanishes are left out. ``None`` when ``rep`` has no usable sectors
+    (see :func:`sector_blocks`). Used by :func:`hyperrotor.quantum.evolve`.
+    """
+    parts = sector_blocks(H, rep, complete=True)
+    if parts is None:
+        return None
+    M = _matrix(H)
+    v = np.asarray(psi0).reshape(-1)
+    scale = float(np.abs(v).max()) if v.size else 0.0
+    out = []
+    for B, _, _ in parts:
+        c0 = np.asarray(B.conj().T @ v).reshape(-1)
+        if not np.any(np.abs(c0) > 1e-15 * scale):
+            continue
+        block = sps.csr_matrix(sector_hamiltonian(M, B))
+        block.eliminate_zeros()
+        out.append((B, block, c0.astype(complex)))
+    return out
 
 
 def _levels_task(idx: np.ndarray, H, bases: list, width: int, blas_threads: int | None = None) -> np.ndarray:
