@@ -8,7 +8,10 @@ Problem: a generic 5D body (ten plane moments log-uniform in [0.3, 3], seed 7), 
    (threads; the process is pinned with ``os.sched_setaffinity`` to measure one core), and on
    a ``dask.distributed.LocalCluster`` of 1 and 2 worker processes (1 thread each), the same
    call with ``client=``. Parallel efficiency = throughput(p) / (p * throughput(1)). The
-   distributed results are checked to equal the in-process ones bit for bit.
+   distributed results are checked to equal the in-process ones bit for bit. The CPU time of
+   one more run (this process, or summed over the dask workers) is reported too: on a shared,
+   loaded machine the wall-time efficiency measures the cores others leave free, while CPU
+   seconds per orbit show the cost of the work itself and of distributing it.
 2. One exponent: ``hr.lyapunov`` for one orbit vs a naive scipy variational integration
    (``solve_ivp`` DOP853, rtol = atol = 1e-9, of the Euler equations dL/dt = [Omega, L] and
    their linearisation, 20 unknowns, Python right-hand side, renormalised every time unit), same
@@ -92,16 +95,27 @@ def main(argv=None):
     def run(client=None):
         return hr.lyapunov(moments, W0, T, rng=1, client=client, progress=False)
 
+    def cpu_of(client=None):
+        """CPU seconds of one run: this process, plus the dask workers' when a client is given."""
+        c0 = time.process_time()
+        w0 = client.run(time.process_time) if client is not None else {}
+        run(client)
+        w1 = client.run(time.process_time) if client is not None else {}
+        return time.process_time() - c0 + sum(w1[k] - w0[k] for k in w1)
+
     os.sched_setaffinity(0, cores[:1])
     try:
         t1, ref = best_of(run, repeat, warmup=True)
+        cpu1 = cpu_of()
     finally:
         os.sched_setaffinity(0, cores)
     tall, out_all = best_of(run, repeat, warmup=True)
+    cpu_all = cpu_of()
     assert np.array_equal(out_all, ref)
-    rows.append(dict(run="in-process", workers=1, seconds=t1, orbits_per_s=B / t1, efficiency=1.0, identical=True))
+    rows.append(dict(run="in-process", workers=1, seconds=t1, orbits_per_s=B / t1, efficiency=1.0, identical=True,
+                     cpu_ms_per_orbit=1e3 * cpu1 / B))
     rows.append(dict(run="in-process", workers=len(cores), seconds=tall, orbits_per_s=B / tall,
-                     efficiency=t1 / (len(cores) * tall), identical=True))
+                     efficiency=t1 / (len(cores) * tall), identical=True, cpu_ms_per_orbit=1e3 * cpu_all / B))
 
     from dask.distributed import Client, LocalCluster
 
@@ -110,9 +124,11 @@ def main(argv=None):
         with LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
                 Client(cluster) as client:
             sec, out = best_of(lambda: run(client), repeat, warmup=True)
+            cpu = cpu_of(client)
         base = sec if nw == 1 else base
         rows.append(dict(run="dask LocalCluster", workers=nw, seconds=sec, orbits_per_s=B / sec,
-                         efficiency=base / (nw * sec), identical=bool(np.array_equal(out, ref))))
+                         efficiency=base / (nw * sec), identical=bool(np.array_equal(out, ref)),
+                         cpu_ms_per_orbit=1e3 * cpu / B))
 
     # --- 2. one exponent vs naive scipy -----------------------------------------------------
     w1 = W0[0]
@@ -126,15 +142,18 @@ def main(argv=None):
     # --- report ----------------------------------------------------------------------------
     print(f"Lyapunov ensemble: generic 5D body, {B} orbits, T = {T:g}, mean exponent {ref.mean():.3f} "
           f"(median {np.median(ref):.3f})")
-    print(f"{'run':<20} {'workers':>7} {'seconds':>9} {'orbits/s':>10} {'efficiency':>10} {'bit-identical':>13}")
+    print(f"load average at the end: {os.getloadavg()[0]:.1f} on {len(cores)} cores")
+    print(f"{'run':<20} {'workers':>7} {'seconds':>9} {'orbits/s':>10} {'efficiency':>10} {'CPU ms/orbit':>12} "
+          f"{'bit-identical':>13}")
     for r in rows:
         print(f"{r['run']:<20} {r['workers']:>7d} {r['seconds']:>9.3f} {r['orbits_per_s']:>10.1f} "
-              f"{r['efficiency']:>10.2f} {str(r['identical']):>13}")
+              f"{r['efficiency']:>10.2f} {r['cpu_ms_per_orbit']:>12.2f} {str(r['identical']):>13}")
     print(f"\nOne exponent (T = {T:g}): hyperrotor {t_ours * 1e3:.1f} ms (lambda = {lam_ours:.4f}), naive scipy "
           f"DOP853 variational {t_scipy:.2f} s ({nfev} evaluations, lambda = {lam_scipy:.4f}): "
           f"{single['ratio']:.0f}x")
     os.makedirs(RESULTS, exist_ok=True)
-    write_csv([{**r, "orbits": B, "T": T} for r in rows], os.path.join(RESULTS, "chaos.csv"))
+    load = os.getloadavg()[0]
+    write_csv([{**r, "orbits": B, "T": T, "load_average": load} for r in rows], os.path.join(RESULTS, "chaos.csv"))
     write_csv([single], os.path.join(RESULTS, "chaos_single.csv"))
     try:
         import matplotlib
