@@ -226,10 +226,19 @@ def old_keywords(where: str, given: dict, renamed: dict) -> None:
 # arrays
 # ----------------------------------------------------------------------------
 def finite_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = None, dtype: Any = float) -> np.ndarray:
-    """``value`` as a finite ndarray of ``dtype`` (and of ``ndim`` dimensions when given)."""
+    """``value`` as a finite ndarray of ``dtype`` (and of ``ndim`` dimensions when given).
+
+    For a real ``dtype``, complex input is refused (NumPy would drop the imaginary part with a
+    ``ComplexWarning``)."""
+    if value is None:
+        raise TypeError(f"{name} must be a numeric array, got None")
     try:
+        if np.dtype(dtype).kind in "biuf" and np.iscomplexobj(value):
+            raise TypeError(f"{name} must be real, got complex values {fmt(value)}")
         arr = np.asarray(value, dtype=dtype)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError) as exc:
+        if str(exc).startswith(f"{name} must be real"):
+            raise
         raise TypeError(f"{name} must be a numeric array, got {fmt(value)} of type {type(value).__name__}") from None
     if ndim is not None:
         allowed = (ndim,) if isinstance(ndim, int) else tuple(ndim)
@@ -263,9 +272,11 @@ def time_grid(t: Any, *, name: str = "t", allow_decreasing: bool = True) -> np.n
     is ``False``. The returned array is a fresh float64 copy.
     """
     try:
+        if np.iscomplexobj(t):
+            raise TypeError
         arr = np.array(t, dtype=float)
     except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a 1-D array of output times, got {fmt(t)}") from None
+        raise TypeError(f"{name} must be a 1-D array of real output times, got {fmt(t)}") from None
     if arr.ndim != 1 or arr.size < 1:
         raise ValueError(f"{name} must be a 1-D array of output times (at least one), got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):

@@ -72,6 +72,7 @@ import numpy as np
 from scipy import special
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, planes
+from .. import _validate
 from .inertia import Inertia, body_moments
 
 __all__ = [
@@ -96,18 +97,14 @@ __all__ = [
 
 
 def _times(t: Any) -> np.ndarray:
-    tt = np.asarray(t, dtype=float)
-    if tt.ndim == 0:
-        tt = tt[None]
-    if tt.ndim != 1:
-        raise ValueError(f"t must be a scalar or a 1-D array of times, got shape {tt.shape}")
-    if not np.all(np.isfinite(tt)):
-        raise ValueError("t must contain finite times only")
+    tt = np.atleast_1d(_validate.finite_array("t", t, ndim=(0, 1)))
+    if tt.size == 0:
+        raise ValueError("t must hold at least one time, got an empty array")
     return tt
 
 
 def _omega0(omega0: Any, count: int | None = None) -> np.ndarray:
-    w = np.asarray(omega0, dtype=float)
+    w = _validate.finite_array("omega0", omega0)
     if w.ndim == 0:
         raise ValueError(f"omega0 must be a vector of plane components, got the scalar {omega0!r}")
     if count is not None and w.shape[-1] != count:
@@ -162,9 +159,10 @@ def quartet_moments(kappa: float, axis: int = 5, N: int = 5) -> np.ndarray:
 def quartet_theta(kappa: float) -> float:
     r""":math:`\Theta = (\kappa^2 - 1)/(\kappa^2 + 1)` of eq. (100); inverse
     :math:`\kappa = \sqrt{1-\Theta^2}/(1-\Theta)` (the paper prints ``Theta - 1``)."""
-    k2 = float(kappa) ** 2
+    k = _validate.real("kappa", kappa)
+    k2 = k * k
     if not np.isfinite(k2):
-        raise ValueError(f"kappa must be finite, got {kappa!r}")
+        raise ValueError(f"kappa must be finite with a finite square, got {_validate.fmt(kappa)}")
     return (k2 - 1.0) / (k2 + 1.0)
 
 

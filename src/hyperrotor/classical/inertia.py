@@ -44,6 +44,7 @@ import numpy as np
 
 from hyperrotor._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
+from hyperrotor import _validate
 from hyperrotor.conventions import (
     check_dimension,
     dimension_from_count,
@@ -72,7 +73,7 @@ def _as_value(v: Any, what: str, *, allow_zero: bool = False) -> sp.Expr:
     ``sympy.Float``).
     """
     if isinstance(v, bool) or v is None or isinstance(v, str):
-        raise TypeError(f"{what} must be a real number or a SymPy expression, got {v!r}")
+        raise TypeError(f"{what} must be a real number or a SymPy expression, got {_validate.fmt(v)}")
     if isinstance(v, sp.Basic):
         expr = v
         if not isinstance(expr, sp.Expr):
@@ -89,14 +90,14 @@ def _as_value(v: Any, what: str, *, allow_zero: bool = False) -> sp.Expr:
     if isinstance(v, (Real, np.integer, np.floating)):
         x = float(v)
         if not math.isfinite(x):
-            raise ValueError(f"{what} must be finite, got {v!r}")
+            raise ValueError(f"{what} must be finite, got {_validate.fmt(v)}")
         if x < 0 or (x == 0 and not allow_zero):
             cond = ">= 0" if allow_zero else "> 0"
-            raise ValueError(f"{what} must be {cond}, got {v!r}")
+            raise ValueError(f"{what} must be {cond}, got {_validate.fmt(v)}")
         if isinstance(v, (int, np.integer)):
             return sp.Integer(int(v))
         return sp.Float(x)
-    raise TypeError(f"{what} must be a real number or a SymPy expression, got {v!r} of type {type(v).__name__}")
+    raise TypeError(f"{what} must be a real number or a SymPy expression, got {_validate.fmt(v)} of type {type(v).__name__}")
 
 
 def _is_free(expr: sp.Expr) -> bool:
@@ -114,8 +115,9 @@ def _sympify_seq(x: Any, what: str) -> list:
         return list(x)
     if isinstance(x, (str, bytes)) or not isinstance(x, Iterable):
         raise TypeError(f"{what} must be a sequence, got {x!r}")
-    arr = list(x) if not isinstance(x, np.ndarray) else list(np.ravel(x))
-    return arr
+    if isinstance(x, np.ndarray) and x.ndim != 1:
+        raise ValueError(f"{what} must be a 1-D sequence, got an array of shape {x.shape}")
+    return list(x)
 
 
 # ----------------------------------------------------------------------------
@@ -141,11 +143,8 @@ def second_moment_matrix(masses: Any, positions: Any, *, center: bool = True) ->
 
 
 def _check_points(masses: Any, positions: Any) -> tuple[np.ndarray, np.ndarray]:
-    try:
-        m = np.asarray(masses, dtype=np.float64)
-        r = np.asarray(positions, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise TypeError("masses and positions must be real numeric arrays") from None
+    m = _validate.finite_array("masses", masses)
+    r = _validate.finite_array("positions", positions)
     if r.ndim != 2 or r.shape[1] < 2:
         raise ValueError(f"positions must have shape (n_points, N) with N >= 2, got shape {r.shape}")
     if m.ndim == 0:
@@ -199,7 +198,7 @@ def check_tensor_symmetries(tensor: Any, *, atol: float = 1e-12) -> None:
     :math:`I^{ijkl} + I^{iklj} + I^{iljk} = 0`. ``atol`` is relative to
     ``max |I|``.
     """
-    t = np.asarray(tensor, dtype=np.float64)
+    t = _validate.finite_array("tensor", tensor)
     if t.ndim != 4 or len(set(t.shape)) != 1:
         raise ValueError(f"an inertia tensor has shape (N, N, N, N), got {t.shape}")
     tol = atol * max(1.0, float(np.max(np.abs(t), initial=0.0)))
@@ -292,7 +291,7 @@ class Inertia:
             seq = _sympify_seq(moments, "moments")
             N_ = dimension_from_count(len(seq)) if len(seq) else None
             if N_ is None:
-                raise ValueError("moments must not be empty: give N(N-1)/2 plane moments (N >= 2)")
+                raise ValueError("moments must not be empty (got []): give N(N-1)/2 plane moments (N >= 2)")
             if N is not None and check_dimension(N) != N_:
                 raise ValueError(
                     f"{len(seq)} moments are for N = {N_}, but N = {N} was given (it needs {n_planes(N)})"
@@ -387,7 +386,7 @@ class Inertia:
         """
         seq = _sympify_seq(J, "J")
         if len(seq) < 2:
-            raise ValueError(f"J needs N >= 2 entries, got {len(seq)}")
+            raise ValueError(f"J needs N >= 2 entries, got {_validate.fmt(J)}")
         Js = tuple(_as_value(v, f"J_{k + 1}", allow_zero=True) for k, v in enumerate(seq))
         N = len(Js)
         values = [_as_value(Js[i - 1] + Js[j - 1], f"moment I_{plane_label((i, j), N)} = J_{i} + J_{j}")
@@ -426,7 +425,7 @@ class Inertia:
         M = _as_value(mass, "mass")
         a = [_as_value(v, f"side length a_{k + 1}") for k, v in enumerate(_sympify_seq(side_lengths, "side_lengths"))]
         if len(a) < 2:
-            raise ValueError(f"a box needs N >= 2 side lengths, got {len(a)}")
+            raise ValueError(f"side_lengths: a box needs N >= 2 side lengths, got {len(a)}")
         return cls.from_mass_tensor([M * x**2 / 12 for x in a])
 
     @classmethod
@@ -440,7 +439,7 @@ class Inertia:
         a = [_as_value(v, f"semi-axis a_{k + 1}") for k, v in enumerate(_sympify_seq(semi_axes, "semi_axes"))]
         N = len(a)
         if N < 2:
-            raise ValueError(f"an ellipsoid needs N >= 2 semi-axes, got {N}")
+            raise ValueError(f"semi_axes: an ellipsoid needs N >= 2 semi-axes, got {N}")
         return cls.from_mass_tensor([M * x**2 / (N + 2) for x in a])
 
     @classmethod
@@ -475,7 +474,9 @@ class Inertia:
         elif isinstance(kappa, (Real, np.integer, np.floating)):
             if not math.isfinite(float(kappa)):
                 raise ValueError(f"kappa must be finite, got {kappa!r}")
-            k2 = sp.Integer(int(kappa)) ** 2 if isinstance(kappa, (int, np.integer)) else sp.Float(float(kappa) ** 2)
+            k2 = sp.Integer(int(kappa)) ** 2 if isinstance(kappa, (int, np.integer)) else sp.Float(float(kappa) * float(kappa))
+            if not math.isfinite(float(k2)):
+                raise ValueError(f"kappa**2 must be finite, got kappa = {_validate.fmt(kappa)}")
         else:
             raise TypeError(f"kappa must be a real number or a SymPy expression, got {kappa!r}")
         J = [k2 if i == axis else sp.Integer(1) for i in range(1, N + 1)]
@@ -486,6 +487,8 @@ class Inertia:
     def symbolic(cls, N: int, name: str = "I") -> "Inertia":
         """General inertia with positive SymPy symbols ``I_ij`` (``plane_symbols(name, N, positive=True)``)."""
         N = check_dimension(N)
+        if not isinstance(name, str) or not name.isidentifier():
+            raise TypeError(f"name must be an identifier string such as 'I', got {_validate.fmt(name)}")
         return cls._from_values(plane_symbols(name, N, positive=True), N)
 
     # ------------------------------------------------------------------ accessors
@@ -643,14 +646,9 @@ def body_moments(body: Any) -> np.ndarray:
         body = body.inertia.moments
     elif hasattr(body, "moments"):
         body = body.moments
-    try:
-        I = np.asarray(body, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(
-            f"expected a RigidBody, an Inertia or a 1-D array of plane moments, got {type(body).__name__}"
-        ) from None
+    I = _validate.finite_array("plane moments (a RigidBody, an Inertia or a 1-D array)", body)
     if I.ndim != 1:
-        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got shape {I.shape}")
+        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got {_validate.fmt(body)} of shape {I.shape}")
     dimension_from_count(I.size)
     if not np.all(np.isfinite(I)) or np.any(I <= 0):
         raise ValueError(f"plane moments must be finite and positive, got {I.tolist()}")

@@ -56,6 +56,7 @@ from hyperrotor.conventions import (
     structure_constants,
     to_matrix,
 )
+from hyperrotor import _validate
 from hyperrotor.classical.inertia import Inertia
 
 __all__ = ["RigidBody"]  # and TIME, served by __getattr__ below (not star-imported: that would load SymPy)
@@ -231,14 +232,11 @@ class RigidBody:
         return tuple(sp.Symbol(f"{name}_{self._label(p)}") for p in self.planes)
 
     def _check_omega(self, omega: Any, what: str = "omega") -> np.ndarray:
-        try:
-            w = np.asarray(omega, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise TypeError(f"{what} must be a real numeric array of plane components") from None
+        w = _validate.finite_array(what, omega)  # real, finite (names the value when refused)
         n = len(self.planes)
         if w.ndim == 0 or w.shape[-1] != n:
             raise ValueError(
-                f"{what} must have {n} plane components (last axis) for N = {self.N}, got shape {w.shape}"
+                f"{what} must have {n} plane components (last axis) for N = {self.N}, got {_validate.fmt(omega)} of shape {w.shape}"
             )
         return w
 
@@ -479,7 +477,7 @@ class RigidBody:
         else:
             L = self._check_omega(values, "L")
         if not is_symbolic(L):
-            return _manakov_traces(L, J, lam)
+            return _manakov_traces(L, J, lam if is_symbolic(lam) else _validate.real("lam", lam))
         return _manakov_traces(list(L), J, lam)
 
     # ------------------------------------------------------------------ reductions

@@ -68,6 +68,7 @@ import numpy as np
 from .._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, plane_label, plane_symbols, planes, structure_constants
+from .. import _validate
 from .inertia import body_moments
 
 __all__ = [
@@ -90,18 +91,14 @@ def _labels(body: Any, N: int) -> tuple[int, ...]:
 
 def _local_plane(plane: Any, labels: tuple[int, ...]) -> tuple[int, int]:
     """Translate a plane given in the body's axis labels to local 1..N labels."""
-    try:
-        a, b = (int(v) for v in plane)
-    except (TypeError, ValueError):
-        raise ValueError(f"a plane label is a pair (i, j) of integers, got {plane!r}") from None
-    if a not in labels or b not in labels or a >= b:
-        raise ValueError(f"unknown plane {plane!r}: planes are pairs (i, j), i < j, of the body's axes {labels}")
+    a, b = _validate.plane(plane, max(max(labels), 2))  # a pair of integers, 1 <= a < b
+    if a not in labels or b not in labels:
+        raise ValueError(f"unknown plane {_validate.fmt(plane)}: planes are pairs (i, j), i < j, of the body's axes {labels}")
     return labels.index(a) + 1, labels.index(b) + 1
 
 
 def _plane(plane: Any, N: int) -> tuple[int, int]:
-    k = plane_index(plane, N)  # validates
-    return planes(N)[k]
+    return _validate.plane(plane, N)
 
 
 @dataclass(frozen=True)
@@ -177,7 +174,7 @@ def linearization(body: Any, plane: Any, Omega: float) -> np.ndarray:
     p = plane_index(_plane(plane, N), N)
     C = structure_constants(N).astype(float)
     # J[a, d] = Omega * C[d, p, a] * (I_p - I_d) / I_a
-    return float(Omega) * C[:, p, :].T * (I[p] - I)[None, :] / I[:, None]
+    return _validate.real("Omega", Omega) * C[:, p, :].T * (I[p] - I)[None, :] / I[:, None]
 
 
 def stability_condition(plane: Any, N: int, *, symbol: str = "I"):
@@ -235,12 +232,7 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     labels = _labels(body, N)
     i, j = _local_plane(plane, labels)
     lab = lambda q: (labels[q[0] - 1], labels[q[1] - 1])  # noqa: E731  local -> body labels
-    try:
-        Om = float(Omega)
-    except (TypeError, ValueError):
-        raise TypeError(f"Omega must be a real number, got {Omega!r}") from None
-    if not np.isfinite(Om):
-        raise ValueError(f"Omega must be finite, got {Omega!r}")
+    Om = _validate.real("Omega", Omega)
     if not (rtol >= 0):
         raise ValueError(f"rtol must be >= 0, got {rtol!r}")
     p = plane_index((i, j), N)
@@ -328,6 +320,6 @@ def perturbation_growth(body: Any, plane: Any, Omega: float, t: Any, *, eps: flo
     i, j = _local_plane(plane, _labels(body, N))
     p = plane_index((i, j), N)
     w0 = float(eps) * np.random.default_rng(seed).normal(size=I.size)
-    w0[p] = float(Omega)
+    w0[p] = _validate.real("Omega", Omega)
     traj = simulate(I, w0, t, method=method, rtol=rtol)
     return np.max(np.abs(np.delete(traj.omega, p, axis=-1)), axis=-1)
