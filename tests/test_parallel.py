@@ -116,3 +116,18 @@ def test_client_tuple_results_and_progress(client, rows, capsys):
     for a, b in zip(out, pair_rows(p, rows)):
         assert np.array_equal(a, b)
     assert "37/37" in capsys.readouterr().err
+
+
+def failing_rows(x, bad_row, exc):
+    """Raises ``exc`` in the chunk holding ``bad_row`` (a stand-in for Ctrl-C during a chunk)."""
+    if np.any(x[:, 0] == bad_row):
+        raise exc("chunk failed")
+    return x
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+@pytest.mark.parametrize("exc", [KeyboardInterrupt, ValueError])
+def test_interrupt_or_error_in_a_chunk_propagates(workers, exc):
+    rows = np.arange(40.0).reshape(20, 2)
+    with pytest.raises(exc, match="chunk failed"):
+        _parallel.map_rows(failing_rows, rows, args=(10.0, exc), chunk_size=3, workers=workers, progress=False)
