@@ -499,9 +499,11 @@ def _run_verify(args: argparse.Namespace) -> int:
 SCENE_SHAPES = ("cube", "simplex", "ellipsoid")
 #: Points of the ellipsoid sample of ``scene --shape ellipsoid``.
 _ELLIPSOID_POINTS = 400
-#: Cost model of ``scene`` (seconds, measured on a 2-core machine): per drawn frame, per drawn edge and
-#: point of a frame, per frame-plane of the motion.
-_SCENE_COST = {"frame_png": 0.12, "frame_gif": 0.08, "edge": 6e-6, "point": 8e-6, "motion": 2e-7}
+#: Cost model of ``scene`` (seconds, measured on the shared 2-core machine: --N 12 cube PNG 15.8 s
+#: wall against 13.7 s estimated): start-up (imports), per drawn frame, per drawn edge and point of
+#: a frame, per frame-plane of the motion, per cube vertex and axis^2 (finding the edges).
+_SCENE_COST = {"start": 5.0, "frame_png": 0.35, "frame_gif": 0.1, "edge": 3.5e-5, "point": 1e-5,
+               "motion": 2e-7, "cube_edges": 2e-6}
 _GIF_FRAME_BYTES = 540 * 480 * 4  # Pillow keeps every RGBA frame until the file is written
 
 
@@ -552,8 +554,9 @@ def scene_estimate(shape: str, N: int, frames: int, gif: bool, integrate: bool) 
     Python tuples, plus the cube's grouping ``P x (60 + 40 N)``), the attitudes
     ``K x N^2`` (4 copies) and projections ``K x P x 4`` (2 copies), the drawn
     segments of one frame, and for a GIF every rendered frame (Pillow keeps
-    them until the end). Time: :data:`_SCENE_COST` per drawn frame, edge and
-    point, plus the motion (integrated bodies cost more).
+    them until the end). Time: :data:`_SCENE_COST`: start-up, per drawn frame,
+    edge and point, the cube's edge search, plus the motion (integrated bodies
+    cost more).
     """
     P, E = _scene_size(shape, N)
     K = float(frames)
@@ -561,8 +564,9 @@ def scene_estimate(shape: str, N: int, frames: int, gif: bool, integrate: bool) 
     memory = (P * N * 8 + E * 120 + (P * (60 + 40 * N) if shape == "cube" else 0)
               + 4 * K * N * N * 8 + 2 * K * P * 4 * 8 + E * 500 + (K * _GIF_FRAME_BYTES if gif else 0))
     frame = _SCENE_COST["frame_gif" if gif else "frame_png"]
-    seconds = (drawn * (frame + E * _SCENE_COST["edge"] + P * _SCENE_COST["point"])
-               + K * N * N * _SCENE_COST["motion"] * (50 if integrate else 1) + (P * N * N * 1e-7 if shape == "cube" else 0))
+    seconds = (_SCENE_COST["start"] + drawn * (frame + E * _SCENE_COST["edge"] + P * _SCENE_COST["point"])
+               + K * N * N * _SCENE_COST["motion"] * (50 if integrate else 1)
+               + (P * N * N * _SCENE_COST["cube_edges"] if shape == "cube" else 0))
     return memory, seconds
 
 
