@@ -350,3 +350,24 @@ def test_evolution_blocks_reproduce_the_full_propagator(hw, rng):
     B0 = jobs[0][0]
     only = evolution_blocks(H, rep, B0[:, 0].toarray().ravel())
     assert len(only) == 1
+
+
+@pytest.mark.slow
+def test_sector_spectra_on_a_dask_client(rng):
+    """client=: one task per sector; the workers rebuild the irrep from its highest weight (same levels)."""
+    distributed = pytest.importorskip("dask.distributed")
+    rep = irrep(5, (3, 1))
+    moments = _moments(5, rng)
+    local = sector_spectra(rep, moments)
+    local_vec = sector_spectra(vector_rep(5), moments)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        on_dask = sector_spectra(rep, moments, client=client)
+        # any basis of the irrep: the workers use the GT basis, and the sector levels are the same
+        vec = sector_spectra(vector_rep(5), moments, client=client)
+        with pytest.raises(ValueError, match="highest weight"):
+            sector_spectra(direct_sum(vector_rep(5), vector_rep(5)), moments, client=client)
+    for ref, got in ((local, on_dask), (local_vec, vec)):
+        assert list(got) == list(ref)
+        for k in ref:
+            np.testing.assert_allclose(got[k], ref[k], rtol=1e-12, atol=1e-12 * max(1.0, np.abs(ref[k]).max(initial=0)))

@@ -828,9 +828,10 @@ def sector_spectra(
     workers : int, optional
         Threads for ``parallel=True`` (default: the cores available).
     client : dask.distributed.Client, optional
-        Run one task per sector on a dask cluster (GT irreps only: each worker
-        rebuilds the irrep, the Hamiltonian and the sectors from ``(N, highest
-        weight, moments, hbar)`` once and caches them).
+        Run one task per sector on a dask cluster (irreducible ``rep`` only: each
+        worker rebuilds it as ``irrep(N, highest_weight)``, with the Hamiltonian and
+        the sectors, once and caches them; the levels of a sector, labelled by its
+        character, do not depend on the basis).
     progress : bool or None
         tqdm bar over sectors (``None``: on a terminal, for runs over a second).
 
@@ -872,8 +873,11 @@ def sector_spectra(
     idx = np.arange(len(secs))
     width = max(big, 1)
     if client is not None:
-        if _gt_patterns_of(rep) is None:
-            raise ValueError("client= needs a Gelfand-Tsetlin irrep (the workers rebuild it from its highest weight)")
+        if rep.highest_weight is None:
+            raise ValueError(
+                f"client= needs an irreducible representation with a highest weight (the workers rebuild it as "
+                f"irrep(N, highest_weight): sector spectra do not depend on the basis); {rep.name} has none"
+            )
         spec = (rep.N, tuple(str(x) for x in rep.highest_weight), tuple(float(m) for m in moments), hbar)
         lv = map_rows(_spec_task, idx, args=(spec, width), client=client, chunk_size=1,
                       progress=progress, desc="sectors")
