@@ -350,12 +350,15 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
     elif hasattr(value, "moments") and not isinstance(value, Mapping):
         src = value.moments
     if isinstance(src, Mapping):
-        if N is None:  # infer N from the largest index named (validated against it just below)
-            labels = [plane(p, 10**6) for p in src]
-            n = max(j for _, j in labels)
-        else:
-            n = N
-        labels = [plane(p, n) for p in src]
+        try:
+            if N is None:  # infer N from the largest index named (validated against it just below)
+                labels = [plane(p, 10**6) for p in src]
+                n = max(j for _, j in labels)
+            else:
+                n = N
+            labels = [plane(p, n) for p in src]
+        except ValueError as exc:  # name the argument: the keys must be planes
+            raise ValueError(f"{name}: a mapping must have planes (i, j) as keys; {exc}") from None
         missing = [p for p in _planes(n) if p not in labels]
         if missing:
             raise ValueError(

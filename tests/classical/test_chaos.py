@@ -281,6 +281,26 @@ def test_bad_arguments_are_named(kwargs, exc, words):
         lyapunov(moments, args.pop("omega0"), args.pop("T"), **args)
 
 
+@pytest.mark.parametrize("k", [-600, -3, 5, 900])
+def test_scale_invariance_is_exact_for_powers_of_two(k):
+    """omega -> s omega, t -> t / s leaves the motion unchanged, so lambda -> s lambda; the kernel
+    works on each orbit scaled by a power of two, so this holds bit for bit, without overflow or
+    underflow even for |omega| ~ 1e270 or 1e-180."""
+    moments, w0 = generic_5d(19, 3)
+    s = 2.0 ** k
+    ref = lyapunov(moments, w0, 20.0, rng=5)
+    scaled = lyapunov(moments, s * w0, 20.0 / s, renorm_interval=1.0 / s, rng=5)
+    assert np.array_equal(scaled, s * ref)
+
+
+def test_huge_angular_velocity_is_refused_by_the_budget():
+    moments, w0 = generic_5d(0, 1)
+    with pytest.raises(ValueError, match="lyapunov_max_work"):
+        lyapunov(moments, 1e300 * w0[0], 1.0)
+    with pytest.raises(ValueError, match="max_steps"):
+        chaos.poincare_section(moments, 1e300 * w0[0], 1.0)
+
+
 def test_budget_refuses_with_estimate():
     moments, w0 = generic_5d(0, 2)
     with options(lyapunov_max_work=1e5):

@@ -132,21 +132,29 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     N = dimension_from_count(n)
     gen = _validate.rng(rng)
     # per orbit: Casimir-shifted rates (as simulate), step, steps per renormalisation
+    # scale each orbit by a power of two close to its largest |L_a| (the equations are invariant under
+    # L -> L/s, t -> s t): exact in floating point, so the arithmetic of the kernel is the same as
+    # unscaled (the half-angles fac * L and the products of the tangent map do not change), but
+    # neither norms nor the step rule overflow or underflow for huge or tiny momenta
+    scale = np.ldexp(1.0, np.frexp(np.max(np.abs(L0), axis=1))[1]) if B else np.ones(0)
+    scale[scale == 0.0] = 1.0
+    Ls = L0 / scale[:, None]
     shift = np.empty(B)
     uniq, inverse = np.unique(moments_rows, axis=0, return_inverse=True)
     for u in range(uniq.shape[0]):
         sel = np.flatnonzero(inverse.ravel() == u)
-        shift[sel] = casimir_shift(uniq[u], L0[sel])
+        shift[sel] = casimir_shift(uniq[u], Ls[sel])  # homogeneous of degree 0 in L
     rates = 1.0 / moments_rows - shift[:, None]
     nren = max(1, math.ceil(T / renorm_interval - 1e-9))
     tau = T / nren
+    # steps per renormalisation (as floats, for the budget check before any cast)
     if dt is None:
-        wmax = _rate_bound(moments_rows, L0)
-        step = np.where(wmax > 0, options["lyapunov_step"] / np.where(wmax > 0, wmax, 1.0), tau)
+        wmax = _rate_bound(moments_rows, Ls)  # of the scaled orbit, time tau * scale
+        with np.errstate(over="ignore"):
+            nsub_f = np.where(wmax > 0, np.ceil(tau * scale * wmax / options["lyapunov_step"] * (1 - 1e-12)), 1.0)
     else:
-        step = np.full(B, dt)
-    nsub = np.maximum(1, np.ceil(tau / step * (1 - 1e-12))).astype(np.int64)
-    h = tau / nsub
+        nsub_f = np.full(B, math.ceil(tau / dt * (1 - 1e-12)))
+    nsub_f = np.maximum(nsub_f, 1.0)
     # one word for the whole ensemble (planes whose rate vanishes for every orbit drop out), so
     # that an orbit's arithmetic does not depend on the chunk it falls in
     seq = tuple(int(a) for a in np.flatnonzero(np.any(rates != 0.0, axis=0)))
@@ -154,16 +162,19 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     tables = rotation_tables(N)
     # budget and chunking
     m = max(1, word[0].size)
-    work_rows = nsub.astype(float) * nren * m * (1 + k)
+    with np.errstate(over="ignore"):
+        work_rows = nsub_f * nren * m * (1 + k)
     threads = _parallel.client_threads(client) if client is not None else _parallel.default_workers()
     budget = options["lyapunov_max_work"]
-    if work_rows.sum() / threads > budget:
+    if not work_rows.sum() / threads <= budget:  # also refuses an infinite estimate
         raise ValueError(
             f"this run needs about {work_rows.sum():.3g} units of work (plane flows x (1 + {k} tangent vectors)), "
             f"{work_rows.sum() / threads:.3g} per worker thread, over the budget options['lyapunov_max_work'] = "
             f"{_validate.fmt(budget)} (~{budget / _WORK_RATE / 60:.0f} min per thread); shorten T, use fewer orbits, "
             f"add workers (client=) or raise it: hr.options(lyapunov_max_work=...)"
         )
+    nsub = nsub_f.astype(np.int64)
+    h = tau * scale / nsub  # step in the scaled time of each orbit
     stride = 1 if history else nren
     nstore = nren if history else 1
     if B * nstore * k * 8 > options["max_output_bytes"]:
@@ -182,7 +193,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     # any orbit's arithmetic
     order = np.argsort(nsub, kind="stable")
     sorted_sums = _parallel.map_rows(
-        _benettin_rows, (L0[order], rates[order], W0[order], h[order], nsub[order]),
+        _benettin_rows, (Ls[order], rates[order], W0[order], h[order], nsub[order]),
         args=(word[0], word[1], tables[0], tables[1], tables[2], nren, stride, nstore),
         client=client, chunk_size=chunk_size, progress=progress, desc=desc,
     )
@@ -479,8 +490,14 @@ def poincare_section(
     a = plane_index(ij, N)
     L0 = w0 * moments
     if dt is None:
-        wmax = float(_rate_bound(moments[None, :], L0[None, :])[0])
+        s = float(np.ldexp(1.0, np.frexp(np.max(np.abs(L0)))[1])) or 1.0  # power of two: no overflow
+        wmax = float(_rate_bound(moments[None, :], L0[None, :] / s)[0]) * s
         dt = options["lyapunov_step"] / wmax if wmax > 0 else T
+    steps = T / dt
+    if not steps <= options["max_steps"]:
+        raise ValueError(f"this section needs about {steps:.3g} steps of dt = {dt:.3g} over T = {_validate.fmt(T)}, "
+                         f"over the budget options['max_steps'] = {_validate.fmt(options['max_steps'])}; "
+                         f"shorten T, give a larger dt, or raise it: hr.options(max_steps=...)")
 
     def crossing(_t, L):
         return L[a] - value
