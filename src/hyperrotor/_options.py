@@ -169,6 +169,12 @@ register(
     "only ~20% above 1e-8 (benchmarks/quantum_evolution.py).",
 )
 register(
+    "quantum_rotation_atol", 1e-14,
+    "apply_rotation / coherent_state: Krylov error bound per plane-rotation factor exp(theta X) psi. "
+    "A coherent state is a product of at most N(N-1)/2 such factors, so 1e-14 keeps it within ~1e-13 "
+    "of exact, below the tolerances of every evolution that starts from it.",
+)
+register(
     "quantum_krylov_dim", 30,
     "Default 'krylov_dim' of the Krylov propagator: largest Krylov space per restart. 30 vectors "
     "cover a time step of ~20/||H|| per restart at 1e-12; larger spaces cost memory (dim x m) and "

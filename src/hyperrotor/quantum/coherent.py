@@ -35,6 +35,7 @@ import scipy.sparse as sps
 import scipy.sparse.linalg as spla
 
 from .. import _validate
+from .._options import options
 from ..conventions import n_planes, planes, to_matrix
 from .evolve import _krylov_propagator, _single_thread_blas
 
@@ -203,7 +204,7 @@ def apply_rotation(rep: Any, Q: Any, psi: Any) -> np.ndarray:
     ``Q`` is factored into plane rotations :math:`\prod_k \exp(\theta_k E_{p_k})`
     (Givens) and each factor :math:`e^{\theta_k X_{p_k}}\psi` is applied by the
     Lanczos propagator of :mod:`hyperrotor.quantum.evolve` (Krylov, tolerance
-    1e-14; ``scipy.sparse.linalg.expm_multiply`` gives the same vectors but was
+    ``options["quantum_rotation_atol"]`` = 1e-14; ``scipy.sparse.linalg.expm_multiply`` gives the same vectors but was
     ~10x slower here).
     """
     Q = np.asarray(Q, dtype=float)
@@ -216,7 +217,8 @@ def apply_rotation(rep: Any, Q: Any, psi: Any) -> np.ndarray:
         for plane, theta in reversed(_givens_angles(Q)):
             # exp(theta X) v = exp(-i H |theta|) v with the Hermitian H = i sign(theta) X (Lanczos)
             Hp = sps.csr_matrix(gens[plane]) * (1j * np.sign(theta))
-            prop = _krylov_propagator(Hp, vec, np.array([0.0, abs(theta)]), 1.0, {}, tol=1e-14, m_max=30)
+            prop = _krylov_propagator(Hp, vec, np.array([0.0, abs(theta)]), 1.0, {},
+                                      atol=options["quantum_rotation_atol"], m_max=options["quantum_krylov_dim"])
             next(prop)
             vec = next(prop)
     return vec

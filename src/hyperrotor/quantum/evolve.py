@@ -208,7 +208,7 @@ def _norm(v: np.ndarray) -> float:
     return float(np.sqrt(x @ x))
 
 
-def _krylov_propagator(mat, v0, times, hbar, stats, *, tol: float, m_max: int) -> Iterator[np.ndarray]:
+def _krylov_propagator(mat, v0, times, hbar, stats, *, atol: float, m_max: int) -> Iterator[np.ndarray]:
     """Lanczos propagation of ``exp(-i H t / hbar) v0`` on a time grid.
 
     Each restart builds an orthonormal Krylov basis ``V`` of dimension ``m`` at the
@@ -219,6 +219,7 @@ def _krylov_propagator(mat, v0, times, hbar, stats, *, tol: float, m_max: int) -
     begins at the last of them (or, if none is reachable, after a sub-step ``tau``
     meeting the tolerance, found by bisection).
     """
+    tol = atol
     n = v0.shape[0]
     mv = _matvec_factory(mat)
     m_max = max(1, min(int(m_max), n))
@@ -379,7 +380,7 @@ class Krylov(Propagator):
         dim = self.opts.get("krylov_dim")
         atol = _options["quantum_krylov_atol"] if atol is None else _validate.positive("atol", atol)
         dim = _options["quantum_krylov_dim"] if dim is None else _validate.integer("krylov_dim", dim, minimum=1)
-        return _krylov_propagator(mat, v0, t, hbar, stats, tol=float(atol), m_max=int(dim))
+        return _krylov_propagator(mat, v0, t, hbar, stats, atol=float(atol), m_max=int(dim))
 
 
 @register_propagator
