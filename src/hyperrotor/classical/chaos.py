@@ -57,9 +57,10 @@ import numpy as np
 
 from hyperrotor import _parallel, _validate
 from hyperrotor._options import options
-from hyperrotor.conventions import dimension_from_count
+from hyperrotor.conventions import dimension_from_count, plane_index
 
 from ._tangent_kernels import tangent_run, tangent_run_lanes
+from .simulate import simulate
 from .solvers.splitting import casimir_shift, rotation_tables, splitting_word
 
 __all__ = ["lyapunov", "lyapunov_sweep", "LYAPUNOV_METHODS", "poincare_section", "PoincareSection", "plot_poincare"]
@@ -410,8 +411,6 @@ class PoincareSection:
 
     def coordinates(self, *planes: Any) -> np.ndarray:
         """Columns of ``L`` for the given planes, shape ``(m, len(planes))`` (e.g. ``sec.coordinates((1, 3), (2, 4))``)."""
-        from hyperrotor.conventions import plane_index
-
         cols = [plane_index(_validate.plane(p, self.N), self.N) for p in planes]
         return self.L[:, cols]
 
@@ -470,8 +469,6 @@ def poincare_section(
     -------
     PoincareSection
     """
-    from .simulate import simulate
-
     moments = _validate.moments(body, name="body")
     n = moments.size
     N = dimension_from_count(n)
@@ -485,8 +482,6 @@ def poincare_section(
         raise ValueError(f"direction must be 1 (upward), -1 (downward) or 0 (both), got {_validate.fmt(direction)}")
     method = _validate.choice("method", method, LYAPUNOV_METHODS)
     dt = _validate.positive("dt", dt, allow_none=True)
-    from hyperrotor.conventions import plane_index
-
     a = plane_index(ij, N)
     L0 = w0 * moments
     if dt is None:
@@ -503,8 +498,7 @@ def poincare_section(
         return L[a] - value
 
     crossing.direction = int(direction)
-    traj = simulate(body if not isinstance(body, (list, tuple)) else moments, w0, [0.0, T], method=method, dt=dt,
-                    events=crossing, progress=progress)
+    traj = simulate(moments, w0, [0.0, T], method=method, dt=dt, events=crossing, progress=progress)
     L_ev = np.asarray(traj.L_events[0]).reshape(-1, n)
     return PoincareSection(t=np.asarray(traj.t_events[0], dtype=float), L=L_ev, omega=L_ev / moments, plane=ij,
                            value=value, direction=int(direction), N=N)
