@@ -541,7 +541,11 @@ def evolve(
     rep : Representation, keyword-only, optional
         The representation ``H`` was built from (default: the one
         :func:`rotor_hamiltonian` recorded on ``H``), for the symmetry sectors
-        of :mod:`hyperrotor.quantum.sectors` (hook :func:`_sector_jobs`).
+        of :mod:`hyperrotor.quantum.sectors`: when it is known, ``blocks`` is on and
+        a populated sparsity block is larger than ``options["quantum_eigen_max_block"]``
+        (a generic inertia), the native methods propagate the state sector by sector
+        (``stats["sectors"]``; 16 real blocks of ~dim/16 for so(5) tensor irreps, so
+        ``"auto"`` can use exact diagonalization far beyond the sparsity blocks).
 
     Returns
     -------
@@ -581,11 +585,26 @@ def evolve(
 
 
 def _sector_jobs(mat: sps.csr_matrix, rep: Any, vec: np.ndarray, cls: type[Propagator], opts: dict) -> list | None:
-    """Hook for the symmetry sectors of :mod:`.sectors` (issue #16): jobs ``(basis, propagator)`` or ``None``.
+    r"""Jobs ``(basis, block, c0, propagator)`` in the symmetry sectors of :mod:`.sectors` (issue #16), or ``None``.
 
-    ``None`` (today) means: use the sparsity blocks. Engineer S fills this in.
+    The sectors of the rotations by :math:`\pi` (all copies, so they span the space) that
+    ``vec`` populates: :math:`\psi(t) = \sum_s B_s\,\psi_s(t)` with :math:`\psi_s` the
+    evolution of :math:`c_s = B_s^\dagger\psi_0` under the (real, for tensor irreps) block
+    :math:`H_s = B_s^\dagger H B_s`; each block gets the propagator ``cls`` plans for its
+    size (``"auto"``: ``"eigen"`` up to ``eigen_max_block``, Krylov above). ``None`` when
+    ``rep`` has no usable sectors (then the sparsity blocks are used).
     """
-    return None
+    from . import sectors
+
+    parts = sectors.evolution_blocks(mat, rep, vec)
+    if not parts:
+        return None
+    planner = cls(**opts)
+    jobs = []
+    for B, block, c0 in parts:
+        for _, prop in planner.plan([np.arange(block.shape[0])]):
+            jobs.append((B, block, c0, prop))
+    return jobs
 
 
 def _evolve_native(cls, opt, mat, dims, vec, t, e_ops, hbar, rep=None):
@@ -604,8 +623,17 @@ def _evolve_native(cls, opt, mat, dims, vec, t, e_ops, hbar, rep=None):
     singles = np.array([b[0] for b in populated if len(b) == 1], dtype=int)
     multi = [b for b in populated if len(b) > 1]
     method_opts = {k: opt[k] for k in cls.options}
+    # generic inertia: the sparsity blocks are large; the symmetry sectors split them ~2^(N-1) ways
+    sector_jobs = None
+    big = max((len(b) for b in multi), default=0)
+    if rep is not None and use_blocks and big > int(_options["quantum_eigen_max_block"]):
+        sector_jobs = _sector_jobs(mat, rep, vec, cls, method_opts)
+    if sector_jobs is not None:
+        singles, multi = np.zeros(0, dtype=int), []
+        stats["sectors"] = len(sector_jobs)
     jobs = cls(**method_opts).plan(multi)
     props = []
+    basis_props = []
     if singles.size:
         diag = mat.diagonal()[singles].real
         props.append((singles, _diagonal_propagator(diag, vec[singles], t, hbar)))
@@ -614,6 +642,9 @@ def _evolve_native(cls, opt, mat, dims, vec, t, e_ops, hbar, rep=None):
         sub = mat[b][:, b].tocsr()
         used.add(prop.name)
         props.append((b, prop.propagate(sub, vec[b], t, hbar, stats)))
+    for B, block, c0, prop in sector_jobs or []:
+        used.add(prop.name)
+        basis_props.append((B, prop.propagate(block, c0, t, hbar, stats)))
     stats["block_methods"] = sorted(used) if used else ["diagonal"]
     ropts = {
         "store_states": opt["store_states"],
@@ -637,6 +668,8 @@ def _evolve_native(cls, opt, mat, dims, vec, t, e_ops, hbar, rep=None):
             full[:] = 0
             for idx, gen in props:
                 full[idx] = next(gen)
+            for B, gen in basis_props:  # sector supports overlap: accumulate
+                full += B @ next(gen)
             result.add(float(tk), qutip.Qobj(full.reshape(-1, 1).copy(), dims=ket_dims, copy=False))
             bar.update()
     bar.finished()
