@@ -121,7 +121,7 @@ def main(argv=None):
 
     base = None
     for nw in (1, 2):
-        with LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+        with LocalCluster(n_workers=nw, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
                 Client(cluster) as client:
             sec, out = best_of(lambda: run(client), repeat, warmup=True)
             cpu = cpu_of(client)

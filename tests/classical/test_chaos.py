@@ -319,7 +319,7 @@ def test_sweep_rejects_mixed_dimensions():
 @pytest.fixture(scope="module")
 def client():
     dd = pytest.importorskip("dask.distributed")
-    with dd.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+    with dd.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
             dd.Client(cluster) as c:
         yield c
 
