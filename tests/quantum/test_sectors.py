@@ -360,8 +360,8 @@ def test_sector_spectra_on_a_dask_client(rng):
     moments = _moments(5, rng)
     local = sector_spectra(rep, moments)
     local_vec = sector_spectra(vector_rep(5), moments)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
-            distributed.Client(cluster) as client:
+    cluster_kw = dict(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0")
+    with distributed.LocalCluster(**cluster_kw) as cluster, distributed.Client(cluster) as client:
         on_dask = sector_spectra(rep, moments, client=client)
         # any basis of the irrep: the workers use the GT basis, and the sector levels are the same
         vec = sector_spectra(vector_rep(5), moments, client=client)

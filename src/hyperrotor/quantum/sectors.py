@@ -66,17 +66,19 @@ limited to ``options["sectors_dense_max_dim"]``.
 """
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sps
-from scipy.sparse.csgraph import breadth_first_order, connected_components
+from scipy.sparse.csgraph import connected_components
 
 from .. import _validate
 from .._options import options, register
+from ._gt_monomials import Monomial, gt_conjugation, gt_patterns_of, gt_rotations
 
 __all__ = [
     "Sector",
@@ -104,7 +106,6 @@ register(
 )
 
 _CLASSES_3D = {(1, 1): "A", (1, -1): "B1", (-1, -1): "B2", (-1, 1): "B3"}
-_PHASES = np.array([1, 1j, -1, -1j])
 
 
 # ----------------------------------------------------------------------------
@@ -134,9 +135,10 @@ class Sector:
         on the sector, for the planes that define it.
     real : bool
         The basis columns are fixed by an antiunitary symmetry :math:`T = UK`,
-        :math:`T^2 = 1`, commuting with every generator (tensor GT irreps of real type,
-        see :func:`_gt_conjugation`), so :math:`B^\dagger \hat H B` is real symmetric
-        for every rotor Hamiltonian (and is returned real by :func:`sector_hamiltonian`,
+        :math:`T^2 = 1`, commuting with every generator (tensor GT irreps of real
+        type; U is the monomial conjugation intertwiner of the private module
+        ``hyperrotor.quantum._gt_monomials``), so :math:`B^\dagger \hat H B` is real
+        symmetric for every rotor Hamiltonian (and is returned real by :func:`sector_hamiltonian`,
         which halves memory and makes the diagonalization ~4x cheaper).
     """
 
@@ -186,184 +188,6 @@ def _is_half_integer(rep) -> bool | None:
     return any(Fraction(x).denominator == 2 for x in hw)
 
 
-def _gt_patterns_of(rep):
-    """The GT patterns of ``rep`` when it is (claims to be) a Gelfand-Tsetlin irrep, else None."""
-    from .gelfand_tsetlin import gt_patterns, gt_size
-
-    if rep.highest_weight is None:
-        return None
-    try:
-        if gt_size(rep.N, rep.highest_weight) != rep.dim:
-            return None
-        return gt_patterns(rep.N, rep.highest_weight, max_dim=max(rep.dim, 1))
-    except (ValueError, TypeError):
-        return None
-
-
-def _row_last_column(N: int, k: int) -> int:
-    """Column of the last entry of row M_k in the flattened GT pattern (rows M_N, ..., M_2)."""
-    c = 0
-    for m in range(N, k - 1, -1):
-        c += m // 2
-    return c - 1
-
-
-def _round_phase(z: np.ndarray, what: str) -> np.ndarray:
-    """Round to the nearest of 1, i, -1, -i; refuse if any value is not close to one."""
-    z = np.asarray(z, dtype=complex)
-    q = np.rint(np.angle(z) / (np.pi / 2)).astype(int) % 4
-    out = _PHASES[q]
-    if z.size and np.abs(z - out).max() > 1e-8:
-        raise ArithmeticError(f"{what}: not a phase in {{1, i, -1, -i}} (deviation {np.abs(z - out).max():.2e})")
-    return out
-
-
-class _Monomial:
-    """A monomial matrix ``D e_a = phase[a] e_{perm[a]}``."""
-
-    __slots__ = ("perm", "phase")
-
-    def __init__(self, perm: np.ndarray, phase: np.ndarray):
-        self.perm = perm
-        self.phase = phase
-
-    def matrix(self) -> sps.csr_matrix:
-        n = len(self.perm)
-        return sps.csr_matrix((self.phase, (self.perm, np.arange(n))), shape=(n, n))
-
-
-def _flip_perm(rep, P: np.ndarray, rows: list[int]) -> np.ndarray:
-    """Index map of the GT patterns with the last label of each row ``M_k`` (k in ``rows``) negated."""
-    from .gelfand_tsetlin import gt_index
-
-    if not rows:
-        return np.arange(rep.dim)
-    Q = P.copy()
-    for k in rows:
-        Q[:, _row_last_column(rep.N, k)] *= -1.0
-    return np.asarray(gt_index(rep.N, rep.highest_weight, Q), dtype=np.int64)
-
-
-def _intertwining_phases(chain: dict, perm: np.ndarray, sigma: dict, conj: bool) -> np.ndarray:
-    r"""Phases (up to one constant) of the monomial U, :math:`U e_a = \varphi_a e_{\pi(a)}`, with
-    :math:`U Y_q = \sigma_q X_q U` for every chain generator, :math:`Y_q = \bar X_q` if ``conj`` else :math:`X_q`.
-
-    On a nonzero :math:`Y_{ab}` (a != b) the relation reads
-    :math:`\varphi_a / \varphi_b = \sigma_q X_{\pi(a)\pi(b)} / Y_{ab}`; these ratios (in
-    :math:`\{\pm1, \pm i\}`) are multiplied along a breadth-first spanning tree of the
-    generator graph (connected for an irrep). The relation on all other nonzeros is
-    checked afterwards (:func:`_monomial_residual`).
-    """
-    dim = len(perm)
-    rows, cols, expo = [], [], []
-    for q, X in chain.items():
-        Y = X.conj() if conj else X
-        C = Y.tocoo()
-        off = C.row != C.col
-        r, c, v = C.row[off], C.col[off], C.data[off]
-        if not len(r):
-            continue
-        w = np.asarray(X[perm[r], perm[c]], dtype=complex).ravel()
-        ratio = _round_phase(sigma[q] * w / v, "GT intertwining ratio")
-        rows.append(r)
-        cols.append(c)
-        expo.append(np.rint(np.angle(ratio) / (np.pi / 2)).astype(np.int64) % 4 + 1)  # 1..4, never 0
-    if not rows:
-        return np.ones(dim, dtype=complex)
-    r, c, e = np.concatenate(rows), np.concatenate(cols), np.concatenate(expo)
-    R = sps.csr_matrix((e, (r, c)), shape=(dim, dim))
-    order, pred = breadth_first_order(R, 0, directed=False)
-    if len(order) != dim:
-        raise ArithmeticError("the chain generators do not connect the basis: not an irrep")
-    child = order[1:]
-    # the tree uses an edge (a = child, b = parent) in either stored direction
-    fwd = np.asarray(R[child, pred[child]]).ravel()
-    bwd = np.asarray(R[pred[child], child]).ravel()
-    step = np.where(fwd > 0, fwd - 1, (-(bwd - 1)) % 4)  # phi_child / phi_parent = i^step
-    ex = np.zeros(dim, dtype=np.int64)
-    for a, p, st in zip(child.tolist(), pred[child].tolist(), step.tolist()):
-        ex[a] = ex[p] + st
-    return _PHASES[ex % 4]
-
-
-def _monomial_residual(U: _Monomial, chain: dict, sigma: dict, conj: bool) -> float:
-    """Largest relative residual of U Y_q - sigma_q X_q U over all chain generators."""
-    M = U.matrix()
-    worst = 0.0
-    for q, X in chain.items():
-        Y = X.conj() if conj else X
-        R = (M @ Y - sigma[q] * (X @ M)).tocsr()
-        if R.nnz:
-            scale = float(abs(X).max()) if X.nnz else 1.0
-            worst = max(worst, float(np.abs(R.data).max()) / max(scale, 1e-300))
-    return worst
-
-
-def _gt_pi_rotation(rep, P: np.ndarray, k: int, chain: dict) -> _Monomial:
-    """D(g_(k,k+1)) = exp(pi X_(k,k+1)) of a GT irrep as a monomial matrix (no dense dim x dim work)."""
-    dim = rep.dim
-    perm = _flip_perm(rep, P, [k] if k % 2 == 0 else [])
-    sigma = {q: (-1.0 if q in (k - 1, k + 1) else 1.0) for q in chain}  # s_q s_{q+1}, s = -1 on k, k+1
-    phi = _intertwining_phases(chain, perm, sigma, conj=False)
-    # overall constant: one column of exp(pi X) on the small block of X_(k,k+1) holding vector 0
-    X = chain[k]
-    block, _ = breadth_first_order(abs(X) + sps.identity(dim, format="csr"), 0, directed=False)
-    block = np.sort(block)
-    E = sla.expm(np.pi * X[block][:, block].toarray())
-    loc = {int(b): i for i, b in enumerate(block)}
-    if int(perm[0]) not in loc:  # pragma: no cover - internal
-        raise ArithmeticError("pi rotation leaves the block of X_(k,k+1): not a GT irrep")
-    c0 = _round_phase(np.array([E[loc[int(perm[0])], 0] / phi[0]]), "overall phase")[0]
-    D = _Monomial(perm, c0 * phi)
-    if _monomial_residual(D, chain, sigma, conj=False) > 1e-9:
-        raise ArithmeticError("the monomial pi rotation fails the intertwining check: not a GT irrep")
-    return D
-
-
-def _gt_conjugation(rep, P: np.ndarray, chain: dict) -> _Monomial | None:
-    r"""Monomial U with :math:`U \bar X_{(ij)} U^\dagger = X_{(ij)}` and :math:`U\bar U = 1`, if it exists.
-
-    Then :math:`T = U K` (K: complex conjugation of GT coordinates) is an antiunitary
-    symmetry with :math:`T^2 = 1` commuting with every generator, so the irrep has a real
-    form in which every rotor Hamiltonian is real symmetric. The permutation negates
-    the last label of the rows :math:`M_2, M_6, M_{10}, \dots` (this negates the
-    imaginary diagonal :math:`iC` of every :math:`X_{(2p+1,2p+2)}`: :math:`C` is odd in
-    the last labels of rows :math:`2p` and :math:`2p+2`). ``None`` when no such U
-    exists: spinor irreps are quaternionic (:math:`U\bar U = -1`), so(4k+2) irreps with
-    :math:`m_n \ne 0` are of complex type.
-    """
-    rows = list(range(2, rep.N, 4))
-    if not rows:
-        return None
-    sigma = {q: 1.0 for q in chain}
-    try:
-        perm = _flip_perm(rep, P, rows)
-        U = _Monomial(perm, _intertwining_phases(chain, perm, sigma, conj=True))
-    except (ArithmeticError, ValueError):
-        return None
-    if _monomial_residual(U, chain, sigma, conj=True) > 1e-9:
-        return None
-    # (U conj(U)) e_a = conj(phi_a) phi_{pi(a)} e_{pi(pi(a))}
-    UU = np.conj(U.phase) * U.phase[U.perm]
-    if np.any(U.perm[U.perm] != np.arange(len(U.perm))) or np.abs(UU - 1).max() > 1e-9:
-        return None
-    return U
-
-
-def _gt_rotations(rep, planes_k: list[int]) -> dict[int, _Monomial] | None:
-    P = _gt_patterns_of(rep)
-    if P is None:
-        return None
-    chain = {q: sps.csr_matrix(rep.generator((q, q + 1), format="csr")) for q in range(1, rep.N)}
-    out = {}
-    for k in planes_k:
-        try:
-            out[k] = _gt_pi_rotation(rep, P, k, chain)
-        except (ArithmeticError, ValueError):
-            return None
-    return out
-
-
 def pi_rotation(rep, plane, *, format: str = "csr"):
     r"""The rotation by :math:`\pi` in ``plane``: :math:`D = \exp(\pi X_{(ij)})`.
 
@@ -387,7 +211,7 @@ def pi_rotation(rep, plane, *, format: str = "csr"):
     i, j = _validate.plane(plane, rep.N)
     fmt = _validate.choice("format", format, ("csr", "dense"))
     if j == i + 1:
-        rot = _gt_rotations(rep, [i])
+        rot = gt_rotations(rep, [i])
         if rot is not None:
             M = rot[i].matrix()
             return M.toarray() if fmt == "dense" else M
@@ -410,7 +234,7 @@ def _check_dense_dim(rep) -> None:
 # ----------------------------------------------------------------------------
 # sectors from commuting monomial matrices
 # ----------------------------------------------------------------------------
-def _orbit_representatives(ops: list[_Monomial], dim: int) -> np.ndarray:
+def _orbit_representatives(ops: list[Monomial], dim: int) -> np.ndarray:
     rows = np.concatenate([np.arange(dim)] + [np.arange(dim) for _ in ops])
     cols = np.concatenate([np.arange(dim)] + [D.perm for D in ops])
     G = sps.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(dim, dim))
@@ -420,7 +244,7 @@ def _orbit_representatives(ops: list[_Monomial], dim: int) -> np.ndarray:
     return np.sort(first)
 
 
-def _project_monomial(ops: list[_Monomial], eigs: tuple, reps_idx: np.ndarray, dim: int) -> sps.csc_matrix:
+def _project_monomial(ops: list[Monomial], eigs: tuple, reps_idx: np.ndarray, dim: int) -> sps.csc_matrix:
     """Orthonormal basis of the joint eigenspace D_k = eigs[k] (sparse columns, one per orbit)."""
     V = sps.csc_matrix((np.ones(len(reps_idx), dtype=complex), (reps_idx, np.arange(len(reps_idx)))),
                        shape=(dim, len(reps_idx)))
@@ -435,7 +259,7 @@ def _project_monomial(ops: list[_Monomial], eigs: tuple, reps_idx: np.ndarray, d
     return sps.csc_matrix(V)
 
 
-def _make_real(B: sps.csc_matrix, U: _Monomial) -> sps.csc_matrix:
+def _make_real(B: sps.csc_matrix, U: Monomial) -> sps.csc_matrix:
     r"""Rephase the columns of B so that :math:`T b = U \bar b = b` (T preserves each sector column).
 
     U maps every orbit of the sign group to itself (its permutation is a product of
@@ -540,16 +364,16 @@ def symmetry_sectors(rep, *, complete: bool = False) -> list[Sector]:
     ops = None
     if half is not None:
         ks, alphabet, degen = _structure(rep, half)
-        ops = _gt_rotations(rep, sorted(set(ks) | ({1} if N > 1 else set())))
+        ops = gt_rotations(rep, sorted(set(ks) | ({1} if N > 1 else set())))
     real_U = None
     if ops is not None:
         ops_list = [ops[k] for k in ks]
         spinorial = bool(half)
         reps_idx = _orbit_representatives(ops_list, dim)
         if not spinorial and N >= 3:
-            P = _gt_patterns_of(rep)
+            P = gt_patterns_of(rep)
             chain = {q: sps.csr_matrix(rep.generator((q, q + 1), format="csr")) for q in range(1, N)}
-            real_U = _gt_conjugation(rep, P, chain)
+            real_U = gt_conjugation(rep, P, chain)
 
         def project(eigs):
             B = _project_monomial(ops_list, eigs, reps_idx, dim)
@@ -574,8 +398,6 @@ def symmetry_sectors(rep, *, complete: bool = False) -> list[Sector]:
         def project(eigs):
             return _project_dense(Ds, eigs, dim)
         D_centre = None
-    import itertools
-
     out = []
     types_seen = set()
     for eigs in itertools.product(alphabet, repeat=len(ks)):
