@@ -1,4 +1,4 @@
-"""Shared fixtures: machine epsilon and a seeded generator (tolerances are stated as multiples of eps)."""
+"""Shared fixtures: machine epsilon, a seeded generator (tolerances: tests/tolerance.py) and one dask cluster."""
 import numpy as np
 import pytest
 
@@ -11,3 +11,16 @@ def eps():
 @pytest.fixture
 def rng():
     return np.random.default_rng(20260922)
+
+
+@pytest.fixture(scope="session")
+def dask_client():
+    """One local dask cluster (2 worker processes) for the whole session, shared by the parallel tests.
+
+    ``dashboard_address=":0"``: a free port (the default 8787 may be taken by another cluster,
+    and its UserWarning is an error under our warning filters).
+    """
+    dd = pytest.importorskip("dask.distributed")
+    with dd.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
+            dd.Client(cluster) as client:
+        yield client

@@ -378,9 +378,6 @@ PENDING_IDS = {
         simplex_vertices-1-True simplex_vertices-1-complex simplex_vertices-1-inf simplex_vertices-1-nan
         simplex_vertices-1-str simulate-0-dict
     """.split(),
-    "K": """
-        lyapunov-0-dict
-    """.split(),
     "Q": """
         basis_matrix-0-bools basis_matrix-0-floats dimension_from_count-0--1 dimension_from_count-0-True
         dimension_from_count-0-str3 lie_bracket-0-None lie_bracket-0-object lie_bracket-0-scalar
@@ -426,9 +423,6 @@ PENDING_IDS = {
 }
 #: Cases that hang (> 3 s; no size/work budget, mostly planes(N) for N = 10**6): xfail, not run.
 HANGING_IDS = {
-    "K": """
-        lyapunov-1-huge lyapunov-1-negative lyapunov-1-zeros
-    """.split(),
     "Q": """
         basis_matrix-1-huge bivector_product_table-0-huge plane_index-1-huge plane_signs-0-huge
         plane_symbols-1-huge planes-0-huge q.Representation-0-huge q.adjoint_rep-0-huge

@@ -69,11 +69,14 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from scipy import special
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, planes
 from .. import _validate
+from .._lazy import LazyModule
 from .inertia import Inertia, body_moments
+
+#: scipy.special (elliptic functions), loaded on first use: ``import hyperrotor`` stays light.
+special = LazyModule("scipy.special")
 
 __all__ = [
     "equal_moments_solution",
