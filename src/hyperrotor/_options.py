@@ -222,6 +222,20 @@ register(
     "real_form: internal consistency check, the imaginary part left in the real generators relative "
     "to max(1, max|Y|) must not exceed it (it is round-off, ~dim * eps, when the construction works).",
 )
+register(
+    "sectors_dense_max_dim", 2000,
+    "hyperrotor.quantum.symmetry_sectors: largest dimension of a representation that is not a "
+    "Gelfand-Tsetlin irrep (vector, spinor, harmonic, tensor products, ...) for which the sectors are "
+    "built densely (matrix exponentials and projectors, O(dim^3) time, O(dim^2) memory). "
+    "Gelfand-Tsetlin irreps of any dimension use the sparse monomial construction.",
+)
+register(
+    "sectors_max_block_dim", 15000,
+    "hyperrotor.quantum.sector_spectra: largest sector diagonalized densely (8 dim^2 bytes per real "
+    "block, 16 dim^2 per complex one: 3.6 GB at 15000; O(dim^3) time: a real 3,300-dimensional block "
+    "took 2.4 s at load 3.5 and ~20 s at load 10 on the 2-core test machine). Larger sectors are "
+    "refused with their size before any work.",
+)
 
 # --- command line ------------------------------------------------------------
 register(

@@ -77,7 +77,7 @@ import scipy.sparse as sps
 from scipy.sparse.csgraph import connected_components
 
 from .. import _validate
-from .._options import options, register
+from .._options import options
 from ._gt_monomials import Monomial, gt_conjugation, gt_patterns_of, gt_rotations
 
 __all__ = [
@@ -90,20 +90,6 @@ __all__ = [
     "evolution_blocks",
     "sector_spectra",
 ]
-
-register(
-    "sectors_dense_max_dim", 2000,
-    "hyperrotor.quantum.symmetry_sectors: largest dimension of a representation that is not a "
-    "Gelfand-Tsetlin irrep (vector, spinor, harmonic, tensor products, ...) for which the sectors are "
-    "built densely (matrix exponentials and projectors, O(dim^3) time, O(dim^2) memory). "
-    "Gelfand-Tsetlin irreps of any dimension use the sparse monomial construction.",
-)
-register(
-    "sectors_max_block_dim", 15000,
-    "hyperrotor.quantum.sector_spectra: largest sector diagonalized densely (16 dim^2 bytes of memory "
-    "per complex block, ~3.6 GB at 15000, and O(dim^3) time; a 3,300-dimensional sector takes ~5-20 s "
-    "on one core). Larger sectors are refused with their size before any work.",
-)
 
 _CLASSES_3D = {(1, 1): "A", (1, -1): "B1", (-1, -1): "B2", (-1, 1): "B3"}
 
