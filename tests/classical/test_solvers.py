@@ -262,6 +262,9 @@ def test_a_run_over_the_step_budget_is_refused_before_it_starts():
         hr.simulate(body, w0, [0.0, 100.0], method="splitting4", dt=0.01, max_steps=1000)
     with hr.options(max_steps=1000), pytest.raises(StepBudgetError, match="max_steps = 1000"):
         hr.simulate(body, w0, [0.0, 100.0], method="splitting4", dt=0.01)
+    # a step count beyond int64: refused, without a RuntimeWarning from the cast (warnings are errors here)
+    with pytest.raises(StepBudgetError, match="about 1e\\+301 integration steps"):
+        hr.simulate(body, w0, [0.0, 1.0], method="splitting8", dt=1e-301)
 
 
 @pytest.mark.parametrize("method", ADAPTIVE)

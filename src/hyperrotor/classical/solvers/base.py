@@ -32,7 +32,7 @@ import numpy as np
 
 from hyperrotor import _validate
 
-__all__ = ["Problem", "Solver", "FixedStepSolver"]
+__all__ = ["Problem", "Solver", "FixedStepSolver", "StepBudgetError"]
 
 
 @dataclass
@@ -210,10 +210,22 @@ class FixedStepSolver(Solver):
         return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
 
 
+class StepBudgetError(ValueError):
+    """A run whose estimated size exceeds a budget of :data:`hyperrotor.options` (``max_steps``, ...)."""
+
+
 def nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
     """Equal steps per output interval so that no step exceeds ``dt`` (output times hit exactly)."""
     gaps = np.abs(np.diff(t))
-    return np.maximum(1, np.ceil(gaps / dt * (1 - 1e-12))).astype(np.int64)
+    with np.errstate(over="ignore"):
+        n = np.maximum(1.0, np.ceil(gaps / dt * (1 - 1e-12)))
+    total = float(n.sum())
+    if not total < 2.0**62:  # not even countable in int64 (e.g. dt = 1e-301): far beyond any budget
+        raise StepBudgetError(
+            f"this run needs about {total:.3g} integration steps (span {float(gaps.sum()):.3g}, step {dt:.3g} in "
+            f"units where omega is of order one), more than any budget max_steps allows"
+        )
+    return n.astype(np.int64)
 
 
 def power_of_two_scale(x: float) -> float:

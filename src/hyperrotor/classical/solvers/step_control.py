@@ -48,7 +48,7 @@ import numpy as np
 from hyperrotor import _validate
 from hyperrotor._options import options
 
-from .base import FixedStepSolver, Problem, nsub_for
+from .base import FixedStepSolver, Problem, StepBudgetError, nsub_for
 
 __all__ = ["FixedStep", "ErrorTarget", "StepBudgetError"]
 
@@ -70,10 +70,6 @@ CHECK_STEPS_MIN = 20_000
 GROW_BELOW = 0.1
 #: sample times of the whole-run check (the error can peak between output times)
 CHECK_SAMPLES = 64
-
-
-class StepBudgetError(ValueError):
-    """A run whose estimated size exceeds a budget of :data:`hyperrotor.options` (``max_steps``, ...)."""
 
 
 def refuse_steps(steps: float, B: int, max_steps: int, what: str) -> None:
