@@ -360,7 +360,8 @@ def test_bench_output_folder(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "d").mkdir()
     code, out, err = _run(capsys, [*BENCH_QUICK, "--output", "d/"])
-    assert code == 0 and err == ""
+    assert code == 0, err
+    assert err == ""
     assert _files(tmp_path / "d") == ["hyperrotor-bench.csv", "hyperrotor-bench.png"]  # no hidden .csv/.png
 
 

@@ -220,7 +220,8 @@ def plot_work_precision(points: Sequence[WorkPrecisionPoint], path, *, format: s
     return str(path)
 
 
-def _main_table(points: Sequence[WorkPrecisionPoint], out=sys.stdout) -> None:
+def _main_table(points: Sequence[WorkPrecisionPoint], out=None) -> None:
+    out = sys.stdout if out is None else out  # looked up per call: sys.stdout may be replaced after import
     print(f"{'problem':<14} {'method':<11} {'setting':>14} {'error':>10} {'time [s]':>10}", file=out)
     for p in points:
         print(f"{p.problem:<14} {p.method:<11} {p.setting + '=' + format(p.value, 'g'):>14} "
