@@ -137,6 +137,17 @@ def _tangent_run(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
 tangent_run = jit(_tangent_run)
 
 
+@jit
+def dot_lanes(W, i1, i2, D):  # pragma: no cover - jitted
+    """``D[j] = sum_a W[i1, a, j] W[i2, a, j]`` (per body ``j``, summed in the order of ``a``)."""
+    nb = D.shape[0]
+    for j in range(nb):
+        D[j] = 0.0
+    for a in range(W.shape[1]):
+        for j in range(nb):
+            D[j] += W[i1, a, j] * W[i2, a, j]
+
+
 def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                        h, nsub, nren, stride, lanes, out, Lout, Wout):  # pragma: no cover - jitted
     """:func:`_tangent_run` for bodies that share ``nsub`` (steps per renormalisation), bodies innermost.
@@ -224,19 +235,11 @@ def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_
             # modified Gram-Schmidt per body
             for i2 in range(k):
                 for i1 in range(i2):
-                    for j in range(nb):
-                        D[j] = 0.0
-                    for a in range(n):
-                        for j in range(nb):
-                            D[j] += W[i1, a, j] * W[i2, a, j]
+                    dot_lanes(W, i1, i2, D)
                     for a in range(n):
                         for j in range(nb):
                             W[i2, a, j] -= D[j] * W[i1, a, j]
-                for j in range(nb):
-                    D[j] = 0.0
-                for a in range(n):
-                    for j in range(nb):
-                        D[j] += W[i2, a, j] * W[i2, a, j]
+                dot_lanes(W, i2, i2, D)
                 for j in range(nb):
                     nrm = math.sqrt(D[j])
                     acc[i2, j] += math.log(nrm)
