@@ -372,12 +372,13 @@ def test_bench_paths_naming():
     assert bench_paths("new/") == (Path("new/hyperrotor-bench.csv"), Path("new/hyperrotor-bench.png"))
 
 
-def test_progress_only_when_asked_or_on_a_terminal(tmp_path):
-    code, _, err = _cli(["scene", "--frames", "4", "--output", "a.png"], tmp_path)
-    assert code == 0 and err == ""  # stderr is a pipe here: no bar
+def test_progress_only_when_asked_or_on_a_terminal(capsys, tmp_path):
     code, _, err = _cli(["scene", "--frames", "4", "--output", "b.png", "--progress"], tmp_path)
     assert code == 0 and "scene: drawing snapshots" in err and "/4 [" in err
-    code, _, err = _cli(["verify", "--section", "euler", "--progress"], tmp_path)
+    # in-process, stderr is pytest's capture (not a terminal): no bar unless asked
+    code, _, err = _run(capsys, ["scene", "--frames", "4", "--output", str(tmp_path / "a.png")])
+    assert code == 0 and err == ""
+    code, _, err = _run(capsys, ["verify", "--section", "euler", "--progress"])
     assert code == 0 and "verify: sections" in err and "1/1" in err
 
 
