@@ -22,15 +22,13 @@ def pair_rows(p, x):
 
 
 @pytest.fixture(scope="module")
-def client():
-    dd = pytest.importorskip("dask.distributed")
+def client(dask_client):
+    """The session's LocalCluster (tests/conftest.py); the workers cannot import this test module,
+    so its functions travel by value while these tests run."""
     import cloudpickle
 
-    # the workers cannot import this test module: ship its functions by value
     cloudpickle.register_pickle_by_value(sys.modules[__name__])
-    with dd.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
-            dd.Client(cluster) as c:
-        yield c
+    yield dask_client
     cloudpickle.unregister_pickle_by_value(sys.modules[__name__])
 
 

@@ -316,15 +316,8 @@ def test_sweep_rejects_mixed_dimensions():
 # ----------------------------------------------------------------------------
 # scale-out: a LocalCluster of two worker processes gives the in-process numbers
 # ----------------------------------------------------------------------------
-@pytest.fixture(scope="module")
-def client():
-    dd = pytest.importorskip("dask.distributed")
-    with dd.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
-            dd.Client(cluster) as c:
-        yield c
-
-
-def test_client_equals_in_process(client):
+def test_client_equals_in_process(dask_client):
+    client = dask_client
     moments, w0 = generic_5d(21, 10)
     T = 30.0
     local = lyapunov(moments, w0, T, rng=9)
@@ -335,7 +328,8 @@ def test_client_equals_in_process(client):
     assert np.array_equal(spec_remote, spec_local)
 
 
-def test_sweep_on_client_equals_in_process(client):
+def test_sweep_on_client_equals_in_process(dask_client):
+    client = dask_client
     g = np.random.default_rng(22)
     bodies = np.exp(g.uniform(math.log(0.3), math.log(3.0), (2, n5)))
     _, w0 = generic_5d(23, 5)
