@@ -168,11 +168,15 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     threads = _parallel.client_threads(client) if client is not None else _parallel.default_workers()
     budget = options["lyapunov_max_work"]
     if not work_rows.sum() / threads <= budget:  # also refuses an infinite estimate
+        with np.errstate(over="ignore"):
+            w_top = float(np.max(_rate_bound(moments_rows, Ls) * scale)) if B else 0.0
         raise ValueError(
             f"this run needs about {work_rows.sum():.3g} units of work (plane flows x (1 + {k} tangent vectors)), "
             f"{work_rows.sum() / threads:.3g} per worker thread, over the budget options['lyapunov_max_work'] = "
-            f"{_validate.fmt(budget)} (~{budget / _WORK_RATE / 60:.0f} min per thread); shorten T, use fewer orbits, "
-            f"add workers (client=) or raise it: hr.options(lyapunov_max_work=...)"
+            f"{_validate.fmt(budget)} (~{budget / _WORK_RATE / 60:.0f} min per thread); the work grows with T "
+            f"(= {_validate.fmt(T)}), the number of orbits ({B}) and the angular velocities of omega0 (up to "
+            f"w_max = {w_top:.3g}); shorten T, use fewer orbits, add workers (client=) or raise the budget: "
+            f"hr.options(lyapunov_max_work=...)"
         )
     nsub = nsub_f.astype(np.int64)
     h = tau * scale / nsub  # step in the scaled time of each orbit
