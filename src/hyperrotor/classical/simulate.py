@@ -135,12 +135,12 @@ class Trajectory:
         batch = self.omega.shape[:-2]
         if what == "attitude":
             S = self._signs
-            out = (S[:, None] * T * S[None, :]).reshape(batch + (tq.size, T.shape[-1], T.shape[-1]))
-        else:
-            out = (L * self._scale).reshape(batch + (tq.size, L.shape[-1]))
-            if what == "omega":
-                out = out / self.moments
-        return out[..., 0, :] if what != "attitude" and tq.ndim == 0 else (out[..., 0, :, :] if tq.ndim == 0 else out)
+            out = (S[:, None] * T * S[None, :]).reshape(batch + (tq.size,) + T.shape[-2:])
+            return out[..., 0, :, :] if tq.ndim == 0 else out
+        out = (L * self._scale).reshape(batch + (tq.size, L.shape[-1]))
+        if what == "omega":
+            out = out / self.moments
+        return out[..., 0, :] if tq.ndim == 0 else out
 
     def __repr__(self) -> str:
         return (f"Trajectory(method={self.stats.get('method')!r}, batch={self.omega.shape[:-2]}, "
@@ -246,6 +246,19 @@ def _choose_solver(method, rtol, dt, torque, solver_options) -> Solver:
     elif isinstance(method, str) and method.lower() not in _LOWER_NAMES:
         raise ValueError(f"unknown method {method!r}; allowed: {', '.join(map(repr, SIMULATION_METHODS))}")
     return solver_for(method, **solver_options)
+
+
+def _step_control(solver: Solver, rtol: float | None, dt: float | None) -> FixedStep | ErrorTarget:
+    """``dt`` (fixed-step methods only) or ``rtol`` (default :data:`DEFAULT_RTOL`), not both."""
+    if isinstance(solver, ScipyIVP):
+        if dt is not None:
+            raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {solver.name!r} takes rtol only")
+    elif dt is not None and rtol is not None:
+        raise ValueError(f"give either dt (fixed step) or rtol (step chosen from the accuracy) for "
+                         f"{solver.name!r}, not both (got dt={_validate.fmt(dt)}, rtol={_validate.fmt(rtol)})")
+    elif dt is not None:
+        return FixedStep(dt)
+    return ErrorTarget(DEFAULT_RTOL if rtol is None else rtol)
 
 
 def simulate(
@@ -358,15 +371,7 @@ def simulate(
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, solver_options)
     problem, t_user = _problem(body, omega0, t, attitude, torque, options["max_output_bytes"])
-    if isinstance(solver, ScipyIVP):
-        if dt is not None:
-            raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {solver.name!r} takes rtol only")
-        control = ErrorTarget(DEFAULT_RTOL if rtol is None else rtol)
-    else:
-        if dt is not None and rtol is not None:
-            raise ValueError(f"give either dt (fixed step) or rtol (step chosen from the accuracy) for "
-                             f"{solver.name!r}, not both (got dt={_validate.fmt(dt)}, rtol={_validate.fmt(rtol)})")
-        control = FixedStep(dt) if dt is not None else ErrorTarget(DEFAULT_RTOL if rtol is None else rtol)
+    control = _step_control(solver, rtol, dt)
     if events is not None and problem.batch:
         raise ValueError(f"events= needs one trajectory (1-D omega0), got an ensemble of shape {problem.batch}; "
                          f"loop over the members")
