@@ -353,20 +353,17 @@ def test_evolution_blocks_reproduce_the_full_propagator(hw, rng):
 
 
 @pytest.mark.slow
-def test_sector_spectra_on_a_dask_client(rng):
+def test_sector_spectra_on_a_dask_client(dask_client, rng):
     """client=: one task per sector; the workers rebuild the irrep from its highest weight (same levels)."""
-    distributed = pytest.importorskip("dask.distributed")
     rep = irrep(5, (3, 1))
     moments = _moments(5, rng)
     local = sector_spectra(rep, moments)
     local_vec = sector_spectra(vector_rep(5), moments)
-    cluster_kw = dict(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0")
-    with distributed.LocalCluster(**cluster_kw) as cluster, distributed.Client(cluster) as client:
-        on_dask = sector_spectra(rep, moments, client=client)
-        # any basis of the irrep: the workers use the GT basis, and the sector levels are the same
-        vec = sector_spectra(vector_rep(5), moments, client=client)
-        with pytest.raises(ValueError, match="highest weight"):
-            sector_spectra(direct_sum(vector_rep(5), vector_rep(5)), moments, client=client)
+    on_dask = sector_spectra(rep, moments, client=dask_client)
+    # any basis of the irrep: the workers use the GT basis, and the sector levels are the same
+    vec = sector_spectra(vector_rep(5), moments, client=dask_client)
+    with pytest.raises(ValueError, match="highest weight"):
+        sector_spectra(direct_sum(vector_rep(5), vector_rep(5)), moments, client=dask_client)
     for ref, got in ((local, on_dask), (local_vec, vec)):
         assert list(got) == list(ref)
         for k in ref:
