@@ -141,6 +141,13 @@ register(
 
 # --- quantum -----------------------------------------------------------------
 register(
+    "max_dimension", 1000,
+    "Largest space dimension N accepted by hyperrotor.conventions.check_dimension (planes, "
+    "structure constants, every so(N) constructor): so(1000) already has 499,500 planes and a "
+    "structure-constant table of 1.2e17 entries; N = 10**6 would hang or exhaust memory instead of "
+    "failing with a message. Raise it (hr.options(max_dimension=...)) for larger N.",
+)
+register(
     "quantum_hermiticity_rtol", 1e-12,
     "Hermiticity check of hyperrotor.quantum (evolve, spectrum: H = H^dagger; from_qobj, "
     "rotor_hamiltonian: X^dagger = -X), relative to max|H|: max|H - H^dagger| must not exceed it. "
@@ -204,6 +211,13 @@ register(
     "hyperrotor.quantum.spectrum: eigenvalues closer than this * max(1, max|E|) are one degenerate "
     "level. Far above the round-off of eigh (~1e-15 * dim * max|E|) and below any physical "
     "splitting of interest; pass atol= to spectrum for another choice.",
+)
+register(
+    "quantum_max_harmonic_dim", 5000,
+    "Largest space of harmonic polynomials (harmonic_polynomial_basis, orthogonal/orthonormal bases, "
+    "harmonic_rep) built exactly in rational arithmetic; its cost grows like dim^2 monomial products, "
+    "a few minutes near 5000. Larger degrees are refused before any work (use irrep(N, (l,)), the same "
+    "representation in the Gelfand-Tsetlin basis, for big l).",
 )
 register(
     "quantum_harmonic_drop", 1e-13,

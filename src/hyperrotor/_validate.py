@@ -39,6 +39,8 @@ __all__ = [
     "form",
     "form_hbar",
     "old_keywords",
+    "representation",
+    "real_array",
 ]
 
 #: The allowed values of every ``form=`` keyword (Hermitian vs anti-Hermitian generators, docs/conventions.md).
@@ -206,6 +208,24 @@ def form_hbar(form_value: Any, hbar_value: Any) -> tuple[str, Any]:
             )
         return f, None
     return f, (1 if hbar_value is None else hbar_value)  # exact 1: symbolic callers keep integer coefficients
+
+
+def representation(name: str, value: Any) -> Any:
+    """A representation of so(N): anything with ``.N``, ``.dim`` and ``.generators()`` (duck typing)."""
+    if not (hasattr(value, "N") and hasattr(value, "dim") and callable(getattr(value, "generators", None))):
+        raise TypeError(
+            f"{name} must be a hyperrotor.quantum.Representation (e.g. irrep(5, (2, 1))), "
+            f"got {fmt(value)} of type {type(value).__name__}"
+        )
+    return value
+
+
+def real_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = None) -> np.ndarray:
+    """A finite real float array; complex input is refused (no silent loss of the imaginary part)."""
+    arr = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray(value, dtype=object)
+    if arr.dtype.kind not in "biuf":
+        raise TypeError(f"{name} must be a real numeric array, got {fmt(value)} (dtype {arr.dtype})")
+    return finite_array(name, arr, ndim=ndim)
 
 
 def old_keywords(where: str, given: dict, renamed: dict) -> None:

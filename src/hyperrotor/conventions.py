@@ -67,6 +67,7 @@ The exact maps between them (the one place they are documented)
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from functools import lru_cache
 from numbers import Integral
 from typing import Any, Callable, Iterable, Sequence
@@ -74,6 +75,7 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 
 from . import _lazy, _validate
+from ._options import options
 from ._lazy import sympy as sp  # SymPy is imported on first symbolic use (light ``import hyperrotor``)
 
 __all__ = [
@@ -102,8 +104,18 @@ CONVENTIONS = _validate.CONVENTIONS
 # validation helpers (re-used by the rest of the package)
 # ----------------------------------------------------------------------------
 def check_dimension(N: Any, *, minimum: int = 2, name: str = "N") -> int:
-    """Return ``N`` as ``int`` or raise a ``TypeError``/``ValueError`` naming it (see :mod:`hyperrotor._validate`)."""
-    return _validate.dimension(N, minimum=minimum, name=name)
+    """Return ``N`` as ``int`` or raise a ``TypeError``/``ValueError`` naming it (see :mod:`hyperrotor._validate`).
+
+    ``N`` may not exceed ``options["max_dimension"]`` (1000): a larger N would hang
+    or exhaust memory in the plane tables instead of failing with a message.
+    """
+    N = _validate.dimension(N, minimum=minimum, name=name)
+    if N > options["max_dimension"]:
+        raise ValueError(
+            f"{name} = {N} exceeds options['max_dimension'] = {options['max_dimension']} (so({N}) has "
+            f"{N * (N - 1) // 2} planes); raise it with hyperrotor.options(max_dimension=...) if you mean it"
+        )
+    return N
 
 
 def check_convention(convention: Any) -> str:
@@ -144,7 +156,7 @@ def dimension_from_count(count: int) -> int:
 
     Raises ``ValueError`` when ``count`` is not of that form (1, 3, 6, 10, 15, ...).
     """
-    count = int(count)
+    count = _validate.integer("count", count, minimum=0)
     N = int(round((1 + np.sqrt(1 + 8 * count)) / 2))
     if N < 2 or N * (N - 1) // 2 != count:
         lo = max(N - 1, 2)
@@ -168,21 +180,18 @@ def plane_index(plane: Sequence[int], N: int) -> int:
     an index outside ``1..N``, or not a pair).
     """
     N = check_dimension(N)
-    try:
-        i, j = (int(v) for v in plane)
-    except (TypeError, ValueError):
-        raise ValueError(f"a plane label is a pair (i, j) of integers, got {plane!r}") from None
-    table = _plane_index_table(N)
-    if (i, j) not in table:
-        raise ValueError(
-            f"unknown plane {plane!r} for N = {N}: planes are pairs (i, j) with 1 <= i < j <= {N}"
-        )
-    return table[(i, j)]
+    if isinstance(plane, tuple) and len(plane) == 2 and type(plane[0]) is int and type(plane[1]) is int:
+        hit = _plane_index_table(N).get(plane)  # fast path for the common exact label
+        if hit is not None:
+            return hit
+    return _plane_index_table(N)[_validate.plane(plane, N)]
 
 
 def plane_label(plane: Sequence[int], N: int | None = None) -> str:
     """A compact label ``"12"`` (``"1,10"`` when an index has two digits)."""
-    i, j = plane
+    if N is not None:
+        N = check_dimension(N)
+    i, j = _validate.plane(plane, N if N is not None else 10**9)
     sep = "," if max(i, j) > 9 or (N is not None and N > 9) else ""
     return f"{i}{sep}{j}"
 
@@ -193,6 +202,8 @@ def plane_symbols(name: str, N: int, *, function_of: sp.Symbol | None = None, **
     Symbols are named ``f"{name}_{i}{j}"`` (``f"{name}_{i},{j}"`` for N >= 10), so the
     same name always gives the same symbol throughout the package.
     """
+    if not isinstance(name, str) or not name.isidentifier():
+        raise TypeError(f"name must be a non-empty identifier string such as 'w' or 'L', got {_validate.fmt(name)}")
     out = []
     for p in planes(N):
         label = f"{name}_{plane_label(p, N)}"
@@ -330,10 +341,10 @@ def to_components(matrix: Any, convention: str = "paper", *, atol: float | None 
         signs = plane_signs(N, convention)
         return sp.Matrix([int(s) * M[i - 1, j - 1] for (i, j), s in zip(planes(N), signs)])
     arr = np.asarray(matrix)
-    if arr.ndim < 2 or arr.shape[-1] != arr.shape[-2] or arr.shape[-1] < 2:
-        raise ValueError(f"expected an array of shape (..., N, N) with N >= 2, got shape {arr.shape}")
     if arr.dtype.kind not in "biufc":
-        raise TypeError(f"matrix must be numeric (or a SymPy matrix), got dtype {arr.dtype}")
+        raise TypeError(f"matrix must be numeric (or a SymPy matrix), got {_validate.fmt(matrix)} of dtype {arr.dtype}")
+    if arr.ndim < 2 or arr.shape[-1] != arr.shape[-2] or arr.shape[-1] < 2:
+        raise ValueError(f"matrix must be an array of shape (..., N, N) with N >= 2, got shape {arr.shape}")
     N = arr.shape[-1]
     asym = np.abs(arr + np.swapaxes(arr, -1, -2))
     if arr.dtype.kind in "fc":
@@ -391,6 +402,16 @@ def structure_constants(N: int) -> np.ndarray:
     return _structure_constants(check_dimension(N))
 
 
+def _component_array(name: str, value: Any) -> np.ndarray:
+    """A numeric array of component vectors (last axis), refused with the argument's name otherwise."""
+    arr = np.asarray(value)
+    if arr.dtype.kind not in "biufc":
+        raise TypeError(f"{name} must be a numeric component vector (or SymPy), got {_validate.fmt(value)}")
+    if arr.ndim == 0:
+        raise ValueError(f"{name} must be a vector of N(N-1)/2 plane components, got the scalar {_validate.fmt(value)}")
+    return arr
+
+
 def lie_bracket(x: Any, y: Any):
     """Component vector of the matrix commutator ``[X, Y]`` of two component vectors.
 
@@ -408,7 +429,7 @@ def lie_bracket(x: Any, y: Any):
         for ai, bi, ci in zip(a, b, c):
             out[ci] += int(C[ai, bi, ci]) * xs[ai] * ys[bi]
         return sp.Matrix([sp.expand(v) for v in out])
-    x, y = np.asarray(x), np.asarray(y)
+    x, y = (_component_array(n, v) for n, v in (("x", x), ("y", y)))
     if x.shape[-1:] != y.shape[-1:]:
         raise ValueError(f"component vectors of different length: {x.shape[-1]} and {y.shape[-1]}")
     N = dimension_from_count(x.shape[-1])
@@ -430,6 +451,8 @@ def lie_poisson_bracket(F: sp.Expr, G: sp.Expr, L: Sequence[sp.Symbol]) -> sp.Ex
     :math:`H = \sum_a L_a^2 / (2 I_a)` reproduces the Euler equations
     :math:`\dot L = [\Omega, L]` (eq. 24), and :math:`\{L_a, L_b\} = C_{ab}^{\;c} L_c`.
     """
+    if isinstance(L, (str, bytes, Mapping)) or not isinstance(L, Iterable):
+        raise TypeError(f"L must be a sequence of SymPy symbols (e.g. plane_symbols('L', N)), got {_validate.fmt(L)}")
     L = list(L)
     N = dimension_from_count(len(L))
     C = structure_constants(N)

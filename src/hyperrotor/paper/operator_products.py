@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 import sympy as sp
 
+from hyperrotor.conventions import check_convention, check_dimension
 from hyperrotor.quantum.normal_form import WeylElement, _to_sympy_scalar
 from hyperrotor.quantum.operators import DifferentialOperator, operator_matrix
 
@@ -176,6 +177,8 @@ def contraction_identity(N: int, convention: str = "paper", form: str = "antisym
         ``factor`` is computed (not assumed) from the (1, 2) entries; ``holds``
         says whether ``product == factor * matrix`` exactly in every entry.
     """
+    N = check_dimension(N)
+    convention = check_convention(convention)
     M = operator_matrix(N, convention=convention, coordinates=coordinates)
     Om = M.T.copy() if transpose else M.copy()
     P = operator_product(M, Om, form=form)

@@ -39,3 +39,10 @@ __all__ = [
     *sectors.__all__,
     *statistics.__all__,
 ]
+
+
+def __getattr__(name: str):
+    """PEP 562: names that moved to :mod:`hyperrotor.paper.operator_products` (eqs. 144-147) keep working."""
+    if name in operators._MOVED:
+        return getattr(operators, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

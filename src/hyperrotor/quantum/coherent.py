@@ -48,10 +48,23 @@ __all__ = [
 ]
 
 
-def _vector(psi: Any, dim: int) -> np.ndarray:
-    vec = psi.full().ravel() if isinstance(psi, qutip.Qobj) else np.asarray(psi).ravel()
+def _vector(psi: Any, dim: int, name: str = "psi") -> np.ndarray:
+    if isinstance(psi, qutip.Qobj):
+        if not psi.isket:
+            raise ValueError(f"{name} must be a ket, got a Qobj of type {psi.type!r}")
+        vec = psi.full().ravel()
+    else:
+        vec = np.asarray(psi) if not isinstance(psi, (str, bytes)) else np.asarray(psi, dtype=object)
+        if vec.dtype.kind not in "biufc":
+            raise TypeError(f"{name} must be a ket Qobj or a numeric vector, got {_validate.fmt(psi)}")
+        if vec.ndim == 2 and vec.shape[1] == 1:
+            vec = vec[:, 0]
+        if vec.ndim != 1:
+            raise ValueError(f"{name} must be a vector of length {dim}, got shape {vec.shape}")
     if vec.shape[0] != dim:
-        raise ValueError(f"state has dimension {vec.shape[0]} but the representation has dimension {dim}")
+        raise ValueError(f"{name} has dimension {vec.shape[0]} but the representation has dimension {dim}")
+    if not np.all(np.isfinite(vec)):
+        raise ValueError(f"{name} must be finite, got non-finite amplitudes")
     return vec.astype(complex)
 
 
@@ -74,7 +87,10 @@ def generator_expectations(rep: Any, psi: Any, *args: Any, hbar: float = 1.0) ->
     if args:
         raise TypeError("generator_expectations() takes hbar as a keyword only: generator_expectations(rep, psi, hbar=...)")
     hbar = _validate.hbar(hbar)
+    _validate.representation("rep", rep)
     vec = _vector(psi, int(rep.dim))
+    if not np.any(vec):
+        raise ValueError("psi is the zero vector; expectation values are undefined")
     gens = rep.generators()
     nrm = np.vdot(vec, vec).real
     return np.array([(np.vdot(vec, (-1j * hbar) * (gens[p] @ vec))).real / nrm for p in planes(int(rep.N))])
@@ -100,6 +116,7 @@ def highest_weight_state(rep: Any) -> tuple[np.ndarray, np.ndarray]:
         i.e. the highest weight in the orthogonal basis (last entry possibly
         negative for even N).
     """
+    _validate.representation("rep", rep)
     N = int(rep.N)
     dim = int(rep.dim)
     gens = rep.generators()
@@ -138,7 +155,9 @@ def normal_form_rotation(L: Any) -> tuple[np.ndarray, np.ndarray]:
         :math:`\ge 0` except possibly the last one for even N (its sign is the
         sign of the Pfaffian).
     """
-    comps = np.asarray(L, dtype=float)
+    comps = _validate.real_array("L", L, ndim=1)
+    if comps.size == 0:
+        raise ValueError("L must hold N(N-1)/2 >= 1 plane components, got an empty array")
     A = np.asarray(to_matrix(comps, convention="standard"), dtype=float)
     N = A.shape[0]
     T, Z = sla.schur(A, output="real")
@@ -207,10 +226,13 @@ def apply_rotation(rep: Any, Q: Any, psi: Any) -> np.ndarray:
     ``options["quantum_rotation_atol"]`` = 1e-14; ``scipy.sparse.linalg.expm_multiply`` gives the same vectors but was
     ~10x slower here).
     """
-    Q = np.asarray(Q, dtype=float)
+    _validate.representation("rep", rep)
     N = int(rep.N)
+    Q = _validate.real_array("Q", Q, ndim=2)
     if Q.shape != (N, N):
         raise ValueError(f"Q must be a {N} x {N} rotation for so({N}), got shape {Q.shape}")
+    if np.abs(Q @ Q.T - np.eye(N)).max() > 1e-10 or np.linalg.det(Q) < 0:
+        raise ValueError(f"Q must be a rotation (orthogonal with det +1), got {_validate.fmt(Q)}")
     vec = _vector(psi, int(rep.dim))
     gens = rep.generators()
     with _single_thread_blas():
@@ -258,8 +280,9 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1.0, frame: str = "space",
     """
     _validate.hbar(hbar)
     frame = _validate.choice("frame", frame, ("space", "body"))
+    _validate.representation("rep", rep)
     N = int(rep.N)
-    comps = np.asarray(L, dtype=float).ravel()
+    comps = _validate.real_array("L", L).ravel()
     if comps.shape != (n_planes(N),):
         raise ValueError(f"L must have {n_planes(N)} components for so({N}), got {comps.shape[0]}")
     if not np.all(np.isfinite(comps)) or not np.any(comps):

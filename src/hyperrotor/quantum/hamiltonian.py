@@ -164,6 +164,9 @@ def rotor_hamiltonian(generators: Any, inertia: Any, *args: Any, hbar: float = 1
             "generators must be a Representation or a mapping plane -> operator (qutip.Qobj, scipy.sparse, array), "
             f"got {type(generators).__name__}"
         )
+    if not isinstance(inertia, Mapping) and not hasattr(inertia, "moments") and not hasattr(inertia, "inertia"):
+        if np.iscomplexobj(np.asarray(inertia if not isinstance(inertia, (str, bytes)) else None)):
+            raise TypeError(f"inertia must hold real plane moments, got {_validate.fmt(inertia)}")
     moments = _validate.moments(inertia, N)
     H = sps.csr_matrix((dim, dim), dtype=float)
     for (i, j), m in zip(planes(N), moments):

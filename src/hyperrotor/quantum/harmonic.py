@@ -32,6 +32,8 @@ from typing import Any, Mapping
 import numpy as np
 import sympy as sp
 
+from .. import _validate
+from .._options import options
 from ..conventions import check_dimension
 from .normal_form import WeylElement, dict_to_polynomial, polynomial_to_dict
 from .operators import DifferentialOperator, _to_coordinates, coordinate_symbols
@@ -54,6 +56,18 @@ def _check_degree(l: Any) -> int:
     if l < 0:
         raise ValueError(f"the degree l must be an integer >= 0, got {l}")
     return l
+
+
+def _check_size(N: int, l: int) -> None:
+    """Refuse a harmonic space beyond ``options["quantum_max_harmonic_dim"]`` before any work."""
+    d = harmonic_dimension(N, l)
+    limit = options["quantum_max_harmonic_dim"]
+    if d > limit:
+        raise ValueError(
+            f"degree l = {l} in N = {N} variables gives {d} harmonic polynomials > "
+            f"options['quantum_max_harmonic_dim'] = {limit} (exact rational construction); "
+            f"raise the limit with hyperrotor.options(quantum_max_harmonic_dim=...) or use irrep(N, (l,))"
+        )
 
 
 def harmonic_dimension(N: int, l: int) -> int:
@@ -157,6 +171,7 @@ def harmonic_polynomial_basis(N: int, l: int, coordinates: Any = None, *, as_dic
     [x1**2 - x3**2, x1*x2, x2**2 - x3**2, x1*x3, x2*x3]
     """
     N, l = check_dimension(N), _check_degree(l)
+    _check_size(N, l)
     dicts = _harmonic_dicts(N, l)
     if as_dict:
         return [dict(d) for d in dicts]
@@ -202,7 +217,9 @@ def sphere_monomial_integral(exponents: Any, *, normalized: bool = False):
     :math:`\prod_i (a_i-1)!!\,/\,\prod_{t=0}^{|a|/2-1}(N+2t)`, is returned as a
     SymPy Rational.
     """
-    a = tuple(int(e) for e in exponents)
+    if isinstance(exponents, (str, bytes, Mapping)) or not hasattr(exponents, "__iter__"):
+        raise TypeError(f"exponents must be a sequence of integers >= 0, got {_validate.fmt(exponents)}")
+    a = tuple(_validate.integer("exponents entry", e, minimum=0) for e in exponents)
     if not a or min(a) < 0:
         raise ValueError(f"exponents must be a non-empty sequence of integers >= 0, got {exponents!r}")
     mean = _sphere_mean(a, len(a))
@@ -324,6 +341,7 @@ def orthogonal_harmonic_basis(N: int, l: int) -> tuple[list, list]:
         ``<u_a, L u_b> / sqrt(n_a n_b)`` (real antisymmetric).
     """
     N, l = check_dimension(N), _check_degree(l)
+    _check_size(N, l)
     polys, norms = _orthogonal(N, l)
     return [dict(p) for p in polys], list(norms)
 
@@ -337,6 +355,7 @@ def orthonormal_harmonic_basis(N: int, l: int, coordinates: Any = None, *, exact
     measure divide by :math:`\sqrt{|S^{N-1}|}`.
     """
     N, l = check_dimension(N), _check_degree(l)
+    _check_size(N, l)
     coords = coordinate_symbols(N, coordinates)
     polys, norms = _orthogonal(N, l)
     out = []

@@ -196,7 +196,15 @@ class Representation:
         self.format = _check_format(format)
         self.N = check_dimension(N)
         self.planes = planes(self.N)
-        keys = {tuple(int(v) for v in p) for p in generators}
+        if not isinstance(generators, Mapping):
+            raise TypeError(
+                f"generators must be a mapping plane -> matrix, got {_validate.fmt(generators)} "
+                f"of type {type(generators).__name__}"
+            )
+        try:
+            keys = {_validate.plane(p, self.N) for p in generators}
+        except ValueError as exc:
+            raise ValueError(f"generators: the keys must be planes of so({self.N}); {exc}") from None
         if keys != set(self.planes):
             missing = sorted(set(self.planes) - keys)
             extra = sorted(keys - set(self.planes))
@@ -208,7 +216,7 @@ class Representation:
             if M.shape[0] != M.shape[1] or (dim is not None and M.shape[0] != dim):
                 raise ValueError(f"generator of plane {p} has shape {M.shape}; all must be square of one size")
             dim = M.shape[0]
-            gens[tuple(int(v) for v in p)] = M
+            gens[_validate.plane(p, self.N)] = M
         self.dim = int(dim)
         self._gens = {p: gens[p] for p in self.planes}
         self.highest_weight = None if highest_weight is None else check_highest_weight(self.N, highest_weight)
@@ -452,7 +460,10 @@ class Representation:
         N = _validate._dimension_from_count(len(generators), "generators")
         mats = {}
         for p, M in generators.items():
-            q = _validate.plane(p, N)
+            try:
+                q = _validate.plane(p, N)
+            except ValueError as exc:
+                raise ValueError(f"generators: the keys must be planes (i, j) of so({N}); {exc}") from None
             if q in mats:
                 raise ValueError(f"generators name the plane {q} twice")
             mats[q] = as_csr(M, f"generator of plane {q}")

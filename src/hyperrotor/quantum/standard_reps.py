@@ -211,7 +211,7 @@ def spinor_rep(N: int, chirality: int | None = None) -> Representation:
     """
     N = check_dimension(N)
     n = N // 2
-    if chirality not in (None, 1, -1):
+    if chirality is not None and (isinstance(chirality, bool) or chirality not in (1, -1)):
         raise ValueError(f"chirality must be None, +1 or -1, got {chirality!r}")
     if N % 2 and chirality is not None:
         raise ValueError(f"so({N}) (odd N) has a single spinor irrep; chirality must be None, got {chirality!r}")
@@ -440,6 +440,12 @@ def real_form(rep: Representation, *, rtol: float | None = None, **old: Any) -> 
 
 
 def _check_same_N(*reps):
+    for k, r in enumerate(reps):
+        if not isinstance(r, Representation):
+            raise TypeError(
+                f"argument {k + 1} must be a Representation (e.g. irrep(3, (1,))), got {_validate.fmt(r)} "
+                f"of type {type(r).__name__}"
+            )
     Ns = {r.N for r in reps}
     if len(Ns) != 1:
         raise ValueError(f"representations of different so(N) cannot be combined: N = {sorted(Ns)}")

@@ -31,11 +31,13 @@ from __future__ import annotations
 
 from fractions import Fraction
 from numbers import Integral, Rational
+from collections.abc import Mapping
 from typing import Any, Sequence
 
 import numpy as np
 import sympy as sp
 
+from hyperrotor import _validate
 from hyperrotor.conventions import check_dimension
 
 __all__ = [
@@ -198,10 +200,11 @@ def dominates(N: int, lam: Sequence[Any], mu: Sequence[Any]) -> bool:
     combination of simple roots (the dominance order; every weight of the irrep
     of highest weight :math:`\lambda` satisfies it)."""
     N = check_dimension(N)
-    a = [_to_fraction(x) for x in lam]
-    b = [_to_fraction(x) for x in mu]
-    if len(a) != N // 2 or len(b) != N // 2:
-        raise ValueError(f"weights of so({N}) have {N // 2} entries, got {len(a)} and {len(b)}")
+    for name, w in (("lam", lam), ("mu", mu)):
+        if isinstance(w, (str, bytes, Mapping)) or not hasattr(w, "__len__") or len(w) != N // 2:
+            raise ValueError(f"{name} must be a weight of so({N}) with {N // 2} entries, got {_validate.fmt(w)}")
+    a = [_to_fraction(x, "lam entry") for x in lam]
+    b = [_to_fraction(x, "mu entry") for x in mu]
     v = [x - y for x, y in zip(a, b)]
     if N == 2:
         return v[0] == 0
