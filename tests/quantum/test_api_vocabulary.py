@@ -260,3 +260,12 @@ def test_old_module_names_still_export_the_same_objects():
     from hyperrotor.paper.operator_products import contraction_identity
 
     assert contraction_identity(3).factor == -1
+
+
+def test_irrep_messages_print_weights_as_numbers():
+    with pytest.raises(ValueError, match=r"irrep \(200, 100\) has dimension") as exc:
+        hq.irrep(5, (200, 100))
+    assert "'200'" not in str(exc.value)
+    with pytest.raises(ValueError, match=r"irrep \(401/2, 201/2\) has dimension"):
+        hq.irrep(5, (200.5, 100.5))
+    assert "(5/2, 1/2)" in hq.irrep(5, (2.5, 0.5)).name

@@ -74,9 +74,10 @@ import numpy as np
 import scipy.sparse as sps
 import sympy as sp
 
+from hyperrotor import _validate
 from hyperrotor.conventions import check_dimension
 
-from .weights import check_highest_weight, dynkin_to_orthogonal, weyl_dimension
+from .weights import _fmt as _fmt_weight, check_highest_weight, dynkin_to_orthogonal, weyl_dimension
 
 __all__ = ["irrep", "gt_patterns", "gt_size", "gt_index", "DEFAULT_MAX_DIM", "EXACT_MAX_DIM"]
 
@@ -221,7 +222,7 @@ def gt_index(N: int, highest_weight: Any, pattern: Any) -> Any:
     idx = _PatternIndex(P, float(max(abs(x) for x in m)) if m else 0.0).lookup(Q)
     if np.any(idx < 0):
         bad = Q[int(np.argmax(idx < 0))]
-        raise ValueError(f"{bad.tolist()} is not a Gelfand-Tsetlin pattern of the so({N}) irrep {tuple(str(x) for x in m)}")
+        raise ValueError(f"{bad.tolist()} is not a Gelfand-Tsetlin pattern of the so({N}) irrep {_fmt_weight(m)}")
     return int(idx[0]) if single else idx
 
 
@@ -294,13 +295,13 @@ def _chain_elements(P: np.ndarray, N: int, k: int, index: _PatternIndex, Pf: np.
 def _check_max_dim(N: int, m, max_dim):
     dim = weyl_dimension(N, m)
     if isinstance(max_dim, bool) or not isinstance(max_dim, (int, np.integer)) or max_dim < 1:
-        raise TypeError(f"max_dim must be a positive integer, got {max_dim!r}")
+        raise TypeError(f"max_dim must be a positive integer, got {_validate.fmt(max_dim)}")
     if dim > max_dim:
         n_pl = N * (N - 1) // 2
         # rough nnz: each generator has O(N) non-zeros per row
         est_bytes = dim * n_pl * N * 20
         raise ValueError(
-            f"the so({N}) irrep {tuple(str(x) for x in m)} has dimension {dim} > max_dim = {max_dim}; "
+            f"the so({N}) irrep {_fmt_weight(m)} has dimension {dim} > max_dim = {max_dim}; "
             f"its {n_pl} sparse generators need roughly {est_bytes / 2**20:.0f} MiB. "
             f"Pass a larger max_dim (e.g. max_dim={dim}) to build it anyway."
         )
@@ -378,7 +379,7 @@ def _gt_generators_exact(N: int, m) -> dict:
     if dim > EXACT_MAX_DIM:
         raise ValueError(
             f"exact (SymPy) generators are limited to dim <= {EXACT_MAX_DIM} (EXACT_MAX_DIM); "
-            f"the so({N}) irrep {tuple(str(x) for x in m)} has dim {dim}: use the float CSR generators"
+            f"the so({N}) irrep {_fmt_weight(m)} has dim {dim}: use the float CSR generators"
         )
     P = _patterns(N, m)
     index = _PatternIndex(P, float(max(abs(x) for x in m)))
@@ -480,7 +481,7 @@ def irrep(
     dim = _check_max_dim(N, m, max_dim)
     gens = _gt_generators_float(N, m)
     exact_gens = _gt_generators_exact(N, m) if exact else (lambda: _gt_generators_exact(N, m))
-    name = f"so({N}) irrep {tuple(str(x) for x in m)} (Gelfand-Tsetlin basis)"
+    name = f"so({N}) irrep {_fmt_weight(m)} (Gelfand-Tsetlin basis)"
     rep = Representation(N, gens, highest_weight=m, exact_generators=exact_gens, name=name, format=format)
     assert rep.dim == dim
     return rep
