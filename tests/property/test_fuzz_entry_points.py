@@ -64,10 +64,10 @@ def _common(default_is_none):
     return [("None", None, not default_is_none), ("object", object(), True)]
 
 
-def _bad_int(default_is_none, zero_ok=False):
+def _bad_int(default_is_none, zero_ok=False, signed=False):
     return _common(default_is_none) + [
         ("True", True, True), ("2.5", 2.5, True), ("str3", "3", True), ("nan", NAN, True),
-        ("complex", 1j, True), ("-1", -1, True), ("0", 0, not zero_ok), ("huge", HUGE_INT, False),
+        ("complex", 1j, True), ("-1", -1, not signed), ("0", 0, not zero_ok), ("huge", HUGE_INT, False),
     ]
 
 
@@ -124,14 +124,15 @@ def _bad_values(kind, good, default_is_none):
     if "scalar" in opts:
         return [(v, val, must and v != "scalar") for v, val, must in
                 _bad_values(kind.replace(",scalar", "").replace(":scalar", ""), good, default_is_none)]
-    if name == "int":
-        return _bad_int(default_is_none, zero_ok=opt == "0")
+    if name == "int":  # options: 0 (zero allowed), signed (-1 allowed, e.g. a chirality)
+        return _bad_int(default_is_none, zero_ok="0" in opts, signed="signed" in opts)
     if name == "real":
         return _bad_real(default_is_none)
     if name == "pos":
         return _bad_real(default_is_none, positive=True, zero_ok=opt == "0")
-    if name == "arr":  # finite numeric array of a fixed shape
-        return _bad_array(good, default_is_none, positive=opt == "pos")
+    if name == "arr":  # finite numeric array of a fixed shape; option cplx: complex allowed (a state)
+        return [(v, val, must and not (v == "complex" and "cplx" in opts)) for v, val, must in
+                _bad_array(good, default_is_none, positive="pos" in opts)]
     if name == "vec":  # finite numeric 1-D array of any length (a mass tensor, semi-axes)
         return [(v, val, must and v != "wrong_len") for v, val, must in
                 _bad_array(good, default_is_none, positive=opt == "pos")]
@@ -301,7 +302,7 @@ ENTRIES = [
     # quantum: representations
     ("q.vector_rep", "quantum.vector_rep", lambda: (3,), dict, {0: "int"}),
     ("q.adjoint_rep", "quantum.adjoint_rep", lambda: (3,), dict, {0: "int"}),
-    ("q.spinor_rep", "quantum.spinor_rep", lambda: (4, 1), dict, {0: "int", 1: "int"}),
+    ("q.spinor_rep", "quantum.spinor_rep", lambda: (4, 1), dict, {0: "int", 1: "int:signed"}),
     ("q.harmonic_rep", "quantum.harmonic_rep", lambda: (3, 1), dict, {0: "int", 1: "int:0"}),
     ("q.tensor", "quantum.tensor", lambda: (_rep(), _rep()), dict, {0: "obj", 1: "obj"}),
     ("q.direct_sum", "quantum.direct_sum", lambda: (_rep(), _rep()), dict, {0: "obj", 1: "obj"}),
@@ -317,16 +318,16 @@ ENTRIES = [
     # quantum: rotor
     ("q.rotor_hamiltonian", "quantum.rotor_hamiltonian", lambda: (_rep(), [1.0, 2.0, 3.0]), dict,
      {0: "obj", 1: "arr:pos"}),
-    ("q.evolve", "quantum.evolve", lambda: (_H(), _psi(), T5), dict, {0: "obj", 1: "obj", 2: "vec"}),
+    ("q.evolve", "quantum.evolve", lambda: (_H(), _psi(), T5), dict, {0: "obj", 1: "obj:array", 2: "vec"}),
     ("q.spectrum", "quantum.spectrum", lambda: (_H(),), dict, {0: "obj"}),
     ("q.symmetry_blocks", "quantum.symmetry_blocks", lambda: (_H(),), dict, {0: "obj"}),
     ("q.generator_expectations", "quantum.generator_expectations", lambda: (_rep(), _psi()), dict,
-     {0: "obj", 1: "obj"}),
+     {0: "obj", 1: "obj:array"}),
     ("q.highest_weight_state", "quantum.highest_weight_state", lambda: (_rep(),), dict, {0: "obj"}),
     ("q.normal_form_rotation", "quantum.normal_form_rotation", lambda: (np.array([1.0, 0.5, 0.2]),), dict,
      {0: "arr"}),
     ("q.apply_rotation", "quantum.apply_rotation", lambda: (_rep(), np.eye(3), np.ones(3) / math.sqrt(3)), dict,
-     {0: "obj", 1: "arr", 2: "arr"}),
+     {0: "obj", 1: "arr", 2: "arr:cplx"}),
     ("q.coherent_state", "quantum.coherent_state", lambda: (_rep(), np.array([1.0, 0.5, 0.2])), dict,
      {0: "obj", 1: "arr"}),
 ]
@@ -377,17 +378,11 @@ PENDING_IDS = {
         simplex_vertices-1--inf simplex_vertices-1-0 simplex_vertices-1-True simplex_vertices-1-complex
         simplex_vertices-1-inf simplex_vertices-1-nan simplex_vertices-1-str
     """.split(),
-    "Q": """
-        q.apply_rotation-2-complex q.evolve-1-array q.generator_expectations-1-array q.spinor_rep-1--1
-    """.split(),
 }
-#: Cases that hang (> 3 s; no size/work budget, mostly planes(N) for N = 10**6): xfail, not run.
+#: Cases that hang (> 3 s; no work budget): xfail, not run. perturbation_growth(Omega=1e300) hangs inside
+#: simulate(method="DOP853") (scipy path without a step budget; requested from C).
 HANGING_IDS = {
-    "Q": """
-        q.harmonic_polynomial_basis-1-huge q.harmonic_rep-1-huge q.orthogonal_harmonic_basis-1-huge
-        q.orthonormal_harmonic_basis-1-huge
-    """.split(),
-    "T": """
+    "C": """
         perturbation_growth-2-huge
     """.split(),
 }
@@ -487,8 +482,9 @@ def test_bad_value_is_refused_cleanly(label, path, args, kwargs, where, kind, vi
     try:
         with _time_limit(TIME_LIMIT), warnings.catch_warnings():
             warnings.simplefilter("error")
-            if not must:  # a legitimate extreme value may overflow to inf with NumPy's warning
+            if not must:  # a legitimate value: NumPy's overflow warning or a library's advice may come
                 warnings.simplefilter("ignore", RuntimeWarning)
+                warnings.simplefilter("ignore", UserWarning)
             fn(*a, **kw)
     except (ValueError, TypeError) as exc:
         assert _names_it(str(exc), name, value), (
