@@ -39,6 +39,9 @@ SIMULATION_METHODS = ("auto", *SOLVERS)
 _LOWER_NAMES = frozenset(m.lower() for m in SOLVERS)
 #: largest scaled momentum (angular velocities of order one): its square must stay finite
 MAX_SCALED_MOMENTUM = 1e150
+#: smallest time scale: scaled times t * s stay normal numbers even for |omega| in the subnormal range
+#: (below it the scaled momenta, not the times, carry the smallness)
+MIN_SCALE = 2.0 ** -960
 #: rtol when neither ``rtol`` nor ``dt`` is given
 DEFAULT_RTOL = 1e-9
 #: ``method="auto"``: the splitting order for rtol at least these values (order 8 below the last);
@@ -194,7 +197,7 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Probl
             f"hyperrotor.options['max_output_bytes']"
         )
     t_user = _validate.time_grid(t)
-    s = power_of_two_scale(float(np.abs(w0).max()) if w0.size else 0.0)
+    s = max(power_of_two_scale(float(np.abs(w0).max()) if w0.size else 0.0), MIN_SCALE)
     tq = None
     if torque is not None:
         if callable(torque):

@@ -54,6 +54,11 @@ from .base import FixedStepSolver, Problem
 __all__ = ["MoserVeselov"]
 
 _MAX_NEWTON = 30
+#: Absolute floor of the Newton stopping test on the Cayley parameter X (a rotation angle per
+#: step). A correction dx changes L_{k+1} = Q L_k Q^T by about |dx| |L| (relative |dx|), so below
+#: 1e-290 it is far under round-off; without the floor a step angle in the subnormal range
+#: (|omega dt| < 2.2e-308) could never meet the relative test 4 eps |X|, whose right side underflows.
+_X_FLOOR = 1e-290
 
 
 def mass_tensor_of(body: Any, moments: np.ndarray) -> np.ndarray:
@@ -151,7 +156,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
                         upd = max(upd, abs(dx[a]))
                     if not (upd == upd) or upd > 1e3:  # NaN or diverging
                         break
-                    if upd <= 4.0 * eps * size:
+                    if upd <= 4.0 * eps * size or upd <= _X_FLOOR:
                         converged = True
                         break
                 if not converged:
