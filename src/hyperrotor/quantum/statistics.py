@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from scipy.integrate import trapezoid  # numpy's own is numpy >= 2 only
 
 from .. import _validate
 
@@ -237,7 +238,7 @@ class SpacingDistribution:
         fine = np.linspace(0.0, 1.0, 33)
         out = np.empty(len(self.density))
         for k, (a, b) in enumerate(zip(self.edges[:-1], self.edges[1:])):
-            out[k] = np.trapezoid(spacing_density(a + (b - a) * fine, ensemble), dx=1.0 / 32)
+            out[k] = trapezoid(spacing_density(a + (b - a) * fine, ensemble), dx=1.0 / 32)
         return out
 
     def distance(self, ensemble: str) -> float:
