@@ -45,6 +45,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from .. import _validate as _v
+from .._options import options
 from .._validate import axis_signs
 from ..conventions import dimension_from_count, plane_index, planes
 from . import closed_form as _cf
@@ -69,9 +71,9 @@ SCENE_OBSERVABLES = ("omega", "L", "energy", "casimirs", "attitude", "projection
 # ----------------------------------------------------------------------------
 def hypercube_vertices(N: int, half_edge: float = 1.0) -> np.ndarray:
     """The ``2**N`` vertices ``(+-half_edge, ..., +-half_edge)`` of the N-cube, shape ``(2**N, N)``."""
-    from ..conventions import check_dimension
-
-    N = check_dimension(N, minimum=1)
+    # 2**N rows: refuse an N whose table could not be held, up front (N = 24: 16.8 million vertices)
+    N = _v.integer("N", N, minimum=1, maximum=min(24, options["max_dimension"]))
+    half_edge = _v.positive("half_edge", half_edge)
     bits = (np.arange(2**N)[:, None] >> np.arange(N)[None, ::-1]) & 1
     return half_edge * (2.0 * bits - 1.0)
 
@@ -83,9 +85,9 @@ def simplex_vertices(N: int, circumradius: float = 1.0) -> np.ndarray:
     orthonormal basis of the hyperplane :math:`\sum x = 0`, scaled to the given
     circumradius; all pairwise distances are equal.
     """
-    from ..conventions import check_dimension
-
-    N = check_dimension(N, minimum=1)
+    # an (N + 1) x (N + 1) QR: refuse an absurd N up front
+    N = _v.integer("N", N, minimum=1, maximum=options["max_dimension"])
+    circumradius = _v.positive("circumradius", circumradius)
     E = np.eye(N + 1) - 1.0 / (N + 1)
     Q, _ = np.linalg.qr(E[:, :N])  # orthonormal basis of the sum-zero hyperplane
     V = E @ Q
@@ -99,12 +101,11 @@ def ellipsoid_points(semi_axes: Sequence[float], n: int, *, rng: Any = None) -> 
     semi-axes. ``rng``: seed or :class:`numpy.random.Generator` (default seed 0,
     so the points are reproducible).
     """
-    a = np.asarray(semi_axes, dtype=float)
-    if a.ndim != 1 or a.size < 2 or not np.all(np.isfinite(a)) or np.any(a <= 0):
-        raise ValueError(f"semi_axes must be >= 2 finite positive numbers, got {semi_axes!r}")
-    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-        raise ValueError(f"n must be a positive integer, got {n!r}")
-    gen = np.random.default_rng(0 if rng is None else rng)
+    a = _v.finite_array("semi_axes", semi_axes, ndim=1)
+    if a.size < 2 or np.any(a <= 0):
+        raise ValueError(f"semi_axes must be >= 2 finite positive numbers, got {_v.fmt(semi_axes)}")
+    n = _v.integer("n", n, minimum=1)
+    gen = _v.rng(0 if rng is None else rng)
     d = gen.normal(size=(int(n), a.size))
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     return d * a
@@ -126,8 +127,20 @@ def locked_axes(omega0: Any, N: int | None = None) -> tuple[int, ...]:
 
     Locking them (:meth:`RigidBody.lock`) gives an invariant subsystem.
     """
-    w = np.asarray(omega0, dtype=float)
-    N = dimension_from_count(w.shape[-1]) if N is None else N
+    # an index map: NaN/inf are legitimate (not zero, so not locked); complex values count by != 0
+    if omega0 is None or isinstance(omega0, (str, bytes)):
+        raise TypeError(f"omega0 must be an array of plane components, got {_v.fmt(omega0)}")
+    try:
+        w = np.asarray(omega0)
+        if w.dtype.kind not in "biufc":
+            raise TypeError
+    except (TypeError, ValueError):
+        raise TypeError(f"omega0 must be a numeric array of plane components, got {_v.fmt(omega0)}") from None
+    if w.ndim == 0:
+        raise ValueError(f"omega0 must be an array of plane components (shape (n,) or batch + (n,)), got the scalar {_v.fmt(omega0)}")
+    N = dimension_from_count(w.shape[-1]) if N is None else _v.dimension(N)
+    if w.shape[-1] != N * (N - 1) // 2:
+        raise ValueError(f"omega0 must have {N * (N - 1) // 2} plane components for N = {N}, got shape {w.shape}")
     nz = w != 0.0
     return tuple(k for k in range(1, N + 1) if not any(nz[..., q].any() for q, p in enumerate(planes(N)) if k in p))
 
@@ -206,27 +219,41 @@ class Scene:
     method: str = "auto"
     rtol: float = 1e-10
 
+    def __post_init__(self):
+        # refuse a bad body, omega0 or t where it is given, not later in evaluate()
+        _check_inputs(self.body, self.omega0, self.t)
+
     def evaluate(self, *, minimal: bool = True) -> SceneResult:
         """Compute the scene; see :func:`evaluate_scene`."""
         return evaluate_scene(self, minimal=minimal)
 
 
+def _check_inputs(body: Any, omega0: Any, t: Any):
+    """``(body, omega0, t)`` checked with :mod:`hyperrotor._validate` (messages name the argument)."""
+    try:
+        body_ = _as_body(body)
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(
+            f"body must be a RigidBody, an Inertia or plane moments, got {_v.fmt(body)} "
+            f"of type {type(body).__name__}: {exc}"
+        ) from None
+    n = len(body_.planes)
+    w0 = _v.finite_array("omega0", omega0, ndim=1)
+    if w0.shape != (n,):
+        raise ValueError(f"omega0 must have shape ({n},) for N = {body_.N}, got shape {w0.shape}")
+    t_ = _v.time_grid(t, name="t", allow_decreasing=False)
+    return body_, w0, t_
+
+
 def _validate(scene: Scene):
-    body = _as_body(scene.body)
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a hyperrotor.Scene, got {_v.fmt(scene)} of type {type(scene).__name__}")
+    body, w0, t = _check_inputs(scene.body, scene.omega0, scene.t)
     N = body.N
-    n = len(body.planes)
     obs = tuple(scene.observables) if not isinstance(scene.observables, str) else (scene.observables,)
     bad = [o for o in obs if o not in SCENE_OBSERVABLES]
     if bad or not obs:
         raise ValueError(f"unknown observable(s) {bad!r}; allowed: {', '.join(SCENE_OBSERVABLES)}")
-    w0 = np.asarray(scene.omega0, dtype=float)
-    if w0.shape != (n,):
-        raise ValueError(f"omega0 must have shape ({n},) for N = {N}, got {w0.shape}")
-    if not np.all(np.isfinite(w0)):
-        raise ValueError("omega0 must be finite")
-    t = np.asarray(scene.t, dtype=float)
-    if t.ndim != 1 or t.size < 1 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
-        raise ValueError("t must be a 1-D array of finite, strictly increasing times")
     sel_planes = tuple(planes(N)) if scene.planes is None else tuple(tuple(int(v) for v in p) for p in scene.planes)
     cols = np.array([plane_index(p, N) for p in sel_planes], dtype=int)
     pts = None
