@@ -36,6 +36,7 @@ __all__ = [
     "plane",
     "moments",
     "axis_signs",
+    "ket",
     "form",
     "form_hbar",
     "old_keywords",
@@ -425,3 +426,29 @@ def axis_signs(N: int, convention: str, axes: Sequence[int] | None = None) -> np
     if len(labels) != N:
         raise ValueError(f"axes {fmt(labels)} must name exactly N = {N} axes")
     return np.array([(-1.0) ** a for a in labels])
+
+
+def ket(name: str, value: Any, dim: int, *, of: str) -> np.ndarray:
+    """A state vector as a finite complex 1-D array of length ``dim``.
+
+    Accepts a ket ``qutip.Qobj`` (recognised by ``.isket``/``.full()``, so QuTiP is not
+    imported here), a 1-D array or a ``(dim, 1)`` column. ``of`` names what fixes ``dim``
+    in the message (``"H"``, ``"the representation"``).
+    """
+    if hasattr(value, "isket") and hasattr(value, "full"):
+        if not value.isket:
+            raise ValueError(f"{name} must be a ket, got a Qobj of type {value.type!r}")
+        vec = value.full().ravel()
+    else:
+        vec = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray(value, dtype=object)
+        if vec.dtype.kind not in "biufc":
+            raise TypeError(f"{name} must be a ket Qobj or a numeric vector, got {fmt(value)}")
+        if vec.ndim == 2 and vec.shape[1] == 1:
+            vec = vec[:, 0]
+        if vec.ndim != 1:
+            raise ValueError(f"{name} must be a vector (ket) of length {dim}, got shape {vec.shape}")
+    if vec.shape[0] != dim:
+        raise ValueError(f"{name} has dimension {vec.shape[0]} but {of} has dimension {dim}")
+    if not np.all(np.isfinite(vec)):
+        raise ValueError(f"{name} must be finite, got non-finite amplitudes")
+    return vec.astype(complex)

@@ -49,23 +49,7 @@ __all__ = [
 
 
 def _vector(psi: Any, dim: int, name: str = "psi") -> np.ndarray:
-    if isinstance(psi, qutip.Qobj):
-        if not psi.isket:
-            raise ValueError(f"{name} must be a ket, got a Qobj of type {psi.type!r}")
-        vec = psi.full().ravel()
-    else:
-        vec = np.asarray(psi) if not isinstance(psi, (str, bytes)) else np.asarray(psi, dtype=object)
-        if vec.dtype.kind not in "biufc":
-            raise TypeError(f"{name} must be a ket Qobj or a numeric vector, got {_validate.fmt(psi)}")
-        if vec.ndim == 2 and vec.shape[1] == 1:
-            vec = vec[:, 0]
-        if vec.ndim != 1:
-            raise ValueError(f"{name} must be a vector of length {dim}, got shape {vec.shape}")
-    if vec.shape[0] != dim:
-        raise ValueError(f"{name} has dimension {vec.shape[0]} but the representation has dimension {dim}")
-    if not np.all(np.isfinite(vec)):
-        raise ValueError(f"{name} must be finite, got non-finite amplitudes")
-    return vec.astype(complex)
+    return _validate.ket(name, psi, dim, of="the representation")
 
 
 def generator_expectations(rep: Any, psi: Any, *args: Any, hbar: float = 1.0) -> np.ndarray:

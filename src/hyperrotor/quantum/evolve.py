@@ -448,23 +448,7 @@ EVOLVE_METHODS = tuple(PROPAGATORS)
 # evolve
 # ----------------------------------------------------------------------------
 def _state_vector(psi0: Any, dim: int) -> np.ndarray:
-    if hasattr(psi0, "isket") and hasattr(psi0, "full"):  # qutip.Qobj
-        if not psi0.isket:
-            raise ValueError(f"psi0 must be a ket, got a Qobj of type {psi0.type!r}")
-        vec = psi0.full().ravel()
-    else:
-        vec = np.asarray(psi0)
-        if vec.dtype.kind not in "biufc":
-            raise TypeError(f"psi0 must be a ket Qobj or a numeric vector, got dtype {vec.dtype}")
-        if vec.ndim == 2 and vec.shape[1] == 1:
-            vec = vec[:, 0]
-        if vec.ndim != 1:
-            raise ValueError(f"psi0 must be a vector (ket), got shape {vec.shape}")
-    if vec.shape[0] != dim:
-        raise ValueError(f"psi0 has dimension {vec.shape[0]} but H has dimension {dim}")
-    vec = vec.astype(complex)
-    if not np.all(np.isfinite(vec)):
-        raise ValueError("psi0 contains non-finite amplitudes")
+    vec = _validate.ket("psi0", psi0, dim, of="H")
     nrm = float(np.linalg.norm(vec))
     if nrm == 0:
         raise ValueError("psi0 is the zero vector; it cannot be normalized")
