@@ -367,16 +367,46 @@ def test_a_slow_request_is_announced_before_it_runs():
         hr.simulate(body, np.linspace(-1, 1, 10), [0.0, 2.0], method="moser-veselov", rtol=1e-5)
 
 
-@pytest.mark.parametrize("method", [m for m, cls in SOLVERS.items() if not getattr(cls, "adaptive", False)])
+@pytest.mark.parametrize("method", ALL)
 @pytest.mark.parametrize("size", [2.2250738585072014e-308, 5e-324])
 def test_near_underflow_angular_velocities_keep_the_start_and_the_conserved_motion(method, size):
     """|omega| at the bottom of double precision (smallest normal, smallest subnormal): the run scales
     time by at most MIN_SCALE, so scaled times stay normal, and Moser-Veselov's Newton test has an
     absolute floor; the start comes back bit for bit and a body with equal moments keeps omega.
-    The fixed-step methods only: scipy's LSODA does not return at these sizes (a known limit)."""
+    scipy methods: the run is shorter than eps times the time scale, so the constant solution is
+    returned without calling scipy (LSODA never returned here before)."""
     body = hr.RigidBody(hr.Inertia.from_mass_tensor([1.0, 1.0, 1.0]))
     w0 = np.array([1.0, 2.0, 3.0]) * size
-    tr = hr.simulate(body, w0, np.linspace(0.0, 2.0, 5), method=method, dt=0.05)
+    kw = dict(dt=0.05) if issubclass(SOLVERS[method], FixedStepSolver) else dict(rtol=1e-8)
+    tr = hr.simulate(body, w0, np.linspace(0.0, 2.0, 5), method=method, **kw)
     assert np.array_equal(tr.omega[0], w0)
     # equal moments: L is constant; the ratio is exact up to the rounding of the scaled momenta
     np.testing.assert_allclose(tr.omega[-1], w0, rtol=64 * np.finfo(float).eps, atol=0)
+
+
+@pytest.mark.parametrize("method", ADAPTIVE)
+def test_scipy_methods_without_motion_at_double_precision_return_the_start(method):
+    """A generic body at |omega| ~ 1e-200 over 20 time units turns by ~1e-199 rad: the constant
+    solution is exact to rounding (relative change below eps / 16) and costs no scipy call."""
+    w0 = W3 * 1e-200
+    tr = hr.simulate(MOM3, w0, np.linspace(0.0, 20.0, 5), method=method, rtol=1e-10)
+    assert tr.stats["nfev"] == 0
+    np.testing.assert_array_equal(tr.omega, np.broadcast_to(w0, tr.omega.shape))
+    # the same motion slowed by 1e-200 and run 1e200 times longer is the ordinary run (scale symmetry)
+    ref = hr.simulate(MOM3, W3, [0.0, 20.0], method=method, rtol=1e-10).omega[-1]
+    slow = hr.simulate(MOM3, w0, [0.0, 20.0 * 1e200], method=method, rtol=1e-10).omega[-1] * 1e200
+    np.testing.assert_allclose(slow, ref, rtol=0, atol=1e3 * 1e-10 * np.abs(W3).max())
+
+
+@pytest.mark.parametrize("method", ADAPTIVE)
+def test_scipy_runs_projected_over_the_budget_are_refused_early(method):
+    """1e300 radians cannot be integrated: the projection from the first evaluations refuses the run
+    (before: it ran for hours up to max_steps evaluations), naming the projected count."""
+    body = RigidBody(Inertia.from_mass_tensor([1.0, 2.0, 3.0, 4.0]))
+    w0 = np.array([1e300, 1e-8, 2e-8, 3e-8, 1e-8, 2e-8])
+    with pytest.raises(StepBudgetError, match=r"would need about [0-9.]+e\+(2[0-9]{2}|30[0-8]) right-hand-side evaluations"):
+        hr.simulate(body, w0, np.linspace(0.0, 1.0, 5), method=method, rtol=1e-11)
+    # an ensemble: the members still to run count too (2000 evaluations for one member, 50 members)
+    one = hr.simulate(MOM3, W3, [0.0, 200.0], method=method, rtol=1e-10).stats["nfev"]
+    with pytest.raises(StepBudgetError, match="would need about"):
+        hr.simulate(MOM3, np.tile(W3, (50, 1)), [0.0, 200.0], method=method, rtol=1e-10, max_steps=10 * one)

@@ -14,12 +14,25 @@ right-hand side is ``body.rhs`` for a :class:`hyperrotor.RigidBody`, else an equ
 sparse evaluation of the component equations. Any torque, also ``torque(t, omega)``.
 
 The run is bounded: the right-hand side counts its evaluations and stops the run with
-:class:`~.step_control.StepBudgetError` past ``max_steps`` (scipy cannot estimate its steps
-in advance). Inputs are scaled to angular velocities of order one first (see
-:mod:`.base`), so huge or tiny scales neither overflow nor stall the step control.
+:class:`~.step_control.StepBudgetError` past ``max_steps``. scipy cannot estimate its steps
+in advance, so the count is extrapolated instead: from :data:`EXTRAPOLATE_AFTER` evaluations
+of a member on (and at every doubling), the evaluations so far times
+(time span / time covered), plus the same for the members still to run, is the projected
+cost; a run projected above ``max_steps`` is refused at once, naming the projection (a run of
+1e300 radians is refused in well under a second instead of running for hours to the budget).
+
+Inputs are scaled to angular velocities of order one first (see :mod:`.base`), so huge or
+tiny scales neither overflow nor stall the step control. A member whose whole run is
+shorter than :data:`STILL_FRACTION` of its fastest time scale (the bound
+:math:`\|\dot\omega\|_\infty \le n\,(I_\text{max}/I_\text{min})\,\|\omega\|_\infty^2`, plus
+:math:`N\|\omega\|_\infty` for the attitude and a constant torque's rate) does not move at
+double precision: it is returned as the constant solution, exact to rounding, without
+calling scipy (whose LSODA never returns for time spans near 1e-307). With ``events`` the
+run always goes to scipy (an event function may depend on ``t`` alone).
 """
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -34,6 +47,16 @@ __all__ = ["ScipyIVP", "DOP853", "RK45", "RK23", "LSODA", "Radau", "BDF"]
 
 #: solve_ivp warns below this rtol; requests are raised to it
 RTOL_FLOOR = 100 * np.finfo(float).eps
+#: default ``max_step``: at most this many radians of the fastest initial rate per step. No
+#: accurate step is longer; near a steady rotation (right-hand side ~ 0) scipy's first-step rule
+#: would otherwise try steps of 1e6 radians and overflow, or (LSODA) fail to converge
+MAX_STEP_RADIANS = 4.0
+#: right-hand-side evaluations of a member before its cost is first extrapolated (then at every
+#: doubling): by then the step of every method has settled (the first steps are chosen small)
+EXTRAPOLATE_AFTER = 1000
+#: a member whose run is shorter than this fraction of its fastest time scale is constant at
+#: double precision (relative change below eps / 16)
+STILL_FRACTION = np.finfo(float).eps / 16
 
 
 class _SparseRHS:
@@ -65,14 +88,16 @@ class ScipyIVP(Solver):
     Options
     -------
     first_step, max_step : float or None
-        passed to ``solve_ivp`` (user time units).
+        passed to ``solve_ivp`` (user time units); ``max_step`` defaults to
+        :data:`MAX_STEP_RADIANS` over the largest initial rate.
     """
 
     adaptive = True
     supports_torque = "any"
     scipy_method = ""
     option_docs = {"first_step": (None, "initial step of solve_ivp (user time units)"),
-                   "max_step": (None, "largest step of solve_ivp (user time units)")}
+                   "max_step": (None, "largest step of solve_ivp (user time units); default: "
+                                      "MAX_STEP_RADIANS over the largest initial rate")}
 
     def _check_options(self) -> None:
         for k in ("first_step", "max_step"):
@@ -99,6 +124,9 @@ class ScipyIVP(Solver):
         Tout = np.empty((B, K, N, N)) if with_att else None
         nfev = [0]
         budget = int(max_steps)
+        span = float(abs(t[-1] - t[0])) if K > 1 else 0.0
+        tau_rate = 0.0 if torque is None or callable(torque) else np.abs(torque).max(axis=-1) / moments.min()
+        ratio = float(moments.max() / moments.min())
         sols: list = []
         calls: list = []
         t_events = L_events = T_events = None
@@ -110,11 +138,19 @@ class ScipyIVP(Solver):
             rbs.append(rb)
             tau_b = None if torque is None or callable(torque) else torque[b] / (rb * rb)
 
-            def f(tt, y, tau_b=tau_b, rb=rb):
+            progress_b = {"far": 0.0, "next": nfev[0] + EXTRAPOLATE_AFTER, "start": nfev[0]}
+
+            def f(tt, y, tau_b=tau_b, rb=rb, pb=progress_b, b=b):
                 nfev[0] += 1
                 if nfev[0] > budget:
                     raise _Budget
+                pb["far"] = max(pb["far"], abs(tt - pb["t0"]))
+                if nfev[0] >= pb["next"]:
+                    pb["next"] = nfev[0] + (nfev[0] - pb["start"])
+                    _extrapolate(nfev[0], nfev[0] - pb["start"], pb["far"], pb["span"], B - b - 1, budget, self.name)
                 w = y[:n]
+                if not np.all(np.isfinite(y)):  # an overflowing trial step: infinite error, scipy shrinks the step
+                    return np.full(y.shape, np.inf)
                 with np.errstate(over="ignore", invalid="ignore"):  # trial steps may overflow; scipy rejects them
                     dw = np.asarray(rhs(w), dtype=float)
                 if torque is not None:
@@ -138,17 +174,28 @@ class ScipyIVP(Solver):
             Lout[b, 0] = problem.L0[b]
             if with_att:
                 Tout[b, 0] = problem.T0[b]
-            if K == 1:
+            rate = ratio * n * wscale + (N * wscale if with_att else 0.0)
+            if torque is not None and not callable(torque):
+                rate += float(tau_rate[b]) / (rb * rb * wscale)
+            if K == 1 or (not specs and span * rb * rate < STILL_FRACTION):  # no motion at double precision
+                Lout[b, 1:] = problem.L0[b]
+                if with_att:
+                    Tout[b, 1:] = problem.T0[b]
                 sols.append(None)
                 calls.append(None)
                 continue
             ev = [_scaled_event(sp, s * rb, moments, n) for sp in specs] or None
             kw = {k: v * s * rb for k, v in self.options.items() if v is not None}
+            kw.setdefault("max_step", MAX_STEP_RADIANS / wscale)
             tb = t * rb
+            progress_b.update(t0=tb[0], span=abs(tb[-1] - tb[0]))
 
             def call(dense, f=f, y0=y0, atol=atol, ev=ev, kw=kw, tb=tb):
-                return solve_ivp(f, (tb[0], tb[-1]), y0, method=self.scipy_method, t_eval=tb, rtol=rtol, atol=atol,
-                                 events=ev, dense_output=dense, **kw)
+                # a trial step may overflow: the right-hand side answers inf, scipy's error norm is
+                # inf and the step is rejected (the accepted solution is checked for finiteness below)
+                with np.errstate(over="ignore", invalid="ignore"):
+                    return solve_ivp(f, (tb[0], tb[-1]), y0, method=self.scipy_method, t_eval=tb, rtol=rtol, atol=atol,
+                                     events=ev, dense_output=dense, **kw)
 
             calls.append(call)
             try:
@@ -184,7 +231,7 @@ class ScipyIVP(Solver):
             L = np.empty((B, tq.size, n))
             T = np.empty((B, tq.size, N, N)) if with_att else None
             for b in range(B):
-                if calls[b] is None:  # a single output time: the initial state
+                if calls[b] is None:  # a single output time, or no motion: the initial state
                     y0b = np.concatenate([problem.L0[b] / moments] + ([problem.T0[b].ravel()] if with_att else []))
                     y = np.repeat(y0b[:, None], tq.size, axis=1)
                 else:
@@ -202,6 +249,26 @@ class ScipyIVP(Solver):
                      status="terminated by event" if K_done < K else "finished")
         return RunResult(L=Lout[:, :K_done], T=None if Tout is None else Tout[:, :K_done], t=t[:K_done], stats=stats,
                          dense=dense, t_events=t_events, L_events=L_events, T_events=T_events)
+
+
+def _extrapolate(total: int, member: int, covered: float, span: float, members_left: int, budget: int,
+                 name: str) -> None:
+    """Refuse a run whose projected right-hand-side evaluations exceed ``budget`` (see the module docstring)."""
+    # nothing covered after EXTRAPOLATE_AFTER evaluations: the method is stuck (projected without end)
+    projected = (total + member * (span / covered - 1.0) + member * (span / covered) * members_left
+                 if covered > 0.0 else math.inf)
+    if covered <= 0.0:
+        raise StepBudgetError(
+            f"scipy {name} made no progress in time after {member} right-hand-side evaluations (its step "
+            f"underflows the time span); rescale the problem or use a fixed-step method"
+        )
+    if projected > budget:
+        raise StepBudgetError(
+            f"scipy {name} would need about {projected:.3g} right-hand-side evaluations for this run "
+            f"(extrapolated from {member} evaluations covering {covered / span:.3g} of the time span), more than "
+            f"the budget max_steps = {budget}; raise it with simulate(..., max_steps=...) or "
+            f"hyperrotor.options(max_steps=...), or ask for less (shorter t, larger rtol)"
+        )
 
 
 def _scaled_event(spec, s, moments, n):
