@@ -27,6 +27,7 @@ __all__ = [
     "real",
     "positive",
     "hbar",
+    "flag",
     "rng",
     "choice",
     "convention",
@@ -151,6 +152,20 @@ def positive(name: str, value: Any, *, allow_none: bool = False, allow_zero: boo
 def hbar(value: Any) -> float:
     """The reduced Planck constant: a finite number ``> 0`` (the package's default is ``1.0``)."""
     return positive("hbar", value)
+
+
+def flag(name: str, value: Any, *, allow_none: bool = False) -> bool | None:
+    """A switch: ``True`` or ``False`` (NumPy booleans too; ``None`` passes through when ``allow_none``).
+
+    Integers, strings and other truthy objects are refused: ``progress="no"`` or
+    ``complete=0`` would otherwise act by their truth value, not by what they say.
+    """
+    if value is None and allow_none:
+        return None
+    if not isinstance(value, (bool, np.bool_)):
+        allowed = "True, False or None" if allow_none else "True or False"
+        raise TypeError(f"{name} must be {allowed}, got {fmt(value)} of type {type(value).__name__}")
+    return bool(value)
 
 
 def rng(value: Any = None) -> np.random.Generator:
@@ -393,8 +408,12 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
     if isinstance(src, (str, bytes)):
         raise TypeError(f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, got {fmt(src)}")
     try:
+        if np.iscomplexobj(src):  # NumPy would drop the imaginary part with a ComplexWarning
+            raise TypeError(f"{name}: moments of inertia must be real, got complex values {fmt(src)}")
         arr = np.asarray(src, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError) as exc:
+        if str(exc).startswith(f"{name}: moments of inertia must be real"):
+            raise
         raise TypeError(
             f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, "
             f"got {type(value).__name__}"

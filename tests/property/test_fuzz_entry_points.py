@@ -115,6 +115,12 @@ def _bad_obj(default_is_none, ok=()):
     ]
 
 
+def _bad_flag(default_is_none):
+    return _common(default_is_none) + [
+        ("1", 1, True), ("0", 0, True), ("str", "yes", True), ("nan", NAN, True), ("array", np.array([True]), True),
+    ]
+
+
 def _bad_values(kind, good, default_is_none):
     """Bad values of a kind "name[:option,option]"; options: pos (must be > 0), 0 (zero allowed),
     scalar (a scalar may pass for an array), int/array (may pass for an object)."""
@@ -136,6 +142,9 @@ def _bad_values(kind, good, default_is_none):
     if name == "vec":  # finite numeric 1-D array of any length (a mass tensor, semi-axes)
         return [(v, val, must and v != "wrong_len") for v, val, must in
                 _bad_array(good, default_is_none, positive=opt == "pos")]
+    if name == "pts":  # points where a function is evaluated: any shape (a scalar, empty, 3-D), finite
+        return [(v, val, must and v not in ("scalar", "empty", "wrong_len", "ndim3")) for v, val, must in
+                _bad_array(good, default_is_none)]
     if name == "map":  # a pure index map: NaN/inf (and complex numbers) pass through legitimately
         return [(v, val, must and v != "complex") for v, val, must in _bad_array(good, default_is_none, finite=False)]
     if name == "str":
@@ -146,6 +155,8 @@ def _bad_values(kind, good, default_is_none):
         return _bad_plane(default_is_none)
     if name == "obj":
         return _bad_obj(default_is_none, ok=opts)
+    if name == "flag":  # a switch: True or False (None too when that is the default)
+        return _bad_flag(default_is_none)
     raise AssertionError(kind)
 
 
@@ -176,9 +187,32 @@ def _L3():
     return hyperrotor.quantum.angular_momentum_operators(3)
 
 
+def _H_array():
+    return np.asarray(_H().full().real)  # the same rotor Hamiltonian as a real ndarray
+
+
+def _sector():
+    return next(s for s in hyperrotor.quantum.symmetry_sectors(_rep()) if s.dim)
+
+
+def _section():
+    L = np.arange(12.0).reshape(2, 6) + 1.0
+    return hyperrotor.classical.PoincareSection(t=np.array([0.5, 1.0]), L=L, omega=L / W6, plane=(1, 2),
+                                                value=0.0, direction=1, N=4)
+
+
+def _axes():
+    from matplotlib.figure import Figure  # not registered with pyplot: nothing to close
+
+    return Figure().add_subplot()
+
+
 W6 = np.linspace(0.1, 0.6, 6)
 W10 = np.linspace(0.1, 1.0, 10)
 T5 = np.linspace(0.0, 1.0, 5)
+#: A small spectrum with unequal spacings (10 levels; enough for an unfolding of degree 3).
+LEVELS = np.array([0.0, 0.3, 1.1, 1.5, 2.6, 3.0, 4.2, 4.4, 5.9, 6.3])
+PSI3 = np.ones(3) / math.sqrt(3)
 
 # (label, getter, args factory, kwargs factory, {position or keyword: kind})
 # getter is a dotted path below ``hyperrotor``; factories build fresh good arguments per call.
@@ -266,6 +300,14 @@ ENTRIES = [
     ("simplex_vertices", "simplex_vertices", lambda: (3, 1.0), dict, {0: "int", 1: "pos"}),
     ("ellipsoid_points", "ellipsoid_points", lambda: ([1.0, 2.0, 3.0], 5), dict, {0: "vec:pos", 1: "int"}),
     ("locked_axes", "locked_axes", lambda: (W6,), dict, {0: "map"}),
+    # chaos: Poincare sections
+    ("poincare_section", "poincare_section", lambda: (_body(), W6, 1.0),
+     lambda: {"plane": (1, 2), "value": 0.0, "direction": 1, "method": "splitting4", "dt": 0.05, "progress": False},
+     {0: "obj:array", 1: "arr", 2: "pos", "plane": "plane", "value": "real", "direction": "int:signed,0",
+      "method": "str", "dt": "pos", "progress": "flag"}),
+    ("poincare_section/auto-dt", "poincare_section", lambda: (_body(), W6, 1.0), dict, {1: "arr", 2: "pos"}),
+    ("plot_poincare", "plot_poincare", lambda: (_section(), (1, 3), (2, 4)), lambda: {"ax": _axes(), "labels": ["orbit"]},
+     {0: "obj", 1: "plane", 2: "plane", "ax": "obj", "labels": "obj"}),
     ("evaluate_scene", "evaluate_scene", lambda: (hyperrotor.Scene(_body(), W6, T5),), dict, {0: "obj"}),
     ("verify_paper", "verify_paper", lambda: (["nonsense-section"],), dict, {}),
     # quantum: operators
@@ -330,6 +372,52 @@ ENTRIES = [
      {0: "obj", 1: "arr", 2: "arr:cplx"}),
     ("q.coherent_state", "quantum.coherent_state", lambda: (_rep(), np.array([1.0, 0.5, 0.2])), dict,
      {0: "obj", 1: "arr"}),
+    ("q.as_csr", "quantum.as_csr", lambda: (np.eye(2), "H"), dict, {0: "arr:cplx", 1: "name"}),
+    ("q.check_antihermitian", "quantum.check_antihermitian", lambda: ({(1, 2): np.array([[0.0, -1.0], [1.0, 0.0]])},),
+     lambda: {"form": "antihermitian"}, {0: "obj", "form": "str"}),
+    ("q.jmat_generators", "quantum.jmat_generators", lambda: (1,), lambda: {"form": "hermitian", "hbar": 1.0},
+     {0: "pos", "form": "str", "hbar": "pos"}),
+    ("q.evolve_options", "quantum.evolve_options", lambda: ("krylov",), dict, {0: "str"}),
+    ("q.register_propagator", "quantum.register_propagator",
+     lambda: (hyperrotor.quantum.PROPAGATORS["eigen"],), dict, {0: "obj"}),
+    # quantum: symmetry sectors
+    ("q.pi_rotation", "quantum.pi_rotation", lambda: (_rep(), (1, 2)), lambda: {"format": "csr"},
+     {0: "obj", 1: "plane", "format": "str"}),
+    ("q.symmetry_sectors", "quantum.symmetry_sectors", lambda: (_rep(),), lambda: {"complete": False},
+     {0: "obj", "complete": "flag"}),
+    ("q.sector_blocks", "quantum.sector_blocks", lambda: (_H(), _rep()), lambda: {"complete": False},
+     {0: "obj", 1: "obj", "complete": "flag"}),
+    ("q.sector_blocks/array", "quantum.sector_blocks", lambda: (_H_array(), _rep()), dict, {0: "arr"}),
+    ("q.sector_hamiltonian", "quantum.sector_hamiltonian", lambda: (_H(), _sector()), lambda: {"dense": True},
+     {0: "obj", 1: "obj", "dense": "flag"}),
+    ("q.sector_hamiltonian/array", "quantum.sector_hamiltonian", lambda: (_H_array(), _sector()), dict, {0: "arr"}),
+    ("q.evolution_blocks", "quantum.evolution_blocks", lambda: (_H(), _rep(), PSI3), dict,
+     {0: "obj", 1: "obj", 2: "arr:cplx"}),
+    ("q.evolution_blocks/array", "quantum.evolution_blocks", lambda: (_H_array(), _rep(), PSI3), dict, {0: "arr"}),
+    ("q.sector_spectra", "quantum.sector_spectra", lambda: (_rep(), [1.0, 2.0, 3.0]),
+     lambda: {"hbar": 1.0, "parallel": True, "workers": 1, "client": None, "progress": False},
+     {0: "obj", 1: "arr:pos", "hbar": "pos", "parallel": "flag", "workers": "int", "client": "obj",
+      "progress": "flag"}),
+    # quantum: level statistics
+    ("q.spacing_ratios", "quantum.spacing_ratios", lambda: (LEVELS,), dict, {0: "vec"}),
+    ("q.spacing_ratio", "quantum.spacing_ratio", lambda: (LEVELS,), lambda: {"return_error": False},
+     {0: "vec", "return_error": "flag"}),
+    ("q.ratio_density", "quantum.ratio_density", lambda: (np.linspace(0.0, 1.0, 5), "goe"), dict,
+     {0: "pts", 1: "str"}),
+    ("q.unfold", "quantum.unfold", lambda: (LEVELS,), lambda: {"degree": 3}, {0: "vec", "degree": "int"}),
+    ("q.spacings", "quantum.spacings", lambda: (LEVELS,), lambda: {"degree": 3, "unfolded": False},
+     {0: "vec", "degree": "int", "unfolded": "flag"}),
+    ("q.spacings/unfolded", "quantum.spacings", lambda: (LEVELS,), lambda: {"unfolded": True}, {0: "vec"}),
+    ("q.spacing_density", "quantum.spacing_density", lambda: (np.linspace(0.0, 3.0, 5), "poisson"), dict,
+     {0: "pts", 1: "str"}),
+    ("q.spacing_distribution", "quantum.spacing_distribution", lambda: (LEVELS,),
+     lambda: {"bins": 5, "s_max": 4.0, "degree": 3}, {0: "vec", "bins": "int", "s_max": "pos", "degree": "int"}),
+    ("q.spacing_distribution/edges", "quantum.spacing_distribution", lambda: (LEVELS,),
+     lambda: {"bins": np.linspace(0.0, 4.0, 6), "degree": 3}, {"bins": "vec"}),
+    ("q.sample_spectrum", "quantum.sample_spectrum", lambda: ("goe", 6), lambda: {"rng": 1, "bulk": 1.0},
+     {0: "str", 1: "int", "rng": "int:0", "bulk": "pos"}),
+    ("q.sample_spectrum/poisson", "quantum.sample_spectrum", lambda: ("poisson", 6), lambda: {"rng": 1},
+     {1: "int"}),
 ]
 
 #: Public names that are not entry points to fuzz, with the reason.
@@ -355,17 +443,15 @@ NOT_FUZZED = {
     "R_MEAN": "a constant", "R_SURMISE_MEAN": "a constant", "Sector": "a result record",
     "SectorSpectra": "a result record", "SpacingDistribution": "a result record",
 }
-#: Public names added while this module was written (issue #13-#17 work): no fuzz entry yet.
-NOT_YET_FUZZED = {
-    "poincare_section", "plot_poincare", "as_csr", "check_antihermitian", "jmat_generators", "evolve_options",
-    "register_propagator", "pi_rotation", "symmetry_sectors", "sector_blocks", "sector_hamiltonian",
-    "sector_spectra", "spacing_ratios", "spacing_ratio", "ratio_density", "unfold", "spacings",
-    "spacing_density", "spacing_distribution", "sample_spectrum", "evolution_blocks",
-}
-
 #: Cases that failed when written, by owner (requests in /work/coord/requests.md): strict xfail.
 PENDING_IDS = {
     "C": """
+    """.split(),
+    # simulate(..., events=g) with a step far too large for the motion (|omega| dt >~ 1e4): the one-step
+    # re-integration in the driver's event location does not reproduce the grid's sign change, and brentq's
+    # bare "f(a) and f(b) must have different signs" escapes (requested from P)
+    "P": """
+        poincare_section-1-huge
     """.split(),
 }
 #: Cases that hang (> 3 s; no work budget): xfail, not run. perturbation_growth(Omega=1e300) hangs inside
@@ -378,7 +464,8 @@ HANGING_IDS = {
 
 _PENDING = {cid: owner for owner, ids in PENDING_IDS.items() for cid in ids}
 _HANGING = {cid: owner for owner, ids in HANGING_IDS.items() for cid in ids}
-_OWNER_TEXT = {"Q": "Q (conventions/quantum)", "C": "C (simulate/scenes)", "K": "K (chaos)", "T": "T (follow-up)"}
+_OWNER_TEXT = {"Q": "Q (conventions/quantum)", "C": "C (simulate/scenes)", "K": "K (chaos)", "T": "T (follow-up)",
+               "P": "P (solver driver)"}
 
 
 def _resolve(path):
@@ -434,7 +521,7 @@ def _cases():
     for label, path, args, kwargs, kinds in ENTRIES:
         for where, kind in kinds.items():
             good = args()[where] if isinstance(where, int) else kwargs()[where]
-            for vid, value, must in _bad_values(kind, good if kind.startswith(("arr", "map", "vec")) else None, False):
+            for vid, value, must in _bad_values(kind, good if kind.startswith(("arr", "map", "vec", "pts")) else None, False):
                 cid = f"{label}-{where}-{vid}"
                 marks = ()
                 if cid in _PENDING:
@@ -461,7 +548,7 @@ def test_bad_value_is_refused_cleanly(label, path, args, kwargs, where, kind, vi
     good = a[where - shift] if isinstance(where, int) else kw[where]
     allows_none = _default_is_none(fn, where if isinstance(where, str) else where - shift)
     values = {v: (val, m) for v, val, m in _bad_values(
-        kind, good if kind.startswith(("arr", "map", "vec")) else None, allows_none)}
+        kind, good if kind.startswith(("arr", "map", "vec", "pts")) else None, allows_none)}
     value, must = values[vid]
     if isinstance(where, int):
         a[where - shift] = value
@@ -496,6 +583,6 @@ def test_every_public_callable_is_fuzzed_or_excused():
     missing = []
     for mod in (hyperrotor, hyperrotor.classical, hyperrotor.quantum):
         for name in mod.__all__:
-            if name not in fuzzed and name not in NOT_FUZZED and name not in NOT_YET_FUZZED:
+            if name not in fuzzed and name not in NOT_FUZZED:
                 missing.append(f"{mod.__name__}.{name}")
     assert not missing, f"public names without a fuzz entry (add one to ENTRIES or a reason to NOT_FUZZED): {missing}"

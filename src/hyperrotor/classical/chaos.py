@@ -486,6 +486,7 @@ def poincare_section(
         raise ValueError(f"direction must be 1 (upward), -1 (downward) or 0 (both), got {_validate.fmt(direction)}")
     method = _validate.choice("method", method, LYAPUNOV_METHODS)
     dt = _validate.positive("dt", dt, allow_none=True)
+    progress = _validate.flag("progress", progress, allow_none=True)
     a = plane_index(ij, N)
     L0 = w0 * moments
     if dt is None:
@@ -494,7 +495,8 @@ def poincare_section(
         dt = options["lyapunov_step"] / wmax if wmax > 0 else T
     steps = T / dt
     if not steps <= options["max_steps"]:
-        raise ValueError(f"this section needs about {steps:.3g} steps of dt = {dt:.3g} over T = {_validate.fmt(T)}, "
+        raise ValueError(f"this section (omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))}) needs about "
+                         f"{steps:.3g} steps of dt = {dt:.3g} over T = {_validate.fmt(T)}, "
                          f"over the budget options['max_steps'] = {_validate.fmt(options['max_steps'])}; "
                          f"shorten T, give a larger dt, or raise it: hr.options(max_steps=...)")
 
@@ -514,7 +516,7 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
 
     Parameters
     ----------
-    sections : PoincareSection or sequence of them
+    sections : PoincareSection or list of them
         the sections (one colour each).
     x, y : pair or str
         the planes whose components :math:`L_x`, :math:`L_y` are drawn.
@@ -529,11 +531,24 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
     -------
     matplotlib Axes
     """
-    secs = [sections] if isinstance(sections, PoincareSection) else list(sections)
+    if isinstance(sections, PoincareSection):
+        secs = [sections]
+    elif isinstance(sections, (list, tuple)):
+        secs = list(sections)
+    else:
+        secs = []
     if not secs or not all(isinstance(s_, PoincareSection) for s_ in secs):
-        raise TypeError(f"sections must be a PoincareSection or a sequence of them, got {_validate.fmt(sections)}")
-    if labels is not None and len(labels) != len(secs):
-        raise ValueError(f"labels must name each of the {len(secs)} sections, got {len(labels)}")
+        raise TypeError(f"sections must be a PoincareSection or a list of them, got {_validate.fmt(sections)}")
+    N = secs[0].N
+    px, py = _validate.plane(x, N), _validate.plane(y, N)
+    if labels is not None:
+        if not isinstance(labels, (list, tuple)) or not all(isinstance(lab, str) for lab in labels):
+            raise TypeError(f"labels must be a list of strings (one per section), got {_validate.fmt(labels)}")
+        if len(labels) != len(secs):
+            raise ValueError(f"labels must name each of the {len(secs)} sections, got {len(labels)}")
+    if ax is not None and not callable(getattr(ax, "scatter", None)):
+        raise TypeError(f"ax must be a matplotlib Axes (or None for a new figure), got {_validate.fmt(ax)} "
+                        f"of type {type(ax).__name__}")
     if ax is None:
         try:
             import matplotlib.pyplot as plt
@@ -542,8 +557,6 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
         _, ax = plt.subplots(figsize=(4.5, 4.5))
     opts = {"s": 2}
     opts.update(scatter_options)
-    N = secs[0].N
-    px, py = _validate.plane(x, N), _validate.plane(y, N)
     for k, sec in enumerate(secs):
         xy = sec.coordinates(px, py)
         ax.scatter(xy[:, 0], xy[:, 1], label=None if labels is None else labels[k], **opts)

@@ -131,8 +131,12 @@ PROPAGATORS: dict[str, type[Propagator]] = {}
 
 def register_propagator(cls: type[Propagator]) -> type[Propagator]:
     """Add a :class:`Propagator` subclass to :data:`PROPAGATORS` under ``cls.name``."""
-    if not cls.name:
-        raise ValueError("a propagator needs a name")
+    if not (isinstance(cls, type) and issubclass(cls, Propagator)):
+        raise TypeError(f"cls must be a subclass of hyperrotor.quantum.Propagator (the class itself), got "
+                        f"{_validate.fmt(cls)} of type {type(cls).__name__}")
+    if not isinstance(cls.name, str) or not cls.name:
+        raise ValueError(f"a propagator needs a name: {cls.__name__}.name must be a non-empty string, got "
+                         f"{_validate.fmt(cls.name)}")
     PROPAGATORS[cls.name] = cls
     return cls
 

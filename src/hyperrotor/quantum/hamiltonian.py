@@ -164,15 +164,19 @@ def rotor_hamiltonian(generators: Any, inertia: Any, *args: Any, hbar: float = 1
             "generators must be a Representation or a mapping plane -> operator (qutip.Qobj, scipy.sparse, array), "
             f"got {type(generators).__name__}"
         )
-    if not isinstance(inertia, Mapping) and not hasattr(inertia, "moments") and not hasattr(inertia, "inertia"):
-        if np.iscomplexobj(np.asarray(inertia if not isinstance(inertia, (str, bytes)) else None)):
-            raise TypeError(f"inertia must hold real plane moments, got {_validate.fmt(inertia)}")
-    moments = _validate.moments(inertia, N)
+    moments = _validate.moments(inertia, N)  # refuses complex moments too
     H = sps.csr_matrix((dim, dim), dtype=float)
-    for (i, j), m in zip(planes(N), moments):
-        G = sps.csr_matrix(gens[(i, j)])
-        H = H + (G @ G) * (-(hbar**2) / (2.0 * m))
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below, with its cause
+        for (i, j), m in zip(planes(N), moments):
+            G = sps.csr_matrix(gens[(i, j)])
+            H = H + (G @ G) * (-(hbar * hbar) / (2.0 * m))
     H = sps.csr_matrix(H)
+    if H.nnz and not np.all(np.isfinite(H.data)):
+        raise ValueError(
+            f"the Hamiltonian overflows the float range: hbar = {_validate.fmt(hbar)} and moments down to "
+            f"{_validate.fmt(float(moments.min()))} give hbar^2 X^2 / (2 I) beyond 1.8e308; choose units with "
+            f"hbar^2 / I of order one"
+        )
     if H.dtype.kind == "c":
         # exactly Hermitian: (H + H^dagger)/2 changes H by its round-off only (same argument as
         # standard_reps._exact_antisymmetric); a real H of real generators is already exactly symmetric

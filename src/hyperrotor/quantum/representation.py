@@ -93,7 +93,10 @@ def as_csr(M: Any, name: str = "operator") -> sps.csr_matrix:
     The package's one converter of user operators (QuTiP is recognised by duck
     typing, so no QuTiP import is needed for sparse or dense input). Integer
     matrices become float; complex ones with zero imaginary part become real.
+    Non-finite entries are refused. ``name`` names the operator in messages.
     """
+    if not isinstance(name, str) or not name:
+        raise TypeError(f"name must be a non-empty string (the operator's name in messages), got {_validate.fmt(name)}")
     if hasattr(M, "isoper") and hasattr(M, "to") and hasattr(M, "dims"):  # qutip.Qobj
         if not M.isoper:
             raise ValueError(f"{name} must be an operator, got a Qobj of type {M.type!r}")
@@ -113,6 +116,10 @@ def as_csr(M: Any, name: str = "operator") -> sps.csr_matrix:
         raise ValueError(f"{name} must be square, got shape {mat.shape}")
     if mat.dtype.kind not in "fc":
         mat = mat.astype(float)
+    if not np.all(np.isfinite(mat.data)):
+        k = int(np.argmax(~np.isfinite(mat.data)))
+        row = int(np.searchsorted(mat.indptr, k, side="right") - 1)
+        raise ValueError(f"{name} must be finite; {name}[{row}, {int(mat.indices[k])}] = {_validate.fmt(mat.data[k])}")
     return _real_if_possible(mat)
 
 
@@ -131,11 +138,16 @@ def check_antihermitian(generators: Mapping, *, form: str = "antihermitian") -> 
 
     Tolerance: ``options["quantum_hermiticity_rtol"]`` times :math:`\max|X|`.
     When a generator is Hermitian instead, the message says to pass
-    ``form="hermitian"`` (``form`` names what the caller declared).
+    ``form="hermitian"`` (``form`` names what the caller declared). Each ``X``
+    is a square matrix as :func:`as_csr` takes it (Qobj, scipy.sparse, ndarray).
     """
+    if not isinstance(generators, Mapping):
+        raise TypeError(f"generators must be a mapping plane -> matrix, got {_validate.fmt(generators)} "
+                        f"of type {type(generators).__name__}")
+    form = _validate.form(form)
     rtol = options["quantum_hermiticity_rtol"]
     for p, X in generators.items():
-        X = sps.csr_matrix(X)
+        X = as_csr(X, f"generators[{_validate.fmt(p)}]")
         scale = max(1.0, _max_abs(X))
         anti = _max_abs(X + X.conj().T)
         if anti > rtol * scale:

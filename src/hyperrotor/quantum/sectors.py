@@ -194,6 +194,7 @@ def pi_rotation(rep, plane, *, format: str = "csr"):
         (other planes or other representations) by a dense matrix exponential,
         limited to ``options["sectors_dense_max_dim"]``.
     """
+    rep = _validate.representation("rep", rep)
     i, j = _validate.plane(plane, rep.N)
     fmt = _validate.choice("format", format, ("csr", "dense"))
     if j == i + 1:
@@ -341,10 +342,8 @@ def symmetry_sectors(rep, *, complete: bool = False) -> list[Sector]:
     >>> s.label, s.dim, s.degeneracy
     ('E1/2', 2, 2)
     """
-    if not (hasattr(rep, "N") and hasattr(rep, "dim") and hasattr(rep, "generator")):
-        raise TypeError(f"symmetry_sectors takes a Representation, got {type(rep).__name__}")
-    if not isinstance(complete, bool):
-        raise TypeError(f"complete must be True or False, got {_validate.fmt(complete)}")
+    rep = _validate.representation("rep", rep)
+    complete = _validate.flag("complete", complete)
     N, dim = rep.N, rep.dim
     half = _is_half_integer(rep)
     ops = None
@@ -431,17 +430,32 @@ def _centre_monomial(ops: dict, N: int, spinorial: bool):
 # ----------------------------------------------------------------------------
 # Hamiltonian blocks and spectra
 # ----------------------------------------------------------------------------
-def _matrix(H) -> sps.csr_matrix:
-    if hasattr(H, "data") and hasattr(H.data, "as_scipy"):  # qutip.Qobj (CSR data layer)
-        return sps.csr_matrix(H.data.as_scipy())
-    if hasattr(H, "full") and callable(H.full) and not sps.issparse(H):  # other Qobj data layers
-        return sps.csr_matrix(H.full())
-    if sps.issparse(H):
-        return sps.csr_matrix(H)
-    arr = np.asarray(H)
-    if arr.ndim != 2 or arr.shape[0] != arr.shape[1]:
-        raise ValueError(f"H must be a square matrix, got shape {arr.shape}")
-    return sps.csr_matrix(arr)
+def _hamiltonian_matrix(H, dim: int | None = None) -> sps.csr_matrix:
+    """``H`` (Qobj, sparse or dense) as a finite Hermitian CSR matrix, of dimension ``dim`` when given."""
+    from .hamiltonian import hermitian_matrix
+
+    M, _ = hermitian_matrix(H, "H")
+    if dim is not None and M.shape[0] != dim:
+        raise ValueError(f"H has dimension {M.shape[0]} but the representation has dimension {dim}")
+    return M
+
+
+def _sector_basis(sector, dim: int):
+    """The basis of a :class:`Sector`, or a basis matrix given directly, checked: shape (dim, n), finite."""
+    if isinstance(sector, Sector):
+        B = sector.basis
+    elif sps.issparse(sector):
+        B = sps.csc_matrix(sector)
+        if B.dtype.kind not in "biufc" or not np.all(np.isfinite(B.data)):
+            raise ValueError(f"the sector basis must be a finite numeric matrix, got dtype {B.dtype} or non-finite entries")
+    elif isinstance(sector, (np.ndarray, list, tuple)):
+        B = _validate.finite_array("sector", sector, dtype=complex if np.iscomplexobj(sector) else float)
+    else:
+        raise TypeError(f"sector must be a Sector (symmetry_sectors) or a basis matrix (dim x n), got "
+                        f"{_validate.fmt(sector)} of type {type(sector).__name__}")
+    if B.ndim != 2 or B.shape[0] != dim:
+        raise ValueError(f"the sector basis must have shape ({dim}, n) for H of dimension {dim}, got shape {B.shape}")
+    return B
 
 
 def sector_hamiltonian(H, sector, *, dense: bool = True):
@@ -465,11 +479,14 @@ def sector_hamiltonian(H, sector, *, dense: bool = True):
         product costs :math:`O(\mathrm{nnz}(H))`: only the rows of ``H`` in the
         support of the basis are touched.
     """
-    M = _matrix(H)
-    is_sector = isinstance(sector, Sector)
-    B = sector.basis if is_sector else sector
-    if M.shape[0] != B.shape[0]:
-        raise ValueError(f"H has dimension {M.shape[0]} but the sector basis has {B.shape[0]} rows")
+    M = _hamiltonian_matrix(H)
+    B = _sector_basis(sector, M.shape[0])
+    dense = _validate.flag("dense", dense)
+    return _block(M, B, dense=dense, real=isinstance(sector, Sector) and sector.real)
+
+
+def _block(M: sps.csr_matrix, B, *, dense: bool = True, real: bool = False):
+    """:func:`sector_hamiltonian` of a checked CSR ``M`` and basis ``B`` (``real``: a real sector's basis)."""
     if sps.issparse(B):
         B = sps.csc_matrix(B)
         rows = np.unique(B.indices)  # the support S: B^H H B = W^H H[S, S] W
@@ -488,7 +505,7 @@ def sector_hamiltonian(H, sector, *, dense: bool = True):
         imag = float(np.abs(Hs.imag).max())
         if imag <= 1e-13 * scale:
             Hs = np.ascontiguousarray(Hs.real)
-        elif is_sector and sector.real:
+        elif real:
             raise ValueError(
                 f"H is not real in this real sector basis (imaginary part {imag:.2e} of {scale:.2e}): it does not "
                 f"commute with the conjugation symmetry; is it a rotor Hamiltonian of this representation?"
@@ -520,13 +537,13 @@ def sector_blocks(H, rep, *, complete: bool = False):
         construction (too large for the dense fallback, or mixed tensor/spinor), in
         which case the caller should fall back to its own blocks.
     """
+    rep = _validate.representation("rep", rep)
+    complete = _validate.flag("complete", complete)
+    _hamiltonian_matrix(H, rep.dim)
     try:
         secs = symmetry_sectors(rep, complete=complete)
     except ValueError:
         return None
-    M = _matrix(H)
-    if M.shape[0] != rep.dim:
-        raise ValueError(f"H has dimension {M.shape[0]} but the representation has dimension {rep.dim}")
     return [(s.basis, 1 if complete else s.degeneracy, s.label) for s in secs if s.dim]
 
 
@@ -541,18 +558,19 @@ def evolution_blocks(H, rep, psi0):
     ``psi0`` vanishes are left out. ``None`` when ``rep`` has no usable sectors
     (see :func:`sector_blocks`). Used by :func:`hyperrotor.quantum.evolve`.
     """
-    parts = sector_blocks(H, rep, complete=True)
+    rep = _validate.representation("rep", rep)
+    M = _hamiltonian_matrix(H, rep.dim)
+    v = _validate.ket("psi0", psi0, rep.dim, of="the representation")
+    parts = sector_blocks(M, rep, complete=True)
     if parts is None:
         return None
-    M = _matrix(H)
-    v = np.asarray(psi0).reshape(-1)
     scale = float(np.abs(v).max()) if v.size else 0.0
     out = []
     for B, _, _ in parts:
         c0 = np.asarray(B.conj().T @ v).reshape(-1)
         if not np.any(np.abs(c0) > 1e-15 * scale):
             continue
-        block = sps.csr_matrix(sector_hamiltonian(M, B))
+        block = sps.csr_matrix(_block(M, B))
         block.eliminate_zeros()
         out.append((B, block, c0.astype(complex)))
     return out
@@ -573,7 +591,7 @@ def _levels_task(idx: np.ndarray, H, bases: list, width: int, blas_threads: int 
         B, real = bases[i]
         if B.shape[1] == 0:
             continue
-        Hs = sector_hamiltonian(H, Sector(None, B, real=real))
+        Hs = _block(H, B, real=real)
         limit = threadpool_limits(limits=blas_threads, user_api="blas") if blas_threads else nullcontext()
         with limit:
             # divide and conquer ("evd"), except for 1 x 1 blocks, which scipy < 1.14 refuses with it
@@ -607,7 +625,9 @@ def _hamiltonian(rep, moments: np.ndarray, hbar: float) -> sps.csr_matrix:
     r""":math:`-\hbar^2 \sum X^2/(2I)` as CSR (the matrix of ``rotor_hamiltonian``)."""
     from hyperrotor.quantum import rotor_hamiltonian
 
-    return _matrix(rotor_hamiltonian(rep, moments, hbar=hbar))
+    from .representation import as_csr
+
+    return as_csr(rotor_hamiltonian(rep, moments, hbar=hbar), "H")
 
 
 def sector_spectra(
@@ -665,10 +685,12 @@ def sector_spectra(
     so(5). The 52,976-dimensional irrep (20, 10) needs 16 blocks of ~3,300 (see
     ``benchmarks/sectors.py``). Ctrl-C is honoured between sectors.
     """
+    rep = _validate.representation("rep", rep)
     hbar = _validate.hbar(hbar)
     moments = _validate.moments(inertia, rep.N)
-    if not isinstance(parallel, bool):
-        raise TypeError(f"parallel must be True or False, got {_validate.fmt(parallel)}")
+    parallel = _validate.flag("parallel", parallel)
+    workers = None if workers is None else _validate.integer("workers", workers, minimum=1)
+    progress = _validate.flag("progress", progress, allow_none=True)
     secs = symmetry_sectors(rep)
     big = max((s.dim for s in secs), default=0)
     lim = int(options["sectors_max_block_dim"])

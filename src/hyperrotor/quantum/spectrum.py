@@ -87,7 +87,7 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
                 f"spectrum would diagonalize the sector {label} of dimension {basis.shape[1]} > "
                 f"options['quantum_max_dense_dim'] = {limit}"
             )
-        block = sectors.sector_hamiltonian(mat, basis)  # real symmetric for tensor irreps (cheaper eigvalsh)
+        block = sectors._block(mat, basis)  # mat is checked; real symmetric for tensor irreps (cheaper eigvalsh)
         e = np.linalg.eigvalsh(block)
         evs.append(np.repeat(e, int(degeneracy)))
     return np.concatenate(evs).real

@@ -75,12 +75,20 @@ def jmat_generators(j: Any, *, form: str = "antihermitian", hbar: float | None =
     form : {"antihermitian", "hermitian"}, keyword-only
     hbar : float, keyword-only, default 1
     """
-    qutip = _lazy.qutip
+    from .gelfand_tsetlin import DEFAULT_MAX_DIM
+
     form, hbar = _validate.form_hbar(form, hbar)
     hbar = _validate.hbar(1.0 if hbar is None else hbar)
-    jj = Fraction(j).limit_denominator(2) if not isinstance(j, Fraction) else j
+    if isinstance(j, Fraction):
+        jj = j
+    else:
+        jj = Fraction(_validate.positive("spin j", j)).limit_denominator(2)
     if jj.denominator not in (1, 2) or jj <= 0 or float(jj) != float(j):
         raise ValueError(f"spin j must be a positive integer or half-integer, got {_validate.fmt(j)}")
+    if 2 * jj + 1 > DEFAULT_MAX_DIM:
+        raise ValueError(f"spin j = {_validate.fmt(float(jj))} has dimension 2j + 1 = {_validate.fmt(int(2 * jj + 1))} "
+                         f"> {DEFAULT_MAX_DIM} (DEFAULT_MAX_DIM, the limit of irrep(3, (j,)) too)")
+    qutip = _lazy.qutip
     out = {}
     for p, (axis, sign) in JMAT_PLANES.items():
         L = (sign * hbar) * qutip.jmat(float(jj), axis)

@@ -33,6 +33,7 @@ tests check :data:`R_MEAN` within a tolerance set by the sample size).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -40,6 +41,7 @@ import numpy as np
 from scipy.integrate import trapezoid  # numpy's own is numpy >= 2 only
 
 from .. import _validate
+from .._options import options
 
 __all__ = [
     "ENSEMBLES",
@@ -73,6 +75,11 @@ def _levels(levels: Any, minimum: int) -> np.ndarray:
 
 def _ensemble(ensemble: Any) -> str:
     return _validate.choice("ensemble", ensemble, ENSEMBLES)
+
+
+def _points(name: str, x: Any) -> np.ndarray:
+    """Where a density is evaluated: finite reals of any shape (a scalar gives a 0-d array)."""
+    return _validate.finite_array(name, x)
 
 
 # ----------------------------------------------------------------------------
@@ -123,8 +130,11 @@ def spacing_ratio(levels: Any, *, return_error: bool = False):
     >>> round(spacing_ratio(sample_spectrum("poisson", 20000, rng=1)), 2)
     0.39
     """
+    return_error = _validate.flag("return_error", return_error)
     r = spacing_ratios(levels)
-    mean = float(r.mean()) if r.size else float("nan")
+    if not r.size:
+        raise ValueError("levels has no spacing ratio: every three consecutive levels coincide (all spacings are zero)")
+    mean = float(r.mean())
     if not return_error:
         return mean
     err = float(r.std(ddof=1) / math.sqrt(max(r.size / 2, 1))) if r.size > 1 else float("inf")
@@ -137,15 +147,20 @@ def ratio_density(r: Any, ensemble: str) -> np.ndarray:
     :math:`P(\tilde r) = 2 P_W(\tilde r)` with
     :math:`P_W(r) = \frac{1}{Z_\beta}\frac{(r + r^2)^\beta}{(1 + r + r^2)^{1 + 3\beta/2}}`,
     :math:`\beta = 1` (GOE, :math:`Z_1 = 8/27`), :math:`\beta = 2` (GUE,
-    :math:`Z_2 = 4\pi/(81\sqrt3)`). Each integrates to 1 on ``[0, 1]``.
+    :math:`Z_2 = 4\pi/(81\sqrt3)`). Each integrates to 1 on ``[0, 1]`` and is 0 outside
+    (``r`` may be any finite array or number).
     """
     ens = _ensemble(ensemble)
-    r = np.asarray(r, dtype=float)
+    r = _points("r", r)
+    inside = (r >= 0) & (r <= 1)
+    x = np.clip(r, 0.0, 1.0)
     if ens == "poisson":
-        return 2.0 / (1.0 + r) ** 2
-    beta = 1 if ens == "goe" else 2
-    Z = 8.0 / 27.0 if beta == 1 else 4.0 * math.pi / (81.0 * math.sqrt(3.0))
-    return 2.0 / Z * (r + r * r) ** beta / (1.0 + r + r * r) ** (1.0 + 1.5 * beta)
+        dens = 2.0 / (1.0 + x) ** 2
+    else:
+        beta = 1 if ens == "goe" else 2
+        Z = 8.0 / 27.0 if beta == 1 else 4.0 * math.pi / (81.0 * math.sqrt(3.0))
+        dens = 2.0 / Z * (x + x * x) ** beta / (1.0 + x + x * x) ** (1.0 + 1.5 * beta)
+    return np.where(inside, dens, 0.0)
 
 
 # ----------------------------------------------------------------------------
@@ -174,7 +189,9 @@ def unfold(levels: Any, *, degree: int = 7) -> np.ndarray:
     degree = _validate.integer("degree", degree, minimum=1, maximum=50)
     E = _levels(levels, degree + 2)
     lo, hi = E[0], E[-1]
-    x = (2 * E - (lo + hi)) / (hi - lo) if hi > lo else np.zeros_like(E)
+    if not hi > lo:
+        raise ValueError(f"all levels coincide (every level is {_validate.fmt(lo)}): no staircase to unfold")
+    x = (2 * E - (lo + hi)) / (hi - lo)
     n = np.arange(E.size) + 0.5
     fit = np.polynomial.chebyshev.Chebyshev.fit(x, n, degree, domain=[-1, 1])
     return np.sort(fit(x))
@@ -185,7 +202,8 @@ def spacings(levels: Any, *, degree: int = 7, unfolded: bool = False) -> np.ndar
 
     ``unfolded=True`` takes ``levels`` as already unfolded (only normalizes).
     """
-    x = np.sort(_validate.finite_array("levels", levels, ndim=1)) if unfolded else unfold(levels, degree=degree)
+    degree = _validate.integer("degree", degree, minimum=1, maximum=50)
+    x = np.sort(_validate.finite_array("levels", levels, ndim=1)) if _validate.flag("unfolded", unfolded) else unfold(levels, degree=degree)
     if x.size < 2:
         raise ValueError(f"levels needs at least 2 values, got {x.size}")
     s = np.diff(x)
@@ -196,14 +214,21 @@ def spacings(levels: Any, *, degree: int = 7, unfolded: bool = False) -> np.ndar
 
 
 def spacing_density(s: Any, ensemble: str) -> np.ndarray:
-    r"""Reference spacing densities: Poisson :math:`e^{-s}`, Wigner surmises for GOE and GUE (unit mean)."""
+    r"""Reference spacing densities: Poisson :math:`e^{-s}`, Wigner surmises for GOE and GUE (unit mean).
+
+    ``s`` may be any finite array or number; the densities are 0 for ``s < 0``.
+    """
     ens = _ensemble(ensemble)
-    s = np.asarray(s, dtype=float)
-    if ens == "poisson":
-        return np.exp(-s)
-    if ens == "goe":
-        return 0.5 * math.pi * s * np.exp(-0.25 * math.pi * s * s)
-    return 32.0 / math.pi**2 * s * s * np.exp(-4.0 * s * s / math.pi)
+    s = _points("s", s)
+    x = np.maximum(s, 0.0)
+    with np.errstate(over="ignore"):  # x * x = inf for x > 1e154: the density is 0 there, as exp(-inf) says
+        if ens == "poisson":
+            dens = np.exp(-x)
+        elif ens == "goe":
+            dens = 0.5 * math.pi * x * np.exp(-0.25 * math.pi * x * x)
+        else:
+            dens = 32.0 / math.pi**2 * x * x * np.exp(-4.0 * x * x / math.pi)
+    return np.where(s >= 0, dens, 0.0)
 
 
 @dataclass(frozen=True)
@@ -267,7 +292,7 @@ def spacing_distribution(levels: Any, *, bins: Any = 30, s_max: float = 4.0, deg
     levels : 1-D array_like
         Energies of one symmetry sector.
     bins : int or array_like, default 30
-        Number of equal bins on ``[0, s_max]``, or the bin edges.
+        Number of equal bins on ``[0, s_max]``, or the bin edges (strictly increasing).
     s_max : float, default 4
     degree : int, default 7
         Staircase fit of :func:`unfold`.
@@ -280,9 +305,14 @@ def spacing_distribution(levels: Any, *, bins: Any = 30, s_max: float = 4.0, deg
         give the bin-averaged reference curves, ``distance(...)`` the
         Kolmogorov-Smirnov distance.
     """
-    s = spacings(levels, degree=degree)
     s_max = _validate.positive("s_max", s_max)
-    edges = np.linspace(0.0, s_max, int(bins) + 1) if np.ndim(bins) == 0 else np.asarray(bins, dtype=float)
+    if isinstance(bins, (str, bytes, Mapping)) or not isinstance(bins, (Sequence, np.ndarray)):
+        edges = np.linspace(0.0, s_max, _validate.integer("bins", bins, minimum=1) + 1)
+    else:
+        edges = _validate.finite_array("bins", bins, ndim=1)
+        if edges.size < 2 or not np.all(np.diff(edges) > 0):
+            raise ValueError(f"bins as edges must be at least 2 strictly increasing numbers, got {_validate.fmt(edges)}")
+    s = spacings(levels, degree=degree)
     counts, edges = np.histogram(s, bins=edges)
     density = counts / (s.size * np.diff(edges))
     return SpacingDistribution(edges, density, counts, s)
@@ -298,7 +328,8 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
     ----------
     ensemble : {"poisson", "goe", "gue"}
     n : int
-        Number of levels (matrix size for GOE/GUE, ``n >= 3``).
+        Number of levels (matrix size for GOE/GUE, ``n >= 3``; for GOE/GUE at most
+        ``options["quantum_max_dense_dim"]``, the package's limit of dense diagonalization).
     rng : seed or numpy.random.Generator, keyword-only
     bulk : float in (0, 1], default 1
         Keep only the central fraction of the levels (the semicircle's edges have
@@ -312,6 +343,10 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
     """
     ens = _ensemble(ensemble)
     n = _validate.integer("n", n, minimum=3)
+    lim = int(options["quantum_max_dense_dim"])
+    if ens != "poisson" and n > lim:
+        raise ValueError(f"n = {n}: a {ens.upper()} spectrum diagonalizes a dense n x n matrix, and n > "
+                         f"options['quantum_max_dense_dim'] = {lim}; raise the option to run it anyway")
     bulk = _validate.positive("bulk", bulk)
     if bulk > 1:
         raise ValueError(f"bulk must be in (0, 1], got {_validate.fmt(bulk)}")
