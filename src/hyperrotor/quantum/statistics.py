@@ -160,7 +160,7 @@ def ratio_density(r: Any, ensemble: str) -> np.ndarray:
         beta = 1 if ens == "goe" else 2
         Z = 8.0 / 27.0 if beta == 1 else 4.0 * math.pi / (81.0 * math.sqrt(3.0))
         dens = 2.0 / Z * (x + x * x) ** beta / (1.0 + x + x * x) ** (1.0 + 1.5 * beta)
-    return np.where(inside, dens, 0.0)
+    return np.where(inside, dens, 0.0)[()]  # a number for a number
 
 
 # ----------------------------------------------------------------------------
@@ -191,7 +191,12 @@ def unfold(levels: Any, *, degree: int = 7) -> np.ndarray:
     lo, hi = E[0], E[-1]
     if not hi > lo:
         raise ValueError(f"all levels coincide (every level is {_validate.fmt(lo)}): no staircase to unfold")
-    x = (2 * E - (lo + hi)) / (hi - lo)
+    distinct = int(np.count_nonzero(np.diff(E))) + 1
+    if distinct <= degree:
+        raise ValueError(f"levels has {distinct} distinct values; a staircase fit of degree {degree} needs at "
+                         f"least {degree + 1} (lower degree=)")
+    half = 0.5 * hi - 0.5 * lo  # halves first: no overflow for levels near the float range
+    x = np.clip((E - (0.5 * lo + 0.5 * hi)) / half, -1.0, 1.0)
     n = np.arange(E.size) + 0.5
     fit = np.polynomial.chebyshev.Chebyshev.fit(x, n, degree, domain=[-1, 1])
     return np.sort(fit(x))
@@ -220,15 +225,14 @@ def spacing_density(s: Any, ensemble: str) -> np.ndarray:
     """
     ens = _ensemble(ensemble)
     s = _points("s", s)
-    x = np.maximum(s, 0.0)
-    with np.errstate(over="ignore"):  # x * x = inf for x > 1e154: the density is 0 there, as exp(-inf) says
-        if ens == "poisson":
-            dens = np.exp(-x)
-        elif ens == "goe":
-            dens = 0.5 * math.pi * x * np.exp(-0.25 * math.pi * x * x)
-        else:
-            dens = 32.0 / math.pi**2 * x * x * np.exp(-4.0 * x * x / math.pi)
-    return np.where(s >= 0, dens, 0.0)
+    x = np.clip(s, 0.0, 1e3)  # every density is 0.0 in double precision beyond s = 745 (no inf * 0 for huge s)
+    if ens == "poisson":
+        dens = np.exp(-x)
+    elif ens == "goe":
+        dens = 0.5 * math.pi * x * np.exp(-0.25 * math.pi * x * x)
+    else:
+        dens = 32.0 / math.pi**2 * x * x * np.exp(-4.0 * x * x / math.pi)
+    return np.where(s >= 0, dens, 0.0)[()]  # a number for a number
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,191 @@
+"""Behaviour at the edges of the inputs of sectors, level statistics and the operator helpers (#12 fuzzing).
+
+The fuzz module (tests/property/test_fuzz_entry_points.py) checks that bad values are refused
+with a named ValueError/TypeError; here are the values behind the fixes it led to: densities
+outside their support, degenerate spectra, budgets, and that a good call gives what it gave.
+"""
+import math
+
+import numpy as np
+import pytest
+import scipy.sparse as sps
+
+import hyperrotor as hr
+import hyperrotor.quantum as hq
+from hyperrotor import _validate
+
+
+# ----------------------------------------------------------------------------- statistics
+@pytest.mark.parametrize("ensemble", ["poisson", "goe", "gue"])
+def test_densities_vanish_outside_their_support_and_keep_their_values_inside(ensemble):
+    r = np.array([-2.0, -1.0, -1e-300, 0.0, 0.25, 1.0, 1.0 + 1e-15, 3.0, 1e300])
+    dens = hq.ratio_density(r, ensemble)
+    inside = (r >= 0) & (r <= 1)
+    assert np.all(dens[~inside] == 0.0)
+    beta = {"poisson": 0, "goe": 1, "gue": 2}[ensemble]
+    x = r[inside]
+    if beta == 0:
+        ref = 2.0 / (1.0 + x) ** 2
+    else:
+        Z = 8.0 / 27.0 if beta == 1 else 4.0 * math.pi / (81.0 * math.sqrt(3.0))
+        ref = 2.0 / Z * (x + x * x) ** beta / (1.0 + x + x * x) ** (1.0 + 1.5 * beta)
+    np.testing.assert_array_equal(dens[inside], ref)
+
+    s = np.array([-5.0, -1e-300, 0.0, 0.5, 2.0, 1e160, 1e300])
+    with np.errstate(over="raise", invalid="raise"):  # huge s: the density is 0 there, no overflow or inf * 0
+        p = hq.spacing_density(s, ensemble)
+    assert np.all(p[s < 0] == 0.0) and np.all(p[-2:] == 0.0)
+    ref = {"poisson": np.exp(-0.5), "goe": 0.25 * math.pi * math.exp(-math.pi / 16),
+           "gue": 8.0 / math.pi**2 * math.exp(-1.0 / math.pi)}[ensemble]
+    assert p[3] == pytest.approx(ref, rel=4 * np.finfo(float).eps)
+    assert np.ndim(hq.spacing_density(0.5, ensemble)) == 0 and np.ndim(hq.ratio_density(0.5, ensemble)) == 0
+
+
+def test_degenerate_spectra_are_refused_with_the_reason():
+    with pytest.raises(ValueError, match="no spacing ratio"):
+        hq.spacing_ratio(np.full(5, 2.0))
+    assert hq.spacing_ratio([0.0, 1.0, 1.0, 1.0, 3.0]) == pytest.approx(0.0)  # one zero ratio, one dropped triple
+    with pytest.raises(ValueError, match="coincide"):
+        hq.unfold(np.full(10, 3.5))
+    with pytest.raises(ValueError, match="2 distinct values"):
+        hq.unfold([0.0] * 5 + [1.0] * 4, degree=7)
+
+
+def test_unfolding_near_the_float_range_does_not_overflow():
+    E = np.linspace(-1.0, 1.0, 12)
+    with np.errstate(over="raise", invalid="raise"):
+        big = hq.unfold(E * 1e308, degree=3)
+    np.testing.assert_allclose(big, hq.unfold(E, degree=3), rtol=0, atol=1e-12)
+
+
+def test_bins_as_edges_equal_bins_as_a_count():
+    E = hq.sample_spectrum("goe", 60, rng=3)
+    a = hq.spacing_distribution(E, bins=8, s_max=3.0, degree=3)
+    b = hq.spacing_distribution(E, bins=np.linspace(0.0, 3.0, 9), degree=3)
+    np.testing.assert_array_equal(a.counts, b.counts)
+    np.testing.assert_array_equal(a.density, b.density)
+    for bad, exc in [(0, ValueError), (2.5, TypeError), (True, TypeError), ([1.0, 1.0], ValueError),
+                     ([2.0, 1.0, 3.0], ValueError), ([0.0, np.nan], ValueError)]:
+        with pytest.raises(exc, match="bins"):
+            hq.spacing_distribution(E, bins=bad, degree=3)
+
+
+def test_random_matrix_samples_respect_the_dense_budget():
+    with hr.options(quantum_max_dense_dim=5):
+        with pytest.raises(ValueError, match="quantum_max_dense_dim"):
+            hq.sample_spectrum("gue", 6, rng=1)
+        assert hq.sample_spectrum("poisson", 6, rng=1).shape == (6,)  # no matrix: no limit
+    np.testing.assert_array_equal(hq.sample_spectrum("goe", 6, rng=1), hq.sample_spectrum("goe", 6, rng=1))
+
+
+def test_switches_take_booleans_only():
+    assert _validate.flag("x", np.True_) is True and _validate.flag("x", None, allow_none=True) is None
+    E = np.arange(10.0) ** 1.5
+    assert hq.spacing_ratio(E, return_error=np.False_) == hq.spacing_ratio(E)
+    for bad in (1, "yes", None):
+        with pytest.raises(TypeError, match="return_error"):
+            hq.spacing_ratio(E, return_error=bad)
+        with pytest.raises(TypeError, match="unfolded"):
+            hq.spacings(E, unfolded=bad)
+
+
+# ----------------------------------------------------------------------------- sectors
+def _rep_and_H():
+    rep = hq.irrep(3, (2,))
+    return rep, hq.rotor_hamiltonian(rep, [1.0, 1.7, 2.9])
+
+
+def test_sector_hamiltonian_is_the_same_for_a_sector_its_basis_and_a_dense_H():
+    rep, H = _rep_and_H()
+    Hd = H.full()
+    for sec in hq.symmetry_sectors(rep):
+        if not sec.dim:
+            continue
+        a = hq.sector_hamiltonian(H, sec)
+        b = hq.sector_hamiltonian(Hd, sec.basis.toarray())
+        B = sec.basis.toarray()
+        ref = B.conj().T @ Hd @ B
+        tol = 8 * np.finfo(float).eps * rep.dim * np.abs(Hd).max()
+        assert np.abs(a - ref).max() <= tol and np.abs(b - ref).max() <= tol
+
+
+def test_sector_functions_refuse_a_non_hermitian_or_non_finite_H():
+    rep, H = _rep_and_H()
+    sec = next(s for s in hq.symmetry_sectors(rep) if s.dim)
+    bad = H.full() + 1e-3 * np.triu(np.ones((rep.dim, rep.dim)), 1)  # was symmetrized silently
+    with pytest.raises(ValueError, match="Hermitian"):
+        hq.sector_hamiltonian(bad, sec)
+    with pytest.raises(ValueError, match="Hermitian"):
+        hq.sector_blocks(bad, rep)
+    nan = H.full().real
+    nan[0, 0] = np.nan
+    with pytest.raises(ValueError, match=r"H must be finite; H\[0, 0\] = nan"):
+        hq.evolution_blocks(nan, rep, np.ones(rep.dim))
+    with pytest.raises(ValueError, match="psi0"):
+        hq.evolution_blocks(H, rep, np.ones(rep.dim + 1))
+    with pytest.raises(TypeError, match="sector must be"):
+        hq.sector_hamiltonian(H, None)
+    with pytest.raises(ValueError, match=r"shape \(5, n\)"):
+        hq.sector_hamiltonian(H, np.ones(5))
+
+
+def test_evolution_blocks_rebuild_the_state():
+    rep, H = _rep_and_H()
+    psi = np.arange(1.0, rep.dim + 1) + 0.5j
+    parts = hq.evolution_blocks(H, rep, psi)
+    back = sum(B @ c0 for B, _, c0 in parts)
+    assert np.abs(back - psi).max() <= 8 * np.finfo(float).eps * rep.dim * np.abs(psi).max()
+
+
+def test_sector_spectra_checks_its_switches_and_workers():
+    rep = hq.irrep(3, (1,))
+    good = hq.sector_spectra(rep, [1.0, 2.0, 3.0], parallel=True, workers=1, progress=False)
+    assert good.eigenvalues() == pytest.approx(hq.spectrum(hq.rotor_hamiltonian(rep, [1.0, 2.0, 3.0]))[0])
+    with pytest.raises(TypeError, match="workers"):
+        hq.sector_spectra(rep, [1.0, 2.0, 3.0], workers="2")  # checked with or without parallel=True
+    with pytest.raises(TypeError, match="progress"):
+        hq.sector_spectra(rep, [1.0, 2.0, 3.0], progress="no")
+    with pytest.raises(TypeError, match="rep must be"):
+        hq.sector_spectra(None, [1.0, 2.0, 3.0])
+
+
+# ----------------------------------------------------------------------------- operators
+def test_rotor_hamiltonian_refuses_an_overflowing_hbar():
+    rep = hq.irrep(3, (1,))
+    with pytest.raises(ValueError, match=r"hbar = 1e\+200"):
+        hq.rotor_hamiltonian(rep, [1.0, 2.0, 3.0], hbar=1e200)
+    with pytest.raises(TypeError, match="must be real"):
+        hq.rotor_hamiltonian(rep, [1.0 + 1j, 2.0, 3.0])
+
+
+def test_as_csr_and_check_antihermitian_name_what_is_wrong():
+    M = np.eye(3)
+    M[1, 2] = np.inf
+    with pytest.raises(ValueError, match=r"X must be finite; X\[1, 2\] = inf"):
+        hq.as_csr(M, "X")
+    assert hq.as_csr(sps.eye(2, dtype=complex)).dtype == float
+    X = np.array([[0.0, -1.0], [1.0, 0.0]])
+    hq.check_antihermitian({(1, 2): X})
+    with pytest.raises(ValueError, match="form"):
+        hq.check_antihermitian({(1, 2): X}, form="nonsense")
+    with pytest.raises(ValueError, match='pass form="hermitian"'):
+        hq.check_antihermitian({(1, 2): 1j * X})
+    with pytest.raises(TypeError, match="mapping"):
+        hq.check_antihermitian([X])
+
+
+def test_jmat_generators_spin_checks_and_budget():
+    with pytest.raises(TypeError, match="spin j"):
+        hq.jmat_generators("1")
+    with pytest.raises(ValueError, match="half-integer"):
+        hq.jmat_generators(0.3)
+    with pytest.raises(ValueError, match="DEFAULT_MAX_DIM"):
+        hq.jmat_generators(1e300)
+
+
+def test_register_propagator_takes_a_propagator_class_only():
+    before = dict(hq.PROPAGATORS)
+    for bad in (None, "krylov", hq.PROPAGATORS["krylov"](), dict):
+        with pytest.raises(TypeError, match="cls must be"):
+            hq.register_propagator(bad)
+    assert hq.PROPAGATORS == before
