@@ -226,13 +226,18 @@ def form_hbar(form_value: Any, hbar_value: Any) -> tuple[str, Any]:
     return f, (1 if hbar_value is None else hbar_value)  # exact 1: symbolic callers keep integer coefficients
 
 
-def representation(name: str, value: Any) -> Any:
-    """A representation of so(N): anything with ``.N``, ``.dim`` and ``.generators()`` (duck typing)."""
+def representation(name: str, value: Any, *, dim: int | None = None, of: str = "H") -> Any:
+    """A representation of so(N): anything with ``.N``, ``.dim`` and ``.generators()`` (duck typing).
+
+    With ``dim``, its dimension must be ``dim``, the dimension of the operator named ``of``.
+    """
     if not (hasattr(value, "N") and hasattr(value, "dim") and callable(getattr(value, "generators", None))):
         raise TypeError(
             f"{name} must be a hyperrotor.quantum.Representation (e.g. irrep(5, (2, 1))), "
             f"got {fmt(value)} of type {type(value).__name__}"
         )
+    if dim is not None and value.dim != dim:
+        raise ValueError(f"{of} has dimension {dim} but {name} has dimension {value.dim}")
     return value
 
 

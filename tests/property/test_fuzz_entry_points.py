@@ -362,6 +362,8 @@ ENTRIES = [
      {0: "obj", 1: "arr:pos"}),
     ("q.evolve", "quantum.evolve", lambda: (_H(), _psi(), T5), dict, {0: "obj", 1: "obj:array", 2: "vec"}),
     ("q.spectrum", "quantum.spectrum", lambda: (_H(),), dict, {0: "obj"}),
+    ("q.spectrum/rep", "quantum.spectrum", lambda: (_H(),), lambda: {"rep": _rep()}, {"rep": "obj"}),
+    ("q.evolve/rep", "quantum.evolve", lambda: (_H(), _psi(), T5), lambda: {"rep": _rep()}, {"rep": "obj"}),
     ("q.symmetry_blocks", "quantum.symmetry_blocks", lambda: (_H(),), dict, {0: "obj"}),
     ("q.generator_expectations", "quantum.generator_expectations", lambda: (_rep(), _psi()), dict,
      {0: "obj", 1: "obj:array"}),

@@ -566,9 +566,11 @@ def evolve(
             raise ValueError(f"collapse operators need method 'mesolve' (or 'auto'), got method {method!r}")
         cls = PROPAGATORS["mesolve"]
     opts = cls.resolve_options(options)
+    rep = rep if rep is not None else getattr(H, "_hyperrotor_rep", None)
+    if rep is not None:
+        rep = _validate.representation("rep", rep, dim=mat.shape[0])
     if not cls.native:
         return cls(**opts).run(mat, dims, vec, t, _e_ops_list(e_ops, dims), c_ops, hbar)
-    rep = rep if rep is not None else getattr(H, "_hyperrotor_rep", None)
     return _evolve_native(cls, opts, mat, dims, vec, t, _e_ops_list(e_ops, dims), hbar, rep)
 
 
@@ -584,7 +586,7 @@ def _sector_jobs(mat: sps.csr_matrix, rep: Any, vec: np.ndarray, cls: type[Propa
     """
     from . import sectors
 
-    parts = sectors.evolution_blocks(mat, rep, vec)
+    parts = sectors._populated_blocks(mat, rep, vec)  # mat, rep and vec are checked by evolve
     if not parts:
         return None
     planner = cls(**opts)

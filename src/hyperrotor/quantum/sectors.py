@@ -540,6 +540,11 @@ def sector_blocks(H, rep, *, complete: bool = False):
     rep = _validate.representation("rep", rep)
     complete = _validate.flag("complete", complete)
     _hamiltonian_matrix(H, rep.dim)
+    return _nonempty_blocks(rep, complete)
+
+
+def _nonempty_blocks(rep, complete: bool):
+    """:func:`sector_blocks` after its checks (callers with a checked Hamiltonian: spectrum, evolve)."""
     try:
         secs = symmetry_sectors(rep, complete=complete)
     except ValueError:
@@ -561,7 +566,12 @@ def evolution_blocks(H, rep, psi0):
     rep = _validate.representation("rep", rep)
     M = _hamiltonian_matrix(H, rep.dim)
     v = _validate.ket("psi0", psi0, rep.dim, of="the representation")
-    parts = sector_blocks(M, rep, complete=True)
+    return _populated_blocks(M, rep, v)
+
+
+def _populated_blocks(M: sps.csr_matrix, rep, v: np.ndarray):
+    """:func:`evolution_blocks` after its checks (``evolve`` calls it with its checked H and state)."""
+    parts = _nonempty_blocks(rep, True)
     if parts is None:
         return None
     scale = float(np.abs(v).max()) if v.size else 0.0

@@ -52,6 +52,8 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
     })
     mat, _ = hermitian_matrix(H)
     rep = rep if rep is not None else getattr(H, "_hyperrotor_rep", None)
+    if rep is not None:
+        rep = _validate.representation("rep", rep, dim=mat.shape[0])
     blocks = blocks_of(mat)
     big = max(len(b) for b in blocks)
     limit = int(options["quantum_max_dense_dim"])
@@ -76,7 +78,7 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
     """All eigenvalues (with multiplicity) from the symmetry sectors of ``rep``, or ``None`` if there are none."""
     from . import sectors
 
-    parts = sectors.sector_blocks(mat, rep)
+    parts = sectors._nonempty_blocks(rep, False)  # mat and rep are checked by spectrum
     if parts is None:
         return None
     limit = int(options["quantum_max_dense_dim"])
