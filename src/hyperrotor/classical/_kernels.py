@@ -128,10 +128,12 @@ def store_attitude(T, b, k, outT):  # pragma: no cover - jitted
 
 
 def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j,
-               t, nsub, torque, T0, with_attitude, compensated, outL, outT):  # pragma: no cover - jitted
-    """Integrate ``B`` bodies over the output grid ``t`` with a composed splitting method.
+               hstep, nsub, torque, T0, with_attitude, compensated, outL, outT):  # pragma: no cover - jitted
+    """Integrate ``B`` bodies over ``K = hstep.size + 1`` output times with a composed splitting method.
 
-    Interval ``[t[k], t[k+1]]`` is covered by ``nsub[k]`` equal steps. Writes
+    Interval ``k`` is covered by ``nsub[k]`` steps of length ``hstep[k]`` (the driver passes
+    ``(t[k+1] - t[k]) / nsub[k]`` of the whole run's grid, so a run cut into chunks does the
+    same arithmetic as one call). Writes
     ``outL[b, k, :]`` (angular momentum at ``t[k]``) and, if ``with_attitude``,
     ``outT[b, k]`` (plain-matrix attitude, starting from ``T0[b]``). With ``compensated``
     the increments of ``L`` are added with error-free TwoSum (``L = Lh + Ll``), else in
@@ -141,7 +143,7 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
     """
     B = L0.shape[0]
     n = L0.shape[1]
-    K = t.shape[0]
+    K = hstep.shape[0] + 1
     m = seq_plane.shape[0]
     npair = pair_p.shape[1]
     N = T0.shape[1]
@@ -155,7 +157,7 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
         T = start_attitude(T0, b, with_attitude, outT)
         for k in range(K - 1):
             ns = nsub[k]
-            h = (t[k + 1] - t[k]) / ns
+            h = hstep[k]
             for r in range(m):
                 a = seq_plane[r]
                 fac[r] = seq_coef[r] * h if a < 0 else 0.5 * seq_coef[r] * h * rates[b, a]
@@ -215,7 +217,7 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
 
 
 def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
-                        t, nsub, torque, chunk, compensated, outL):  # pragma: no cover - jitted
+                        hstep, nsub, torque, chunk, compensated, outL):  # pragma: no cover - jitted
     """Same integration as :func:`_split_run` without attitude, bodies innermost.
 
     Bodies are processed in chunks of ``chunk`` (threads over chunks); inside a chunk the
@@ -225,7 +227,7 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
     """
     B = L0.shape[0]
     n = L0.shape[1]
-    K = t.shape[0]
+    K = hstep.shape[0] + 1
     m = seq_plane.shape[0]
     npair = pair_p.shape[1]
     nchunks = (B + chunk - 1) // chunk
@@ -245,7 +247,7 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                 outL[b0 + j, 0, a] = Lh[a, j]
         for k in range(K - 1):
             ns = nsub[k]
-            h = (t[k + 1] - t[k]) / ns
+            h = hstep[k]
             for r in range(m):
                 a = seq_plane[r]
                 for j in range(nb):

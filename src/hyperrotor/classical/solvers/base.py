@@ -194,11 +194,15 @@ class FixedStepSolver(Solver):
         """Precompute what :meth:`advance` needs for ``problem`` (tables, words, shifts)."""
 
     def advance(self, problem: Problem, L: np.ndarray, T: np.ndarray | None, t: np.ndarray, nsub: np.ndarray,
-                members: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+                members: np.ndarray | None = None,
+                h: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
         """States ``(L (B, K, n), T (B, K, N, N) or None)`` on grid ``t`` from ``L``, ``T`` at ``t[0]``.
 
-        ``members`` selects the ensemble members the rows of ``L`` belong to (default: all).
-        May raise ``RuntimeError`` when a step is too long for the method (implicit methods).
+        Interval ``k`` takes ``nsub[k]`` steps of length ``h[k]`` (default
+        :func:`step_lengths`; the driver passes the steps of the whole run's grid, so a run
+        cut into chunks gives the same numbers as one call). ``members`` selects the ensemble
+        members the rows of ``L`` belong to (default: all). May raise ``RuntimeError`` when
+        a step is too long for the method (implicit methods).
         """
         raise NotImplementedError
 
@@ -226,6 +230,11 @@ def nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
             f"units where omega is of order one), more than any budget max_steps allows"
         )
     return n.astype(np.int64)
+
+
+def step_lengths(t: np.ndarray, nsub: np.ndarray) -> np.ndarray:
+    """Step length ``(t[k+1] - t[k]) / nsub[k]`` of each interval (signed: negative backwards in time)."""
+    return np.diff(t) / nsub
 
 
 def power_of_two_scale(x: float) -> float:

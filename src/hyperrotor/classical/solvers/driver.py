@@ -33,7 +33,7 @@ import numpy as np
 
 from hyperrotor._options import options
 
-from .base import FixedStepSolver, Problem, RunResult, nsub_for
+from .base import FixedStepSolver, Problem, RunResult, nsub_for, step_lengths
 from .step_control import refuse_steps
 
 __all__ = ["run_fixed_step", "EventSpec", "event_specs"]
@@ -107,12 +107,6 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
         solver.set_accuracy(problem, getattr(control, "rtol", None), steps)
     specs = event_specs(events)
     fps = solver.flows_per_step(problem)
-    outL = np.empty((B, K, n))
-    outT = np.empty((B, K, N, N)) if problem.with_attitude else None
-    outL[:, 0] = problem.L0
-    if outT is not None:
-        outT[:, 0] = problem.T0
-    cs = np.concatenate([[0], np.cumsum(nsub)])
     stats = dict(steps=steps, nfev=None, dt=float(np.max(np.abs(np.diff(t)) / nsub)) if K > 1 else None,
                  chunks=0)
     t_events = [[] for _ in specs]
@@ -120,20 +114,23 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
     T_events = [[] for _ in specs]
     K_done = K
     if B > 0 and steps > 0:
-        bar = _progress_bar(progress, steps)
-        try:
-            K_done = _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T_events, fps, bar,
-                           stats)
-        finally:
-            if bar is not None:
-                bar.close()
+        outL, outT, K_done = _loop(solver, problem, t, nsub, specs, t_events, L_events, T_events, fps, progress,
+                                   stats)
+    else:  # nothing to integrate: the initial states (or an empty ensemble)
+        outL = np.empty((B, K, n))
+        outL[:, 0] = problem.L0
+        outT = None
+        if problem.with_attitude:
+            outT = np.empty((B, K, N, N))
+            outT[:, 0] = problem.T0
     stats["status"] = "terminated by event" if K_done < K or (specs and stats.get("terminal")) else "finished"
 
     def dense(tq):
         return _dense(solver, problem, t, nsub, outL, outT, tq, K_done)
 
-    res = RunResult(L=outL[:, :K_done], T=None if outT is None else outT[:, :K_done], t=t[:K_done], stats=stats,
-                    dense=dense)
+    res = RunResult(L=outL if K_done == K else outL[:, :K_done],
+                    T=None if outT is None else (outT if K_done == K else outT[:, :K_done]),
+                    t=t if K_done == K else t[:K_done], stats=stats, dense=dense)
     if specs:
         res.t_events = [np.array(x, dtype=float) for x in t_events]
         res.L_events = [np.array(x, dtype=float).reshape(-1, n) for x in L_events]
@@ -141,29 +138,68 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
     return res
 
 
-def _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T_events, fps, bar, stats):
-    """The chunked run; returns the number of output times reached."""
+#: measured seconds per elementary flow and member of the last chunk, per kind of kernel call
+#: (solver class, N, ensemble kernel or not, attitude): sizes the first chunk of the next run, so
+#: that a run expected to take less than ``options["chunk_seconds"]`` is one compiled call
+_SECONDS_PER_FLOW: dict = {}
+#: chunks shorter than this (s) are not timed for the table above (call overhead dominates)
+_MIN_TIMED_CHUNK = 2e-3
+
+
+def _cost_key(solver, problem):
+    return type(solver), problem.N, problem.B >= 32, problem.with_attitude
+
+
+def _loop(solver, problem, t, nsub, specs, t_events, L_events, T_events, fps, progress, stats):
+    """The chunked run; returns ``(outL, outT, number of output times reached)``."""
     B = problem.B
-    steps = int(cs[-1])
+    steps = int(nsub.sum())
     target = float(options["chunk_seconds"])
+    key = _cost_key(solver, problem)
+    flows = max(1, B * fps)  # elementary flows per step, whole ensemble
+    rate = _SECONDS_PER_FLOW.get(key)
+    first = FIRST_CHUNK_FLOWS if rate is None else max(FIRST_CHUNK_FLOWS, target / rate)
     if specs:
-        cap = max(1, min(EVENT_CHUNK_STEPS, FIRST_CHUNK_FLOWS // max(1, B * fps)))
+        cap = max(1, min(EVENT_CHUNK_STEPS, int(first // flows)))
     else:
-        cap = steps if steps * B * fps <= FIRST_CHUNK_FLOWS else max(1, FIRST_CHUNK_FLOWS // max(1, B * fps))
-    if not specs and cap >= steps:  # one call (most runs): no chunk grid to build
-        Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub)
-        _check_finite(Ls, t, problem)
-        outL[:] = Ls
-        if outT is not None:
-            outT[:] = Ts
-        stats["chunks"] = 1
+        cap = steps if steps * flows <= first else max(1, int(first // flows))
+    bar = _progress_bar(progress, steps) if (progress or cap < steps) else None
+    try:
+        if not specs and cap >= steps:  # one call (most runs): no chunk grid, no copies
+            t_start = time.perf_counter()
+            Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=step_lengths(t, nsub))
+            _learn(key, time.perf_counter() - t_start, steps * flows)
+            _check_finite(Ls, t, problem)
+            stats["chunks"] = 1
+            if bar is not None:
+                bar.update(steps)
+            return Ls, Ts, t.size
+        return _chunks(solver, problem, t, nsub, specs, t_events, L_events, T_events, flows, cap, target, key, bar,
+                       stats)
+    finally:
         if bar is not None:
-            bar.update(steps)
-        return t.size
+            bar.close()
+
+
+def _learn(key, elapsed, flows):
+    if elapsed >= _MIN_TIMED_CHUNK and flows > 0:
+        _SECONDS_PER_FLOW[key] = elapsed / flows
+
+
+def _chunks(solver, problem, t, nsub, specs, t_events, L_events, T_events, flows, cap, target, key, bar, stats):
+    B, n, N = problem.B, problem.n, problem.N
+    K = t.size
+    outL = np.empty((B, K, n))
+    outT = np.empty((B, K, N, N)) if problem.with_attitude else None
+    outL[:, 0] = problem.L0
+    if outT is not None:
+        outT[:, 0] = problem.T0
+    cs = np.concatenate([[0], np.cumsum(nsub)])
+    steps = int(cs[-1])
+    hs = step_lengths(t, nsub)  # the run's steps: a chunk starting inside an interval takes the same ones
     Lc = problem.L0
     Tc = problem.T0
     s0 = 0
-    K = t.size
     gprev = None  # event values at the state of s0
     counts = [0 for _ in specs]
     while s0 < steps:
@@ -174,15 +210,18 @@ def _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T
             svals = np.arange(s0, s1 + 1)
             grid = _step_times(t, cs, nsub, svals)
             ns = np.ones(grid.size - 1, dtype=np.int64)
+            starts = svals[:-1]
             out_pos = {int(o): int(cs[o] - s0) for o in outs}
         else:  # the chunk's start, the output times inside it, and its end (if inside an interval)
             marks = cs[outs]
             if marks.size == 0 or marks[-1] != s1:
                 marks = np.append(marks, s1)
-            grid = _step_times(t, cs, nsub, np.concatenate([[s0], marks]))
-            ns = np.diff(np.concatenate([[s0], marks])).astype(np.int64)
+            points = np.concatenate([[s0], marks])
+            grid = _step_times(t, cs, nsub, points)
+            ns = np.diff(points).astype(np.int64)
+            starts = points[:-1]
             out_pos = {int(o): i + 1 for i, o in enumerate(outs)}
-        Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns)
+        Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=hs[np.searchsorted(cs, starts, side="right") - 1])
         _check_finite(Ls, grid, problem)
         for o, i in out_pos.items():
             outL[:, o] = Ls[:, i]
@@ -194,30 +233,36 @@ def _loop(solver, problem, t, nsub, cs, outL, outT, specs, t_events, L_events, T
             gprev = stop[1]
             if stop[0] is not None:
                 stats["terminal"] = True
+                stats["chunks"] += 1
                 te = stop[0]
                 sgn = 1.0 if t[-1] >= t[0] else -1.0
-                return int(np.sum(sgn * (t - te) <= 0))
+                return outL, outT, int(np.sum(sgn * (t - te) <= 0))
         Lc = Ls[:, -1]
         Tc = None if Ts is None else Ts[:, -1]
         if bar is not None:
             bar.update(s1 - s0)
         stats["chunks"] += 1
-        s0 = s1
         elapsed = time.perf_counter() - t_start
+        if not specs:
+            _learn(key, elapsed, (s1 - s0) * flows)
+        s0 = s1
         if s0 < steps:  # size the next chunk from this one's time (at most 8x growth)
             cap = int(min(8 * cap, max(1, cap * target / max(elapsed, 1e-6))))
             if specs:
                 cap = min(cap, EVENT_CHUNK_STEPS)
-    return problem.t.size
+    return outL, outT, K
 
 
 def _check_finite(Ls, grid, problem):
-    if not np.all(np.isfinite(Ls[:, -1])):
-        bad = int(np.argmax(~np.all(np.isfinite(Ls), axis=(0, 2))))
-        raise FloatingPointError(
-            f"simulate: the solution became non-finite near t = {grid[bad] / problem.scale:.6g} "
-            f"(the inputs overflow double precision; max|L0| = {np.abs(problem.L0).max() * problem.scale:.3g})"
-        )
+    """``FloatingPointError`` unless the chunk's last states are finite (a finite sum proves it)."""
+    last = Ls[:, -1]
+    if math.isfinite(float(last.sum())) or np.all(np.isfinite(last)):
+        return
+    bad = int(np.argmax(~np.all(np.isfinite(Ls), axis=(0, 2))))
+    raise FloatingPointError(
+        f"simulate: the solution became non-finite near t = {grid[bad] / problem.scale:.6g} "
+        f"(the inputs overflow double precision; max|L0| = {np.abs(problem.L0).max() * problem.scale:.3g})"
+    )
 
 
 def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_events, L_events, T_events):
@@ -301,8 +346,9 @@ def _dense(solver, problem, t, nsub, outL, outT, tq, K_done):
         # states at the step points t_k + j hk (same steps as the run)
         pts = np.concatenate([[t[k]], t[k] + js[js > 0] * hk])
         Lk, Tk = outL[:, k], (None if outT is None else outT[:, k])
-        if pts.size > 1:
-            Ls, Ts = solver.advance(problem, Lk, Tk, pts, np.diff(np.concatenate([[0], js[js > 0]])).astype(np.int64))
+        if pts.size > 1:  # the run's own steps hk (same numbers as the run at its step points)
+            Ls, Ts = solver.advance(problem, Lk, Tk, pts, np.diff(np.concatenate([[0], js[js > 0]])).astype(np.int64),
+                                    h=np.full(pts.size - 1, hk))
         else:
             Ls, Ts = Lk[:, None], (None if Tk is None else Tk[:, None])
         pos = {int(v): i for i, v in enumerate(np.concatenate([[0], js[js > 0]]))}

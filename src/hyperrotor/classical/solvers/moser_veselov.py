@@ -49,7 +49,7 @@ import numpy as np
 from hyperrotor._jit import jit, prange
 
 from .._kernels import rotation_tables, start_attitude, store_attitude
-from .base import FixedStepSolver, Problem
+from .base import FixedStepSolver, Problem, step_lengths
 
 __all__ = ["MoserVeselov"]
 
@@ -87,8 +87,8 @@ def _cayley_factors(X, eye, A, Bp):  # pragma: no cover - jitted
             Bp[r, c] = eye[r, c] + 0.5 * X[r, c]
 
 
-def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, outT, status):  # pragma: no cover
-    """Integrate ``B`` bodies over the output grid ``t`` (``nsub[k]`` equal steps per interval).
+def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL, outT, status):  # pragma: no cover
+    """Integrate ``B`` bodies over ``K = hstep.size + 1`` output times (``nsub[k]`` steps of ``hstep[k]``).
 
     ``L0 (B, n)`` components in plane order; ``pair_i, pair_j (n,)`` 0-based axes of
     plane ``a``. Writes ``outL[b, k]``, ``outT[b, k]`` (plain attitude) and
@@ -96,7 +96,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
     """
     B = L0.shape[0]
     n = L0.shape[1]
-    K = t.shape[0]
+    K = hstep.shape[0] + 1
     N = J.shape[0]
     eps = np.finfo(np.float64).eps
     for b in prange(B):
@@ -117,7 +117,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
         corr = np.zeros(n)
         hprev = 0.0
         for k in range(K - 1):
-            h = (t[k + 1] - t[k]) / nsub[k]
+            h = hstep[k]
             ratio2 = (h / hprev) ** 2 if hprev != 0.0 else 0.0
             for _ in range(nsub[k]):
                 for a in range(n):  # X0 = h W + (X - h W) of the previous step (an O(h^3) predictor)
@@ -190,18 +190,20 @@ def _mv_run(L0, J, moments, pair_i, pair_j, t, nsub, T0, with_attitude, outL, ou
 mv_run = jit(parallel=True)(_mv_run)
 
 
-def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, t: np.ndarray, nsub: np.ndarray,
+def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, hstep: np.ndarray, nsub: np.ndarray,
         T0: np.ndarray, with_attitude: bool) -> tuple[np.ndarray, np.ndarray | None]:
-    """Moser-Veselov steps for the bodies ``L0 (B, n)``; returns ``(L (B, K, n), T (B, K, N, N) or None)``."""
+    """Moser-Veselov steps (``nsub[k]`` of length ``hstep[k]`` per interval) for the bodies ``L0 (B, n)``;
+    returns ``(L (B, K, n), T (B, K, N, N) or None)``, ``K = hstep.size + 1``."""
     B, n = L0.shape
     N = J.size
+    K = hstep.size + 1
     pair_i, pair_j = rotation_tables(N)[3:]  # 0-based axes i - 1, j - 1 of each plane
-    outL = np.empty((B, t.size, n))
-    outT = np.empty((B, t.size, N, N)) if with_attitude else np.empty((B, 1, N, N))
+    outL = np.empty((B, K, n))
+    outT = np.empty((B, K, N, N)) if with_attitude else np.empty((B, 1, N, N))
     status = np.zeros(B, dtype=np.int64)
     T0c = np.ascontiguousarray(T0) if with_attitude else np.zeros((1, N, N))
     mv_run(np.ascontiguousarray(L0, dtype=float), np.ascontiguousarray(J, dtype=float),
-           np.ascontiguousarray(moments, dtype=float), pair_i, pair_j, np.ascontiguousarray(t), nsub, T0c, bool(with_attitude),
+           np.ascontiguousarray(moments, dtype=float), pair_i, pair_j, np.ascontiguousarray(hstep, dtype=float), nsub, T0c, bool(with_attitude),
            outL, outT, status)
     bad = np.flatnonzero(status)
     if bad.size:
@@ -236,8 +238,8 @@ class MoserVeselov(FixedStepSolver):
     def flows_per_step(self, problem: Problem) -> int:
         return 40 * problem.n  # Newton with an n x n Jacobian: about 40 n plane flows per step (measured, 5D)
 
-    def advance(self, problem, L, T, t, nsub, members=None):
-        return run(L, self._J, problem.moments, t, nsub, T, T is not None)
+    def advance(self, problem, L, T, t, nsub, members=None, h=None):
+        return run(L, self._J, problem.moments, step_lengths(t, nsub) if h is None else h, nsub, T, T is not None)
 
     def stats(self, problem: Problem) -> dict:
         return {}

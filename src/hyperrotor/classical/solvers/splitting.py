@@ -60,7 +60,7 @@ from hyperrotor import _validate
 from hyperrotor.conventions import to_matrix
 
 from .. import _kernels
-from .base import FixedStepSolver, Problem
+from .base import FixedStepSolver, Problem, step_lengths
 
 __all__ = ["Splitting", "Splitting2", "Splitting4", "Splitting6", "Splitting8", "splitting_coefficients",
            "casimir_shift"]
@@ -174,17 +174,33 @@ def casimir_shift(moments: Any, L: Any = None) -> float | np.ndarray:
 
 def shift_rule(moments: np.ndarray, L2: np.ndarray) -> np.ndarray:
     """:func:`casimir_shift` for checked inputs: ``moments (n,)``, ``L2 (B, n)``; one ``c`` per row."""
-    rates = 1.0 / moments
-    values, counts = np.unique(rates, return_counts=True)
-    norm = np.sqrt(np.sum(L2 * L2, axis=1, keepdims=True))
-    E2 = np.sum(L2 * L2 / moments, axis=1, keepdims=True)
-    safe = np.where(norm > 0, norm, 1.0)
-    weights = np.where(norm > 0, np.minimum(norm, np.sqrt(E2 * moments)) / safe, 1.0)  # (B, n)
-    cost = weights @ np.abs(rates[:, None] - values[None, :])  # (B, V)
+    values, counts, dist = _shift_candidates(moments.tobytes())
+    if values.size == 1:  # equal moments: one candidate
+        return np.full(L2.shape[0], values[0])
+    sq = L2 * L2
+    norm = np.sqrt(np.sum(sq, axis=1, keepdims=True))
+    E2 = np.sum(sq / moments, axis=1, keepdims=True)
+    bound = np.minimum(norm, np.sqrt(E2 * moments))
+    if norm.all():
+        weights = bound / norm  # (B, n)
+    else:
+        weights = np.where(norm > 0, bound / np.where(norm > 0, norm, 1.0), 1.0)
+    cost = weights @ dist  # (B, V)
     cost = np.round(cost / np.maximum(cost.max(axis=1, keepdims=True), 1e-300), 12)  # equal to round-off: tie
-    score = np.where(cost == cost.min(axis=1, keepdims=True), counts[None, :], -1)
-    c = values[np.argmax(score, axis=1)]  # first maximum: most planes, then the smaller value
-    return c
+    score = np.where(cost == cost.min(axis=1, keepdims=True), counts, -1)
+    return values[np.argmax(score, axis=1)]  # first maximum: most planes, then the smaller value
+
+
+@lru_cache(maxsize=64)
+def _shift_candidates(moments_bytes: bytes) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per body: the distinct rates ``1/I_a`` (the candidates for ``c``), how many planes share
+    each, and ``|1/I_a - value|`` (n, V); cached (read-only)."""
+    rates = 1.0 / np.frombuffer(moments_bytes, dtype=np.float64)
+    values, counts = np.unique(rates, return_counts=True)
+    dist = np.abs(rates[:, None] - values[None, :])
+    for arr in (values, counts, dist):
+        arr.setflags(write=False)
+    return values, counts, dist
 
 
 @lru_cache(maxsize=None)
@@ -247,25 +263,27 @@ def rotation_tables(N: int):
     return tables
 
 
-def run_kernel(L0, rates_b, word, tables, t, nsub, torque_b, T0, with_att, compensated):
+def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, compensated):
     """Dispatch to a kernel: one body or a few -> serial; an ensemble without attitude ->
     bodies-innermost chunks over threads; an ensemble with attitude -> threads over bodies.
-    ``compensated``: TwoSum storage of ``L`` (see the performance notes)."""
+    ``nsub[k]`` steps of length ``hstep[k]`` per output interval; ``compensated``: TwoSum
+    storage of ``L`` (see the performance notes)."""
     B, n = L0.shape
     N = T0.shape[-1]
-    outL = np.empty((B, t.size, n))
+    K = hstep.size + 1
+    outL = np.empty((B, K, n))
     L0 = np.ascontiguousarray(L0)
     rates_b = np.ascontiguousarray(rates_b)
     torque_b = np.ascontiguousarray(torque_b)
-    t = np.ascontiguousarray(t)
+    hstep = np.ascontiguousarray(hstep, dtype=np.float64)
     if B >= _PARALLEL_MIN_BODIES and not with_att:
         chunk = max(1, min(_ENSEMBLE_CHUNK, -(-B // 8)))
-        _kernels.split_run_ensemble(L0, rates_b, word[0], word[1], *tables[:3], t, nsub, torque_b, chunk,
+        _kernels.split_run_ensemble(L0, rates_b, word[0], word[1], *tables[:3], hstep, nsub, torque_b, chunk,
                                     compensated, outL)
         return outL, None
-    outT = np.empty((B, t.size, N, N)) if with_att else np.empty((B, 1, N, N))
+    outT = np.empty((B, K, N, N)) if with_att else np.empty((B, 1, N, N))
     kernel = _kernels.split_run if B >= _PARALLEL_MIN_BODIES else _kernels.split_run_serial
-    kernel(L0, rates_b, word[0], word[1], *tables, t, nsub, torque_b, np.ascontiguousarray(T0),
+    kernel(L0, rates_b, word[0], word[1], *tables, hstep, nsub, torque_b, np.ascontiguousarray(T0),
            bool(with_att), compensated, outL, outT)
     return outL, (outT if with_att else None)
 
@@ -320,7 +338,7 @@ class Splitting(FixedStepSolver):
     def flows_per_step(self, problem: Problem) -> int:
         return max(1, int(self._state["word"][0].size))
 
-    def advance(self, problem, L, T, t, nsub, members=None):
+    def advance(self, problem, L, T, t, nsub, members=None, h=None):
         st = self._state
         sel = slice(None) if members is None else members
         comp = st["compensated"]
@@ -328,8 +346,8 @@ class Splitting(FixedStepSolver):
         with_att = T is not None
         N = problem.N
         T_run = np.ascontiguousarray(T) if with_att else np.zeros((1, N, N))
-        outL, outT = run_kernel(L, st["rates"][sel], st["word"], st["tables"], t, nsub, st["torque"][sel],
-                                T_run, with_att, comp)
+        outL, outT = run_kernel(L, st["rates"][sel], st["word"], st["tables"], step_lengths(t, nsub) if h is None else h,
+                                nsub, st["torque"][sel], T_run, with_att, comp)
         shift = st["shift"][sel]
         if with_att and np.any(shift != 0.0):
             outT = unshift_attitude(outT, L, T, t, shift)

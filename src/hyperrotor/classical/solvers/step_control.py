@@ -41,6 +41,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -115,8 +116,9 @@ def _rate_bound(problem: Problem) -> tuple[np.ndarray, float]:
     return wmax_b, tq
 
 
+@lru_cache(maxsize=32)
 def _triples(N: int):
-    """Plane indices (c, a, b) of every coupled triple {ij, ik, jk}, each plane in turn as c."""
+    """Plane indices (c, a, b) of every coupled triple {ij, ik, jk}, each plane in turn as c (cached)."""
     from hyperrotor.conventions import planes
 
     idx = {p: k for k, p in enumerate(planes(N))}
@@ -127,7 +129,10 @@ def _triples(N: int):
                 t3 = (idx[(i, j)], idx[(i, k)], idx[(j, k)])
                 out += [(t3[0], t3[1], t3[2]), (t3[1], t3[0], t3[2]), (t3[2], t3[0], t3[1])]
     arr = np.array(out, dtype=np.int64).reshape(-1, 3)
-    return arr[:, 0], arr[:, 1], arr[:, 2]
+    cols = tuple(np.ascontiguousarray(arr[:, i]) for i in range(3))
+    for c in cols:
+        c.setflags(write=False)
+    return cols
 
 
 class ErrorTarget:
