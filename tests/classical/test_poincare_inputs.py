@@ -42,3 +42,13 @@ def test_progress_is_a_switch_and_the_budget_names_omega0():
         hr.poincare_section(body, w, 1.0, progress="no")
     with pytest.raises(ValueError, match=r"omega0 up to \|omega\| = 1e\+300"):
         hr.poincare_section(body, np.full(6, 1e300), 1.0)
+
+
+def test_an_unknown_scatter_option_is_a_type_error():
+    pytest.importorskip("matplotlib")
+    from matplotlib.figure import Figure
+
+    ax = Figure().add_subplot()
+    with pytest.raises(TypeError, match="scatter_options.*'foo'"):
+        plot_poincare(_section(), ax=ax, foo=1)
+    assert plot_poincare(_section(), ax=ax, s=5, color="k") is ax

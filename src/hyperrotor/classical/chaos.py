@@ -559,7 +559,13 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
     opts.update(scatter_options)
     for k, sec in enumerate(secs):
         xy = sec.coordinates(px, py)
-        ax.scatter(xy[:, 0], xy[:, 1], label=None if labels is None else labels[k], **opts)
+        try:
+            ax.scatter(xy[:, 0], xy[:, 1], label=None if labels is None else labels[k], **opts)
+        except AttributeError as exc:  # matplotlib's answer to an unknown property
+            if "unexpected keyword argument" not in str(exc):
+                raise
+            raise TypeError(f"scatter_options {sorted(scatter_options)}: {exc} (they go to matplotlib's "
+                            f"Axes.scatter)") from None
     s0 = secs[0]
     ax.set_xlabel(f"$L_{{{px[0]}{px[1]}}}$")
     ax.set_ylabel(f"$L_{{{py[0]}{py[1]}}}$")
