@@ -250,6 +250,12 @@ register(
     "took 2.4 s at load 3.5 and ~20 s at load 10 on the 2-core test machine). Larger sectors are "
     "refused with their size before any work.",
 )
+register(
+    "statistics_max_bins", 10**6,
+    "hyperrotor.quantum.spacing_distribution: largest number of histogram bins (8 bytes each for the "
+    "edges, plus counts and densities). Spectra that can be diagonalized have far fewer spacings than "
+    "10**6, so more bins are never meaningful; bins=10**9 would allocate 8 GB before any message.",
+)
 
 # --- command line ------------------------------------------------------------
 register(

@@ -296,7 +296,8 @@ def spacing_distribution(levels: Any, *, bins: Any = 30, s_max: float = 4.0, deg
     levels : 1-D array_like
         Energies of one symmetry sector.
     bins : int or array_like, default 30
-        Number of equal bins on ``[0, s_max]``, or the bin edges (strictly increasing).
+        Number of equal bins on ``[0, s_max]``, or the bin edges (strictly increasing);
+        at most ``options["statistics_max_bins"]`` bins.
     s_max : float, default 4
     degree : int, default 7
         Staircase fit of :func:`unfold`.
@@ -311,11 +312,15 @@ def spacing_distribution(levels: Any, *, bins: Any = 30, s_max: float = 4.0, deg
     """
     s_max = _validate.positive("s_max", s_max)
     if isinstance(bins, (str, bytes, Mapping)) or not isinstance(bins, (Sequence, np.ndarray)):
-        edges = np.linspace(0.0, s_max, _validate.integer("bins", bins, minimum=1) + 1)
+        edges = np.linspace(0.0, s_max, _validate.integer("bins", bins, minimum=1,
+                                                          maximum=int(options["statistics_max_bins"])) + 1)
     else:
         edges = _validate.finite_array("bins", bins, ndim=1)
         if edges.size < 2 or not np.all(np.diff(edges) > 0):
             raise ValueError(f"bins as edges must be at least 2 strictly increasing numbers, got {_validate.fmt(edges)}")
+        if edges.size - 1 > options["statistics_max_bins"]:
+            raise ValueError(f"bins has {edges.size - 1} bins > options['statistics_max_bins'] = "
+                             f"{options['statistics_max_bins']}")
     s = spacings(levels, degree=degree)
     counts, edges = np.histogram(s, bins=edges)
     density = counts / (s.size * np.diff(edges))
@@ -365,5 +370,7 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
         E = np.linalg.eigvalsh(0.5 * (A + A.conj().T))
     if bulk < 1:
         k = int(round(n * (1 - bulk) / 2))
+        if n - 2 * k < 1:
+            raise ValueError(f"bulk = {_validate.fmt(bulk)} keeps no level of n = {n}; raise bulk or n")
         E = E[k: n - k]
     return np.sort(E)
