@@ -236,9 +236,46 @@ def test_terminal_event_ends_the_run(method):
     assert tr.omega.shape == (tr.t.size, 3)
 
 
-def test_events_need_one_trajectory():
-    with pytest.raises(ValueError, match="one trajectory"):
-        hr.simulate(MOM3, np.ones((2, 3)), [0.0, 1.0], events=lambda t, L: L[0])
+@pytest.mark.parametrize("method", ALL)
+def test_events_on_an_ensemble_per_member(method, rng):
+    """Each member's event times are those of its own run (elliptic period apart), and the ensemble's
+    states are those of the run without events (the ensemble's step; equal to round-off)."""
+    W = W3 * (1.0 + 0.2 * rng.uniform(-1, 1, size=(3, 1, 3)))
+    t = np.linspace(0.0, 2.2 * max(_textbook_period_3d(MOM3, w) for w in W.reshape(-1, 3)), 6)
+    kw = dict(rtol=1e-5) if method == "moser-veselov" else cheap_kw(method, 1e-7)  # implicit, order 2: slow
+
+    def middle_axis(t, L):
+        return L[1]
+
+    middle_axis.direction = 1.0
+    tr = hr.simulate(MOM3, W, t, method=method, events=middle_axis, attitude=True, **kw)
+    plain = hr.simulate(MOM3, W, t, method=method, attitude=True, **kw)
+    # the same steps; with events every step is stored (a kernel call per step chunk, the compensated sums
+    # and the attitude's Casimir-shift correction restart there): equal to round-off over the run
+    steps = tr.stats["steps"] or 1000
+    np.testing.assert_allclose(tr.L, plain.L, rtol=0, atol=scaled_tol(plain.L, k=64, steps=steps))
+    np.testing.assert_allclose(tr.attitude, plain.attitude, rtol=0, atol=scaled_tol(np.ones(1), k=64, dim=3,
+                                                                                     steps=steps))
+    assert len(tr.t_events) == 1 and len(tr.t_events[0]) == 3
+    tol = (1 if issubclass(SOLVERS[method], FixedStepSolver) else 1e3) * kw["rtol"] * t[-1] * 10
+    for m, w in enumerate(W.reshape(-1, 3)):
+        te, Le = tr.t_events[0][m], tr.L_events[0][m]
+        assert te.size >= 2
+        np.testing.assert_allclose(np.diff(te), _textbook_period_3d(MOM3, w), rtol=0, atol=tol)
+        np.testing.assert_allclose(Le / MOM3, euler_poinsot(MOM3, w, te), rtol=0, atol=tol)
+        np.testing.assert_allclose(tr.omega_events[0][m], Le / MOM3)
+        assert tr.attitude_events[0][m].shape == (te.size, 3, 3)
+    np.testing.assert_allclose(tr.sol([3.3, 17.0]), plain.sol([3.3, 17.0]), rtol=0,
+                               atol=scaled_tol(plain.L, k=64, steps=steps))
+
+
+def test_terminal_events_on_an_ensemble_are_refused():
+    def g(t, L):
+        return L[0]
+
+    g.terminal = True
+    with pytest.raises(ValueError, match="terminal event would end the members"):
+        hr.simulate(MOM3, np.ones((2, 3)), [0.0, 1.0], events=g)
 
 
 # ----------------------------------------------------------------------------- dense output

@@ -63,9 +63,12 @@ class Trajectory:
     attitude : ndarray batch + (K, N, N) or None
         :math:`T(t)` (eq. 19) in the body's matrix convention, ``None`` unless asked.
     t_events : list of ndarray or None
-        with ``events=``: one array of event times per event function (as ``solve_ivp``).
+        with ``events=``: one array of event times per event function (as ``solve_ivp``);
+        for an ensemble, per event function a list over the members (flattened batch order)
+        of such arrays.
     L_events, omega_events : list of ndarray (m, n) or None
-        the states at those times; ``attitude_events`` too when the attitude is integrated.
+        the states at those times (nested the same way for an ensemble);
+        ``attitude_events`` too when the attitude is integrated.
     body : object
         the ``body`` argument.
     moments : ndarray (n,)
@@ -94,12 +97,12 @@ class Trajectory:
         self.t_events = self.L_events = self.omega_events = self.attitude_events = None
         if events is not None:
             t_ev, L_ev, T_ev = events
+            S = signs
             self.t_events = t_ev
             self.L_events = L_ev
-            self.omega_events = [x / moments for x in L_ev]
+            self.omega_events = _nested(L_ev, lambda x: x / moments)
             if T_ev is not None:
-                S = signs
-                self.attitude_events = [S[:, None] * x * S[None, :] for x in T_ev]
+                self.attitude_events = _nested(T_ev, lambda x: S[:, None] * x * S[None, :])
 
     def energy(self) -> np.ndarray:
         r"""Kinetic energy :math:`\tfrac12\sum_{i<j} I_{ij}\omega_{ij}^2`, shape batch + (K,)."""
@@ -148,6 +151,11 @@ class Trajectory:
     def __repr__(self) -> str:
         return (f"Trajectory(method={self.stats.get('method')!r}, batch={self.omega.shape[:-2]}, "
                 f"len(t)={self.t.size}, n_planes={self.omega.shape[-1]}, attitude={self.attitude is not None})")
+
+
+def _nested(events: list, f: Callable) -> list:
+    """``f`` on every array of an event list (one array per event function, or a list of member arrays)."""
+    return [[f(x) for x in e] if isinstance(e, list) else f(e) for e in events]
 
 
 # ----------------------------------------------------------------------------
@@ -322,8 +330,10 @@ def simulate(
         event functions ``g(t, L) -> float`` as in :func:`scipy.integrate.solve_ivp`
         (attributes ``terminal``: bool or count, ``direction``: sign of the crossing);
         their zeros are located to the method's accuracy and returned in
-        ``Trajectory.t_events`` / ``L_events``; a terminal event ends the run. One
-        trajectory only (1-D ``omega0``).
+        ``Trajectory.t_events`` / ``L_events``; a terminal event ends the run. With an
+        ensemble ``omega0`` every member is run on its own with the ensemble's step (the
+        states of the run without events, to round-off), events must be non-terminal, and
+        ``t_events[e][m]`` is the array of member ``m`` (flattened batch order).
     max_steps : int, optional
         budget of the run (steps per trajectory times members; scipy: right-hand-side
         evaluations); default ``hyperrotor.options["max_steps"]``. A run estimated above it
@@ -376,9 +386,14 @@ def simulate(
     problem, t_user = _problem(body, omega0, t, attitude, torque, options["max_output_bytes"])
     control = _step_control(solver, rtol, dt)
     if events is not None and problem.batch:
-        raise ValueError(f"events= needs one trajectory (1-D omega0), got an ensemble of shape {problem.batch}; "
-                         f"loop over the members")
-    if client is not None and problem.B > 1:
+        if client is not None:
+            raise ValueError("events= on an ensemble runs in this process, member by member: drop client= (or "
+                             "map simulate(..., events=...) over the members with your client)")
+        from .solvers.members import run_members_with_events
+
+        res = run_members_with_events(solver, problem, control, events=events, max_steps=max_steps,
+                                      progress=progress)
+    elif client is not None and problem.B > 1:
         from .solvers.distributed import run_distributed
 
         res = run_distributed(solver, problem, control, client=client, max_steps=max_steps, progress=progress)

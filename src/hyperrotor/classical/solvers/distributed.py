@@ -6,18 +6,21 @@ with that step on a worker. Each member's arithmetic is the one of a run without
 client (the per-member Casimir shift, the same steps), so splittings and scipy methods
 give the same numbers bit for bit (measured; a plane whose rate vanishes for every member
 of a chunk but not of the whole ensemble would change the rounding only); Moser-Veselov
-calls LAPACK inside its kernel, whose rounding may differ between machines. Dense output is rebuilt in
-this process from the gathered output states (fixed-step methods); events need one
-trajectory and so never reach this path.
+calls LAPACK inside its kernel, whose rounding may differ between machines. The step and
+the per-member set-up come from :mod:`.members`. Dense output: fixed-step methods rebuild
+it in this process from the gathered output states; scipy methods evaluate it on the
+workers (each chunk re-runs its members with scipy's interpolants, as the first
+``Trajectory.sol`` call of a run without a client does). Events on an ensemble run in this
+process (:func:`.members.run_members_with_events`); ``simulate`` refuses them with a client.
 """
 from __future__ import annotations
 
-import copy
 import dataclasses
 
 import numpy as np
 
 from .base import FixedStepSolver, Problem, RunResult, nsub_for
+from .members import member_problem, member_setup
 
 __all__ = ["run_distributed"]
 
@@ -26,23 +29,17 @@ __all__ = ["run_distributed"]
 SECONDS_PER_FLOW = 5e-9
 
 
-class _GivenStep:
-    """The step chosen in the client process (scaled units), no second budget check."""
-
-    def __init__(self, h, rtol=None):
-        self.h = h
-        self.rtol = rtol
-
-    def step(self, solver, problem, max_steps):
-        return self.h
-
-
 def _rows(L0, T0, torque, solver, template, control, max_steps):
     """One chunk of members (top-level, picklable): returns L (and T) of the chunk."""
-    problem = dataclasses.replace(template, L0=L0, T0=T0 if template.T0 is not None else None,
-                                  torque=torque if isinstance(template.torque, np.ndarray) else template.torque)
-    res = solver.run(problem, control, max_steps=max_steps, progress=False)
+    res = solver.run(member_problem(template, L0, T0, torque), control, max_steps=max_steps, progress=False)
     return (res.L, res.T) if res.T is not None else res.L
+
+
+def _dense_rows(L0, T0, torque, solver, template, control, max_steps, tq):
+    """Dense output of one chunk of members of a scipy method (top-level, picklable)."""
+    res = solver.run(member_problem(template, L0, T0, torque), control, max_steps=max_steps, progress=False)
+    L, T = res.dense(tq)
+    return (L, T) if T is not None else L
 
 
 def run_distributed(solver, problem: Problem, control, *, client, max_steps: int, progress=None) -> RunResult:
@@ -51,27 +48,16 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
     B = problem.B
     template = dataclasses.replace(problem, L0=problem.L0[:0],
                                    T0=None if problem.T0 is None else problem.T0[:0])
-    if isinstance(solver, FixedStepSolver):
-        solver.check(problem)
-        solver.prepare(problem)
-        h = control.step(solver, problem, max_steps)
-        steps = int(nsub_for(problem.t, h).sum()) if problem.t.size > 1 else 0
-        if hasattr(solver, "set_accuracy"):
-            solver.set_accuracy(problem, getattr(control, "rtol", None), steps)
-        worker_solver = copy.copy(solver)
-        worker_solver.options = dict(solver.options)
-        if "compensated" in worker_solver.options:
-            worker_solver.options["compensated"] = bool(solver._state["compensated"])
-        worker_control = _GivenStep(h, getattr(control, "rtol", None))
+    worker_solver, worker_control, steps, h = member_setup(solver, problem, control, max_steps)
+    if steps is not None:
         per_member = max(1, steps) * solver.flows_per_step(problem) * SECONDS_PER_FLOW
     else:
-        steps = None
-        worker_solver, worker_control = solver, control
         per_member = 0.05  # a scipy solve of a few periods
     chunk = int(max(1, min(B, 1.0 / max(per_member, 1e-12))))
     T0 = problem.T0 if problem.T0 is not None else np.zeros((B, 0))
     tq = problem.torque if isinstance(problem.torque, np.ndarray) else np.zeros((B, 0))
-    out = map_rows(_rows, (np.ascontiguousarray(problem.L0), np.ascontiguousarray(T0), tq),
+    rows = (np.ascontiguousarray(problem.L0), np.ascontiguousarray(T0), tq)
+    out = map_rows(_rows, rows,
                    args=(worker_solver, template, worker_control, max_steps), client=client, chunk_size=chunk,
                    progress=progress, desc="simulate")
     L, T = (out if isinstance(out, tuple) else (out, None))
@@ -86,7 +72,9 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
 
         def dense(tq_):
             return _dense(solver, problem, problem.t, nsub, L, T, tq_, problem.t.size)
-    else:
+    else:  # scipy: the workers re-run their members with scipy's interpolants and evaluate them at tq
         def dense(tq_):
-            raise NotImplementedError("dense output of a scipy ensemble run with client=: run without client")
+            out_ = map_rows(_dense_rows, rows, args=(worker_solver, template, worker_control, max_steps, tq_),
+                            client=client, chunk_size=chunk, progress=progress, desc="dense output")
+            return out_ if isinstance(out_, tuple) else (out_, None)
     return RunResult(L=L, T=T, t=problem.t, stats=stats, dense=dense)
