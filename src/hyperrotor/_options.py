@@ -251,10 +251,11 @@ register(
     "refused with their size before any work.",
 )
 register(
-    "statistics_max_bins", 10**6,
-    "hyperrotor.quantum.spacing_distribution: largest number of histogram bins (8 bytes each for the "
-    "edges, plus counts and densities). Spectra that can be diagonalized have far fewer spacings than "
-    "10**6, so more bins are never meaningful; bins=10**9 would allocate 8 GB before any message.",
+    "statistics_max_size", 10**7,
+    "hyperrotor.quantum.statistics: largest array made from an integer argument, the histogram bins of "
+    "spacing_distribution and the levels of sample_spectrum('poisson') (8 bytes each, 80 MB at the "
+    "default). Spectra that can be diagonalized have far fewer levels, and a Poisson mean ratio is exact "
+    "to ~1e-4 at 10**7 levels; bins=10**9 would allocate 8 GB before any message.",
 )
 
 # --- command line ------------------------------------------------------------

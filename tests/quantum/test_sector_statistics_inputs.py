@@ -68,8 +68,8 @@ def test_bins_as_edges_equal_bins_as_a_count():
                      ([2.0, 1.0, 3.0], ValueError), ([0.0, np.nan], ValueError), (10**9, ValueError)]:
         with pytest.raises(exc, match="bins"):  # 10**9 bins: refused before 8 GB of edges are allocated
             hq.spacing_distribution(E, bins=bad, degree=3)
-    with hr.options(statistics_max_bins=4):
-        with pytest.raises(ValueError, match="statistics_max_bins"):
+    with hr.options(statistics_max_size=4):
+        with pytest.raises(ValueError, match="statistics_max_size"):
             hq.spacing_distribution(E, bins=np.linspace(0.0, 3.0, 6), degree=3)
 
 
@@ -78,6 +78,8 @@ def test_random_matrix_samples_respect_the_dense_budget():
         with pytest.raises(ValueError, match="quantum_max_dense_dim"):
             hq.sample_spectrum("gue", 6, rng=1)
         assert hq.sample_spectrum("poisson", 6, rng=1).shape == (6,)  # no matrix: no limit
+    with hr.options(statistics_max_size=5), pytest.raises(ValueError, match="statistics_max_size"):
+        hq.sample_spectrum("poisson", 6, rng=1)
     with pytest.raises(ValueError, match="keeps no level"):
         hq.sample_spectrum("goe", 10, rng=1, bulk=1e-300)
     assert hq.sample_spectrum("goe", 12, rng=1, bulk=0.5).shape == (6,)  # the middle half

@@ -297,7 +297,7 @@ def spacing_distribution(levels: Any, *, bins: Any = 30, s_max: float = 4.0, deg
         Energies of one symmetry sector.
     bins : int or array_like, default 30
         Number of equal bins on ``[0, s_max]``, or the bin edges (strictly increasing);
-        at most ``options["statistics_max_bins"]`` bins.
+        at most ``options["statistics_max_size"]`` bins.
     s_max : float, default 4
     degree : int, default 7
         Staircase fit of :func:`unfold`.
@@ -313,14 +313,14 @@ def spacing_distribution(levels: Any, *, bins: Any = 30, s_max: float = 4.0, deg
     s_max = _validate.positive("s_max", s_max)
     if isinstance(bins, (str, bytes, Mapping)) or not isinstance(bins, (Sequence, np.ndarray)):
         edges = np.linspace(0.0, s_max, _validate.integer("bins", bins, minimum=1,
-                                                          maximum=int(options["statistics_max_bins"])) + 1)
+                                                          maximum=int(options["statistics_max_size"])) + 1)
     else:
         edges = _validate.finite_array("bins", bins, ndim=1)
         if edges.size < 2 or not np.all(np.diff(edges) > 0):
             raise ValueError(f"bins as edges must be at least 2 strictly increasing numbers, got {_validate.fmt(edges)}")
-        if edges.size - 1 > options["statistics_max_bins"]:
-            raise ValueError(f"bins has {edges.size - 1} bins > options['statistics_max_bins'] = "
-                             f"{options['statistics_max_bins']}")
+        if edges.size - 1 > options["statistics_max_size"]:
+            raise ValueError(f"bins has {edges.size - 1} bins > options['statistics_max_size'] = "
+                             f"{options['statistics_max_size']}")
     s = spacings(levels, degree=degree)
     counts, edges = np.histogram(s, bins=edges)
     density = counts / (s.size * np.diff(edges))
@@ -338,7 +338,8 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
     ensemble : {"poisson", "goe", "gue"}
     n : int
         Number of levels (matrix size for GOE/GUE, ``n >= 3``; for GOE/GUE at most
-        ``options["quantum_max_dense_dim"]``, the package's limit of dense diagonalization).
+        ``options["quantum_max_dense_dim"]``, the package's limit of dense diagonalization,
+        for Poisson at most ``options["statistics_max_size"]``).
     rng : seed or numpy.random.Generator, keyword-only
     bulk : float in (0, 1], default 1
         Keep only the central fraction of the levels (the semicircle's edges have
@@ -356,6 +357,9 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
     if ens != "poisson" and n > lim:
         raise ValueError(f"n = {n}: a {ens.upper()} spectrum diagonalizes a dense n x n matrix, and n > "
                          f"options['quantum_max_dense_dim'] = {lim}; raise the option to run it anyway")
+    if n > options["statistics_max_size"]:
+        raise ValueError(f"n = {n} levels > options['statistics_max_size'] = {options['statistics_max_size']}; "
+                         f"raise the option to run it anyway")
     bulk = _validate.positive("bulk", bulk)
     if bulk > 1:
         raise ValueError(f"bulk must be in (0, 1], got {_validate.fmt(bulk)}")
