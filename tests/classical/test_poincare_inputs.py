@@ -52,3 +52,10 @@ def test_an_unknown_scatter_option_is_a_type_error():
     with pytest.raises(TypeError, match="scatter_options.*'foo'"):
         plot_poincare(_section(), ax=ax, foo=1)
     assert plot_poincare(_section(), ax=ax, s=5, color="k") is ax
+
+
+def test_a_resting_or_subnormal_orbit_has_no_crossings_and_no_step_error():
+    body = hr.RigidBody(hr.Inertia.from_mass_tensor([1.0, 2.0, 3.0, 4.0]))
+    for w in (np.zeros(6), np.full(6, 5e-324), np.full(6, 1e-300)):  # 5e-324 made the default dt inf
+        sec = hr.poincare_section(body, w, 1.0, value=0.5)
+        assert len(sec) == 0 and sec.L.shape == (0, 6)

@@ -493,6 +493,7 @@ def poincare_section(
         s = float(np.ldexp(1.0, np.frexp(np.max(np.abs(L0)))[1])) or 1.0  # power of two: no overflow
         wmax = float(_rate_bound(moments[None, :], L0[None, :] / s)[0]) * s
         dt = options["lyapunov_step"] / wmax if wmax > 0 else T
+        dt = min(dt, T)  # a (nearly) resting body: one step (lyapunov_step / wmax overflows for subnormal omega)
     steps = T / dt
     if not steps <= options["max_steps"]:
         raise ValueError(f"this section (omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))}) needs about "
