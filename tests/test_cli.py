@@ -380,6 +380,10 @@ def test_progress_only_when_asked_or_on_a_terminal(capsys, tmp_path):
     assert code == 0 and err == ""
     code, _, err = _run(capsys, ["verify", "--section", "euler", "--progress"])
     assert code == 0 and "verify: sections" in err and "/1 [" in err  # the bar of 1 section (drawn at start)
+    # an integrated motion (box inertia) shows the integration's own bar before the drawing
+    code, _, err = _cli(["scene", "--inertia", "box", "--frames", "4", "--output", "c.png", "--progress"], tmp_path)
+    assert code == 0 and "simulate:" in err and "step" in err
+    assert err.index("simulate:") < err.index("scene: drawing snapshots")
 
 
 def test_plain_numbers_in_output_and_messages(tmp_path):

@@ -54,7 +54,7 @@ import signal
 import sys
 import time
 import warnings
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Sequence
 
@@ -646,9 +646,8 @@ def _run_scene(args: argparse.Namespace) -> int:
             args.shape]()
         t = np.linspace(0.0, s["t_end"], s["frames"])
         proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
-        extra = {"progress": args.progress} if "progress" in {f.name for f in fields(Scene)} else {}
         scene = Scene(RigidBody(inertia), s["omega"], t, observables=("projection",), points=points, axes=proj_axes,
-                      **extra)  # progress of an integrated motion, once Scene forwards it to simulate
+                      progress=args.progress)  # a bar while an integrated motion is computed
         res = scene.evaluate()
         edges = body_edges(points, "points" if args.shape == "ellipsoid" else args.shape)
         title = (f"{args.shape} in {N}D, {args.inertia} inertia: space axes {', '.join(map(str, s['axes']))} drawn"

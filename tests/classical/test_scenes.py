@@ -188,3 +188,17 @@ def test_quartet_projection_closed_form():
                   points=hypercube_vertices(5), axes=(2, 3, 4))
     a = _compare(scene, 1e-8)
     assert a.path == "closed-form:quartet"
+
+
+def test_progress_reaches_the_integration_and_changes_nothing(capsys):
+    """Scene(progress=True): simulate's bar on stderr while an integrated (generic) motion is computed;
+    the same numbers as without it. A non-boolean is refused by name."""
+    w0 = RNG.normal(size=10)
+    quiet = Scene(GENERIC, w0, T, ("omega",)).evaluate()
+    capsys.readouterr()
+    loud = Scene(GENERIC, w0, T, ("omega",), progress=True).evaluate()
+    err = capsys.readouterr().err
+    assert "simulate" in err and "step" in err
+    np.testing.assert_array_equal(loud.omega, quiet.omega)
+    with pytest.raises(TypeError, match="progress must be True, False or None, got 'yes'"):
+        Scene(GENERIC, w0, T, ("omega",), progress="yes")

@@ -206,6 +206,9 @@ class Scene:
         Initial attitude (orthogonal, body convention); default the identity.
     method, rtol : passed to :func:`hyperrotor.simulate` when integration is needed
         (default ``"auto"``, ``1e-10``).
+    progress : bool or None
+        progress bar of that integration (passed to :func:`hyperrotor.simulate`; ``None``:
+        only on a terminal, for runs longer than about a second).
     """
 
     body: Any
@@ -218,10 +221,13 @@ class Scene:
     attitude0: Any = None
     method: str = "auto"
     rtol: float = 1e-10
+    progress: bool | None = None
 
     def __post_init__(self):
         # refuse a bad body, omega0 or t where it is given, not later in evaluate()
         _check_inputs(self.body, self.omega0, self.t)
+        if self.progress is not None and not isinstance(self.progress, (bool, np.bool_)):
+            raise TypeError(f"progress must be True, False or None, got {_v.fmt(self.progress)}")
 
     def evaluate(self, *, minimal: bool = True) -> SceneResult:
         """Compute the scene; see :func:`evaluate_scene`."""
@@ -317,7 +323,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     need_omega = "omega" in obs or "L" in obs
 
     if not minimal:
-        traj = simulate(body, w0, t, method=scene.method, rtol=scene.rtol,
+        traj = simulate(body, w0, t, method=scene.method, rtol=scene.rtol, progress=scene.progress,
                         attitude=True if T0 is None else T0)
         res.path = "full"
         res.stats.update(traj.stats)
@@ -367,7 +373,8 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
         steps.append("closed-form:" + info["kind"])
     else:
         red_body = RigidBody(I_red, "standard")
-        traj = simulate(red_body, w_red, t, method=scene.method, rtol=scene.rtol, attitude=need_att)
+        traj = simulate(red_body, w_red, t, method=scene.method, rtol=scene.rtol, attitude=need_att,
+                        progress=scene.progress)
         om_red = traj.omega
         U = traj.attitude
         res.stats.update(traj.stats)
