@@ -314,6 +314,7 @@ def perturbation_growth(body: Any, plane: Any, Omega: float, t: Any, *, eps: flo
     numpy.ndarray, shape (len(t),)
     """
     from .simulate import simulate
+    from .solvers import StepBudgetError
 
     I = body_moments(body)
     N = dimension_from_count(I.size)
@@ -321,5 +322,9 @@ def perturbation_growth(body: Any, plane: Any, Omega: float, t: Any, *, eps: flo
     p = plane_index((i, j), N)
     w0 = float(eps) * np.random.default_rng(seed).normal(size=I.size)
     w0[p] = _validate.real("Omega", Omega)
-    traj = simulate(I, w0, t, method=method, rtol=rtol)
+    try:
+        traj = simulate(I, w0, t, method=method, rtol=rtol)
+    except StepBudgetError as exc:  # name the arguments that set the size of the run
+        raise StepBudgetError(f"perturbation_growth(Omega = {_validate.fmt(Omega)}, t up to "
+                              f"{_validate.fmt(float(np.max(np.abs(_validate.time_grid(t)))))}): {exc}") from None
     return np.max(np.abs(np.delete(traj.omega, p, axis=-1)), axis=-1)
