@@ -295,7 +295,8 @@ ENTRIES = [
     ("perturbation_growth", "perturbation_growth", lambda: (_body(), (1, 2), 1.0, T5), dict,
      {0: "obj:array", 1: "plane", 2: "real", 3: "vec"}),
     # scenes
-    ("Scene", "Scene", lambda: (_body(), W6, T5), dict, {0: "obj:array", 1: "arr", 2: "vec"}),
+    ("Scene", "Scene", lambda: (_body(), W6, T5), lambda: {"progress": False},
+     {0: "obj:array", 1: "arr", 2: "vec", "progress": "flag"}),
     ("hypercube_vertices", "hypercube_vertices", lambda: (3, 1.0), dict, {0: "int", 1: "pos"}),
     ("simplex_vertices", "simplex_vertices", lambda: (3, 1.0), dict, {0: "int", 1: "pos"}),
     ("ellipsoid_points", "ellipsoid_points", lambda: ([1.0, 2.0, 3.0], 5), dict, {0: "vec:pos", 1: "int"}),
