@@ -120,8 +120,20 @@ def _range_text(minimum: int | None, maximum: int | None) -> str:
 
 
 def dimension(N: Any, *, minimum: int = 2, name: str = "N") -> int:
-    """The space dimension ``N`` of so(N), an integer ``>= minimum``."""
-    return integer(name, N, minimum=minimum)
+    """The space dimension ``N`` of so(N), an integer ``>= minimum`` and at most ``options["max_dimension"]``.
+
+    The budget (1000 by default) turns a huge ``N``, which would hang or exhaust memory in
+    the plane tables, into a message.
+    """
+    from hyperrotor._options import options
+
+    N = integer(name, N, minimum=minimum)
+    if N > options["max_dimension"]:
+        raise ValueError(
+            f"{name} = {N} exceeds options['max_dimension'] = {options['max_dimension']} (so({N}) has "
+            f"{N * (N - 1) // 2} planes); raise it with hyperrotor.options(max_dimension=...) if you mean it"
+        )
+    return N
 
 
 def real(name: str, value: Any, *, allow_none: bool = False) -> float | None:

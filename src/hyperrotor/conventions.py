@@ -75,7 +75,6 @@ from typing import Any, Callable, Iterable, Sequence
 import numpy as np
 
 from . import _lazy, _validate
-from ._options import options
 from ._lazy import sympy as sp  # SymPy is imported on first symbolic use (light ``import hyperrotor``)
 
 __all__ = [
@@ -104,18 +103,13 @@ CONVENTIONS = _validate.CONVENTIONS
 # validation helpers (re-used by the rest of the package)
 # ----------------------------------------------------------------------------
 def check_dimension(N: Any, *, minimum: int = 2, name: str = "N") -> int:
-    """Return ``N`` as ``int`` or raise a ``TypeError``/``ValueError`` naming it (see :mod:`hyperrotor._validate`).
+    """Return ``N`` as ``int`` or raise a ``TypeError``/``ValueError`` naming it.
 
-    ``N`` may not exceed ``options["max_dimension"]`` (1000): a larger N would hang
-    or exhaust memory in the plane tables instead of failing with a message.
+    ``N`` must be an integer ``>= minimum`` and may not exceed ``options["max_dimension"]``
+    (1000): a larger N would hang or exhaust memory in the plane tables instead of failing
+    with a message.
     """
-    N = _validate.dimension(N, minimum=minimum, name=name)
-    if N > options["max_dimension"]:
-        raise ValueError(
-            f"{name} = {N} exceeds options['max_dimension'] = {options['max_dimension']} (so({N}) has "
-            f"{N * (N - 1) // 2} planes); raise it with hyperrotor.options(max_dimension=...) if you mean it"
-        )
-    return N
+    return _validate.dimension(N, minimum=minimum, name=name)
 
 
 def check_convention(convention: Any) -> str:
