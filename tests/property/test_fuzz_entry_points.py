@@ -462,11 +462,6 @@ PENDING_IDS = {
     "P": """
         poincare_section-1-huge
     """.split(),
-    # no longer hangs (the scipy path refuses over-budget runs early, bb5e77d), but simulate's StepBudgetError
-    # does not say that Omega = 1e300 is the cause (requested from the lead: stability.py names Omega)
-    "lead": """
-        perturbation_growth-2-huge
-    """.split(),
 }
 #: Cases that hang (> 3 s; no work budget): xfail, not run.
 HANGING_IDS: dict[str, list[str]] = {}

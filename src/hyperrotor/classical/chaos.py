@@ -45,7 +45,7 @@ many orbits, not single long orbits. The random initial tangent vectors come fro
 ``rng`` (seeded: reproducible) and are drawn before the ensemble is cut into chunks;
 each orbit runs the same compiled arithmetic in whichever chunk it falls, so
 ``client=`` (a :class:`dask.distributed.Client`) and in-process runs give the same
-numbers bit for bit (same numba build; see :mod:`hyperrotor._parallel`).
+numbers bit for bit (same numba build; see ``docs/scaling-out.md``).
 """
 from __future__ import annotations
 
@@ -328,8 +328,8 @@ def lyapunov_sweep(
     r"""Lyapunov exponents over a grid of bodies x initial conditions, in one (distributed) call.
 
     Every body is combined with every initial condition; the ``P * M`` orbits form one
-    ensemble that :func:`hyperrotor._parallel.map_rows` cuts into chunks (in-process
-    threads, or tasks on a dask ``client``). Each orbit's exponent is the one
+    ensemble that is cut into chunks: in-process threads, or tasks on a dask ``client``
+    (``docs/scaling-out.md``). Each orbit's exponent is the one
     :func:`lyapunov` gives for it with the same tangent vector.
 
     Parameters

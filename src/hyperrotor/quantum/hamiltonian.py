@@ -112,9 +112,9 @@ def rotor_hamiltonian(generators: Any, inertia: Any, *args: Any, hbar: float = 1
         (e.g. ``rep.to_qobj(form="antihermitian")`` or
         :func:`~hyperrotor.quantum.jmat_generators`).
     inertia : Inertia, RigidBody, mapping plane -> moment, or sequence
-        The physical plane moments :math:`I_{ij}` (:func:`hyperrotor._validate.moments`):
-        an :class:`hyperrotor.Inertia`, a body, ``{(i, j): I_ij}`` or
-        ``N(N-1)/2`` positive numbers in plane order.
+        The physical plane moments :math:`I_{ij}`: an :class:`hyperrotor.Inertia`,
+        a body, ``{(i, j): I_ij}`` naming every plane once, or ``N(N-1)/2``
+        finite positive real numbers in plane order.
     hbar : float, keyword-only, default 1
         :math:`\hat L^{ij} = -i\hbar X_{(ij)}` (eq. 141), so energies scale as :math:`\hbar^2`.
     form : {"antihermitian", "hermitian"}, keyword-only, default "antihermitian"

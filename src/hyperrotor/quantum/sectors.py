@@ -122,8 +122,8 @@ class Sector:
     real : bool
         The basis columns are fixed by an antiunitary symmetry :math:`T = UK`,
         :math:`T^2 = 1`, commuting with every generator (tensor GT irreps of real
-        type; U is the monomial conjugation intertwiner of the private module
-        ``hyperrotor.quantum._gt_monomials``), so :math:`B^\dagger \hat H B` is real
+        type; U is a monomial matrix in the Gelfand-Tsetlin basis intertwining the
+        representation with its complex conjugate), so :math:`B^\dagger \hat H B` is real
         symmetric for every rotor Hamiltonian (and is returned real by :func:`sector_hamiltonian`,
         which halves memory and makes the diagonalization ~4x cheaper).
     """
@@ -662,8 +662,9 @@ def sector_spectra(
         :math:`\hat L^{ij} = -i\hbar X_{(ij)}`; levels scale as :math:`\hbar^2`.
     parallel : bool, default False
         Diagonalize the sectors concurrently on ``workers`` threads in this
-        process (:func:`hyperrotor._parallel.map_rows`; each thread uses one BLAS
-        thread). ``False``: one sector after the other, each with all BLAS threads.
+        process, one sector per task (each thread uses one BLAS thread; see
+        ``docs/scaling-out.md``). ``False``: one sector after the other, each with
+        all BLAS threads.
     workers : int, optional
         Threads for ``parallel=True`` (default: the cores available).
     client : dask.distributed.Client, optional
