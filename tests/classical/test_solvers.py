@@ -361,6 +361,17 @@ def test_chunked_runs_equal_one_call_and_progress_changes_nothing(rng):
     np.testing.assert_array_equal(with_bar.L, one.L)
 
 
+@pytest.mark.parametrize("method", ADAPTIVE)
+def test_scipy_progress_bar_follows_the_time_covered_and_changes_nothing(method, capsys):
+    t = np.linspace(0.0, 30.0, 4)
+    quiet = hr.simulate(MOM3, np.tile(W3, (2, 1)), t, method=method, rtol=1e-8, progress=False)
+    capsys.readouterr()
+    loud = hr.simulate(MOM3, np.tile(W3, (2, 1)), t, method=method, rtol=1e-8, progress=True)
+    err = capsys.readouterr().err
+    assert f"(scipy {method})" in err and "%|" in err
+    np.testing.assert_array_equal(loud.L, quiet.L)
+
+
 @pytest.mark.slow
 def test_ctrl_c_interrupts_a_long_run(tmp_path):
     """SIGINT to a process in a long compiled run raises KeyboardInterrupt there (chunks)."""

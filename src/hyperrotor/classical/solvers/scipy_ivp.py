@@ -41,12 +41,15 @@ from hyperrotor import _validate
 from hyperrotor.conventions import structure_constants, to_matrix
 
 from .base import Problem, RunResult, Solver, power_of_two_scale
+from .driver import _progress_bar, event_specs
 from .step_control import StepBudgetError
 
 __all__ = ["ScipyIVP", "DOP853", "RK45", "RK23", "LSODA", "Radau", "BDF"]
 
 #: solve_ivp warns below this rtol; requests are raised to it
 RTOL_FLOOR = 100 * np.finfo(float).eps
+#: the progress bar (``progress=True``) is updated every this many right-hand-side evaluations
+PROGRESS_EVERY = 256
 #: default ``max_step``: at most this many radians of the fastest initial rate per step. No
 #: accurate step is longer; near a steady rotation (right-hand side ~ 0) scipy's first-step rule
 #: would otherwise try steps of 1e6 radians and overflow, or (LSODA) fail to converge
@@ -106,8 +109,6 @@ class ScipyIVP(Solver):
     def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None) -> RunResult:
         from scipy.integrate import solve_ivp
 
-        from .driver import event_specs
-
         self.check(problem)
         if getattr(control, "rtol", None) is None:
             raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {self.name!r} takes rtol only")
@@ -132,94 +133,109 @@ class ScipyIVP(Solver):
         t_events = L_events = T_events = None
         K_done = K
         rbs = []
-        for b in range(B):
-            # each member in its own scale (a power of two, exact): the same numbers alone or in an ensemble
-            rb = power_of_two_scale(float(np.max(np.abs(problem.L0[b] / moments))))
-            rbs.append(rb)
-            tau_b = None if torque is None or callable(torque) else torque[b] / (rb * rb)
+        bar = _progress_bar(progress, B)  # in members; fractions from the time covered
+        if bar is not None:  # fractional members: show the percentage and the times only
+            bar.bar_format = "{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining} (scipy " + self.name + ")"
+            if progress:  # shown from the start (else after tqdm's delay, already in this format)
+                bar.refresh()
+        try:
+            for b in range(B):
+                if bar is not None:
+                    bar.update(b - bar.n)
+                # each member in its own scale (a power of two, exact): the same numbers alone or in an ensemble
+                rb = power_of_two_scale(float(np.max(np.abs(problem.L0[b] / moments))))
+                rbs.append(rb)
+                tau_b = None if torque is None or callable(torque) else torque[b] / (rb * rb)
 
-            progress_b = {"far": 0.0, "next": nfev[0] + EXTRAPOLATE_AFTER, "start": nfev[0]}
+                progress_b = {"far": 0.0, "next": nfev[0] + EXTRAPOLATE_AFTER, "start": nfev[0]}
 
-            def f(tt, y, tau_b=tau_b, rb=rb, pb=progress_b, b=b):
-                nfev[0] += 1
-                if nfev[0] > budget:
-                    raise _Budget
-                pb["far"] = max(pb["far"], abs(tt - pb["t0"]))
-                if nfev[0] >= pb["next"]:
-                    pb["next"] = nfev[0] + (nfev[0] - pb["start"])
-                    _extrapolate(nfev[0], nfev[0] - pb["start"], pb["far"], pb["span"], B - b - 1, budget, self.name)
-                w = y[:n]
-                if not np.all(np.isfinite(y)):  # an overflowing trial step: infinite error, scipy shrinks the step
-                    return np.full(y.shape, np.inf)
-                with np.errstate(over="ignore", invalid="ignore"):  # trial steps may overflow; scipy rejects them
-                    dw = np.asarray(rhs(w), dtype=float)
-                if torque is not None:
-                    tau = (np.asarray(torque(tt / rb, w * rb), dtype=float) / (rb * rb)) if callable(torque) else tau_b
-                    if tau.shape != (n,) or not np.all(np.isfinite(tau)):
-                        raise ValueError(f"torque(t, omega) must return {n} finite body-frame components, "
-                                         f"got {_validate.fmt(tau)}")
-                    dw = dw + tau / moments
-                if not with_att:
-                    return dw
-                Tm = y[n:].reshape(N, N)
-                return np.concatenate([dw, (to_matrix(w, "standard") @ Tm).ravel()])
+                def f(tt, y, tau_b=tau_b, rb=rb, pb=progress_b, b=b):
+                    nfev[0] += 1
+                    if nfev[0] > budget:
+                        raise _Budget
+                    pb["far"] = max(pb["far"], abs(tt - pb["t0"]))
+                    if nfev[0] >= pb["next"]:
+                        pb["next"] = nfev[0] + (nfev[0] - pb["start"])
+                        _extrapolate(nfev[0], nfev[0] - pb["start"], pb["far"], pb["span"], B - b - 1, budget,
+                                     self.name)
+                    if bar is not None and not nfev[0] % PROGRESS_EVERY:
+                        bar.update(b + min(1.0, pb["far"] / pb["span"]) - bar.n)
+                    w = y[:n]
+                    if not np.all(np.isfinite(y)):  # an overflowing trial step: infinite error, scipy shrinks the step
+                        return np.full(y.shape, np.inf)
+                    with np.errstate(over="ignore", invalid="ignore"):  # trial steps may overflow; scipy rejects them
+                        dw = np.asarray(rhs(w), dtype=float)
+                    if torque is not None:
+                        tau = (np.asarray(torque(tt / rb, w * rb), dtype=float) / (rb * rb)
+                               if callable(torque) else tau_b)
+                        if tau.shape != (n,) or not np.all(np.isfinite(tau)):
+                            raise ValueError(f"torque(t, omega) must return {n} finite body-frame components, "
+                                             f"got {_validate.fmt(tau)}")
+                        dw = dw + tau / moments
+                    if not with_att:
+                        return dw
+                    Tm = y[n:].reshape(N, N)
+                    return np.concatenate([dw, (to_matrix(w, "standard") @ Tm).ravel()])
 
-            w0 = problem.L0[b] / moments / rb
-            y0 = w0 if not with_att else np.concatenate([w0, problem.T0[b].ravel()])
-            wscale = float(np.max(np.abs(w0))) or 1.0
-            Lscale = float(np.linalg.norm(problem.L0[b] / rb)) or wscale * float(moments.min())
-            atol = rtol * np.minimum(wscale, Lscale / moments)
-            if with_att:
-                atol = np.concatenate([atol, np.full(N * N, rtol)])
-            Lout[b, 0] = problem.L0[b]
-            if with_att:
-                Tout[b, 0] = problem.T0[b]
-            rate = ratio * n * wscale + (N * wscale if with_att else 0.0)
-            if torque is not None and not callable(torque):
-                rate += float(tau_rate[b]) / (rb * rb * wscale)
-            if K == 1 or (not specs and span * rb * rate < STILL_FRACTION):  # no motion at double precision
-                Lout[b, 1:] = problem.L0[b]
+                w0 = problem.L0[b] / moments / rb
+                y0 = w0 if not with_att else np.concatenate([w0, problem.T0[b].ravel()])
+                wscale = float(np.max(np.abs(w0))) or 1.0
+                Lscale = float(np.linalg.norm(problem.L0[b] / rb)) or wscale * float(moments.min())
+                atol = rtol * np.minimum(wscale, Lscale / moments)
                 if with_att:
-                    Tout[b, 1:] = problem.T0[b]
-                sols.append(None)
-                calls.append(None)
-                continue
-            ev = [_scaled_event(sp, s * rb, moments, n) for sp in specs] or None
-            kw = {k: v * s * rb for k, v in self.options.items() if v is not None}
-            kw.setdefault("max_step", MAX_STEP_RADIANS / wscale)
-            tb = t * rb
-            progress_b.update(t0=tb[0], span=abs(tb[-1] - tb[0]))
+                    atol = np.concatenate([atol, np.full(N * N, rtol)])
+                Lout[b, 0] = problem.L0[b]
+                if with_att:
+                    Tout[b, 0] = problem.T0[b]
+                rate = ratio * n * wscale + (N * wscale if with_att else 0.0)
+                if torque is not None and not callable(torque):
+                    rate += float(tau_rate[b]) / (rb * rb * wscale)
+                if K == 1 or (not specs and span * rb * rate < STILL_FRACTION):  # no motion at double precision
+                    Lout[b, 1:] = problem.L0[b]
+                    if with_att:
+                        Tout[b, 1:] = problem.T0[b]
+                    sols.append(None)
+                    calls.append(None)
+                    continue
+                ev = [_scaled_event(sp, s * rb, moments, n) for sp in specs] or None
+                kw = {k: v * s * rb for k, v in self.options.items() if v is not None}
+                kw.setdefault("max_step", MAX_STEP_RADIANS / wscale)
+                tb = t * rb
+                progress_b.update(t0=tb[0], span=abs(tb[-1] - tb[0]))
 
-            def call(dense, f=f, y0=y0, atol=atol, ev=ev, kw=kw, tb=tb):
-                # a trial step may overflow: the right-hand side answers inf, scipy's error norm is
-                # inf and the step is rejected (the accepted solution is checked for finiteness below)
-                with np.errstate(over="ignore", invalid="ignore"):
-                    return solve_ivp(f, (tb[0], tb[-1]), y0, method=self.scipy_method, t_eval=tb, rtol=rtol, atol=atol,
-                                     events=ev, dense_output=dense, **kw)
+                def call(dense, f=f, y0=y0, atol=atol, ev=ev, kw=kw, tb=tb):
+                    # a trial step may overflow: the right-hand side answers inf, scipy's error norm is
+                    # inf and the step is rejected (the accepted solution is checked for finiteness below)
+                    with np.errstate(over="ignore", invalid="ignore"):
+                        return solve_ivp(f, (tb[0], tb[-1]), y0, method=self.scipy_method, t_eval=tb, rtol=rtol,
+                                         atol=atol, events=ev, dense_output=dense, **kw)
 
-            calls.append(call)
-            try:
-                sol = call(bool(specs))
-            except _Budget:
-                raise StepBudgetError(
-                    f"scipy {self.name} stopped after {budget} right-hand-side evaluations (the budget max_steps = "
-                    f"{budget}) at member {b}; raise it with simulate(..., max_steps=...) or "
-                    f"hyperrotor.options(max_steps=...), or ask for less (shorter t, larger rtol)"
-                ) from None
-            if sol.status == -1:
-                raise RuntimeError(f"scipy {self.name} failed: {sol.message}")
-            if not np.all(np.isfinite(sol.y)):
-                raise FloatingPointError(f"scipy {self.name}: the solution became non-finite")
-            kb = sol.t.size
-            K_done = kb
-            Lout[b, :kb] = sol.y[:n].T * moments * rb
-            if with_att:
-                Tout[b, :kb] = sol.y[n:].T.reshape(kb, N, N)
-            sols.append(sol.sol)  # None unless events asked for scipy's dense output
-            if specs:
-                t_events = [te / (s * rb) for te in sol.t_events]
-                L_events = [ye[:, :n] * moments * (s * rb) if ye.size else np.empty((0, n)) for ye in sol.y_events]
-                T_events = ([ye[:, n:].reshape(-1, N, N) for ye in sol.y_events] if with_att else None)
+                calls.append(call)
+                try:
+                    sol = call(bool(specs))
+                except _Budget:
+                    raise StepBudgetError(
+                        f"scipy {self.name} stopped after {budget} right-hand-side evaluations (the budget max_steps = "
+                        f"{budget}) at member {b}; raise it with simulate(..., max_steps=...) or "
+                        f"hyperrotor.options(max_steps=...), or ask for less (shorter t, larger rtol)"
+                    ) from None
+                if sol.status == -1:
+                    raise RuntimeError(f"scipy {self.name} failed: {sol.message}")
+                if not np.all(np.isfinite(sol.y)):
+                    raise FloatingPointError(f"scipy {self.name}: the solution became non-finite")
+                kb = sol.t.size
+                K_done = kb
+                Lout[b, :kb] = sol.y[:n].T * moments * rb
+                if with_att:
+                    Tout[b, :kb] = sol.y[n:].T.reshape(kb, N, N)
+                sols.append(sol.sol)  # None unless events asked for scipy's dense output
+                if specs:
+                    t_events = [te / (s * rb) for te in sol.t_events]
+                    L_events = [ye[:, :n] * moments * (s * rb) if ye.size else np.empty((0, n)) for ye in sol.y_events]
+                    T_events = ([ye[:, n:].reshape(-1, N, N) for ye in sol.y_events] if with_att else None)
+        finally:
+            if bar is not None:
+                bar.close()
 
         def dense(tq):
             tq = np.asarray(tq, dtype=float)
