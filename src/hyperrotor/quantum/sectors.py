@@ -464,8 +464,9 @@ def sector_hamiltonian(H, sector, *, dense: bool = True):
     Parameters
     ----------
     H : qutip.Qobj, scipy.sparse matrix or ndarray
-        Commuting with the sign rotations (any rotor Hamiltonian of the sector's
-        representation).
+        Hermitian and finite (checked: a non-Hermitian ``H`` is refused, not
+        symmetrized), commuting with the sign rotations (any rotor Hamiltonian of
+        the sector's representation).
     sector : Sector or basis matrix (dim x n, orthonormal columns)
     dense : bool, default True
         Return a dense Hermitian ndarray (``False``: the sparse product, CSR).
