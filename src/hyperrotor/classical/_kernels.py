@@ -91,11 +91,13 @@ _C1, _C2, _C3, _C4 = -0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0
 _C5, _C6, _C7 = -1.0 / 3628800.0, 1.0 / 479001600.0, -1.0 / 87178291200.0
 
 
-@jit
-def sincos(x):  # pragma: no cover - jitted
-    """``(sin x, cos x)``: inline polynomials for ``|x| <= 0.5`` (the usual half-angles), libm otherwise."""
-    if abs(x) > 0.5:
-        return math.sin(x), math.cos(x)
+@jit(inline="always")
+def sincos_poly(x):  # pragma: no cover - jitted
+    """``(sin x, cos x)`` by the Taylor polynomials above, branch-free (accurate for ``|x| <= 0.5``).
+
+    Inlined into the kernels (numba IR level), so the loops over bodies that call it stay
+    vectorised; every sine and cosine of the splittings comes from here or from libm.
+    """
     z = x * x
     z2 = z * z
     z4 = z2 * z2
@@ -103,6 +105,44 @@ def sincos(x):  # pragma: no cover - jitted
     ps = (_S1 + z * _S2) + z2 * (_S3 + z * _S4) + z4 * ((_S5 + z * _S6) + z2 * _S7)
     pc = (_C1 + z * _C2) + z2 * (_C3 + z * _C4) + z4 * ((_C5 + z * _C6) + z2 * _C7)
     return x + (x * z) * ps, 1.0 + z * pc
+
+
+@jit
+def sincos(x):  # pragma: no cover - jitted
+    """``(sin x, cos x)``: inline polynomials for ``|x| <= 0.5`` (the usual half-angles), libm otherwise."""
+    if abs(x) > 0.5:
+        return math.sin(x), math.cos(x)
+    return sincos_poly(x)
+
+
+@jit(inline="always")
+def rotation_poly(x):  # pragma: no cover - jitted
+    """``(sin 2x, 1 - cos 2x)`` of a plane rotation from its half-angle ``x`` (:func:`sincos_poly`, branch-free).
+
+    ``1 - cos 2x = 2 sin^2 x`` stays accurate for small angles. The bodies-innermost kernels
+    call it for all lanes, then :func:`rotation` again for the lanes with ``|x| > 0.5``.
+    """
+    sh, chh = sincos_poly(x)
+    return 2.0 * sh * chh, 2.0 * sh * sh
+
+
+@jit(inline="always")
+def rotation(x):  # pragma: no cover - jitted
+    """``(sin 2x, 1 - cos 2x)`` from the half-angle ``x`` by :func:`sincos` (libm beyond 0.5)."""
+    sh, chh = sincos(x)
+    return 2.0 * sh * chh, 2.0 * sh * sh
+
+
+@jit(inline="always")
+def rotate_lanes(L, p, q, sg, S, V):  # pragma: no cover - jitted
+    """Rotate the pair ``(L[p, j], L[q, j])`` of every lane ``j`` by ``S[j] * sg``, ``V[j]`` (plain arithmetic)."""
+    for j in range(S.shape[0]):
+        ss = S[j] * sg
+        v = V[j]
+        x = L[p, j]
+        y = L[q, j]
+        L[p, j] = x + (ss * y - v * x)
+        L[q, j] = y - (ss * x + v * y)
 
 
 @jit
@@ -178,9 +218,7 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
                             Lh[e] = snew
                         continue
                     half = fac[r] * (Lh[a] + Ll[a]) if compensated else fac[r] * Lh[a]
-                    sh, chh = sincos(half)
-                    s = 2.0 * sh * chh       # sin(phi)
-                    v = 2.0 * sh * sh        # 1 - cos(phi), accurate for small phi
+                    s, v = rotation(half)  # sin(phi), 1 - cos(phi)
                     for e in range(npair):
                         p = pair_p[a, e]
                         q = pair_q[a, e]
@@ -270,37 +308,21 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                                 Lh[e, j] = snew
                         continue
                     big = False
-                    for j in range(nb):  # branch-free polynomial sincos (vectorised over bodies)
+                    for j in range(nb):  # polynomial sincos of the half-angles, branch-free (vectorised)
                         x = fac[r, j] * (Lh[a, j] + Ll[a, j])
-                        z = x * x
-                        z2 = z * z
-                        z4 = z2 * z2
-                        ps = (_S1 + z * _S2) + z2 * (_S3 + z * _S4) + z4 * ((_S5 + z * _S6) + z2 * _S7)
-                        pc = (_C1 + z * _C2) + z2 * (_C3 + z * _C4) + z4 * ((_C5 + z * _C6) + z2 * _C7)
-                        sh = x + (x * z) * ps
-                        chh = 1.0 + z * pc
-                        S[j] = 2.0 * sh * chh
-                        V[j] = 2.0 * sh * sh
-                        big |= z > 0.25
+                        S[j], V[j] = rotation_poly(x)
+                        big |= x * x > 0.25
                     if big:  # some half-angle beyond 0.5: redo those with libm (as sincos does)
                         for j in range(nb):
                             x = fac[r, j] * (Lh[a, j] + Ll[a, j])
                             if abs(x) > 0.5:
-                                sh, chh = sincos(x)
-                                S[j] = 2.0 * sh * chh
-                                V[j] = 2.0 * sh * sh
+                                S[j], V[j] = rotation(x)
                     for e in range(npair):
                         p = pair_p[a, e]
                         q = pair_q[a, e]
                         sg = pair_s[a, e]
                         if not compensated:
-                            for j in range(nb):
-                                ss = S[j] * sg
-                                v = V[j]
-                                x = Lh[p, j]
-                                y = Lh[q, j]
-                                Lh[p, j] = x + (ss * y - v * x)
-                                Lh[q, j] = y - (ss * x + v * y)
+                            rotate_lanes(Lh, p, q, sg, S, V)
                             continue
                         for j in range(nb):  # contiguous, branch-free: vectorised over bodies
                             ss = S[j] * sg

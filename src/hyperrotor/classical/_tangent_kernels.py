@@ -46,7 +46,7 @@ import numpy as np
 
 from hyperrotor._jit import jit
 
-from ._kernels import _C1, _C2, _C3, _C4, _C5, _C6, _C7, _S1, _S2, _S3, _S4, _S5, _S6, _S7, sincos
+from ._kernels import rotate_lanes, rotation, rotation_poly
 
 __all__: list[str] = []  # private module
 
@@ -83,9 +83,7 @@ def _tangent_run(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                 for r in range(m):
                     a = seq_plane[r]
                     f = fac[r]
-                    sh, chh = sincos(f * L[a])
-                    s = 2.0 * sh * chh       # sin(phi)
-                    v = 2.0 * sh * sh        # 1 - cos(phi)
+                    s, v = rotation(f * L[a])  # sin(phi), 1 - cos(phi)
                     f2 = 2.0 * f             # d phi / d L_a
                     for e in range(npair):
                         p = pair_p[a, e]
@@ -190,37 +188,21 @@ def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_
                 for r in range(m):
                     a = seq_plane[r]
                     big = False
-                    for j in range(nb):  # branch-free polynomial sincos of the half-angle
+                    for j in range(nb):  # polynomial sincos of the half-angles, branch-free (vectorised)
                         x = fac[r, j] * L[a, j]
-                        z = x * x
-                        z2 = z * z
-                        z4 = z2 * z2
-                        ps = (_S1 + z * _S2) + z2 * (_S3 + z * _S4) + z4 * ((_S5 + z * _S6) + z2 * _S7)
-                        pc = (_C1 + z * _C2) + z2 * (_C3 + z * _C4) + z4 * ((_C5 + z * _C6) + z2 * _C7)
-                        sh = x + (x * z) * ps
-                        chh = 1.0 + z * pc
-                        S[j] = 2.0 * sh * chh
-                        V[j] = 2.0 * sh * sh
+                        S[j], V[j] = rotation_poly(x)
                         F2[j] = 2.0 * fac[r, j]
-                        big |= z > 0.25
+                        big |= x * x > 0.25
                     if big:  # some half-angle beyond 0.5: those with libm, as sincos does
                         for j in range(nb):
                             x = fac[r, j] * L[a, j]
                             if abs(x) > 0.5:
-                                sh, chh = sincos(x)
-                                S[j] = 2.0 * sh * chh
-                                V[j] = 2.0 * sh * sh
+                                S[j], V[j] = rotation(x)
                     for e in range(npair):
                         p = pair_p[a, e]
                         q = pair_q[a, e]
                         sg = pair_s[a, e]
-                        for j in range(nb):
-                            ss = S[j] * sg
-                            v = V[j]
-                            x = L[p, j]
-                            y = L[q, j]
-                            L[p, j] = x + (ss * y - v * x)
-                            L[q, j] = y - (ss * x + v * y)
+                        rotate_lanes(L, p, q, sg, S, V)
                         for i in range(k):
                             for j in range(nb):
                                 ss = S[j] * sg
