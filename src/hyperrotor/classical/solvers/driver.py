@@ -4,10 +4,16 @@ One driver serves every :class:`~.base.FixedStepSolver` (splittings, Moser-Vesel
 
 Chunks
     The steps of the run are cut into chunks of about ``options["chunk_seconds"]`` of
-    compiled work (the chunk size adapts to the measured time of the previous chunk; a
-    run shorter than one chunk is one call). Between chunks Python runs its signal
-    handlers, so Ctrl-C raises :class:`KeyboardInterrupt` within about a chunk's time,
-    updates the progress bar (tqdm) and checks that the state is finite.
+    compiled work (the chunk size adapts to the measured time of the previous chunk; the
+    first one is sized from the measured cost per flow of the previous run of the same
+    kind, so a run expected to be shorter than one chunk is one call, without copies).
+    Between chunks Python runs its signal handlers, so Ctrl-C raises
+    :class:`KeyboardInterrupt` within about a chunk's time, updates the progress bar
+    (tqdm) and checks that the state is finite. Every chunk takes the run's own step
+    lengths (a chunk may start inside an output interval), so for the splittings a run
+    cut into chunks gives the same numbers as one call, bit for bit, however the chunks
+    fall; Moser-Veselov restarts its Newton predictor at a chunk boundary (a difference
+    at the round-off level of its implicit solve).
 Events
     With event functions ``g(t, L)`` the state is kept at every step; a sign change of
     ``g`` between two steps (with the requested ``direction``) is located by Brent's method
@@ -18,7 +24,8 @@ Dense output
     The state at any time :math:`\tau` in :math:`[t_k, t_{k+1}]` is rebuilt from the stored
     output state at :math:`t_k`: the same steps as the run up to the last step point
     :math:`t_j \le \tau`, then one step of length :math:`\tau - t_j` (so the result is
-    continuous in :math:`\tau`, equals the run at step points, and has the method's accuracy).
+    continuous in :math:`\tau`, equals the run at its step points bit for bit (splittings),
+    and has the method's accuracy).
     Cost: at most one output interval's steps per group of queries in it, plus one step
     per query.
 """

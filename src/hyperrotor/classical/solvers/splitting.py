@@ -185,10 +185,12 @@ def shift_rule(moments: np.ndarray, L2: np.ndarray) -> np.ndarray:
         weights = bound / norm  # (B, n)
     else:
         weights = np.where(norm > 0, bound / np.where(norm > 0, norm, 1.0), 1.0)
-    cost = weights @ dist  # (B, V)
-    cost = np.round(cost / np.maximum(cost.max(axis=1, keepdims=True), 1e-300), 12)  # equal to round-off: tie
-    score = np.where(cost == cost.min(axis=1, keepdims=True), counts, -1)
-    return values[np.argmax(score, axis=1)]  # first maximum: most planes, then the smaller value
+    cost = np.ascontiguousarray((weights @ dist).T)  # (V, B): reductions over the few candidates run along B
+    cost /= np.maximum(cost.max(axis=0), 1e-300)
+    cost *= 1e12  # equal to 12 digits: a tie (np.round(cost, 12) without its final division by 1e12)
+    np.rint(cost, out=cost)
+    score = np.where(cost == cost.min(axis=0), counts[:, None], -1)
+    return values[np.argmax(score, axis=0)]  # first maximum: most planes, then the smaller value
 
 
 @lru_cache(maxsize=64)
@@ -338,17 +340,26 @@ class Splitting(FixedStepSolver):
     def flows_per_step(self, problem: Problem) -> int:
         return max(1, int(self._state["word"][0].size))
 
+    def _rows(self, members):
+        """Rates, torques and shifts of ``members`` (all when ``None``; the last selection is cached:
+        the step control probes the same members many times)."""
+        st = self._state
+        if members is None:
+            return st["rates"], st["torque"], st["shift"]
+        last = st.get("rows")
+        if last is None or last[0] is not members:
+            last = st["rows"] = (members, st["rates"][members], st["torque"][members], st["shift"][members])
+        return last[1:]
+
     def advance(self, problem, L, T, t, nsub, members=None, h=None):
         st = self._state
-        sel = slice(None) if members is None else members
+        rates, torque, shift = self._rows(members)
         comp = st["compensated"]
         comp = False if comp is None else comp
         with_att = T is not None
-        N = problem.N
-        T_run = np.ascontiguousarray(T) if with_att else np.zeros((1, N, N))
-        outL, outT = run_kernel(L, st["rates"][sel], st["word"], st["tables"], step_lengths(t, nsub) if h is None else h,
-                                nsub, st["torque"][sel], T_run, with_att, comp)
-        shift = st["shift"][sel]
+        T_run = np.ascontiguousarray(T) if with_att else np.zeros((1, problem.N, problem.N))
+        outL, outT = run_kernel(L, rates, st["word"], st["tables"], step_lengths(t, nsub) if h is None else h,
+                                nsub, torque, T_run, with_att, comp)
         if with_att and np.any(shift != 0.0):
             outT = unshift_attitude(outT, L, T, t, shift)
         return outL, outT

@@ -176,12 +176,14 @@ class ErrorTarget:
                 return None, Pv / (k * ms)
             finally:
                 spent[0] = min(spent[0], (time.perf_counter() - t0) / (3 * k * ms * len(sel)))
-            if not (np.all(np.isfinite(y1)) and np.all(np.isfinite(y2))):
-                return None, Pv / (k * ms)
+            if not (math.isfinite(float(y1.sum() + y2.sum())) or (np.all(np.isfinite(y1)) and np.all(np.isfinite(y2)))):
+                return None, Pv / (k * ms)  # (a finite sum proves finite entries; else look at them)
             dL = np.abs(y1 - y2)  # (members, k + 1, n)
-            Lmax = np.maximum(np.abs(y2).max(axis=(1, 2)), 1e-300)[:, None, None]
-            wmax_s = np.maximum(np.abs(y2 / Ms).max(axis=(1, 2)), 1e-300)[:, None, None]
-            e = max(float(np.max(dL / Lmax)), float(np.max(dL / Ms / wmax_s)))
+            dW = dL / Ms
+            Lmax = np.maximum(np.abs(y2).max(axis=(1, 2)), 1e-300)
+            wmax_s = np.maximum(np.abs(y2 / Ms).max(axis=(1, 2)), 1e-300)
+            # max(x / c) = max(x) / c for c > 0 (rounded division is monotonic): per member, then over members
+            e = max(float(np.max(dL.max(axis=(1, 2)) / Lmax)), float(np.max(dW.max(axis=(1, 2)) / wmax_s)))
             return e / (1.0 - 2.0 ** -p), Pv / (k * ms)
 
         # 2. probe
