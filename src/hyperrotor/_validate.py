@@ -354,12 +354,14 @@ def time_grid(t: Any, *, name: str = "t", allow_decreasing: bool = True) -> np.n
 # ----------------------------------------------------------------------------
 # so(N) labels and bodies
 # ----------------------------------------------------------------------------
-def plane(value: Any, N: int) -> tuple[int, int]:
+def plane(value: Any, N: int | None) -> tuple[int, int]:
     """A rotation plane of so(N): a 1-based pair ``(i, j)`` with ``1 <= i < j <= N``.
 
     Accepts a pair of integers or a digit string such as ``"12"`` (N < 10) or ``"1,10"``.
+    ``N=None``: N is not known yet (a label read before the dimension): only ``1 <= i < j``.
     """
-    N = dimension(N)
+    N = dimension(N) if N is not None else None
+    bound = "N" if N is None else str(N)
     pair: Any = value
     if isinstance(value, str):
         text = value.strip()
@@ -369,9 +371,10 @@ def plane(value: Any, N: int) -> tuple[int, int]:
             raise ValueError
         i, j = (integer("plane index", v) if not isinstance(v, str) else int(v) for v in pair)
     except (TypeError, ValueError):
-        raise ValueError(f"a plane is a pair (i, j) of integers with 1 <= i < j <= {N}, got {fmt(value)}") from None
-    if not 1 <= i < j <= N:
-        raise ValueError(f"unknown plane {fmt(value)} for N = {N}: planes are pairs (i, j) with 1 <= i < j <= {N}")
+        raise ValueError(f"a plane is a pair (i, j) of integers with 1 <= i < j <= {bound}, got {fmt(value)}") from None
+    if not (1 <= i < j and (N is None or j <= N)):
+        where = "" if N is None else f" for N = {N}"
+        raise ValueError(f"unknown plane {fmt(value)}{where}: planes are pairs (i, j) with 1 <= i < j <= {bound}")
     return i, j
 
 
@@ -405,7 +408,7 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
     if isinstance(src, Mapping):
         try:
             if N is None:  # infer N from the largest index named (validated against it just below)
-                labels = [plane(p, 10**6) for p in src]
+                labels = [plane(p, None) for p in src]
                 n = max(j for _, j in labels)
             else:
                 n = N

@@ -185,7 +185,7 @@ def plane_label(plane: Sequence[int], N: int | None = None) -> str:
     """A compact label ``"12"`` (``"1,10"`` when an index has two digits)."""
     if N is not None:
         N = check_dimension(N)
-    i, j = _validate.plane(plane, N if N is not None else 10**9)
+    i, j = _validate.plane(plane, N)
     sep = "," if max(i, j) > 9 or (N is not None and N > 9) else ""
     return f"{i}{sep}{j}"
 
