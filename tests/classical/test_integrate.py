@@ -55,7 +55,7 @@ def test_elementary_flow_is_the_flow_of_one_plane_term(N, compensated, rng):
             # a negative step is the inverse flow: run on a reversed grid by flipping the coefficient
             coef = np.array([1.0 if tt[1] > 0 else -1.0])
             _kernels.split_run(L0, 1.0 / mom, np.array([a]), coef, *tables, np.array([h]), np.array([1]),
-                               np.zeros((1, n)), np.eye(N)[None], True, compensated, outL, outT)
+                               np.zeros((1, n)), np.eye(N)[None], True, compensated, outL, outT, np.zeros((1, 2, n)))
             outs.append((outL[0, 1], outT[0, 1]))
         w = np.zeros(n)
         w[a] = L0[0, a] / mom[0, a]
@@ -81,7 +81,7 @@ def test_jitted_and_python_kernels_agree(compensated, rng, eps):
         outL = np.zeros((3, 3, n))
         outT = np.zeros((3, 3, N, N))
         fn(L0, 1.0 / mom, *word, *tables, np.diff(t) / nsub, nsub, np.zeros((3, n)), np.broadcast_to(np.eye(N), (3, N, N)).copy(),
-           True, compensated, outL, outT)
+           True, compensated, outL, outT, np.zeros((3, 2, n)))
         outs.append((outL, outT))
     np.testing.assert_allclose(outs[0][0], outs[1][0], rtol=0, atol=64 * eps * np.abs(L0).max())
     np.testing.assert_allclose(outs[0][1], outs[1][1], rtol=0, atol=64 * eps)
@@ -113,10 +113,10 @@ def test_ensemble_kernel_equals_per_body_kernel(use_py, compensated, rng):
             pytest.skip("numba disabled: the kernels are already plain Python")
         ens = ens.py_func
     a = np.zeros((B, 3, n))
-    ens(L0, 1.0 / mom, *word, *tables[:3], np.diff(t) / nsub, nsub, tq, 8, compensated, a)
+    ens(L0, 1.0 / mom, *word, *tables[:3], np.diff(t) / nsub, nsub, tq, 8, compensated, a, np.zeros((B, 2, n)))
     b = np.zeros((B, 3, n))
-    _kernels.split_run_serial(L0, 1.0 / mom, *word, *tables, np.diff(t) / nsub, nsub, tq, np.zeros((1, N, N)), False, compensated,
-                              b, np.zeros((B, 1, N, N)))
+    _kernels.split_run_serial(L0, 1.0 / mom, *word, *tables, np.diff(t) / nsub, nsub, tq, np.zeros((1, N, N)), False,
+                              compensated, b, np.zeros((B, 1, N, N)), np.zeros((B, 2, n)))
     np.testing.assert_array_equal(a, b)
 
 

@@ -168,7 +168,7 @@ def store_attitude(T, b, k, outT):  # pragma: no cover - jitted
 
 
 def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j,
-               hstep, nsub, torque, T0, with_attitude, compensated, outL, outT):  # pragma: no cover - jitted
+               hstep, nsub, torque, T0, with_attitude, compensated, outL, outT, carry):  # pragma: no cover - jitted
     """Integrate ``B`` bodies over ``K = hstep.size + 1`` output times with a composed splitting method.
 
     Interval ``k`` is covered by ``nsub[k]`` steps of length ``hstep[k]`` (the driver passes
@@ -178,6 +178,9 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
     ``outT[b, k]`` (plain-matrix attitude, starting from ``T0[b]``). With ``compensated``
     the increments of ``L`` are added with error-free TwoSum (``L = Lh + Ll``), else in
     plain arithmetic (~1.6x faster; see ``COMPENSATE_ABOVE`` in ``solvers/splitting.py``).
+    ``carry (B, 2, n)`` continues a run exactly: on entry ``carry[b, 1]`` is the low part
+    ``Ll`` of the start (``L0`` its high part; zeros for a new run), on exit
+    ``carry[b] = (Lh, Ll)`` of the last state (outputs are the rounded sums ``Lh + Ll``).
     Compiled twice: :func:`split_run` (``prange`` over bodies, threads) and
     :func:`split_run_serial` (no thread launch: cheaper for a few bodies).
     """
@@ -189,11 +192,12 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
     N = T0.shape[1]
     for b in prange(B):
         Lh = np.empty(n)  # compensated storage: L = Lh + Ll (Lh carries the value, Ll the rounding error)
-        Ll = np.zeros(n)
+        Ll = np.empty(n)
         fac = np.empty(m)
         for a in range(n):
             Lh[a] = L0[b, a]
-            outL[b, 0, a] = Lh[a]
+            Ll[a] = carry[b, 1, a]
+            outL[b, 0, a] = Lh[a] + Ll[a]
         T = start_attitude(T0, b, with_attitude, outT)
         for k in range(K - 1):
             ns = nsub[k]
@@ -252,16 +256,19 @@ def _split_run(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, 
                 outL[b, k + 1, a] = Lh[a] + Ll[a]
             if with_attitude:
                 store_attitude(T, b, k + 1, outT)
+        for a in range(n):
+            carry[b, 0, a] = Lh[a]
+            carry[b, 1, a] = Ll[a]
 
 
 def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
-                        hstep, nsub, torque, chunk, compensated, outL):  # pragma: no cover - jitted
+                        hstep, nsub, torque, chunk, compensated, outL, carry):  # pragma: no cover - jitted
     """Same integration as :func:`_split_run` without attitude, bodies innermost.
 
     Bodies are processed in chunks of ``chunk`` (threads over chunks); inside a chunk the
     loop over bodies is the innermost one, so the independent rotations of different
     bodies overlap in the CPU pipeline instead of waiting on one body's chain of flows.
-    Same arithmetic per body as :func:`_split_run` (results agree to the last bit).
+    Same arithmetic per body as :func:`_split_run` (results agree to the last bit); same ``carry``.
     """
     B = L0.shape[0]
     n = L0.shape[1]
@@ -273,7 +280,7 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
         b0 = ci * chunk
         nb = min(B, b0 + chunk) - b0
         Lh = np.empty((n, nb))
-        Ll = np.zeros((n, nb))
+        Ll = np.empty((n, nb))
         tq = np.empty((n, nb))
         fac = np.empty((m, nb))
         S = np.empty(nb)
@@ -281,8 +288,9 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
         for a in range(n):
             for j in range(nb):
                 Lh[a, j] = L0[b0 + j, a]
+                Ll[a, j] = carry[b0 + j, 1, a]
                 tq[a, j] = torque[b0 + j, a]
-                outL[b0 + j, 0, a] = Lh[a, j]
+                outL[b0 + j, 0, a] = Lh[a, j] + Ll[a, j]
         for k in range(K - 1):
             ns = nsub[k]
             h = hstep[k]
@@ -342,6 +350,10 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
             for a in range(n):
                 for j in range(nb):
                     outL[b0 + j, k + 1, a] = Lh[a, j] + Ll[a, j]
+        for a in range(n):
+            for j in range(nb):
+                carry[b0 + j, 0, a] = Lh[a, j]
+                carry[b0 + j, 1, a] = Ll[a, j]
 
 
 split_run_ensemble = jit(parallel=True)(_split_run_ensemble)

@@ -189,20 +189,24 @@ class FixedStepSolver(Solver):
     """
 
     adaptive = False
+    #: what :meth:`advance` needs to continue its last call exactly (e.g. the low parts of a
+    #: compensated state), or ``None``; the driver hands it back as ``carry=`` for the next chunk
+    last_carry: Any = None
 
     def prepare(self, problem: Problem) -> None:
         """Precompute what :meth:`advance` needs for ``problem`` (tables, words, shifts)."""
 
     def advance(self, problem: Problem, L: np.ndarray, T: np.ndarray | None, t: np.ndarray, nsub: np.ndarray,
-                members: np.ndarray | None = None,
-                h: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+                members: np.ndarray | None = None, h: np.ndarray | None = None,
+                carry: Any = None) -> tuple[np.ndarray, np.ndarray | None]:
         """States ``(L (B, K, n), T (B, K, N, N) or None)`` on grid ``t`` from ``L``, ``T`` at ``t[0]``.
 
         Interval ``k`` takes ``nsub[k]`` steps of length ``h[k]`` (default
-        :func:`step_lengths`; the driver passes the steps of the whole run's grid, so a run
-        cut into chunks gives the same numbers as one call). ``members`` selects the ensemble
-        members the rows of ``L`` belong to (default: all). May raise ``RuntimeError`` when
-        a step is too long for the method (implicit methods).
+        :func:`step_lengths`; the driver passes the steps of the whole run's grid).
+        ``carry``: :attr:`last_carry` of the call this one continues (the exact state behind
+        the rounded ``L``), so that a run cut into chunks gives the same numbers as one call.
+        ``members`` selects the ensemble members the rows of ``L`` belong to (default: all).
+        May raise ``RuntimeError`` when a step is too long for the method (implicit methods).
         """
         raise NotImplementedError
 

@@ -10,10 +10,12 @@ Chunks
     Between chunks Python runs its signal handlers, so Ctrl-C raises
     :class:`KeyboardInterrupt` within about a chunk's time, updates the progress bar
     (tqdm) and checks that the state is finite. Every chunk takes the run's own step
-    lengths (a chunk may start inside an output interval), so for the splittings a run
-    cut into chunks gives the same numbers as one call, bit for bit, however the chunks
-    fall; Moser-Veselov restarts its Newton predictor at a chunk boundary (a difference
-    at the round-off level of its implicit solve).
+    lengths (a chunk may start inside an output interval) and continues from the exact
+    state of the previous one (:attr:`~.base.FixedStepSolver.last_carry`: the low parts
+    of compensated storage), so for the splittings a run cut into chunks gives the same
+    numbers as one call, bit for bit, however the chunks fall; Moser-Veselov restarts its
+    Newton predictor at a chunk boundary (a difference at the round-off level of its
+    implicit solve).
 Events
     With event functions ``g(t, L)`` the state is kept at every step; a sign change of
     ``g`` between two steps (with the requested ``direction``) is located by Brent's method
@@ -24,8 +26,9 @@ Dense output
     The state at any time :math:`\tau` in :math:`[t_k, t_{k+1}]` is rebuilt from the stored
     output state at :math:`t_k`: the same steps as the run up to the last step point
     :math:`t_j \le \tau`, then one step of length :math:`\tau - t_j` (so the result is
-    continuous in :math:`\tau`, equals the run at its step points bit for bit (splittings),
-    and has the method's accuracy).
+    continuous in :math:`\tau`, equals the run at its step points (bit for bit for the
+    splittings in plain arithmetic; compensated storage restarts from the rounded output
+    state), and has the method's accuracy).
     Cost: at most one output interval's steps per group of queries in it, plus one step
     per query.
 """
@@ -206,6 +209,7 @@ def _chunks(solver, problem, t, nsub, specs, t_events, L_events, T_events, flows
     hs = step_lengths(t, nsub)  # the run's steps: a chunk starting inside an interval takes the same ones
     Lc = problem.L0
     Tc = problem.T0
+    carry = None  # the exact state behind Lc (compensated low parts), from the solver
     s0 = 0
     gprev = None  # event values at the state of s0
     counts = [0 for _ in specs]
@@ -228,7 +232,9 @@ def _chunks(solver, problem, t, nsub, specs, t_events, L_events, T_events, flows
             ns = np.diff(points).astype(np.int64)
             starts = points[:-1]
             out_pos = {int(o): i + 1 for i, o in enumerate(outs)}
-        Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=hs[np.searchsorted(cs, starts, side="right") - 1])
+        Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=hs[np.searchsorted(cs, starts, side="right") - 1],
+                                carry=carry)
+        carry = solver.last_carry
         _check_finite(Ls, grid, problem)
         for o, i in out_pos.items():
             outL[:, o] = Ls[:, i]

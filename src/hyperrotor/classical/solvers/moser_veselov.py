@@ -238,7 +238,7 @@ class MoserVeselov(FixedStepSolver):
     def flows_per_step(self, problem: Problem) -> int:
         return 40 * problem.n  # Newton with an n x n Jacobian: about 40 n plane flows per step (measured, 5D)
 
-    def advance(self, problem, L, T, t, nsub, members=None, h=None):
+    def advance(self, problem, L, T, t, nsub, members=None, h=None, carry=None):
         return run(L, self._J, problem.moments, step_lengths(t, nsub) if h is None else h, nsub, T, T is not None)
 
     def stats(self, problem: Problem) -> dict:

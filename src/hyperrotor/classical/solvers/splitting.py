@@ -265,29 +265,36 @@ def rotation_tables(N: int):
     return tables
 
 
-def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, compensated):
+def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, compensated, carry=None):
     """Dispatch to a kernel: one body or a few -> serial; an ensemble without attitude ->
     bodies-innermost chunks over threads; an ensemble with attitude -> threads over bodies.
     ``nsub[k]`` steps of length ``hstep[k]`` per output interval; ``compensated``: TwoSum
-    storage of ``L`` (see the performance notes)."""
+    storage of ``L`` (see the performance notes). ``carry (B, 2, n)``: the exact state
+    ``(high, low)`` a previous call ended with (then ``L0`` is ignored; default: start from
+    ``L0``). Returns ``(L (B, K, n), T or None, carry of the last state)``."""
     B, n = L0.shape
     N = T0.shape[-1]
     K = hstep.size + 1
     outL = np.empty((B, K, n))
-    L0 = np.ascontiguousarray(L0)
+    if carry is None:
+        L0 = np.ascontiguousarray(L0)
+        carry = np.zeros((B, 2, n))
+    else:
+        L0 = np.ascontiguousarray(carry[:, 0])
+        carry = carry.copy()
     rates_b = np.ascontiguousarray(rates_b)
     torque_b = np.ascontiguousarray(torque_b)
     hstep = np.ascontiguousarray(hstep, dtype=np.float64)
     if B >= _PARALLEL_MIN_BODIES and not with_att:
         chunk = max(1, min(_ENSEMBLE_CHUNK, -(-B // 8)))
         _kernels.split_run_ensemble(L0, rates_b, word[0], word[1], *tables[:3], hstep, nsub, torque_b, chunk,
-                                    compensated, outL)
-        return outL, None
+                                    compensated, outL, carry)
+        return outL, None, carry
     outT = np.empty((B, K, N, N)) if with_att else np.empty((B, 1, N, N))
     kernel = _kernels.split_run if B >= _PARALLEL_MIN_BODIES else _kernels.split_run_serial
     kernel(L0, rates_b, word[0], word[1], *tables, hstep, nsub, torque_b, np.ascontiguousarray(T0),
-           bool(with_att), compensated, outL, outT)
-    return outL, (outT if with_att else None)
+           bool(with_att), compensated, outL, outT, carry)
+    return outL, (outT if with_att else None), carry
 
 
 class Splitting(FixedStepSolver):
@@ -351,15 +358,16 @@ class Splitting(FixedStepSolver):
             last = st["rows"] = (members, st["rates"][members], st["torque"][members], st["shift"][members])
         return last[1:]
 
-    def advance(self, problem, L, T, t, nsub, members=None, h=None):
+    def advance(self, problem, L, T, t, nsub, members=None, h=None, carry=None):
         st = self._state
         rates, torque, shift = self._rows(members)
         comp = st["compensated"]
         comp = False if comp is None else comp
         with_att = T is not None
         T_run = np.ascontiguousarray(T) if with_att else np.zeros((1, problem.N, problem.N))
-        outL, outT = run_kernel(L, rates, st["word"], st["tables"], step_lengths(t, nsub) if h is None else h,
-                                nsub, torque, T_run, with_att, comp)
+        outL, outT, self.last_carry = run_kernel(L, rates, st["word"], st["tables"],
+                                                 step_lengths(t, nsub) if h is None else h, nsub, torque, T_run,
+                                                 with_att, comp, carry)
         if with_att and np.any(shift != 0.0):
             outT = unshift_attitude(outT, L, T, t, shift)
         return outL, outT
