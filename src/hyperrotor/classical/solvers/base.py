@@ -224,7 +224,7 @@ class StepBudgetError(ValueError):
 
 def nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
     """Equal steps per output interval so that no step exceeds ``dt`` (output times hit exactly)."""
-    gaps = np.abs(np.diff(t))
+    gaps = np.abs(t[1:] - t[:-1])
     with np.errstate(over="ignore"):
         n = np.maximum(1.0, np.ceil(gaps / dt * (1 - 1e-12)))
     total = float(n.sum())
@@ -238,7 +238,7 @@ def nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
 
 def step_lengths(t: np.ndarray, nsub: np.ndarray) -> np.ndarray:
     """Step length ``(t[k+1] - t[k]) / nsub[k]`` of each interval (signed: negative backwards in time)."""
-    return np.diff(t) / nsub
+    return (t[1:] - t[:-1]) / nsub
 
 
 def power_of_two_scale(x: float) -> float:

@@ -112,20 +112,20 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
     h = control.step(solver, problem, max_steps) if K > 1 and B > 0 else 1.0
     nsub = nsub_for(t, h) if K > 1 else np.zeros(0, dtype=np.int64)
     steps = int(nsub.sum())
-    refuse_steps(steps, B, max_steps, f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
+    refuse_steps(steps, B, max_steps, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
     if hasattr(solver, "set_accuracy"):
         solver.set_accuracy(problem, getattr(control, "rtol", None), steps)
     specs = event_specs(events)
     fps = solver.flows_per_step(problem)
-    stats = dict(steps=steps, nfev=None, dt=float(np.max(np.abs(np.diff(t)) / nsub)) if K > 1 else None,
-                 chunks=0)
+    hs = step_lengths(t, nsub)  # the run's steps, (K - 1,)
+    stats = dict(steps=steps, nfev=None, dt=float(np.abs(hs).max()) if K > 1 else None, chunks=0)
     t_events = [[] for _ in specs]
     L_events = [[] for _ in specs]
     T_events = [[] for _ in specs]
     K_done = K
     if B > 0 and steps > 0:
-        outL, outT, K_done = _loop(solver, problem, t, nsub, specs, t_events, L_events, T_events, fps, progress,
-                                   stats)
+        outL, outT, K_done = _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps,
+                                   progress, stats)
     else:  # nothing to integrate: the initial states (or an empty ensemble)
         outL = np.empty((B, K, n))
         outL[:, 0] = problem.L0
@@ -160,7 +160,7 @@ def _cost_key(solver, problem):
     return type(solver), problem.N, problem.B >= 32, problem.with_attitude
 
 
-def _loop(solver, problem, t, nsub, specs, t_events, L_events, T_events, fps, progress, stats):
+def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps, progress, stats):
     """The chunked run; returns ``(outL, outT, number of output times reached)``."""
     B = problem.B
     steps = int(nsub.sum())
@@ -177,15 +177,15 @@ def _loop(solver, problem, t, nsub, specs, t_events, L_events, T_events, fps, pr
     try:
         if not specs and cap >= steps:  # one call (most runs): no chunk grid, no copies
             t_start = time.perf_counter()
-            Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=step_lengths(t, nsub))
+            Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
             _learn(key, time.perf_counter() - t_start, steps * flows)
             _check_finite(Ls, t, problem)
             stats["chunks"] = 1
             if bar is not None:
                 bar.update(steps)
             return Ls, Ts, t.size
-        return _chunks(solver, problem, t, nsub, specs, t_events, L_events, T_events, flows, cap, target, key, bar,
-                       stats)
+        return _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key,
+                       bar, stats)
     finally:
         if bar is not None:
             bar.close()
@@ -196,7 +196,7 @@ def _learn(key, elapsed, flows):
         _SECONDS_PER_FLOW[key] = elapsed / flows
 
 
-def _chunks(solver, problem, t, nsub, specs, t_events, L_events, T_events, flows, cap, target, key, bar, stats):
+def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key, bar, stats):
     B, n, N = problem.B, problem.n, problem.N
     K = t.size
     outL = np.empty((B, K, n))
@@ -206,7 +206,6 @@ def _chunks(solver, problem, t, nsub, specs, t_events, L_events, T_events, flows
         outT[:, 0] = problem.T0
     cs = np.concatenate([[0], np.cumsum(nsub)])
     steps = int(cs[-1])
-    hs = step_lengths(t, nsub)  # the run's steps: a chunk starting inside an interval takes the same ones
     Lc = problem.L0
     Tc = problem.T0
     carry = None  # the exact state behind Lc (compensated low parts), from the solver

@@ -42,7 +42,7 @@ import math
 import time
 import warnings
 from functools import lru_cache
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -73,10 +73,12 @@ GROW_BELOW = 0.1
 CHECK_SAMPLES = 64
 
 
-def refuse_steps(steps: float, B: int, max_steps: int, what: str) -> None:
-    """Raise :class:`StepBudgetError` when ``steps`` per member times ``B`` members exceed ``max_steps``."""
+def refuse_steps(steps: float, B: int, max_steps: int, what: str | Callable[[], str]) -> None:
+    """Raise :class:`StepBudgetError` when ``steps`` per member times ``B`` members exceed ``max_steps``
+    (``what``: the estimate's origin for the message, or a function making it, called only then)."""
     total = float(steps) * max(B, 1)
     if total > max_steps:
+        what = what() if callable(what) else what
         raise StepBudgetError(
             f"this run needs about {total:.3g} integration steps ({what}), more than the budget max_steps = "
             f"{_validate.fmt(int(max_steps))}; raise it with simulate(..., max_steps=...) or "
@@ -216,7 +218,8 @@ class ErrorTarget:
             on_run = max(err, 1e3 * np.finfo(float).eps) * max(1.0, span / P)
             h_star = min(MAX_STEP_GROWTH * h, 0.8 * h * (target / on_run) ** (1.0 / p))
         # 3. budget, before any long work
-        refuse_steps(span / h_star, B, max_steps, f"step {h_star / problem.scale:.3g} chosen for rtol = {self.rtol:g}")
+        refuse_steps(span / h_star, B, max_steps,
+                     lambda: f"step {h_star / problem.scale:.3g} chosen for rtol = {self.rtol:g}")
         # 4. whole-run check at h_c >= h*, costing at most CHECK_FRACTION of the run
         widen = 1.0
         grown = 0
@@ -254,7 +257,8 @@ class ErrorTarget:
                 break  # extrapolated from an asymptotic estimate of the whole run
         if not verified and last_good is not None:
             h_star = last_good
-        refuse_steps(span / h_star, B, max_steps, f"step {h_star / problem.scale:.3g} chosen for rtol = {self.rtol:g}")
+        refuse_steps(span / h_star, B, max_steps,
+                     lambda: f"step {h_star / problem.scale:.3g} chosen for rtol = {self.rtol:g}")
         if math.isfinite(spent[0]):
             self.seconds_per_step = spent[0]
             seconds = self.seconds_per_step * float(nsub_for(problem.t, h_star).sum()) * B
