@@ -140,7 +140,7 @@ def test_jitted_and_python_kernels_agree(rng):
         outL = np.zeros((1, 3, 10))
         outT = np.zeros((1, 3, 5, 5))
         status = np.zeros(1, dtype=np.int64)
-        fn(L0, J, m, pi, pj, np.diff(t) / nsub, nsub, np.eye(5)[None], True, outL, outT, status)
+        fn(L0, J, m, pi, pj, np.diff(t) / nsub, nsub, np.eye(5)[None], True, outL, outT, status, np.zeros((1, 11)))
         assert status[0] == 0
         outs.append((outL, outT))
     np.testing.assert_allclose(outs[0][0], outs[1][0], rtol=0, atol=1e-13 * np.abs(L0).max())

@@ -189,8 +189,8 @@ class FixedStepSolver(Solver):
     """
 
     adaptive = False
-    #: what :meth:`advance` needs to continue its last call exactly (e.g. the low parts of a
-    #: compensated state), or ``None``; the driver hands it back as ``carry=`` for the next chunk
+    #: what :meth:`advance` needs to continue its last call exactly (the low parts of a compensated
+    #: state, a Newton predictor), or ``None``; the driver hands it back as ``carry=`` for the next chunk
     last_carry: Any = None
 
     def prepare(self, problem: Problem) -> None:

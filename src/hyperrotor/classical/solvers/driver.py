@@ -12,10 +12,8 @@ Chunks
     (tqdm) and checks that the state is finite. Every chunk takes the run's own step
     lengths (a chunk may start inside an output interval) and continues from the exact
     state of the previous one (:attr:`~.base.FixedStepSolver.last_carry`: the low parts
-    of compensated storage), so for the splittings a run cut into chunks gives the same
-    numbers as one call, bit for bit, however the chunks fall; Moser-Veselov restarts its
-    Newton predictor at a chunk boundary (a difference at the round-off level of its
-    implicit solve).
+    of compensated storage, Moser-Veselov's Newton predictor), so a run cut into chunks
+    gives the same numbers as one call, bit for bit, however the chunks fall.
 Events
     With event functions ``g(t, L)`` the state is kept at every step; a sign change of
     ``g`` between two steps (with the requested ``direction``) is located by Brent's method

@@ -87,12 +87,16 @@ def _cayley_factors(X, eye, A, Bp):  # pragma: no cover - jitted
             Bp[r, c] = eye[r, c] + 0.5 * X[r, c]
 
 
-def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL, outT, status):  # pragma: no cover
+def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL, outT, status,
+            pred):  # pragma: no cover
     """Integrate ``B`` bodies over ``K = hstep.size + 1`` output times (``nsub[k]`` steps of ``hstep[k]``).
 
     ``L0 (B, n)`` components in plane order; ``pair_i, pair_j (n,)`` 0-based axes of
     plane ``a``. Writes ``outL[b, k]``, ``outT[b, k]`` (plain attitude) and
     ``status[b]`` = 0, or 1 + the index of the first step whose Newton solve failed.
+    ``pred (B, n + 1)``: the Newton predictor's state (the :math:`O(h^2)` part of ``X`` and
+    the step it was taken with; zeros for a new run), read on entry and written on exit, so
+    that a run continued in a second call does the arithmetic of one call.
     """
     B = L0.shape[0]
     n = L0.shape[1]
@@ -114,8 +118,10 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
         eye = np.eye(N)
         step = 0
         failed = False
-        corr = np.zeros(n)
-        hprev = 0.0
+        corr = np.empty(n)
+        for a in range(n):
+            corr[a] = pred[b, a]
+        hprev = pred[b, n]
         for k in range(K - 1):
             h = hstep[k]
             ratio2 = (h / hprev) ** 2 if hprev != 0.0 else 0.0
@@ -185,15 +191,19 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
                 outL[b, k + 1, a] = Lm[pair_i[a], pair_j[a]]
             if with_attitude:
                 store_attitude(T, b, k + 1, outT)
+        for a in range(n):
+            pred[b, a] = corr[a]
+        pred[b, n] = hprev
 
 
 mv_run = jit(parallel=True)(_mv_run)
 
 
 def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, hstep: np.ndarray, nsub: np.ndarray,
-        T0: np.ndarray, with_attitude: bool) -> tuple[np.ndarray, np.ndarray | None]:
+        T0: np.ndarray, with_attitude: bool, pred: np.ndarray | None = None):
     """Moser-Veselov steps (``nsub[k]`` of length ``hstep[k]`` per interval) for the bodies ``L0 (B, n)``;
-    returns ``(L (B, K, n), T (B, K, N, N) or None)``, ``K = hstep.size + 1``."""
+    returns ``(L (B, K, n), T (B, K, N, N) or None, predictor state (B, n + 1))``, ``K = hstep.size + 1``
+    (``pred``: the predictor state a previous call ended with; default: a new run)."""
     B, n = L0.shape
     N = J.size
     K = hstep.size + 1
@@ -201,10 +211,11 @@ def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, hstep: np.ndarray, n
     outL = np.empty((B, K, n))
     outT = np.empty((B, K, N, N)) if with_attitude else np.empty((B, 1, N, N))
     status = np.zeros(B, dtype=np.int64)
+    pred = np.zeros((B, n + 1)) if pred is None else pred.copy()
     T0c = np.ascontiguousarray(T0) if with_attitude else np.zeros((1, N, N))
     mv_run(np.ascontiguousarray(L0, dtype=float), np.ascontiguousarray(J, dtype=float),
-           np.ascontiguousarray(moments, dtype=float), pair_i, pair_j, np.ascontiguousarray(hstep, dtype=float), nsub, T0c, bool(with_attitude),
-           outL, outT, status)
+           np.ascontiguousarray(moments, dtype=float), pair_i, pair_j, np.ascontiguousarray(hstep, dtype=float), nsub,
+           T0c, bool(with_attitude), outL, outT, status, pred)
     bad = np.flatnonzero(status)
     if bad.size:
         b = int(bad[0])
@@ -212,7 +223,7 @@ def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, hstep: np.ndarray, n
             f"moser-veselov: the implicit step equation h L = J Q - Q^T J has no solution near Q = 1 "
             f"at step {int(status[b]) - 1} of body {b} (h |W| too large); use a smaller dt or rtol"
         )
-    return outL, (outT if with_attitude else None)
+    return outL, (outT if with_attitude else None), pred
 
 
 class MoserVeselov(FixedStepSolver):
@@ -239,7 +250,9 @@ class MoserVeselov(FixedStepSolver):
         return 40 * problem.n  # Newton with an n x n Jacobian: about 40 n plane flows per step (measured, 5D)
 
     def advance(self, problem, L, T, t, nsub, members=None, h=None, carry=None):
-        return run(L, self._J, problem.moments, step_lengths(t, nsub) if h is None else h, nsub, T, T is not None)
+        outL, outT, self.last_carry = run(L, self._J, problem.moments, step_lengths(t, nsub) if h is None else h,
+                                          nsub, T, T is not None, carry)
+        return outL, outT
 
     def stats(self, problem: Problem) -> dict:
         return {}
