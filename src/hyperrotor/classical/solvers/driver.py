@@ -309,9 +309,18 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
             def f(tau):
                 Lx = solver.advance(problem, y, None, np.array([t0, tau]), np.ones(1, dtype=np.int64))[0]
                 return float(sp.fn(tau / s, Lx[0, -1] * s))
-            lo, hi = (t0, t1) if t1 > t0 else (t1, t0)
-            te = brentq(f, lo, hi, xtol=4 * np.finfo(float).eps * max(abs(lo), abs(hi), 1e-300),
-                        rtol=4 * np.finfo(float).eps, maxiter=200) if f(t0) != 0.0 else t0
+            f0, f1 = f(t0), f(t1)
+            if f0 == 0.0:
+                te = t0
+            elif (f0 < 0.0) != (f1 < 0.0) and f1 != 0.0:
+                lo, hi = (t0, t1) if t1 > t0 else (t1, t0)
+                te = brentq(f, lo, hi, xtol=4 * np.finfo(float).eps * max(abs(lo), abs(hi), 1e-300),
+                            rtol=4 * np.finfo(float).eps, maxiter=200)
+            else:
+                # the re-integrated step lost the grid's sign change (g ~ 0 at the step's end to
+                # round-off, or a step far too long for the motion, |omega| dt >> 1): the crossing
+                # seen on the grid, at the step's end
+                te = t1
         Lx, Tx = solver.advance(problem, y, yT, np.array([t0, te]), np.ones(1, dtype=np.int64))
         t_events[e].append(te / s)
         L_events[e].append(Lx[0, -1] * s)
