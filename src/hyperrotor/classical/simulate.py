@@ -332,7 +332,7 @@ def simulate(
         their zeros are located to the method's accuracy and returned in
         ``Trajectory.t_events`` / ``L_events``; a terminal event ends the run. With an
         ensemble ``omega0`` every member is run on its own with the ensemble's step (the
-        states of the run without events, to round-off), events must be non-terminal, and
+        momenta of the run without events, bit for bit), events must be non-terminal, and
         ``t_events[e][m]`` is the array of member ``m`` (flattened batch order).
     max_steps : int, optional
         budget of the run (steps per trajectory times members; scipy: right-hand-side

@@ -4,9 +4,9 @@ A fixed-step method chooses its step once for the whole ensemble (the probes loo
 fastest members, the budget counts every member). :func:`member_setup` does that once and
 returns a solver and a step control that reproduce it on any subset of the members: the
 same step, the same automatic ``compensated`` choice, each member's own Casimir shift. A
-member run this way takes the steps of its row of the ensemble run (bit for bit the same
-numbers for the splittings on dask; with events every step is stored, which restarts the
-compensated sums at each step: equal to round-off; both tested). Used by
+member run this way takes the steps of its row of the ensemble run: the same momenta bit
+for bit (with events every step is stored, and the attitude's Casimir-shift correction,
+applied per stored step, agrees to round-off; both tested). Used by
 
 * :func:`run_members_with_events`: ``simulate(..., events=...)`` with an ensemble ``omega0``
   (event times differ per member, so every member is its own run; non-terminal events only:
