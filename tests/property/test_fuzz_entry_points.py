@@ -453,16 +453,7 @@ NOT_FUZZED = {
     "SectorSpectra": "a result record", "SpacingDistribution": "a result record",
 }
 #: Cases that failed when written, by owner (requests in /work/coord/requests.md): strict xfail.
-PENDING_IDS = {
-    "C": """
-    """.split(),
-    # simulate(..., events=g) with a step far too large for the motion (|omega| dt >~ 1e4): the one-step
-    # re-integration in the driver's event location does not reproduce the grid's sign change, and brentq's
-    # bare "f(a) and f(b) must have different signs" escapes (requested from P)
-    "P": """
-        poincare_section-1-huge
-    """.split(),
-}
+PENDING_IDS: dict[str, list[str]] = {}
 #: Cases that hang (> 3 s; no work budget): xfail, not run.
 HANGING_IDS: dict[str, list[str]] = {}
 
