@@ -214,6 +214,10 @@ class FixedStepSolver(Solver):
         """Rough cost unit per step and member (used for chunk sizes and budgets)."""
         return 1
 
+    def kernel_variant(self) -> Any:
+        """Hashable label of the compiled code :meth:`advance` runs (the driver learns its speed per label)."""
+        return type(self)
+
     def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None):
         return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
 

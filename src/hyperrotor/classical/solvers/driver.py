@@ -147,15 +147,16 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
 
 
 #: measured seconds per elementary flow and member of the last chunk, per kind of kernel call
-#: (solver class, N, ensemble kernel or not, attitude): sizes the first chunk of the next run, so
-#: that a run expected to take less than ``options["chunk_seconds"]`` is one compiled call
+#: (solver class and variant, N, attitude, ensemble size to a factor 2): sizes the first chunk of
+#: the next run, so that a run expected to take less than ``options["chunk_seconds"]`` is one call
 _SECONDS_PER_FLOW: dict = {}
 #: chunks shorter than this (s) are not timed for the table above (call overhead dominates)
 _MIN_TIMED_CHUNK = 2e-3
 
 
 def _cost_key(solver, problem):
-    return type(solver), problem.N, problem.B >= 32, problem.with_attitude
+    B = problem.B
+    return solver.kernel_variant(), problem.N, problem.with_attitude, 0 if B < 32 else B.bit_length()
 
 
 def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps, progress, stats):

@@ -347,6 +347,9 @@ class Splitting(FixedStepSolver):
     def flows_per_step(self, problem: Problem) -> int:
         return max(1, int(self._state["word"][0].size))
 
+    def kernel_variant(self):
+        return type(self), bool(self._state["compensated"])  # compensated storage: ~1.6x per flow
+
     def _rows(self, members):
         """Rates, torques and shifts of ``members`` (all when ``None``; the last selection is cached:
         the step control probes the same members many times)."""
