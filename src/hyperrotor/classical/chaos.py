@@ -132,6 +132,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     B, n = L0.shape
     N = dimension_from_count(n)
     gen = _validate.rng(rng)
+    progress = _validate.flag("progress", progress, allow_none=True)
     # per orbit: Casimir-shifted rates (as simulate), step, steps per renormalisation
     # scale each orbit by a power of two close to its largest |L_a| (the equations are invariant under
     # L -> L/s, t -> s t): exact in floating point, so the arithmetic of the kernel is the same as

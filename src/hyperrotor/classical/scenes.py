@@ -226,8 +226,7 @@ class Scene:
     def __post_init__(self):
         # refuse a bad body, omega0 or t where it is given, not later in evaluate()
         _check_inputs(self.body, self.omega0, self.t)
-        if self.progress is not None and not isinstance(self.progress, (bool, np.bool_)):
-            raise TypeError(f"progress must be True, False or None, got {_v.fmt(self.progress)}")
+        _v.flag("progress", self.progress, allow_none=True)
 
     def evaluate(self, *, minimal: bool = True) -> SceneResult:
         """Compute the scene; see :func:`evaluate_scene`."""

@@ -381,6 +381,7 @@ def simulate(
     wall = time.perf_counter()
     max_steps = options["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
     rtol = _validate.positive("rtol", rtol, allow_none=True)
+    progress = _validate.flag("progress", progress, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, solver_options)
     problem, t_user = _problem(body, omega0, t, attitude, torque, options["max_output_bytes"])
