@@ -261,14 +261,17 @@ ENTRIES = [
     ("RigidBody.lock", None, lambda: (_body().lock, [4]), dict, {1: "obj:int"}),
     ("RigidBody.stability", None, lambda: (_body().stability, (1, 2), 1.0), dict, {1: "plane", 2: "real"}),
     # integration
-    ("simulate", "simulate", lambda: (_body(), W6, T5), lambda: {"method": "splitting4", "dt": 0.1},
-     {0: "obj:array", 1: "arr", 2: "vec", "method": "str", "dt": "pos"}),
+    ("simulate", "simulate", lambda: (_body(), W6, T5),
+     lambda: {"method": "splitting4", "dt": 0.1, "progress": False, "max_steps": 10**6},
+     {0: "obj:array", 1: "arr", 2: "vec", "method": "str", "dt": "pos", "progress": "flag", "max_steps": "int"}),
     ("simulate/rtol", "simulate", lambda: (_body(), W6, T5), lambda: {"rtol": 1e-6},
      {"rtol": "pos"}),
     ("splitting_coefficients", "splitting_coefficients", lambda: (4,), dict, {0: "int"}),
     ("casimir_shift", "casimir_shift", lambda: (W6, W6), dict, {0: "arr:pos", 1: "arr"}),
-    ("lyapunov", "lyapunov", lambda: (_body(), W6, 1.0), dict, {0: "obj", 1: "arr", 2: "pos"}),
-    ("lyapunov_sweep", "lyapunov_sweep", lambda: ([_body()], W6, 1.0), dict, {0: "obj", 1: "arr", 2: "pos"}),
+    ("lyapunov", "lyapunov", lambda: (_body(), W6, 1.0), lambda: {"progress": False},
+     {0: "obj", 1: "arr", 2: "pos", "progress": "flag"}),
+    ("lyapunov_sweep", "lyapunov_sweep", lambda: ([_body()], W6[None], 1.0), lambda: {"progress": False},
+     {0: "obj", 1: "arr", 2: "pos", "progress": "flag"}),
     # closed forms
     ("equal_moments_solution", "equal_moments_solution", lambda: (W6, T5), dict, {0: "arr", 1: "vec:scalar"}),
     ("quartet_moments", "quartet_moments", lambda: (0.5, 5, 5), dict, {0: "real", 1: "int", 2: "int"}),
@@ -581,3 +584,14 @@ def test_every_public_callable_is_fuzzed_or_excused():
             if name not in fuzzed and name not in NOT_FUZZED:
                 missing.append(f"{mod.__name__}.{name}")
     assert not missing, f"public names without a fuzz entry (add one to ENTRIES or a reason to NOT_FUZZED): {missing}"
+
+
+@pytest.mark.parametrize("label, path, args, kwargs", [pytest.param(*e[:4], id=e[0]) for e in ENTRIES if e[4]])
+def test_the_good_arguments_of_every_entry_are_accepted(label, path, args, kwargs):
+    """Each entry's good arguments must work: otherwise every bad value would be 'refused' for the
+    wrong reason and the entry would test nothing."""
+    fn, a, kw, _ = _call(path, args, kwargs)
+    with _time_limit(TIME_LIMIT), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # a library's advice on cheap arguments is fine here
+        warnings.simplefilter("ignore", UserWarning)
+        fn(*a, **kw)
