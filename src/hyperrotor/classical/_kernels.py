@@ -134,6 +134,14 @@ def rotation(x):  # pragma: no cover - jitted
 
 
 @jit(inline="always")
+def redo_wide_lanes(X, S, V):  # pragma: no cover - jitted
+    """``S[j], V[j] = rotation(X[j])`` for the lanes whose half-angle is beyond 0.5 (libm, as :func:`sincos`)."""
+    for j in range(S.shape[0]):
+        if abs(X[j]) > 0.5:
+            S[j], V[j] = rotation(X[j])
+
+
+@jit(inline="always")
 def rotate_lanes(L, p, q, sg, S, V):  # pragma: no cover - jitted
     """Rotate the pair ``(L[p, j], L[q, j])`` of every lane ``j`` by ``S[j] * sg``, ``V[j]`` (plain arithmetic)."""
     for j in range(S.shape[0]):
@@ -283,6 +291,7 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
         Ll = np.empty((n, nb))
         tq = np.empty((n, nb))
         fac = np.empty((m, nb))
+        X = np.empty(nb)
         S = np.empty(nb)
         V = np.empty(nb)
         for a in range(n):
@@ -318,13 +327,11 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                     big = False
                     for j in range(nb):  # polynomial sincos of the half-angles, branch-free (vectorised)
                         x = fac[r, j] * (Lh[a, j] + Ll[a, j])
+                        X[j] = x
                         S[j], V[j] = rotation_poly(x)
                         big |= x * x > 0.25
-                    if big:  # some half-angle beyond 0.5: redo those with libm (as sincos does)
-                        for j in range(nb):
-                            x = fac[r, j] * (Lh[a, j] + Ll[a, j])
-                            if abs(x) > 0.5:
-                                S[j], V[j] = rotation(x)
+                    if big:  # some half-angle beyond 0.5
+                        redo_wide_lanes(X, S, V)
                     for e in range(npair):
                         p = pair_p[a, e]
                         q = pair_q[a, e]

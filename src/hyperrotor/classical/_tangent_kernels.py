@@ -46,7 +46,7 @@ import numpy as np
 
 from hyperrotor._jit import jit
 
-from ._kernels import rotate_lanes, rotation, rotation_poly
+from ._kernels import redo_wide_lanes, rotate_lanes, rotation, rotation_poly
 
 __all__: list[str] = []  # private module
 
@@ -171,6 +171,7 @@ def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_
         W = np.empty((k, n, nb))
         fac = np.empty((m, nb))
         acc = np.zeros((k, nb))
+        X = np.empty(nb)
         S = np.empty(nb)
         V = np.empty(nb)
         F2 = np.empty(nb)
@@ -190,14 +191,12 @@ def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_
                     big = False
                     for j in range(nb):  # polynomial sincos of the half-angles, branch-free (vectorised)
                         x = fac[r, j] * L[a, j]
+                        X[j] = x
                         S[j], V[j] = rotation_poly(x)
                         F2[j] = 2.0 * fac[r, j]
                         big |= x * x > 0.25
-                    if big:  # some half-angle beyond 0.5: those with libm, as sincos does
-                        for j in range(nb):
-                            x = fac[r, j] * L[a, j]
-                            if abs(x) > 0.5:
-                                S[j], V[j] = rotation(x)
+                    if big:  # some half-angle beyond 0.5
+                        redo_wide_lanes(X, S, V)
                     for e in range(npair):
                         p = pair_p[a, e]
                         q = pair_q[a, e]
