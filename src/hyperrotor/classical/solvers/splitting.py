@@ -45,8 +45,8 @@ rotation increments are added with error-free TwoSum (compensated storage of
 Otherwise plain arithmetic (~1.6x faster per flow): the Casimirs' round-off
 random-walks as ~0.1-0.4 eps sqrt(flows) (< 1e-13), the trajectory's floor is
 ~1e-13 .. 1e-12, like scipy's DOP853. Long runs are cut into chunks of about
-``options["chunk_seconds"]`` (Ctrl-C between chunks); the compensated low part is
-restarted at each chunk boundary (one rounding per chunk). Measured work-precision
+``options["chunk_seconds"]`` (Ctrl-C between chunks); each chunk continues from the exact
+(compensated) state of the previous one, so a chunked run gives the numbers of one call. Measured work-precision
 and throughput: ``benchmarks/work_precision_classical.py``.
 """
 from __future__ import annotations
