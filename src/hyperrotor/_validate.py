@@ -428,16 +428,15 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
     if isinstance(src, (str, bytes)):
         raise TypeError(f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, got {fmt(src)}")
     try:
-        if np.iscomplexobj(src):  # NumPy would drop the imaginary part with a ComplexWarning
-            raise TypeError(f"{name}: moments of inertia must be real, got complex values {fmt(src)}")
-        arr = np.asarray(src, dtype=float)
-    except (TypeError, ValueError) as exc:
-        if str(exc).startswith(f"{name}: moments of inertia must be real"):
-            raise
+        is_complex = np.iscomplexobj(src)
+        arr = None if is_complex else np.asarray(src, dtype=float)
+    except (TypeError, ValueError):
         raise TypeError(
             f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, "
             f"got {type(value).__name__}"
         ) from None
+    if is_complex:  # NumPy would drop the imaginary part with a ComplexWarning
+        raise TypeError(f"{name}: moments of inertia must be real, got complex values {fmt(src)}")
     if arr.ndim != 1:
         raise ValueError(f"{name}: plane moments must be a 1-D sequence of N(N-1)/2 values, got shape {arr.shape}")
     n = _dimension_from_count(arr.size, name)

@@ -29,16 +29,11 @@ __all__ = ["run_distributed"]
 SECONDS_PER_FLOW = 5e-9
 
 
-def _rows(L0, T0, torque, solver, template, control, max_steps):
-    """One chunk of members (top-level, picklable): returns L (and T) of the chunk."""
+def _rows(L0, T0, torque, solver, template, control, max_steps, tq=None):
+    """One chunk of members (top-level, picklable): L (and T) of the chunk at the output times, or
+    with ``tq`` its dense output there (scipy methods: re-run with their interpolants)."""
     res = solver.run(member_problem(template, L0, T0, torque), control, max_steps=max_steps, progress=False)
-    return (res.L, res.T) if res.T is not None else res.L
-
-
-def _dense_rows(L0, T0, torque, solver, template, control, max_steps, tq):
-    """Dense output of one chunk of members of a scipy method (top-level, picklable)."""
-    res = solver.run(member_problem(template, L0, T0, torque), control, max_steps=max_steps, progress=False)
-    L, T = res.dense(tq)
+    L, T = (res.L, res.T) if tq is None else res.dense(tq)
     return (L, T) if T is not None else L
 
 
@@ -74,7 +69,7 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
             return _dense(solver, problem, problem.t, nsub, L, T, tq_, problem.t.size)
     else:  # scipy: the workers re-run their members with scipy's interpolants and evaluate them at tq
         def dense(tq_):
-            out_ = map_rows(_dense_rows, rows, args=(worker_solver, template, worker_control, max_steps, tq_),
+            out_ = map_rows(_rows, rows, args=(worker_solver, template, worker_control, max_steps, tq_),
                             client=client, chunk_size=chunk, progress=progress, desc="dense output")
             return out_ if isinstance(out_, tuple) else (out_, None)
     return RunResult(L=L, T=T, t=problem.t, stats=stats, dense=dense)

@@ -32,7 +32,6 @@ run always goes to scipy (an event function may depend on ``t`` alone).
 """
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -81,8 +80,59 @@ class _SparseRHS:
         return (self.coef * omega[..., self.b] * L[..., self.c]) @ self.A
 
 
-class _Budget(Exception):
-    pass
+#: how to get a larger run, in every budget message of this module
+_RAISE_BUDGET = ("raise it with simulate(..., max_steps=...) or hyperrotor.options(max_steps=...), or ask for "
+                 "less (shorter t, larger rtol)")
+
+
+class _MemberRHS:
+    """The right-hand side of one member in its own scale ``rb`` (times ``tb``), as solve_ivp calls it.
+
+    Besides dw/dt (and dT/dt) it counts the evaluations of the run in ``count`` (a one-element
+    list shared by the members) against ``budget``, extrapolates the run's cost (module
+    docstring; ``members_left`` still to run), advances the progress ``bar`` (members, fractions
+    from the time covered) and answers inf for an overflowing trial step (scipy then rejects it).
+    """
+
+    def __init__(self, name, rhs, problem, b, rb, tau_b, tb, count, budget, members_left, bar):
+        self.name, self.rhs, self.b, self.rb, self.tau_b = name, rhs, b, rb, tau_b
+        self.moments, self.n, self.N = problem.moments, problem.n, problem.N
+        self.torque, self.with_att = problem.torque, problem.with_attitude
+        self.t0, self.span = tb[0], abs(tb[-1] - tb[0])
+        self.count, self.budget, self.members_left, self.bar = count, budget, members_left, bar
+        self.start = count[0]
+        self.next = count[0] + EXTRAPOLATE_AFTER
+        self.far = 0.0  # the largest |t - t0| evaluated so far
+
+    def __call__(self, tt, y):
+        self.count[0] += 1
+        total = self.count[0]
+        if total > self.budget:
+            raise StepBudgetError(f"scipy {self.name} stopped after {self.budget} right-hand-side evaluations (the "
+                                  f"budget max_steps = {self.budget}) at member {self.b}; {_RAISE_BUDGET}")
+        self.far = max(self.far, abs(tt - self.t0))
+        if total >= self.next:  # at EXTRAPOLATE_AFTER evaluations of this member, then at every doubling
+            self.next = total + (total - self.start)
+            _extrapolate(total, total - self.start, self.far, self.span, self.members_left, self.budget, self.name)
+        if self.bar is not None and not total % PROGRESS_EVERY:
+            self.bar.update(self.b + min(1.0, self.far / self.span) - self.bar.n)
+        if not np.all(np.isfinite(y)):  # an overflowing trial step: infinite error, scipy shrinks the step
+            return np.full(y.shape, np.inf)
+        n, rb, moments = self.n, self.rb, self.moments
+        w = y[:n]
+        with np.errstate(over="ignore", invalid="ignore"):  # trial steps may overflow; scipy rejects them
+            dw = np.asarray(self.rhs(w), dtype=float)
+        if self.torque is not None:
+            tau = (np.asarray(self.torque(tt / rb, w * rb), dtype=float) / (rb * rb)
+                   if callable(self.torque) else self.tau_b)
+            if tau.shape != (n,) or not np.all(np.isfinite(tau)):
+                raise ValueError(f"torque(t, omega) must return {n} finite body-frame components, "
+                                 f"got {_validate.fmt(tau)}")
+            dw = dw + tau / moments
+        if not self.with_att:
+            return dw
+        Tm = y[n:].reshape(self.N, self.N)
+        return np.concatenate([dw, (to_matrix(w, "standard") @ Tm).ravel()])
 
 
 class ScipyIVP(Solver):
@@ -147,36 +197,6 @@ class ScipyIVP(Solver):
                 rbs.append(rb)
                 tau_b = None if torque is None or callable(torque) else torque[b] / (rb * rb)
 
-                progress_b = {"far": 0.0, "next": nfev[0] + EXTRAPOLATE_AFTER, "start": nfev[0]}
-
-                def f(tt, y, tau_b=tau_b, rb=rb, pb=progress_b, b=b):
-                    nfev[0] += 1
-                    if nfev[0] > budget:
-                        raise _Budget
-                    pb["far"] = max(pb["far"], abs(tt - pb["t0"]))
-                    if nfev[0] >= pb["next"]:
-                        pb["next"] = nfev[0] + (nfev[0] - pb["start"])
-                        _extrapolate(nfev[0], nfev[0] - pb["start"], pb["far"], pb["span"], B - b - 1, budget,
-                                     self.name)
-                    if bar is not None and not nfev[0] % PROGRESS_EVERY:
-                        bar.update(b + min(1.0, pb["far"] / pb["span"]) - bar.n)
-                    w = y[:n]
-                    if not np.all(np.isfinite(y)):  # an overflowing trial step: infinite error, scipy shrinks the step
-                        return np.full(y.shape, np.inf)
-                    with np.errstate(over="ignore", invalid="ignore"):  # trial steps may overflow; scipy rejects them
-                        dw = np.asarray(rhs(w), dtype=float)
-                    if torque is not None:
-                        tau = (np.asarray(torque(tt / rb, w * rb), dtype=float) / (rb * rb)
-                               if callable(torque) else tau_b)
-                        if tau.shape != (n,) or not np.all(np.isfinite(tau)):
-                            raise ValueError(f"torque(t, omega) must return {n} finite body-frame components, "
-                                             f"got {_validate.fmt(tau)}")
-                        dw = dw + tau / moments
-                    if not with_att:
-                        return dw
-                    Tm = y[n:].reshape(N, N)
-                    return np.concatenate([dw, (to_matrix(w, "standard") @ Tm).ravel()])
-
                 w0 = problem.L0[b] / moments / rb
                 y0 = w0 if not with_att else np.concatenate([w0, problem.T0[b].ravel()])
                 wscale = float(np.max(np.abs(w0))) or 1.0
@@ -201,9 +221,9 @@ class ScipyIVP(Solver):
                 kw = {k: v * s * rb for k, v in self.options.items() if v is not None}
                 kw.setdefault("max_step", MAX_STEP_RADIANS / wscale)
                 tb = t * rb
-                progress_b.update(t0=tb[0], span=abs(tb[-1] - tb[0]))
 
-                def call(dense, f=f, y0=y0, atol=atol, ev=ev, kw=kw, tb=tb):
+                def call(dense, count, bar, b=b, rb=rb, tau_b=tau_b, y0=y0, atol=atol, ev=ev, kw=kw, tb=tb):
+                    f = _MemberRHS(self.name, rhs, problem, b, rb, tau_b, tb, count, budget, B - b - 1, bar)
                     # a trial step may overflow: the right-hand side answers inf, scipy's error norm is
                     # inf and the step is rejected (the accepted solution is checked for finiteness below)
                     with np.errstate(over="ignore", invalid="ignore"):
@@ -211,14 +231,7 @@ class ScipyIVP(Solver):
                                          atol=atol, events=ev, dense_output=dense, **kw)
 
                 calls.append(call)
-                try:
-                    sol = call(bool(specs))
-                except _Budget:
-                    raise StepBudgetError(
-                        f"scipy {self.name} stopped after {budget} right-hand-side evaluations (the budget max_steps = "
-                        f"{budget}) at member {b}; raise it with simulate(..., max_steps=...) or "
-                        f"hyperrotor.options(max_steps=...), or ask for less (shorter t, larger rtol)"
-                    ) from None
+                sol = call(bool(specs), nfev, bar)
                 if sol.status == -1:
                     raise RuntimeError(f"scipy {self.name} failed: {sol.message}")
                 if not np.all(np.isfinite(sol.y)):
@@ -252,8 +265,7 @@ class ScipyIVP(Solver):
                     y = np.repeat(y0b[:, None], tq.size, axis=1)
                 else:
                     if sols[b] is None:  # first dense request: re-run this member with scipy's interpolants
-                        nfev[0] = 0
-                        sols[b] = calls[b](True).sol
+                        sols[b] = calls[b](True, [0], None).sol
                     y = sols[b](tq * rbs[b])
                     y = np.concatenate([y[:n] * rbs[b], y[n:]])
                 L[b] = y[:n].T * moments
@@ -270,20 +282,18 @@ class ScipyIVP(Solver):
 def _extrapolate(total: int, member: int, covered: float, span: float, members_left: int, budget: int,
                  name: str) -> None:
     """Refuse a run whose projected right-hand-side evaluations exceed ``budget`` (see the module docstring)."""
-    # nothing covered after EXTRAPOLATE_AFTER evaluations: the method is stuck (projected without end)
-    projected = (total + member * (span / covered - 1.0) + member * (span / covered) * members_left
-                 if covered > 0.0 else math.inf)
-    if covered <= 0.0:
+    if covered <= 0.0:  # nothing covered after EXTRAPOLATE_AFTER evaluations: the method is stuck
         raise StepBudgetError(
             f"scipy {name} made no progress in time after {member} right-hand-side evaluations (its step "
             f"underflows the time span); rescale the problem or use a fixed-step method"
         )
+    per_member = member * span / covered
+    projected = total - member + per_member * (1 + members_left)
     if projected > budget:
         raise StepBudgetError(
             f"scipy {name} would need about {projected:.3g} right-hand-side evaluations for this run "
             f"(extrapolated from {member} evaluations covering {covered / span:.3g} of the time span), more than "
-            f"the budget max_steps = {budget}; raise it with simulate(..., max_steps=...) or "
-            f"hyperrotor.options(max_steps=...), or ask for less (shorter t, larger rtol)"
+            f"the budget max_steps = {budget}; {_RAISE_BUDGET}"
         )
 
 
