@@ -135,13 +135,17 @@ def test_bad_inputs():
         V.render([], "html")
     with pytest.raises(ValueError, match="status"):
         V.Verdict("1", "fine", "x")
-    with pytest.raises(SystemExit) as exc:
-        V.main_verify(["--section", "bogus"])
+    from hyperrotor.cli import main
+
+    with pytest.raises(SystemExit) as exc:  # the one command line: `hyperrotor verify` (#21)
+        main(["verify", "--section", "bogus"])
     assert exc.value.code == 2
 
 
-def test_main_verify_json_section(capsys):
-    assert V.main_verify(["--json", "--section", "quantum"]) == 0
+def test_cli_verify_json_section(capsys):
+    from hyperrotor.cli import main
+
+    assert main(["verify", "--json", "--section", "quantum"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert {d["equation"] for d in data} == {k for k, v in EXPECTED.items()
                                              if k in ("141", "142", "143", "144", "145", "146", "147",
@@ -202,8 +206,8 @@ def test_garbled_frequency_becomes_checkable(fresh):
 def test_docs_page_is_current(verdicts):
     page = Path(__file__).resolve().parents[2] / "docs" / "verification.md"
     expected = V.render(verdicts, "markdown")
-    assert page.exists(), "generate it: python -m hyperrotor.paper.verify --markdown -o docs/verification.md"
+    assert page.exists(), "generate it: hyperrotor verify --markdown -o docs/verification.md --force"
     text = page.read_text(encoding="utf-8")
     assert text.rstrip("\n") == expected.rstrip("\n"), (
-        "docs/verification.md is stale; regenerate: python -m hyperrotor.paper.verify --markdown -o docs/verification.md"
+        "docs/verification.md is stale; regenerate: hyperrotor verify --markdown -o docs/verification.md --force"
     )

@@ -47,13 +47,14 @@ Rendering
 :func:`~hyperrotor.paper.report.render` turns verdicts into a terminal table
 (``"table"``), Markdown (``"markdown"``, the page ``docs/verification.md``) or
 JSON (``"json"``: a list of objects with ``equation``, ``status``, ``detail``,
-``printed``, ``correct``, ``section``). :func:`main_verify` is the command-line
-entry behind ``hyperrotor verify [--json | --markdown] [--section NAME ...]``.
+``printed``, ``correct``, ``section``). The command line is ``hyperrotor verify
+[--json | --markdown] [--section NAME ...] [-o FILE]`` (:func:`configure_parser`
+declares its options; the CLI writes files through its one checked, no-clobber path).
 """
 from __future__ import annotations
 
 import argparse
-from typing import Iterable, Sequence
+from typing import Iterable
 
 from hyperrotor.paper import printed_solutions as ps
 from hyperrotor.paper.report import render, render_json, render_markdown, render_table, summary
@@ -76,7 +77,6 @@ __all__ = [
     "render_table",
     "render_markdown",
     "render_json",
-    "main_verify",
     "clear_cache",
     "summary",
 ]
@@ -134,7 +134,7 @@ def verify(sections: Iterable[str] | None = None) -> list[Verdict]:
 
 
 def configure_parser(parser: argparse.ArgumentParser) -> None:
-    """Add the options of ``hyperrotor verify`` to ``parser`` (shared by the CLI and :func:`main_verify`)."""
+    """Add the options of ``hyperrotor verify`` to ``parser`` (the CLI writes ``--output`` through its one checked file path)."""
     fmt = parser.add_mutually_exclusive_group()
     fmt.add_argument("--json", action="store_true", help="JSON list of {equation, status, detail, ...}")
     fmt.add_argument("--markdown", action="store_true", help="Markdown report (docs/verification.md)")
@@ -143,33 +143,6 @@ def configure_parser(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
 
 
-def run_from_args(args: argparse.Namespace) -> int:
-    """Run the report for parsed options (see :func:`configure_parser`); returns the exit code 0."""
-    verdicts = verify(args.section)
-    text = render(verdicts, "json" if args.json else "markdown" if args.markdown else "table")
-    if args.output:
-        with open(args.output, "w", encoding="utf-8") as fh:
-            fh.write(text if text.endswith("\n") else text + "\n")
-    else:
-        print(text)
-    return 0
-
-
-def main_verify(argv: Sequence[str] | None = None) -> int:
-    """Command-line entry: ``hyperrotor verify [--json | --markdown] [--section NAME ...] [--output FILE]``.
-
-    Prints the report (or writes it to ``--output``) and returns the exit code 0.
-    Bad options exit with code 2 and a message listing what is allowed (argparse).
-    """
-    parser = argparse.ArgumentParser(prog="hyperrotor verify", description=VERIFY_DESCRIPTION)
-    configure_parser(parser)
-    return run_from_args(parser.parse_args(argv))
-
-
 #: One-line description of the report (CLI help).
 VERIFY_DESCRIPTION = ("check the preprint's equations (3)-(147) against hyperrotor's derivations; "
                       "each item holds / typo / claim-false / not-checkable")
-
-
-if __name__ == "__main__":  # python -m hyperrotor.paper.verify --markdown -o docs/verification.md
-    raise SystemExit(main_verify())
