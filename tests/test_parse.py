@@ -1,0 +1,123 @@
+"""The one parser of user text (hyperrotor._parse): exact results, nothing evaluated, bounded."""
+import time
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from hyperrotor import _parse
+
+x, y = sp.symbols("x y")
+
+
+@pytest.mark.parametrize(
+    "text, expected",
+    [
+        ("1/2", sp.Rational(1, 2)),
+        ("0.1", sp.Rational(1, 10)),
+        ("2e-3", sp.Rational(1, 500)),
+        (".5", sp.Rational(1, 2)),
+        ("5.", sp.Integer(5)),
+        ("-(3/4)**2", -sp.Rational(9, 16)),
+        ("2**-2", sp.Rational(1, 4)),
+        ("2**3**2", sp.Integer(512)),  # right-associative, like Python
+        ("-2**2", sp.Integer(-4)),  # unary minus binds looser than **, like Python
+        ("2**(1/2)", sp.sqrt(2)),
+        ("(x - y)**2", (x - y) ** 2),
+        ("x/2 + 3*y", x / 2 + 3 * y),
+        (" 1 +  2 ", sp.Integer(3)),
+    ],
+)
+def test_expressions_are_exact(text, expected):
+    assert _parse.expression(text, "arg") == expected
+
+
+def test_names_become_symbols_with_assumptions_or_are_refused():
+    h = _parse.expression("hbar", "hbar", positive=True)
+    assert h == sp.Symbol("hbar", positive=True) and h.is_positive
+    assert _parse.expression("I_12", "moment", symbols={"I_12"}) == sp.Symbol("I_12")
+    with pytest.raises(_parse.ParseError, match="unknown name 'I_13'"):
+        _parse.expression("I_13", "moment", symbols={"I_12"})
+    with pytest.raises(_parse.ParseError, match="names are not allowed"):
+        _parse.number("x", "--kappa")
+
+
+def test_number():
+    assert _parse.number("1/2", "k") == 0.5
+    assert _parse.number("-2.5e-3", "k") == -0.0025
+    assert _parse.number("2**(1/2)", "k") == float(np.sqrt(2))
+    assert _parse.number("3/4", "k", exact=True) == sp.Rational(3, 4)
+    with pytest.raises(_parse.ParseError, match="exact fraction"):
+        _parse.number("2**(1/2)", "k", exact=True)
+    for big in ("1e400", "10**400", "-(10**309)"):
+        with pytest.raises(_parse.ParseError, match="too large for a float"):
+            _parse.number(big, "k")
+
+
+PAYLOADS = [
+    "__import__('os').system('touch pwned')",
+    "exec('open(\"pwned\", \"w\")')",
+    "eval('1')",
+    "lambda: 0",
+    "().__class__.__mro__",
+    "__builtins__",
+    "x.__class__",
+    "open",  # a plain name is a Symbol, never the builtin (checked below)
+    "print(1)",
+    "x[0]",
+    "[1, 2]",
+    "{1: 2}",
+    "1 if x else 2",
+    "9**9**9**9",
+    "10**10**10",
+    "(10**1000)**1000",
+    "1e999999",
+    "9" * 5000,
+    "(" * 500 + "1" + ")" * 500,
+    "1/0",
+    "0**-1",
+    "'a'",
+    "x; import os",
+    "2x",
+    "3^2",
+    "",
+    "   ",
+]
+
+
+@pytest.mark.parametrize("text", PAYLOADS)
+def test_payloads_are_refused_quickly_and_create_nothing(text, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    start = time.perf_counter()
+    try:
+        result = _parse.expression(text, "arg")
+    except _parse.ParseError as exc:
+        assert "arg=" in str(exc) and "allowed:" in str(exc)
+    else:  # the only accepted payload is a bare name, which is a Symbol and nothing more
+        assert text == "open" and result == sp.Symbol("open")
+    assert time.perf_counter() - start < 1.0
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_non_text_is_refused():
+    with pytest.raises(TypeError, match="arg must be text"):
+        _parse.expression(0.5, "arg")
+
+
+def test_to_sympy_is_sympify_without_text_evaluation():
+    assert _parse.to_sympy(np.float64(0.5), "h") == sp.Float(0.5)
+    assert _parse.to_sympy(np.int64(3), "h") == sp.Integer(3)
+    assert _parse.to_sympy(Fraction(1, 3), "h") == sp.Rational(1, 3)
+    assert _parse.to_sympy(1 + 2j, "h") == sp.Float(1) + sp.Float(2) * sp.I
+    assert _parse.to_sympy(x, "h") is x
+    assert _parse.to_sympy("x/2", "h") == x / 2
+    with pytest.raises(TypeError, match="h must be a number or a SymPy expression, not text"):
+        _parse.to_sympy("x", "h", text=False)
+    for bad in (True, None, [1], object()):
+        with pytest.raises(TypeError, match="h must be a number or a SymPy expression"):
+            _parse.to_sympy(bad, "h")
+    with pytest.raises(ValueError, match="h must be finite"):
+        _parse.to_sympy(float("nan"), "h")
+    with pytest.raises(_parse.ParseError):
+        _parse.to_sympy("__import__('os')", "h")
