@@ -14,7 +14,9 @@ import sympy as sp
 import hyperrotor as hr
 
 from hyperrotor import Inertia, RigidBody
-from hyperrotor.cli import EXIT_CODES, SUBCOMMANDS, bench_paths, main, scene_estimate
+from hyperrotor.cli import EXIT_CODES, SUBCOMMANDS, main
+from hyperrotor.cli.bench import bench_paths
+from hyperrotor.cli.scene import scene_estimate
 
 
 def _run(capsys, argv):

@@ -9,50 +9,135 @@ and change it for a block of code::
         hr.simulate(body, omega0, t, rtol=1e-12)
 
 or for the session (``hr.options["max_steps"] = 10**10``). Unknown keys raise
-``KeyError`` naming the allowed ones. Each entry of :data:`DEFAULTS` carries
-its meaning and why its default is what it is; modules add their entries with
-:func:`register` at import time, so the table stays the one source.
+:class:`UnknownOptionError` (a ``KeyError`` and a ``ValueError``) naming the
+allowed ones. Each entry carries its meaning and why its default is what it
+is; modules add their entries with :func:`register` at import time, so the
+table stays the one source.
+
+**Values are checked on assignment.** An entry registered with an integer
+default takes integers >= 1 (and integral floats such as ``1e9``; ``bool`` is refused); one with a float default
+takes finite reals >= 0; an entry may give its own ``check``. ``nan``, a
+negative budget or a string is refused with a ``TypeError``/``ValueError``
+naming the key, so no budget can be switched off by accident.
+
+**Blocks are context-local.** ``with options(...)`` changes the values seen by
+the current thread (more precisely: the current :mod:`contextvars` context,
+as NumPy's error state), never those of other threads, and interleaved blocks
+in several threads each restore exactly what they changed. The worker
+threads and dask tasks of :mod:`hyperrotor._parallel` run with the values of
+the block that started them. ``options[key] = value`` changes the session
+value, seen by every thread that has no block of its own for ``key``.
 """
 from __future__ import annotations
 
+import math
+import threading
 from contextlib import contextmanager
-from typing import Any, Iterator
+from contextvars import ContextVar
+from numbers import Integral, Real
+from types import MappingProxyType
+from typing import Any, Callable, Iterator, Mapping
 
-__all__ = ["options", "Options", "register"]
+__all__ = ["options", "Options", "register", "UnknownOptionError"]
+
+
+class UnknownOptionError(KeyError, ValueError):
+    """An option name that is not in the table it was looked up in (the one exception for unknown keys).
+
+    It is both a ``KeyError`` (mapping access: ``hr.options["nope"]``) and a
+    ``ValueError`` (a bad argument value: ``evolve(options={"nope": 1})``).
+    """
+
+    def __str__(self) -> str:  # KeyError would print the repr of its argument
+        return str(self.args[0]) if self.args else ""
+
+
+def _check_int(key: str, value: Any) -> int:
+    if isinstance(value, Real) and not isinstance(value, (bool, Integral)) and math.isfinite(value) and float(value).is_integer():
+        value = int(value)  # 1e9 means 10**9
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        raise TypeError(f"option {key!r} must be an integer, got {value!r} of type {type(value).__name__}")
+    if value < 1:
+        raise ValueError(f"option {key!r} must be >= 1, got {int(value)}")
+    return int(value)
+
+
+def _check_float(key: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise TypeError(f"option {key!r} must be a real number, got {value!r} of type {type(value).__name__}")
+    v = float(value)
+    if not math.isfinite(v) or v < 0:
+        raise ValueError(f"option {key!r} must be a finite number >= 0, got {v!r}")
+    return v
+
+
+def _default_check(default: Any) -> Callable[[str, Any], Any]:
+    if isinstance(default, bool):
+        def check_bool(key: str, value: Any) -> bool:
+            if not isinstance(value, bool):
+                raise TypeError(f"option {key!r} must be True or False, got {value!r}")
+            return value
+        return check_bool
+    if isinstance(default, Integral):
+        return _check_int
+    if isinstance(default, Real):
+        return _check_float
+    raise TypeError(f"an option with a default of type {type(default).__name__} needs its own check=")
 
 
 class Options:
-    """The package's option table: mapping access, documented entries, a context manager.
+    """The package's option table: mapping access, documented entries, a context-local context manager.
 
     ``options[key]`` reads, ``options[key] = value`` sets for the session,
-    ``with options(key=value, ...):`` sets for a block and restores afterwards.
-    ``options.describe(key)`` gives the documentation of an entry.
+    ``with options(key=value, ...):`` sets for a block of the current context
+    (thread) and restores afterwards. ``options.describe(key)`` gives the
+    documentation of an entry; ``options.snapshot()`` the values in force here.
     """
 
     def __init__(self) -> None:
-        self._values: dict[str, Any] = {}
+        self._session: dict[str, Any] = {}
         self._defaults: dict[str, Any] = {}
         self._docs: dict[str, str] = {}
+        self._checks: dict[str, Callable[[str, Any], Any]] = {}
+        self._lock = threading.Lock()
+        self._local: ContextVar[Mapping[str, Any]] = ContextVar("hyperrotor_options", default=MappingProxyType({}))
 
-    def register(self, key: str, default: Any, doc: str) -> None:
-        """Add an option ``key`` with its ``default`` and a one-paragraph ``doc``."""
+    def register(self, key: str, default: Any, doc: str, *, check: Callable[[str, Any], Any] | None = None) -> None:
+        """Add an option ``key`` with its ``default``, a one-paragraph ``doc`` and an optional ``check``.
+
+        ``check(key, value)`` returns the normalised value or raises
+        ``TypeError``/``ValueError``; by default it is inferred from the type of
+        ``default`` (see the module docstring).
+        """
         if key in self._defaults and self._defaults[key] != default:
             raise ValueError(f"option {key!r} is registered twice with different defaults")
-        self._defaults[key] = default
-        self._values.setdefault(key, default)
-        self._docs[key] = doc
+        check = check or _default_check(default)
+        default = check(key, default)
+        with self._lock:
+            self._defaults[key] = default
+            self._session.setdefault(key, default)
+            self._docs[key] = doc
+            self._checks[key] = check
 
     def _check(self, key: str) -> None:
         if key not in self._defaults:
-            raise KeyError(f"unknown option {key!r}; allowed: {', '.join(sorted(self._defaults))}")
+            raise UnknownOptionError(f"unknown option {key!r}; allowed: {', '.join(sorted(self._defaults))}")
+
+    def _value(self, key: str, value: Any) -> Any:
+        self._check(key)
+        return self._checks[key](key, value)
 
     def __getitem__(self, key: str) -> Any:
+        local = self._local.get()
+        if key in local:
+            return local[key]
         self._check(key)
-        return self._values[key]
+        return self._session[key]
 
     def __setitem__(self, key: str, value: Any) -> None:
-        self._check(key)
-        self._values[key] = value
+        value = self._value(key, value)
+        with self._lock:
+            self._session[key] = value
 
     def __contains__(self, key: object) -> bool:
         return key in self._defaults
@@ -61,26 +146,31 @@ class Options:
         return self._defaults.keys()
 
     def reset(self) -> None:
-        """Restore every default."""
-        self._values = dict(self._defaults)
+        """Restore every default (session values; blocks in progress keep their own values)."""
+        with self._lock:
+            self._session = dict(self._defaults)
 
     def describe(self, key: str) -> str:
         self._check(key)
         return self._docs[key]
 
+    def snapshot(self) -> dict[str, Any]:
+        """The values in force in the current context, for every key (what a worker must see)."""
+        local = self._local.get()
+        return {k: local.get(k, self._session[k]) for k in self._defaults}
+
     @contextmanager
     def __call__(self, **changes: Any) -> Iterator["Options"]:
-        for k in changes:
-            self._check(k)
-        saved = {k: self._values[k] for k in changes}
-        self._values.update(changes)
+        checked = {k: self._value(k, v) for k, v in changes.items()}
+        token = self._local.set(MappingProxyType({**self._local.get(), **checked}))
         try:
             yield self
         finally:
-            self._values.update(saved)
+            self._local.reset(token)
 
     def __repr__(self) -> str:
-        rows = [f"  {k} = {self._values[k]!r}" + ("" if self._values[k] == self._defaults[k] else f"  (default {self._defaults[k]!r})")
+        here = self.snapshot()
+        rows = [f"  {k} = {here[k]!r}" + ("" if here[k] == self._defaults[k] else f"  (default {self._defaults[k]!r})")
                 for k in sorted(self._defaults)]
         return "hyperrotor options:\n" + "\n".join(rows)
 

@@ -60,6 +60,7 @@ from typing import Any, Callable, Sequence
 import numpy as np
 
 from . import _validate
+from ._options import options
 
 __all__ = ["map_rows", "grid_rows", "import_distributed", "client_threads", "default_workers"]
 
@@ -156,14 +157,40 @@ def _concat(parts: list) -> Any:
     return np.concatenate(parts, axis=0)
 
 
-def _progress_bar(progress: bool | None, total: int, desc: str | None):
+def progress_bar(progress: bool | None, total: float, desc: str | None = None, *, unit: str = "row",
+                 leave: bool | None = None):
+    """The package's one progress bar (tqdm on stderr), or ``None`` when none is wanted.
+
+    ``progress=True``: always shown; ``False``: never; ``None``: only on a terminal,
+    and only once the work has taken a second (tqdm's ``delay``). ``total`` is in
+    ``unit``s; callers advance it with ``bar.update(n)`` and close it. ``leave``
+    (default: ``progress is True``) keeps the finished bar on screen.
+    """
     if progress is False or total == 0:
         return None
     if progress is None and not (hasattr(sys.stderr, "isatty") and sys.stderr.isatty()):
         return None
     from tqdm.auto import tqdm
 
-    return tqdm(total=total, desc=desc, unit="row", delay=0.0 if progress else 1.0, leave=bool(progress))
+    return tqdm(total=total, desc=desc, unit=unit, delay=0.0 if progress else 1.0,
+                leave=bool(progress) if leave is None else leave)
+
+
+class _WithOptions:
+    """``func`` run under the option values of the caller's context (picklable: a dask task carries it).
+
+    Worker threads do not inherit the caller's :mod:`contextvars` context, and dask
+    workers run in other processes; both must see the budgets and tolerances of the
+    ``with hr.options(...)`` block that started the run (docs/safety.md, threads).
+    """
+
+    def __init__(self, func: Callable, values: dict) -> None:
+        self.func = func
+        self.values = values
+
+    def __call__(self, *a: Any) -> Any:
+        with options(**self.values):
+            return self.func(*a)
 
 
 def map_rows(
@@ -233,7 +260,8 @@ def map_rows(
         return func(*arrs, *args)
     bounds = [(s, min(B, s + chunk_size)) for s in range(0, B, chunk_size)]
     chunks = [tuple(a[s:e] for a in arrs) for s, e in bounds]
-    bar = _progress_bar(progress, B, desc)
+    bar = progress_bar(progress, B, desc)
+    func = _WithOptions(func, options.snapshot())
     try:
         if client is not None:
             parts = _run_dask(client, func, chunks, args, bar)

@@ -1,0 +1,216 @@
+"""The ``hyperrotor`` command line.
+
+One module per subcommand (:mod:`hyperrotor.cli.demo`, ``.verify``, ``.scene``,
+``.bench``), each with ``configure(parser)`` (adds its options) and
+``run(args) -> int`` (checks them and does the work), registered in
+:data:`SUBCOMMANDS`. To add a subcommand, write the module and add one
+:class:`Subcommand` entry to the table. Shared pieces live in
+:mod:`hyperrotor.cli._common` (numbers, budgets, progress) and
+:mod:`hyperrotor.cli._files` (output files). Nothing outside this package
+imports it.
+
+Subcommands
+-----------
+``demo``
+    The 5D Euler equations (28)-(37) of the paper's quartet body (eqs. 84-85),
+    its invariants on a sample angular velocity, closed form vs numerics, a PNG.
+``verify``
+    The preprint checked equation by equation (:mod:`hyperrotor.paper.verify`).
+``scene``
+    The 3D projection of a body rotating in N dimensions, PNG snapshots or a GIF.
+``bench``
+    A quick work-precision run (:mod:`hyperrotor.bench`), a CSV and a PNG.
+
+Conventions of every subcommand
+-------------------------------
+* **Checks first.** Every argument and every output path is checked before any
+  work: an unknown format, a missing or unwritable folder, an existing file, a
+  run whose memory or time, estimated from the arguments, exceeds the budget
+  (``hr.options["cli_max_memory"]``, ``["cli_max_seconds"]``; ``--max-memory``,
+  ``--max-seconds``) are refused with **one line** on stderr naming the value
+  and what is allowed, and exit status 2.
+* **Exit status.** 0 success; 1 the work failed (one line on stderr); 2 usage
+  error; 130 interrupted by Ctrl-C (SIGINT); 143 terminated (SIGTERM); 141
+  standard output closed early (``hyperrotor demo | head -1``): the command
+  stops quietly with the status a shell reports for a program ended by
+  SIGPIPE, as ``yes | head -1`` does (so ``set -o pipefail`` treats both alike).
+  ``--debug`` adds the Python traceback to an error.
+* **Output files** are never overwritten unless ``--force`` is given. Each is
+  written to a hidden temporary file in its target folder and renamed when
+  complete, so an error or an interrupt leaves no partial file and the earlier
+  file (if any) intact (:mod:`hyperrotor.cli._files`).
+* **Progress** bars (tqdm) go to stderr, for work that can take more than a few
+  seconds (scene, bench, verify), when stderr is a terminal or with
+  ``--progress`` (``--no-progress`` turns them off).
+* **Warnings** (e.g. numerical ones from NumPy) are reported after the work,
+  one line each (``hyperrotor demo: warning: RuntimeWarning: ...``).
+* **Numbers** print as plain values with 12 significant digits (``-0.33``, not
+  ``-0.32999999999999996``); values in error messages via
+  :func:`hyperrotor._validate.fmt`.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import signal
+import sys
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Sequence
+
+from hyperrotor.cli import bench, demo, scene, verify
+from hyperrotor.cli._common import UsageError
+
+__all__ = ["main", "build_parser", "Subcommand", "SUBCOMMANDS", "UsageError", "EXIT_CODES"]
+
+#: The exit statuses of ``hyperrotor`` (module docstring).
+EXIT_CODES = {"ok": 0, "failed": 1, "usage": 2, "interrupted": 130, "broken-pipe": 141, "terminated": 143}
+
+
+class _Terminated(BaseException):
+    """SIGTERM, turned into an exception so that temporary files are removed."""
+
+
+@dataclass(frozen=True)
+class Subcommand:
+    """A registered subcommand: its help text, option set-up and action."""
+
+    help: str
+    configure: Callable[[argparse.ArgumentParser], None]
+    run: Callable[[argparse.Namespace], int]
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line (raised as :class:`UsageError`)."""
+
+    def error(self, message: str):  # noqa: D401 - argparse API
+        raise UsageError(f"{message} (see '{self.prog} --help')")
+
+
+# ----------------------------------------------------------------------------
+# registry and entry point
+# ----------------------------------------------------------------------------
+#: name -> Subcommand. Add new subcommands here.
+SUBCOMMANDS: dict[str, Subcommand] = {
+    "demo": Subcommand(
+        help="print the 5D Euler equations (28)-(37) of the paper's quartet body and its invariants",
+        configure=demo.configure,
+        run=demo.run,
+    ),
+    "verify": Subcommand(
+        help="check the preprint equation by equation (holds / typo / claim-false / not-checkable)",
+        configure=verify.configure,
+        run=verify.run,
+    ),
+    "bench": Subcommand(
+        help="quick work-precision run (wall time vs relative error against closed forms), CSV + PNG",
+        configure=bench.configure,
+        run=bench.run,
+    ),
+    "scene": Subcommand(
+        help="render the 3D projection of a body rotating in N dimensions to PNG (snapshots) or GIF",
+        configure=scene.configure,
+        run=scene.run,
+    ),
+}
+
+_EPILOG = ("Exit status: 0 ok, 1 the work failed, 2 usage error (one line on stderr), 130 Ctrl-C, "
+           "141 standard output closed early (e.g. '| head'), 143 SIGTERM. Output files are never "
+           "overwritten without --force and never left half-written.")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``hyperrotor`` argument parser with every registered subcommand."""
+    from hyperrotor import __version__
+
+    parser = _Parser(prog="hyperrotor", description="Rigid rotation in N dimensions, classical and quantum.",
+                     epilog=_EPILOG)
+    parser.add_argument("--version", action="version", version=f"hyperrotor {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True, parser_class=_Parser)
+    for name, cmd in SUBCOMMANDS.items():
+        p = sub.add_parser(name, help=cmd.help, description=cmd.help, epilog=_EPILOG)
+        cmd.configure(p)
+        p.set_defaults(_run=cmd.run)
+    return parser
+
+
+def _one_line(text: str) -> str:
+    return re.sub(r"\s*\n\s*", " ", str(text)).strip()
+
+
+def _say(prog: str, message: str) -> None:
+    try:
+        print(f"{prog}: {_one_line(message)}", file=sys.stderr, flush=True)
+    except (OSError, ValueError):  # stderr closed too: nothing left to tell
+        pass
+
+
+def _silence_stdout() -> None:
+    """After a broken pipe: point stdout at /dev/null so the interpreter's final flush stays quiet."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
+def _on_sigterm(signum, frame):
+    raise _Terminated()
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run ``hyperrotor`` with ``argv`` (default ``sys.argv[1:]``); returns the exit status.
+
+    See the module docstring for the exit statuses and the one-line errors.
+    ``--help`` and ``--version`` exit through ``SystemExit(0)`` (argparse).
+    """
+    argv = list(sys.argv[1:] if argv is None else argv)
+    debug = "--debug" in argv
+    prog = "hyperrotor"
+    if argv and argv[0] in SUBCOMMANDS:
+        prog = f"hyperrotor {argv[0]}"
+    try:
+        old_term = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread
+        old_term = None
+    try:
+        args = build_parser().parse_args(argv)
+        with warnings.catch_warnings(record=True) as caught:  # reported one line each, after the work
+            warnings.simplefilter("default")
+            code = int(args._run(args))
+        for w in caught:
+            _say(prog, f"warning: {w.category.__name__}: {w.message} ({Path(w.filename).name}:{w.lineno})")
+        sys.stdout.flush()
+        return code
+    except UsageError as err:
+        if debug:
+            import traceback
+
+            traceback.print_exc()
+        _say(prog, f"error: {err}")
+        return EXIT_CODES["usage"]
+    except KeyboardInterrupt:
+        _say(prog, "interrupted (Ctrl-C); unfinished output files were removed, existing files left as they were")
+        return EXIT_CODES["interrupted"]
+    except _Terminated:
+        _say(prog, "terminated (SIGTERM); unfinished output files were removed")
+        return EXIT_CODES["terminated"]
+    except BrokenPipeError:
+        _silence_stdout()
+        return EXIT_CODES["broken-pipe"]
+    except Exception as err:  # noqa: BLE001 - the command line reports every failure in one line
+        if debug:
+            import traceback
+
+            traceback.print_exc()
+        detail = f"{type(err).__name__}: {err}" if not isinstance(err, (OSError, RuntimeError)) or not str(err) \
+            else str(err)
+        _say(prog, f"failed: {detail}" + ("" if debug else " (--debug shows the traceback)"))
+        return EXIT_CODES["failed"]
+    finally:
+        if old_term is not None:
+            signal.signal(signal.SIGTERM, old_term)
+

@@ -1,0 +1,6 @@
+"""``python -m hyperrotor.cli``: the ``hyperrotor`` command."""
+import sys
+
+from hyperrotor.cli import main
+
+sys.exit(main())

@@ -1,0 +1,174 @@
+"""What every subcommand of ``hyperrotor`` shares: the usage error, number checks, budgets, progress.
+
+The subcommand modules (:mod:`hyperrotor.cli.demo`, ``.scene``, ``.verify``,
+``.bench``) import from here, never from :mod:`hyperrotor.cli` itself (which
+imports them to build its registry).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import re
+import sys
+
+import numpy as np
+
+from hyperrotor import _validate
+from hyperrotor._options import options
+
+__all__ = ["UsageError", "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number_list", "int_list",
+           "byte_size", "size_text", "duration_text", "check_budget", "show_progress", "bar",
+           "have_matplotlib", "add_common", "check_common"]
+
+
+class UsageError(ValueError):
+    """A bad argument or output path: one line on stderr, exit status 2."""
+
+
+def num(x, digits: int = 12) -> str:
+    """A number as plain text with ``digits`` significant digits (``-0.33``, ``2``, ``1.5e-12``)."""
+    x = float(x)
+    return "0" if x == 0.0 else format(x, f".{digits}g")
+
+
+def nums(values, digits: int = 12) -> str:
+    """A list of numbers as plain text: ``[0, -0.33, 1.5]``."""
+    return "[" + ", ".join(num(v, digits) for v in values) + "]"
+
+
+def usage(fn, *a, **kw):
+    """Call a ``_validate`` check; its ValueError/TypeError becomes a :class:`UsageError`."""
+    try:
+        return fn(*a, **kw)
+    except (TypeError, ValueError) as err:
+        raise UsageError(str(err)) from None
+
+
+#: Largest magnitude of a number given on the command line (kappa, omega, sides): squares and
+#: products of a few of them must stay far inside double precision.
+MAX_MAGNITUDE = 1e100
+
+
+def bounded(option: str, value: float) -> float:
+    """A finite real number with ``|value| <= MAX_MAGNITUDE`` (else :class:`UsageError`)."""
+    value = usage(_validate.real, option, value)
+    if abs(value) > MAX_MAGNITUDE:
+        raise UsageError(f"{option} must have magnitude <= {MAX_MAGNITUDE:g}, got {_validate.fmt(value)}")
+    return value
+
+
+def number_list(text: str, option: str, count: int | None = None, *, positive: bool = False) -> np.ndarray:
+    """Comma-separated finite numbers of magnitude <= :data:`MAX_MAGNITUDE` (exactly ``count`` when given)."""
+    parts = [v.strip() for v in text.split(",") if v.strip()]
+    try:
+        arr = np.array([float(v) for v in parts])
+    except ValueError:
+        raise UsageError(f"{option} must be comma-separated numbers, got {text!r}") from None
+    if count is not None and arr.size != count:
+        raise UsageError(f"{option} needs {count} comma-separated numbers, got {arr.size} ({text!r})")
+    bad = [float(v) for v in arr if not math.isfinite(v) or (positive and v <= 0) or abs(v) > MAX_MAGNITUDE]
+    if bad:
+        raise UsageError(f"{option} values must be finite{' and > 0' if positive else ''} with magnitude <= "
+                         f"{MAX_MAGNITUDE:g}, got {_validate.fmt(bad)}")
+    return arr
+
+
+def int_list(text: str, option: str) -> list[int]:
+    """Comma-separated integers (``1,2,3``)."""
+    try:
+        return [int(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise UsageError(f"{option} must be comma-separated integers, got {text!r}") from None
+
+
+_BYTE_UNITS = {"": 1, "K": 2**10, "M": 2**20, "G": 2**30, "T": 2**40}
+
+
+def byte_size(text: str) -> int:
+    """``--max-memory``: bytes, or a number with K, M, G or T (binary units), e.g. ``4G``."""
+    m = re.fullmatch(r"\s*([0-9.]+(?:[eE][+-]?[0-9]+)?)\s*([KMGT]?)(?:i?B)?\s*", text, flags=re.I)
+    if not m:
+        raise argparse.ArgumentTypeError(f"expected a size such as 2G, 500M or 1000000, got {text!r}")
+    value = float(m.group(1)) * _BYTE_UNITS[m.group(2).upper()]
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"expected a positive size, got {text!r}")
+    return int(value)
+
+
+def size_text(n: float) -> str:
+    """Bytes as text: ``8.0 TiB``, ``512 MiB``."""
+    for unit, k in (("TiB", 40), ("GiB", 30), ("MiB", 20), ("KiB", 10)):
+        if n >= 2**k:
+            return f"{n / 2**k:.3g} {unit}"
+    return f"{int(n)} bytes"
+
+
+def duration_text(s: float) -> str:
+    """Seconds as text: ``12 s``, ``3.5 min``, ``2 h``, ``4.1 days``."""
+    if s >= 86400:
+        return f"{s / 86400:.3g} days"
+    if s >= 3600:
+        return f"{s / 3600:.3g} h"
+    if s >= 60:
+        return f"{s / 60:.3g} min"
+    return f"{s:.2g} s"
+
+
+def check_budget(args: argparse.Namespace, what: str, seconds: float, memory: float | None = None,
+                 hint: str = "") -> None:
+    """Refuse a run whose estimated time or memory exceeds the budget (before any work)."""
+    max_s = args.max_seconds if args.max_seconds is not None else float(options["cli_max_seconds"])
+    max_m = getattr(args, "max_memory", None)
+    max_m = max_m if max_m is not None else int(options["cli_max_memory"])
+    tail = f"; {hint}" if hint else ""
+    if memory is not None and memory > max_m:
+        raise UsageError(f"{what} needs about {size_text(memory)} of memory, over the budget of {size_text(max_m)} "
+                         f"(--max-memory, default hr.options['cli_max_memory']){tail}")
+    if seconds > max_s:
+        raise UsageError(f"{what} would take about {duration_text(seconds)}, over the budget of "
+                         f"{duration_text(max_s)} (--max-seconds, default hr.options['cli_max_seconds']){tail}")
+
+
+def show_progress(args: argparse.Namespace) -> bool:
+    """``--progress`` / ``--no-progress``, default: stderr is a terminal."""
+    return args.progress if args.progress is not None else sys.stderr.isatty()
+
+
+def bar(args: argparse.Namespace, total: int, desc: str, unit: str):
+    """A tqdm bar on stderr (disabled unless :func:`show_progress`)."""
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, disable=not show_progress(args),
+                leave=False, dynamic_ncols=True, mininterval=0.2)
+
+
+def have_matplotlib() -> bool:
+    """Whether matplotlib can be imported (the ``viz`` extra)."""
+    import importlib.util
+
+    return importlib.util.find_spec("matplotlib") is not None
+
+
+def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool = False) -> None:
+    """The options every subcommand has (--force, --progress, --debug) and the budget options."""
+    g = p.add_argument_group("behaviour")
+    g.add_argument("--force", action="store_true",
+                   help="replace existing output files (default: refuse and leave them as they are)")
+    g.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress bars on stderr (default: only when stderr is a terminal)")
+    g.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
+    if budget:
+        g = p.add_argument_group("budget (checked against estimates before any work)")
+        g.add_argument("--max-seconds", type=float, default=None, metavar="S",
+                       help="refuse a run estimated to take longer (default hr.options['cli_max_seconds'] "
+                            f"= {options['cli_max_seconds']:g} s)")
+    if memory:
+        g.add_argument("--max-memory", type=byte_size, default=None, metavar="SIZE",
+                       help="refuse a run estimated to need more memory, e.g. 4G (default "
+                            f"hr.options['cli_max_memory'] = {size_text(options['cli_max_memory'])})")
+
+
+def check_common(args: argparse.Namespace) -> None:
+    """Check the common options (a positive --max-seconds)."""
+    if getattr(args, "max_seconds", None) is not None:
+        usage(_validate.positive, "--max-seconds", args.max_seconds)

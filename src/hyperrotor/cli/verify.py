@@ -1,0 +1,62 @@
+"""``hyperrotor verify``: the preprint checked equation by equation (:mod:`hyperrotor.paper.verify`)."""
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from hyperrotor.cli._common import UsageError, add_common, bar, check_common
+from hyperrotor.cli._files import Outputs, output_file
+
+__all__ = ["configure", "run"]
+
+
+_VERIFY_SUFFIXES = {"json": (".json",), "markdown": (".md", ".markdown"), "table": (".txt", ".text")}
+
+
+def configure(p: argparse.ArgumentParser) -> None:
+    from hyperrotor.paper import verify
+
+    verify.configure_parser(p)
+    for action in p._actions:  # document the extension rule on -o
+        if "--output" in action.option_strings:
+            action.help = ("write the report to FILE instead of stdout: .txt (table), .md (Markdown) or .json; "
+                           "without --json/--markdown the extension chooses the format, with them it must match")
+    add_common(p)
+
+
+def run(args: argparse.Namespace) -> int:
+    from hyperrotor.paper.verify import SECTIONS, render, verify
+
+    check_common(args)
+    kind = "json" if args.json else "markdown" if args.markdown else None
+    if kind is None and args.output is not None:  # no format option: the extension of --output chooses
+        suffix = Path(args.output).suffix.lower()
+        kind = next((k for k, sfx in _VERIFY_SUFFIXES.items() if suffix in sfx), "table")
+    kind = kind or "table"
+    keys = list(args.section) if args.section else list(SECTIONS)
+    with Outputs() as outs:
+        out = None
+        if args.output is not None:
+            flag = {"json": "--json", "markdown": "--markdown", "table": "no format option"}[kind]
+            suffixes = _VERIFY_SUFFIXES[kind] if (args.json or args.markdown) else sum(_VERIFY_SUFFIXES.values(), ())
+            try:
+                out = outs.add(output_file(args.output, option="--output", suffixes=suffixes, force=args.force))
+            except ValueError as err:
+                msg = str(err)
+                if (args.json or args.markdown) and ("has extension" in msg or "has no extension" in msg):
+                    msg += f" (the {kind} report, {flag})"
+                raise UsageError(msg) from None
+        verdicts = []
+        with bar(args, len(keys), "verify: sections", "section") as pbar:
+            for key in keys:
+                pbar.set_postfix_str(key)
+                verdicts.extend(verify([key]))
+                pbar.update()
+        text = render(verdicts, kind)
+        if out is None:
+            print(text)
+            return 0
+        out.tmp.write_text(text if text.endswith("\n") else text + "\n", encoding="utf-8")
+        outs.commit()
+    print(f"written: {out.path} ({len(verdicts)} items)")
+    return 0
