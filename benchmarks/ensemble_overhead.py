@@ -114,7 +114,7 @@ def _time_kernels() -> None:
 
         setattr(mod, name, timed)
 
-    from hyperrotor.classical import _kernels
+    from hyperrotor.classical.solvers import _kernels
 
     for name in ("split_run", "split_run_serial", "split_run_ensemble"):
         wrap(_kernels, name)

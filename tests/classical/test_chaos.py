@@ -7,7 +7,8 @@ from scipy.integrate import solve_ivp
 
 import hyperrotor as hr
 from hyperrotor._options import options
-from hyperrotor.classical import _tangent_kernels, chaos
+from hyperrotor.classical import chaos
+from hyperrotor.classical.solvers import _tangent_kernels
 from hyperrotor.classical.chaos import lyapunov, lyapunov_sweep
 
 EPS = float(np.finfo(float).eps)

@@ -8,7 +8,7 @@ import pytest
 
 from hyperrotor import Inertia, RigidBody
 from hyperrotor._jit import JIT_ENABLED
-from hyperrotor.classical import _kernels
+from hyperrotor.classical.solvers import _kernels
 from hyperrotor.classical.closed_form import euler_poinsot, quartet_attitude, quartet_moments, quartet_solution
 from hyperrotor.classical.simulate import SIMULATION_METHODS, Trajectory, simulate
 from hyperrotor.classical.solvers import SOLVERS

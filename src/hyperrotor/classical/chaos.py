@@ -14,7 +14,7 @@ structure-preserving integrator* that :func:`hyperrotor.simulate` uses: the
 Lie-Poisson splittings (``method="splitting2"`` ... ``"splitting8"``), whose steps are
 products of exact plane rotations of ``L``. The Jacobian of each plane flow, including
 the dependence of its rotation angle :math:`\varphi = h\rho_a L_a` on ``L``, is derived
-in :mod:`hyperrotor.classical._tangent_kernels`; composing them gives the exact
+in :mod:`hyperrotor.classical.solvers._tangent_kernels`; composing them gives the exact
 derivative of the discrete step map (compiled with numba). Every
 ``renorm_interval`` the ``k`` tangent vectors are re-orthonormalised (modified
 Gram-Schmidt, the ``R`` of a QR factorisation) and :math:`\log R_{jj}` accumulated;
@@ -59,7 +59,7 @@ from hyperrotor import _parallel, _validate
 from hyperrotor._options import options
 from hyperrotor.conventions import dimension_from_count, plane_index
 
-from ._tangent_kernels import tangent_run, tangent_run_lanes
+from .solvers._tangent_kernels import tangent_run, tangent_run_lanes
 from .simulate import simulate
 from .solvers.splitting import casimir_shift, rotation_tables, splitting_word
 
@@ -80,7 +80,7 @@ _MIN_LANES = 4
 # the chunk function (top level: pickled to dask workers)
 # ----------------------------------------------------------------------------
 def _benettin_rows(L0, rates, W0, h, nsub, word_planes, word_coefs, pair_p, pair_q, pair_s, nren, stride, nstore):
-    """Benettin sums ``(rows, nstore, k)`` for a chunk of orbits (see :mod:`._tangent_kernels`).
+    """Benettin sums ``(rows, nstore, k)`` for a chunk of orbits (see :mod:`.solvers._tangent_kernels`).
 
     Orbits with the same number of steps per renormalisation advance together in the
     bodies-innermost kernel (``tangent_run_lanes``, bit-identical to the one-body kernel for

@@ -1,8 +1,8 @@
 r"""Numba kernel of the splitting integrators' tangent flow (private; used by :mod:`.chaos`).
 
-Same data layout as :mod:`hyperrotor.classical._kernels` (``L0 (B, n)``, ``rates (B, n)``,
+Same data layout as :mod:`hyperrotor.classical.solvers._kernels` (``L0 (B, n)``, ``rates (B, n)``,
 the word ``seq_plane, seq_coef`` of one step, the tables ``pair_p, pair_q, pair_s`` of
-:func:`~hyperrotor.classical._kernels.rotation_tables`), plus ``k`` tangent vectors per
+:func:`~hyperrotor.classical.solvers._kernels.rotation_tables`), plus ``k`` tangent vectors per
 body, ``W0 (B, k, n)``.
 
 Tangent map of one elementary flow
@@ -154,7 +154,7 @@ def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_
     innermost one: the independent rotations of different bodies overlap in the CPU pipeline
     and vectorise (as ``_kernels._split_run_ensemble``). Every body sees exactly the arithmetic
     of :func:`_tangent_run` (same operations in the same order; the half-angle polynomial is
-    the one of :func:`~hyperrotor.classical._kernels.sincos`, libm beyond 0.5), so the results
+    the one of :func:`~hyperrotor.classical.solvers._kernels.sincos`, libm beyond 0.5), so the results
     agree with it bit for bit, whichever bodies share a block. ``nsub[0]`` is used for all.
     """
     B = L0.shape[0]

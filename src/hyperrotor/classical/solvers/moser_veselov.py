@@ -48,7 +48,7 @@ import numpy as np
 
 from hyperrotor._jit import jit, prange
 
-from .._kernels import rotation_tables, start_attitude, store_attitude
+from ._kernels import rotation_tables, start_attitude, store_attitude
 from .base import FixedStepSolver, Problem, step_lengths
 
 __all__ = ["MoserVeselov"]

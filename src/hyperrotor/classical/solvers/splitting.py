@@ -59,7 +59,7 @@ import numpy as np
 from hyperrotor import _validate
 from hyperrotor.conventions import to_matrix
 
-from .. import _kernels
+from . import _kernels
 from .base import FixedStepSolver, Problem, step_lengths
 
 __all__ = ["Splitting", "Splitting2", "Splitting4", "Splitting6", "Splitting8", "splitting_coefficients",
