@@ -7,12 +7,14 @@ and writes the executed copies to ``<basetemp>/docs-build/jupyter_execute``;
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import json
 import os
 import pkgutil
 import re
 import subprocess
 import sys
+import textwrap
 from pathlib import Path
 
 import pytest
@@ -118,3 +120,90 @@ def test_docs_content(docs_build):
     images = {p.name for p in (html / "_images").glob("*.png")} if (html / "_images").exists() else set()
     for png in sorted((ROOT / "benchmarks" / "results").glob("*.png")):
         assert png.name in images, png.name
+
+
+# -- every page's code runs as written ----------------------------------------------------------
+#: The pages whose code a reader copies: the README and every page of docs/ (the notebooks are
+#: executed by tests/test_notebooks.py).
+CODE_PAGES = [ROOT / "README.md", *sorted(DOCS.glob("*.md"))]
+#: Modules of a page block that only a real cluster provides (a batch system, Kubernetes): such a
+#: block is compiled (syntax checked) instead of run, when the module is not installed here.
+CLUSTER_MODULES = ("dask_jobqueue", "dask_kubernetes")
+_FENCE = re.compile(r"^(?P<indent>[ \t]*)(?P<fence>`{3,}|~{3,})\s*(?P<info>[^\n`]*)$")
+
+
+def page_code(path: Path) -> list[tuple[int, str]]:
+    """The ```python blocks and ``{code-cell}`` cells of a page, in order, as (first line, code).
+
+    A code cell's option lines (``:tags: ...`` or a ``---`` block) are dropped, and so are
+    IPython magics (``%...``, ``!...``), which plain Python cannot run.
+    """
+    lines = path.read_text(encoding="utf-8").splitlines()
+    blocks, k = [], 0
+    while k < len(lines):
+        opening = _FENCE.match(lines[k])
+        if not opening:
+            k += 1
+            continue
+        fence, info = opening["fence"], opening["info"].strip()
+        end = k + 1
+        while end < len(lines) and not re.match(rf"^[ \t]*{fence[0]}{{{len(fence)},}}\s*$", lines[end]):
+            end += 1
+        body = list(range(k + 1, end))
+        word = info.split()[0] if info else ""
+        if word.startswith("{code-cell}") or word == "{code-cell}":
+            if body and lines[body[0]].strip() == "---":      # a YAML options block
+                stop = next(i for i in body[1:] if lines[i].strip() == "---")
+                body = [i for i in body if i > stop]
+            while body and lines[body[0]].lstrip().startswith(":"):  # ":tags: [...]" options
+                body = body[1:]
+            word = "python"
+        if word in ("python", "python3", "py"):
+            code = [("" if lines[i].lstrip().startswith(("%", "!")) else lines[i]) for i in body]
+            blocks.append((body[0] + 1 if body else k + 2, textwrap.dedent("\n".join(code))))
+        k = end + 1
+    return blocks
+
+
+def _needs_a_cluster(code: str) -> str | None:
+    for name in CLUSTER_MODULES:
+        if re.search(rf"^\s*(from|import)\s+{name}\b", code, flags=re.M) and importlib.util.find_spec(name) is None:
+            return name
+    return None
+
+
+def _page_script(path: Path) -> str:
+    """One script for the page: each block at its own line numbers (tracebacks point into the page)."""
+    out: list[str] = []
+    for first, code in page_code(path):
+        if _needs_a_cluster(code):
+            compile(code, f"{path.name}:{first}", "exec")            # at least it is valid Python
+            continue
+        out += [""] * (first - 1 - len(out))
+        out += code.splitlines()
+    return "\n".join(out) + "\n"
+
+
+def test_page_code_is_read_in_order_with_magics_and_options_dropped(tmp_path):
+    page = tmp_path / "page.md"
+    page.write_text("text\n```python\nx = 1\n```\n\n```{code-cell} ipython3\n:tags: [hide-input]\n"
+                    "%matplotlib inline\ny = x + 1\n```\n````{code-cell} ipython3\n---\ntags: [a]\n---\n"
+                    "z = y\n````\n```bash\nls\n```\n```text\nw = 0\n```\n")
+    assert page_code(page) == [(3, "x = 1"), (8, "\ny = x + 1"), (15, "z = y")]
+    script = _page_script(page).splitlines()
+    assert script[2] == "x = 1" and script[8] == "y = x + 1" and script[14] == "z = y"
+
+
+@pytest.mark.parametrize("path", [p for p in CODE_PAGES if page_code(p)],
+                         ids=[p.name for p in CODE_PAGES if page_code(p)])
+def test_page_runs_as_written(path, tmp_path):
+    """Every Python block of the page, in order, in a fresh interpreter (warnings are errors)."""
+    script = tmp_path / "page.py"
+    script.write_text(_page_script(path), encoding="utf-8")
+    # compiled under the page's own name: a traceback quotes the page's line
+    runner = ("import sys, pathlib; "
+              "exec(compile(pathlib.Path(sys.argv[1]).read_text(), sys.argv[2], 'exec'), {'__name__': '__main__'})")
+    env = dict(os.environ, MPLBACKEND="Agg")
+    proc = subprocess.run([sys.executable, "-W", "error", "-c", runner, str(script), str(path)], cwd=tmp_path,
+                          env=env, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, f"{path.relative_to(ROOT)} does not run as written:\n{proc.stderr[-4000:]}"
