@@ -41,6 +41,8 @@ __all__ = [
     "form",
     "form_hbar",
     "old_keywords",
+    "unknown_option",
+    "numeric_input",
     "representation",
     "real_array",
 ]
@@ -162,7 +164,7 @@ def positive(name: str, value: Any, *, allow_none: bool = False, allow_zero: boo
 
 
 def hbar(value: Any) -> float:
-    """The reduced Planck constant: a finite number ``> 0`` (the package's default is ``1.0``)."""
+    """The reduced Planck constant: a finite number ``> 0`` (the package's one default is ``hbar=1``)."""
     return positive("hbar", value)
 
 
@@ -221,21 +223,31 @@ def form(value: Any) -> str:
 def form_hbar(form_value: Any, hbar_value: Any) -> tuple[str, Any]:
     """Check ``form=`` and the ``hbar=`` that goes with it; returns ``(form, hbar)``.
 
-    ``hbar`` only applies to ``form="hermitian"`` (``None`` there means 1.0).
-    Given with ``form="antihermitian"`` it is refused: passing ``hbar`` alone
-    used to select the Hermitian operators, and ignoring it would silently
-    return the other form. ``hbar`` itself is returned unchanged (it may be
-    symbolic); numeric callers check it with :func:`hbar`.
+    The package has one default, ``hbar=1`` (docs/conventions.md). ``hbar`` only
+    applies to ``form="hermitian"`` (L = -i hbar X); with ``form="antihermitian"``
+    any value other than 1 is refused, since it would be silently ignored.
+    ``hbar`` itself is returned unchanged (it may be symbolic: the symbolic layer
+    converts it with ``hyperrotor._parse.to_sympy``); numeric callers check it with
+    :func:`hbar`.
     """
     f = form(form_value)
+    if hbar_value is None:  # TODO(lead): refuse once every signature defaults to hbar=1
+        hbar_value = 1
     if f == "antihermitian":
-        if hbar_value is not None:
+        if isinstance(hbar_value, (str, bool)) or not _equals_one(hbar_value):
             raise TypeError(
                 f'hbar={fmt(hbar_value)} applies to form="hermitian" only (-i hbar X); '
                 f'pass form="hermitian" for the Hermitian generators (docs/conventions.md)'
             )
-        return f, None
-    return f, (1 if hbar_value is None else hbar_value)  # exact 1: symbolic callers keep integer coefficients
+        return f, 1
+    return f, hbar_value
+
+
+def _equals_one(value: Any) -> bool:
+    try:
+        return bool(value == 1)
+    except Exception:  # an object whose comparison fails is not 1
+        return False
 
 
 def representation(name: str, value: Any, *, dim: int | None = None, of: str = "H") -> Any:
@@ -261,6 +273,16 @@ def real_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = No
     return finite_array(name, arr, ndim=ndim)
 
 
+def unknown_option(where: str, key: Any, allowed: Sequence[str]) -> None:
+    """Raise the package's one exception for an unknown option name (``UnknownOptionError``).
+
+    ``where`` names the function or table (``"evolve options"``), ``allowed`` the valid keys.
+    """
+    from ._options import UnknownOptionError
+
+    raise UnknownOptionError(f"{where}: unknown option {fmt(key)}; allowed: {', '.join(map(repr, sorted(allowed)))}")
+
+
 def old_keywords(where: str, given: dict, renamed: dict) -> None:
     """Refuse keywords a function no longer takes, naming their new spelling.
 
@@ -278,13 +300,45 @@ def old_keywords(where: str, given: dict, renamed: dict) -> None:
 # ----------------------------------------------------------------------------
 # arrays
 # ----------------------------------------------------------------------------
+#: NumPy dtype kinds that are never numbers here: bool, datetime64, timedelta64, bytes, str, void.
+_NON_NUMERIC_KINDS = {"b": "booleans", "M": "datetime64 values", "m": "timedelta64 values",
+                      "S": "bytes", "U": "text", "V": "raw (void) data"}
+
+
+def numeric_input(name: str, value: Any) -> None:
+    """Refuse what NumPy would silently turn into numbers: text (``"1.5"``), booleans, datetime64
+    and timedelta64 values, and masked arrays (``np.asarray`` drops the mask).
+
+    Raises ``TypeError`` naming the argument; anything else passes (and is converted by the caller).
+    """
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be numeric, got text {fmt(value)} (text is never read as a number here)")
+    if isinstance(value, np.ma.MaskedArray):
+        raise TypeError(
+            f"{name} must be a plain array, got a masked array (its mask would be ignored); "
+            f"pass value.filled(...) or value.compressed()"
+        )
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be numeric, got the boolean {fmt(value)}")
+    kind = getattr(getattr(value, "dtype", None), "kind", None)
+    if kind is None and isinstance(value, (list, tuple)):
+        try:
+            kind = np.asarray(value).dtype.kind
+        except (TypeError, ValueError):  # ragged: the caller's conversion reports it
+            kind = None
+    if kind in _NON_NUMERIC_KINDS:
+        raise TypeError(f"{name} must be numeric, got {_NON_NUMERIC_KINDS[kind]} {fmt(value)}")
+
+
 def finite_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = None, dtype: Any = float) -> np.ndarray:
     """``value`` as a finite ndarray of ``dtype`` (and of ``ndim`` dimensions when given).
 
     For a real ``dtype``, complex input is refused (NumPy would drop the imaginary part with a
-    ``ComplexWarning``)."""
+    ``ComplexWarning``); text, booleans, datetime/timedelta values and masked arrays are refused
+    (:func:`numeric_input`)."""
     if value is None:
         raise TypeError(f"{name} must be a numeric array, got None")
+    numeric_input(name, value)
     try:
         if np.dtype(dtype).kind in "biuf" and np.iscomplexobj(value):
             raise TypeError(f"{name} must be real, got complex values {fmt(value)}")
@@ -322,8 +376,10 @@ def time_grid(t: Any, *, name: str = "t", allow_decreasing: bool = True) -> np.n
     """Output times: a finite, strictly monotonic 1-D float array with at least one entry.
 
     Time may run backwards (a strictly decreasing grid) unless ``allow_decreasing``
-    is ``False``. The returned array is a fresh float64 copy.
+    is ``False``. The returned array is a fresh float64 copy. Text, booleans, datetime/timedelta
+    values and masked arrays are refused (:func:`numeric_input`).
     """
+    numeric_input(name, t)
     try:
         if np.iscomplexobj(t):
             raise TypeError
