@@ -14,6 +14,7 @@ input never pays for a heavy import.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 from collections.abc import Mapping
 from numbers import Integral, Real
 from typing import Any, Sequence
@@ -43,6 +44,8 @@ __all__ = [
     "old_keywords",
     "unknown_option",
     "numeric_input",
+    "plane_table",
+    "dimension_from_count",
     "representation",
     "real_array",
 ]
@@ -434,15 +437,29 @@ def plane(value: Any, N: int | None) -> tuple[int, int]:
     return i, j
 
 
-def _planes(N: int) -> list[tuple[int, int]]:
-    return [(i, j) for i in range(1, N + 1) for j in range(i + 1, N + 1)]
+@lru_cache(maxsize=None)
+def plane_table(N: int) -> tuple[tuple[int, int], ...]:
+    """The planes ``(i, j)``, ``1 <= i < j <= N``, in lexicographic (paper) order.
+
+    ``N`` is trusted (checked by the caller with :func:`dimension`); the public
+    door is :func:`hyperrotor.planes`.
+    """
+    return tuple((i, j) for i in range(1, N + 1) for j in range(i + 1, N + 1))
 
 
-def _dimension_from_count(count: int, name: str) -> int:
+def dimension_from_count(count: int, *, name: str = "count", what: str = "plane components") -> int:
+    """``N`` from a number ``count = N(N-1)/2`` of plane components (or moments).
+
+    Raises ``ValueError`` naming ``name`` and the nearby allowed counts when
+    ``count`` is not of that form (1, 3, 6, 10, 15, ... for N = 2, 3, 4, 5, 6, ...).
+    """
     N = int(round((1 + math.sqrt(1 + 8 * count)) / 2))
     if N < 2 or N * (N - 1) // 2 != count:
+        lo = max(N - 1, 2)
+        allowed = ", ".join(str(n * (n - 1) // 2) for n in range(lo, lo + 3))
         raise ValueError(
-            f"{name} has {count} plane moments; so(N) needs N(N-1)/2 of them (1, 3, 6, 10, 15, ... for N = 2, 3, 4, 5, 6, ...)"
+            f"{name} has {count} {what}, which matches no so(N): the count must be N(N-1)/2 "
+            f"for an integer N >= 2 (nearby allowed counts: {allowed})"
         )
     return N
 
@@ -471,7 +488,7 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
             labels = [plane(p, n) for p in src]
         except ValueError as exc:  # name the argument: the keys must be planes
             raise ValueError(f"{name}: a mapping must have planes (i, j) as keys; {exc}") from None
-        missing = [p for p in _planes(n) if p not in labels]
+        missing = [p for p in plane_table(n) if p not in labels]
         if missing:
             raise ValueError(
                 f"{name} mapping misses the planes {', '.join(f'{i}{j}' for i, j in missing[:6])}"
@@ -480,7 +497,7 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
         if len(set(labels)) != len(labels):
             raise ValueError(f"{name} mapping names a plane twice")
         by_plane = dict(zip(labels, src.values()))
-        src = [by_plane[p] for p in _planes(n)]
+        src = [by_plane[p] for p in plane_table(n)]
     if isinstance(src, (str, bytes)):
         raise TypeError(f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, got {fmt(src)}")
     try:
@@ -495,13 +512,13 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
         raise TypeError(f"{name}: moments of inertia must be real, got complex values {fmt(src)}")
     if arr.ndim != 1:
         raise ValueError(f"{name}: plane moments must be a 1-D sequence of N(N-1)/2 values, got shape {arr.shape}")
-    n = _dimension_from_count(arr.size, name)
+    n = dimension_from_count(arr.size, name=name, what="plane moments")
     if N is not None and n != N:
         raise ValueError(
             f"{name} has {arr.size} plane moments (so({n})) but so({N}) needs {N * (N - 1) // 2}; "
             f"they must act on the same dimension"
         )
-    bad = {f"I_{i}{j}": float(m) for (i, j), m in zip(_planes(n), arr) if not (math.isfinite(m) and m > 0)}
+    bad = {f"I_{i}{j}": float(m) for (i, j), m in zip(plane_table(n), arr) if not (math.isfinite(m) and m > 0)}
     if bad:
         raise ValueError(f"{name}: moments of inertia must be finite and > 0, got {fmt(bad)}")
     return arr

@@ -74,7 +74,7 @@ from typing import Any, Callable, Iterable, Sequence
 
 import numpy as np
 
-from . import _lazy, _validate
+from . import _lazy, _parse, _validate
 from ._lazy import sympy as sp  # SymPy is imported on first symbolic use (light ``import hyperrotor``)
 
 __all__ = [
@@ -120,11 +120,6 @@ def check_convention(convention: Any) -> str:
 # ----------------------------------------------------------------------------
 # plane labels
 # ----------------------------------------------------------------------------
-@lru_cache(maxsize=None)
-def _planes(N: int) -> tuple[tuple[int, int], ...]:
-    return tuple((i, j) for i in range(1, N + 1) for j in range(i + 1, N + 1))
-
-
 def planes(N: int) -> tuple[tuple[int, int], ...]:
     """The 1-based plane labels ``(i, j)``, ``i < j``, of so(N) in paper order.
 
@@ -136,7 +131,7 @@ def planes(N: int) -> tuple[tuple[int, int], ...]:
     >>> planes(3)
     ((1, 2), (1, 3), (2, 3))
     """
-    return _planes(check_dimension(N))
+    return _validate.plane_table(check_dimension(N))
 
 
 def n_planes(N: int) -> int:
@@ -150,21 +145,12 @@ def dimension_from_count(count: int) -> int:
 
     Raises ``ValueError`` when ``count`` is not of that form (1, 3, 6, 10, 15, ...).
     """
-    count = _validate.integer("count", count, minimum=0)
-    N = int(round((1 + np.sqrt(1 + 8 * count)) / 2))
-    if N < 2 or N * (N - 1) // 2 != count:
-        lo = max(N - 1, 2)
-        allowed = ", ".join(str(n * (n - 1) // 2) for n in range(lo, lo + 3))
-        raise ValueError(
-            f"{count} plane components do not match any so(N): the count must be N(N-1)/2 "
-            f"for an integer N >= 2 (nearby allowed counts: {allowed})"
-        )
-    return N
+    return _validate.dimension_from_count(_validate.integer("count", count, minimum=0))
 
 
 @lru_cache(maxsize=None)
 def _plane_index_table(N: int) -> dict[tuple[int, int], int]:
-    return {p: k for k, p in enumerate(_planes(N))}
+    return {p: k for k, p in enumerate(_validate.plane_table(N))}
 
 
 def plane_index(plane: Sequence[int], N: int) -> int:
@@ -239,6 +225,19 @@ def is_symbolic(x: Any) -> bool:
     return False
 
 
+def _sympy_matrix(name: str, value: Any, *, column: bool = False):
+    """``value`` (a SymPy matrix, or a nested sequence/array holding SymPy objects and numbers)
+    as a ``sympy.Matrix``, each entry through :func:`hyperrotor._parse.to_sympy` with text
+    refused (``sympy.Matrix`` would ``sympify`` -- evaluate -- a string entry)."""
+    if isinstance(value, sp.MatrixBase):
+        return sp.Matrix(value)
+    arr = np.asarray(value, dtype=object)
+    entries = [_parse.to_sympy(v, name, text=False) for v in arr.flat]
+    if column or arr.ndim < 2:
+        return sp.Matrix(entries)
+    return sp.Matrix(arr.shape[0], int(np.prod(arr.shape[1:])), entries)
+
+
 def basis_matrix(plane: Sequence[int], N: int, convention: str = "paper") -> np.ndarray:
     """The so(N) basis element of ``plane`` as an integer ``N x N`` matrix.
 
@@ -283,13 +282,13 @@ def to_matrix(components: Any, convention: str = "paper"):
     """
     check_convention(convention)
     if is_symbolic(components):
-        comps = list(sp.Matrix(components)) if isinstance(components, sp.MatrixBase) else list(np.ravel(np.asarray(components, dtype=object)))
+        comps = list(_sympy_matrix("components", components, column=True))
         N = dimension_from_count(len(comps))
         signs = plane_signs(N, convention)
         M = sp.zeros(N, N)
         for (i, j), s, c in zip(planes(N), signs, comps):
-            M[i - 1, j - 1] = int(s) * sp.sympify(c)
-            M[j - 1, i - 1] = -int(s) * sp.sympify(c)
+            M[i - 1, j - 1] = int(s) * c
+            M[j - 1, i - 1] = -int(s) * c
         return M
     arr = np.asarray(components)
     if arr.ndim == 0:
@@ -325,7 +324,7 @@ def to_components(matrix: Any, convention: str = "paper", *, atol: float | None 
     """
     check_convention(convention)
     if is_symbolic(matrix):
-        M = sp.Matrix(matrix)
+        M = _sympy_matrix("matrix", matrix)
         if M.rows != M.cols or M.rows < 2:
             raise ValueError(f"expected a square N x N matrix with N >= 2, got shape {M.shape}")
         N = M.rows
@@ -413,7 +412,7 @@ def lie_bracket(x: Any, y: Any):
     over leading axes; SymPy input gives a ``sympy.Matrix`` column.
     """
     if is_symbolic(x) or is_symbolic(y):
-        xs, ys = list(sp.Matrix(x)), list(sp.Matrix(y))
+        xs, ys = list(_sympy_matrix("x", x, column=True)), list(_sympy_matrix("y", y, column=True))
         if len(xs) != len(ys):
             raise ValueError(f"component vectors of different length: {len(xs)} and {len(ys)}")
         N = dimension_from_count(len(xs))
@@ -447,7 +446,10 @@ def lie_poisson_bracket(F: sp.Expr, G: sp.Expr, L: Sequence[sp.Symbol]) -> sp.Ex
     """
     if isinstance(L, (str, bytes, Mapping)) or not isinstance(L, Iterable):
         raise TypeError(f"L must be a sequence of SymPy symbols (e.g. plane_symbols('L', N)), got {_validate.fmt(L)}")
-    L = list(L)
+    L = [_parse.to_sympy(s, "L", text=False) for s in L]
+    if not all(isinstance(s, sp.Symbol) for s in L):
+        raise TypeError(f"L must be a sequence of SymPy symbols (e.g. plane_symbols('L', N)), got {_validate.fmt(L)}")
+    F, G = _parse.to_sympy(F, "F", text=False), _parse.to_sympy(G, "G", text=False)
     N = dimension_from_count(len(L))
     C = structure_constants(N)
     dF = [sp.diff(F, s) for s in L]
