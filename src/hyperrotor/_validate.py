@@ -223,27 +223,38 @@ def form(value: Any) -> str:
     return choice("form", value, FORMS)
 
 
-def form_hbar(form_value: Any, hbar_value: Any) -> tuple[str, Any]:
+def form_hbar(form_value: Any, hbar_value: Any, *, exact: bool = False) -> tuple[str, Any]:
     """Check ``form=`` and the ``hbar=`` that goes with it; returns ``(form, hbar)``.
 
     The package has one default, ``hbar=1`` (docs/conventions.md). ``hbar`` only
     applies to ``form="hermitian"`` (L = -i hbar X); with ``form="antihermitian"``
-    any value other than 1 is refused, since it would be silently ignored.
-    ``hbar`` itself is returned unchanged (it may be symbolic: the symbolic layer
-    converts it with ``hyperrotor._parse.to_sympy``); numeric callers check it with
-    :func:`hbar`.
+    any value other than 1 is refused (``ValueError``), since it would be silently
+    ignored, and ``(form, 1)`` is returned.
+
+    With ``form="hermitian"``: ``exact=False`` (numeric callers) returns
+    :func:`hbar` of the value (a finite float > 0); ``exact=True`` (the symbolic
+    layer) returns a SymPy object made by :func:`hyperrotor._parse.to_sympy`
+    with text refused (``TypeError``: write ``sympy.Symbol("hbar", positive=True)``),
+    refusing values known not to be positive; the exact 1 stays ``Integer(1)``.
     """
     f = form(form_value)
     if hbar_value is None:  # TODO(lead): refuse once every signature defaults to hbar=1
         hbar_value = 1
     if f == "antihermitian":
         if isinstance(hbar_value, (str, bool)) or not _equals_one(hbar_value):
-            raise TypeError(
+            raise ValueError(
                 f'hbar={fmt(hbar_value)} applies to form="hermitian" only (-i hbar X); '
                 f'pass form="hermitian" for the Hermitian generators (docs/conventions.md)'
             )
         return f, 1
-    return f, hbar_value
+    if not exact:
+        return f, hbar(hbar_value)
+    from . import _parse
+
+    h = _parse.to_sympy(hbar_value, "hbar", text=False)
+    if h.is_positive is False:
+        raise ValueError(f"hbar must be > 0, got {h}")
+    return f, h
 
 
 def _equals_one(value: Any) -> bool:
