@@ -20,7 +20,8 @@ from . import conventions
 from .conventions import *  # noqa: F401,F403
 from . import classical
 from .classical import *  # noqa: F401,F403
-from ._options import options
+from ._options import UnknownOptionError, options
+from ._parse import ParseError
 
 __version__ = "0.1.0"
 
@@ -32,7 +33,8 @@ _LAZY_NAMES = {
     "TIME": ("hyperrotor.classical.rigid_body", "TIME"),
 }
 
-__all__ = [*conventions.__all__, *classical.__all__, "options", "verify_paper", "quantum", "classical", "conventions", "paper"]
+__all__ = [*conventions.__all__, *classical.__all__, "options", "UnknownOptionError", "ParseError", "verify_paper",
+           "quantum", "classical", "conventions", "paper"]
 
 
 def __getattr__(name: str) -> _Any:
