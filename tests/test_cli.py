@@ -82,11 +82,62 @@ def test_demo_options(capsys):
     (["demo", "--kappa", "abc"], "--kappa"),
     (["demo", "--omega", "1,2"], "--omega needs 10 comma-separated numbers, got 2"),
     (["demo", "--omega", "a,b"], "--omega"),
-    (["demo", "--axis", "7"], "axis"),
+    (["demo", "--axis", "7"], "--axis must be an integer in 1..5, got 7"),
+    (["demo", "--convention", "nope"], "argument --convention: invalid choice: 'nope'"),
 ])
 def test_demo_bad_options(capsys, argv, msg):
     code, _, err = _run(capsys, argv)
     assert code == 2 and msg in err
+
+
+def test_kappa_is_read_exactly_and_worded_alike_in_demo_and_scene(capsys):
+    code, out, _ = _run(capsys, ["demo", "--ascii", "--no-png", "--t-end", "1", "--kappa", "(3/4)**2 - 0.1"])
+    assert code == 0 and "kappa = 37/80," in out  # decimal literals are exact: 9/16 - 1/10
+    assert "I_15 = 7769/6400" in out              # 1 + kappa^2 = 1 + 1369/6400, exact
+    errors = []
+    for cmd in ("demo", "scene"):
+        code, out, err = _run(capsys, [cmd, "--kappa", "abc"])
+        assert code == 2 and out == ""
+        errors.append(err.split(": error: ", 1)[1])
+    assert errors[0] == errors[1] and errors[0].startswith("--kappa='abc' cannot be read")
+
+
+def test_choices_ignore_case_like_the_python_api():
+    from hyperrotor.cli import build_parser
+
+    parser = build_parser()
+    assert parser.parse_args(["bench", "--method", "dop853", "--method", "Splitting8"]).method == ["DOP853", "splitting8"]
+    assert parser.parse_args(["demo", "--convention", "STANDARD"]).convention == "standard"
+    args = parser.parse_args(["scene", "--shape", "Simplex", "--inertia", "BOX"])
+    assert (args.shape, args.inertia) == ("simplex", "box")
+
+
+#: Text that must never be run (#21): each is refused by the one parser of user text.
+PAYLOADS = ["__import__('os').system('touch pwned')", "9**9**9**9", "().__class__.__mro__", "lambda: 1",
+            "exec('1')", "__builtins__", "1e999999", "(" * 200 + "1" + ")" * 200]
+#: Options that take a FILE or STEM: names of files, never read as numbers (checked as paths, cli/_files.py).
+PATH_OPTIONS = {"--output", "--png"}
+
+
+def _text_options():
+    """(subcommand, option) for every option of every subcommand that takes a value, except paths."""
+    import argparse
+
+    from hyperrotor.cli import build_parser
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return [(name, a.option_strings[0]) for name, p in sub.choices.items() for a in p._actions
+            if a.option_strings and a.nargs != 0 and a.option_strings[0] not in PATH_OPTIONS]
+
+
+@pytest.mark.parametrize("command,option", _text_options())
+def test_payloads_in_every_text_option_are_usage_errors(capsys, tmp_path, monkeypatch, command, option):
+    monkeypatch.chdir(tmp_path)
+    for payload in PAYLOADS:
+        code, out, err = _run(capsys, [command, f"{option}={payload}"])
+        assert code == 2 and out == "", (payload, err)
+        assert option in err and err.count("\n") == 1, (payload, err)
+    assert _files(tmp_path) == []
 
 
 def test_help_lists_subcommands(capsys):
@@ -224,8 +275,9 @@ MORE = [
     (["demo", "--t-end", "1e9"], ["--t-end 1000000000", "budget"]),
     (["scene", "--inertia", "box", "--sides=-2,1,1,1,1"], ["--sides", "got [-2.0]"]),
     (["scene", "--sides=1,2"], ["--sides applies to --inertia box only"]),
-    (["scene", "--kappa", "nan"], ["--kappa must be finite, got nan"]),
-    (["scene", "--frames", "x"], ["argument --frames: invalid int value: 'x'"]),
+    (["scene", "--kappa", "nan"], ["--kappa='nan' cannot be read", "names are not allowed"]),
+    (["scene", "--frames", "x"], ["--frames='x' cannot be read"]),
+    (["scene", "--N", "5.5"], ["--N must be an integer, got '5.5'"]),
     (["scene", "--colour-axis", "2"], ["--colour-axis 2 is one of the drawn --axes"]),
     (["scene", "--max-seconds", "-1"], ["--max-seconds must be finite and > 0, got -1.0"]),
     (["scene", "--max-memory", "lots"], ["argument --max-memory: expected a size such as 2G"]),
@@ -233,7 +285,9 @@ MORE = [
     (["scene", "--N", "1000000000"], ["2^1000000000 points", "budget of 2 GiB"]),
     (["demo", "--omega=1e100,1e100,1,1,1,1,1,1,1,1"], ["fastest rate 1.6e+100", "budget of 10 min"]),
     (["demo", "--kappa", "1e50"], ["fastest rate 5e+99", "budget"]),
-    (["demo", "--omega=1e308,1,1,1,1,1,1,1,1,1"], ["--omega values must be finite with magnitude <= 1e+100"]),
+    (["demo", "--omega=1e308,1,1,1,1,1,1,1,1,1"], ["--omega must have magnitude <= 1e+100, got 1e+308"]),
+    (["demo", "--kappa", "9**9**9**9"], ["--kappa='9**9**9**9' cannot be read", "exponent"]),
+    (["demo", "--kappa", "2**(1/2)"], ["--kappa='2**(1/2)' cannot be read", "exact fraction"]),
 ]
 
 

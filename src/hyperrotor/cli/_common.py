@@ -10,13 +10,15 @@ import argparse
 import math
 import re
 import sys
+from typing import Callable
 
 import numpy as np
 
-from hyperrotor import _validate
+from hyperrotor import _parse, _validate
 from hyperrotor._options import options
 
-__all__ = ["UsageError", "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number_list", "int_list",
+__all__ = ["UsageError", "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number", "integer", "number_list", "int_list",
+           "choice_of",
            "byte_size", "size_text", "duration_text", "check_budget", "show_progress", "bar",
            "have_matplotlib", "add_common", "check_common"]
 
@@ -57,28 +59,67 @@ def bounded(option: str, value: float) -> float:
     return value
 
 
+def number(text, option: str, *, exact: bool = False):
+    """A number given on the command line, read by the one parser of user text (:mod:`hyperrotor._parse`).
+
+    ``text``: numbers, fractions, ``+ - * / **`` and parentheses (``1/2``,
+    ``2.5e-3``, ``(3/4)**2``), nothing else: nothing is evaluated, sizes are
+    bounded before any work. A number that is already parsed (an option's
+    default) is passed through. Returns a float of magnitude at most
+    :data:`MAX_MAGNITUDE`, or with ``exact`` a ``sympy.Rational``. Refusals are
+    :class:`UsageError` naming ``option`` (exit status 2).
+    """
+    if isinstance(text, str):
+        try:
+            text = _parse.number(text, option, exact=exact)
+        except (_parse.ParseError, TypeError) as err:
+            raise UsageError(str(err)) from None
+    bounded(option, float(text))
+    return text
+
+
+def integer(text, option: str, *, minimum: int | None = None, maximum: int | None = None) -> int:
+    """An integer given on the command line, read by :mod:`hyperrotor._parse` (as :func:`number`), in range."""
+    value = text
+    if isinstance(text, str):
+        try:
+            value = _parse.expression(text, option, symbols=False)
+        except (_parse.ParseError, TypeError) as err:
+            raise UsageError(str(err)) from None
+        if not value.is_Integer:
+            raise UsageError(f"{option} must be an integer, got {text!r}")
+    return usage(_validate.integer, option, value, minimum=minimum, maximum=maximum)
+
+
 def number_list(text: str, option: str, count: int | None = None, *, positive: bool = False) -> np.ndarray:
-    """Comma-separated finite numbers of magnitude <= :data:`MAX_MAGNITUDE` (exactly ``count`` when given)."""
-    parts = [v.strip() for v in text.split(",") if v.strip()]
-    try:
-        arr = np.array([float(v) for v in parts])
-    except ValueError:
-        raise UsageError(f"{option} must be comma-separated numbers, got {text!r}") from None
+    """Comma-separated numbers (each as :func:`number`; exactly ``count`` when given; ``> 0`` with ``positive``)."""
+    arr = np.array([number(v, option) for v in text.split(",") if v.strip()], dtype=float)
     if count is not None and arr.size != count:
         raise UsageError(f"{option} needs {count} comma-separated numbers, got {arr.size} ({text!r})")
-    bad = [float(v) for v in arr if not math.isfinite(v) or (positive and v <= 0) or abs(v) > MAX_MAGNITUDE]
+    bad = [float(v) for v in arr if positive and v <= 0]
     if bad:
-        raise UsageError(f"{option} values must be finite{' and > 0' if positive else ''} with magnitude <= "
-                         f"{MAX_MAGNITUDE:g}, got {_validate.fmt(bad)}")
+        raise UsageError(f"{option} values must be > 0, got {_validate.fmt(bad)}")
     return arr
 
 
 def int_list(text: str, option: str) -> list[int]:
-    """Comma-separated integers (``1,2,3``)."""
-    try:
-        return [int(v) for v in text.split(",") if v.strip()]
-    except ValueError:
-        raise UsageError(f"{option} must be comma-separated integers, got {text!r}") from None
+    """Comma-separated integers (``1,2,3``), each as :func:`integer`."""
+    return [integer(v, option) for v in text.split(",") if v.strip()]
+
+
+def choice_of(allowed) -> Callable[[str], str]:
+    """An argparse ``type=`` for ``choices=allowed`` matched ignoring case (``--method DOP853`` or ``dop853``).
+
+    Returns the spelling of ``allowed``; other text is returned unchanged, so
+    argparse refuses it with its "invalid choice" message listing ``allowed``.
+    """
+    def convert(text: str) -> str:
+        try:
+            return _validate.choice("value", text, tuple(allowed))
+        except (TypeError, ValueError):
+            return text
+
+    return convert
 
 
 _BYTE_UNITS = {"": 1, "K": 2**10, "M": 2**20, "G": 2**30, "T": 2**40}
@@ -159,7 +200,7 @@ def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool
     g.add_argument("--debug", action="store_true", help="show the Python traceback of an error")
     if budget:
         g = p.add_argument_group("budget (checked against estimates before any work)")
-        g.add_argument("--max-seconds", type=float, default=None, metavar="S",
+        g.add_argument("--max-seconds", default=None, metavar="S",
                        help="refuse a run estimated to take longer (default hr.options['cli_max_seconds'] "
                             f"= {options['cli_max_seconds']:g} s)")
     if memory:
@@ -169,6 +210,6 @@ def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool
 
 
 def check_common(args: argparse.Namespace) -> None:
-    """Check the common options (a positive --max-seconds)."""
+    """Check the common options (a positive --max-seconds, stored back as a float)."""
     if getattr(args, "max_seconds", None) is not None:
-        usage(_validate.positive, "--max-seconds", args.max_seconds)
+        args.max_seconds = usage(_validate.positive, "--max-seconds", number(args.max_seconds, "--max-seconds"))

@@ -6,7 +6,8 @@ import os
 from pathlib import Path
 
 from hyperrotor import _validate
-from hyperrotor.cli._common import UsageError, add_common, bar, check_budget, check_common, have_matplotlib, num, usage
+from hyperrotor.cli._common import (UsageError, add_common, bar, check_budget, check_common, choice_of, have_matplotlib,
+                                    integer, num, number, usage)
 from hyperrotor.cli._files import Outputs, output_file
 
 __all__ = ["configure", "run", "bench_paths", "BENCH_STEM"]
@@ -18,12 +19,12 @@ BENCH_STEM = "hyperrotor-bench"
 def configure(p: argparse.ArgumentParser) -> None:
     from hyperrotor.bench import _SETTINGS, BENCH_PROBLEMS
 
-    p.add_argument("--problem", action="append", choices=BENCH_PROBLEMS,
+    p.add_argument("--problem", action="append", choices=BENCH_PROBLEMS, type=choice_of(BENCH_PROBLEMS),
                    help="problem with an exact solution (repeatable; default: all)")
-    p.add_argument("--method", action="append", default=None, choices=list(_SETTINGS), metavar="METHOD",
-                   help=f"{', '.join(_SETTINGS)} (repeatable; default: all)")
-    p.add_argument("--repeats", type=int, default=2, help="timed repeats per run, best kept (default 2)")
-    p.add_argument("--error", type=float, default=1e-10,
+    p.add_argument("--method", action="append", default=None, choices=list(_SETTINGS), type=choice_of(_SETTINGS),
+                   metavar="METHOD", help=f"{', '.join(_SETTINGS)} (any case; repeatable; default: all)")
+    p.add_argument("--repeats", default=2, help="timed repeats per run, best kept (default 2)")
+    p.add_argument("--error", default=1e-10,
                    help="relative error level (0 < error < 1) at which the speed-up over DOP853 is reported "
                         "(default 1e-10)")
     p.add_argument("--output", default=BENCH_STEM, metavar="STEM",
@@ -52,8 +53,8 @@ def run(args: argparse.Namespace) -> int:
     check_common(args)
     problems = list(dict.fromkeys(args.problem or ["quartet", "euler-poinsot"]))
     methods = None if args.method is None else list(dict.fromkeys(args.method))
-    repeats = usage(_validate.integer, "--repeats", args.repeats, minimum=1)
-    error = usage(_validate.positive, "--error", args.error)
+    repeats = integer(args.repeats, "--repeats", minimum=1)
+    error = usage(_validate.positive, "--error", number(args.error, "--error"))
     if error >= 1:
         raise UsageError(f"--error is a relative error level and must be < 1, got {_validate.fmt(error)}")
     check_budget(args, f"bench with --repeats {repeats}", estimate_seconds(problems, methods, repeats),

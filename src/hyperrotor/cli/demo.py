@@ -12,8 +12,9 @@ import time
 import numpy as np
 
 from hyperrotor import _validate
-from hyperrotor.cli._common import (UsageError, add_common, bounded, check_budget, check_common, have_matplotlib,
-                                    num, number_list, nums, usage)
+from hyperrotor.cli._common import (UsageError, add_common, check_budget, check_common, choice_of, have_matplotlib,
+                                    integer, num, number, number_list, nums, usage)
+from hyperrotor.conventions import CONVENTIONS
 from hyperrotor.cli._files import Outputs, output_file
 
 __all__ = ["configure", "run", "DEMO_OMEGA", "DEMO_PNG"]
@@ -31,33 +32,20 @@ def configure(p: argparse.ArgumentParser) -> None:
     p.add_argument("--kappa", default="1/2",
                    help="kappa of the quartet body, I = 1 + kappa^2 on planes with the axis (default 1/2; "
                         "fractions are kept exact)")
-    p.add_argument("--axis", type=int, default=5, help="distinguished axis of the quartet body, 1..5 (default 5)")
-    p.add_argument("--convention", default="paper", choices=("paper", "standard"),
+    p.add_argument("--axis", default=5, help="distinguished axis of the quartet body, 1..5 (default 5)")
+    p.add_argument("--convention", default="paper", choices=CONVENTIONS, type=choice_of(CONVENTIONS),
                    help="matrix convention of the printed equations (default: paper, eq. 21)")
     p.add_argument("--omega", default=None,
                    help="comma-separated 10 angular velocity components in plane order "
                         f"(default {','.join(map(str, DEMO_OMEGA))}; write --omega=-1,... for a negative first value)")
     p.add_argument("--ascii", action="store_true", help="ASCII instead of Unicode pretty printing")
-    p.add_argument("--t-end", type=float, default=200.0,
+    p.add_argument("--t-end", default=200.0,
                    help="length of the simulated motion, closed form vs numerical (default 200)")
     p.add_argument("--png", default=None, metavar="FILE.png",
                    help=f"where to write the PNG of the motion (default ./{DEMO_PNG}; needs matplotlib; "
                         "an existing file is kept unless --force)")
     p.add_argument("--no-png", action="store_true", help="do not write the PNG")
     add_common(p, budget=True)
-
-
-def _parse_number(text: str):
-    import sympy as sp
-
-    try:
-        value = sp.nsimplify(sp.sympify(text, rational=True))
-    except (sp.SympifyError, TypeError, SyntaxError, ValueError):
-        raise UsageError(f"--kappa must be a real number such as 1/2 or 0.7, got {text!r}") from None
-    if not value.is_real or not value.is_finite:
-        raise UsageError(f"--kappa must be a finite real number, got {text!r}")
-    bounded("--kappa", float(value))
-    return value
 
 
 def _pretty_block(label: str, expr, use_unicode: bool) -> str:
@@ -74,10 +62,10 @@ def run(args: argparse.Namespace) -> int:
 
     # --- checks, before any work -------------------------------------------------
     check_common(args)
-    kappa = _parse_number(args.kappa)
+    kappa = number(args.kappa, "--kappa", exact=True)
     omega = np.array(DEMO_OMEGA, dtype=float) if args.omega is None else number_list(args.omega, "--omega", 10)
-    usage(_validate.integer, "--axis", args.axis, minimum=1, maximum=5)
-    t_end = usage(_validate.positive, "--t-end", args.t_end)
+    args.axis = integer(args.axis, "--axis", minimum=1, maximum=5)
+    t_end = usage(_validate.positive, "--t-end", number(args.t_end, "--t-end"))
     inertia = usage(Inertia.quartet, kappa, axis=args.axis, N=5)
     # the integrators' work grows with t_end times the fastest rate of the motion, at most
     # max|omega| * max(I) / min(I) (the Euler coefficients are moment differences over moments)

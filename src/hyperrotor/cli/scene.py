@@ -6,14 +6,16 @@ import argparse
 import numpy as np
 
 from hyperrotor import _validate
-from hyperrotor.cli._common import (UsageError, add_common, bar, bounded, check_budget, check_common,
-                                    have_matplotlib, int_list, num, number_list, usage)
+from hyperrotor.cli._common import (UsageError, add_common, bar, check_budget, check_common, choice_of,
+                                    have_matplotlib, int_list, integer, num, number, number_list, usage)
 from hyperrotor.cli._files import Outputs, output_file
 
-__all__ = ["configure", "run", "scene_estimate", "SCENE_SHAPES"]
+__all__ = ["configure", "run", "scene_estimate", "SCENE_SHAPES", "SCENE_INERTIAS"]
 
 
 SCENE_SHAPES = ("cube", "simplex", "ellipsoid")
+#: Bodies of ``scene --inertia``.
+SCENE_INERTIAS = ("quartet", "equal", "box")
 #: Points of the ellipsoid sample of ``scene --shape ellipsoid``.
 _ELLIPSOID_POINTS = 400
 #: Cost model of ``scene`` (seconds, measured on the shared 2-core machine: --N 12 cube PNG 15.8 s
@@ -25,15 +27,15 @@ _GIF_FRAME_BYTES = 540 * 480 * 4  # Pillow keeps every RGBA frame until the file
 
 
 def configure(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--shape", default="cube", choices=SCENE_SHAPES,
+    p.add_argument("--shape", default="cube", choices=SCENE_SHAPES, type=choice_of(SCENE_SHAPES),
                    help="body points: N-cube vertices (2^N), N-simplex vertices (N+1) or "
                         f"{_ELLIPSOID_POINTS} ellipsoid points (default cube)")
-    p.add_argument("--N", type=int, default=5, help="dimension of space, >= 3 (default 5)")
-    p.add_argument("--inertia", default="quartet", choices=("quartet", "equal", "box"),
+    p.add_argument("--N", default=5, help="dimension of space, >= 3 (default 5)")
+    p.add_argument("--inertia", default="quartet", choices=SCENE_INERTIAS, type=choice_of(SCENE_INERTIAS),
                    help="quartet: the paper's eqs. 84-85 (any N), equal: eq. 82, box: solid hyper-box of the "
                         "--sides (generic, no closed form) (default quartet)")
-    p.add_argument("--kappa", type=float, default=0.5, help="kappa of the quartet inertia (default 0.5)")
-    p.add_argument("--axis", type=int, default=None, help="distinguished axis of the quartet inertia (default N)")
+    p.add_argument("--kappa", default=0.5, help="kappa of the quartet inertia (default 0.5)")
+    p.add_argument("--axis", default=None, help="distinguished axis of the quartet inertia (default N)")
     p.add_argument("--sides", default=None, help="comma-separated N positive side lengths of the box inertia "
                                                   "(default 1,2,...,N)")
     p.add_argument("--omega", default=None,
@@ -41,11 +43,11 @@ def configure(p: argparse.ArgumentParser) -> None:
                         "(default 0.1, 0.2, ...; write --omega=-1,... for a negative first value)")
     p.add_argument("--lock", default="", help="comma-separated axes whose rotation planes start (and stay) at rest")
     p.add_argument("--axes", default="1,2,3", help="the three space axes drawn (default 1,2,3)")
-    p.add_argument("--colour-axis", "--color-axis", type=int, default=None, dest="colour_axis", metavar="K",
+    p.add_argument("--colour-axis", "--color-axis", default=None, dest="colour_axis", metavar="K",
                    help="space axis whose coordinate colours the points (colour bar); default the first axis "
                         "not in --axes (none when N = 3); 0 for no colour")
-    p.add_argument("--t-end", type=float, default=20.0, help="duration (default 20)")
-    p.add_argument("--frames", type=int, default=60,
+    p.add_argument("--t-end", default=20.0, help="duration (default 20)")
+    p.add_argument("--frames", default=60,
                    help="number of time samples: GIF frames, or the grid the 6 PNG snapshots are taken from "
                         "(default 60)")
     p.add_argument("--output", default="hyperrotor-scene.png", metavar="FILE",
@@ -92,9 +94,9 @@ def _scene_check(args: argparse.Namespace):
     from hyperrotor import n_planes, planes
 
     check_common(args)
-    N = usage(_validate.integer, "--N", args.N, minimum=3)
-    frames = usage(_validate.integer, "--frames", args.frames, minimum=2)
-    t_end = usage(_validate.positive, "--t-end", args.t_end)
+    N = integer(args.N, "--N", minimum=3)
+    frames = integer(args.frames, "--frames", minimum=2)
+    t_end = usage(_validate.positive, "--t-end", number(args.t_end, "--t-end"))
     n = n_planes(N) if N < 10**5 else N * (N - 1) // 2
     axes = int_list(args.axes, "--axes")
     if len(axes) != 3 or len(set(axes)) != 3 or not all(1 <= k <= N for k in axes):
@@ -102,8 +104,8 @@ def _scene_check(args: argparse.Namespace):
     colour_axis = args.colour_axis
     if colour_axis is None:
         colour_axis = next((k for k in range(1, N + 1) if k not in axes), 0)
-    elif colour_axis != 0:
-        usage(_validate.integer, "--colour-axis", colour_axis, minimum=0, maximum=N)
+    else:
+        colour_axis = integer(colour_axis, "--colour-axis", minimum=0, maximum=N)
         if colour_axis in axes:
             raise UsageError(f"--colour-axis {colour_axis} is one of the drawn --axes {args.axes!r}; "
                              f"choose an axis in 1..{N} not drawn, or 0 for no colour")
@@ -111,10 +113,10 @@ def _scene_check(args: argparse.Namespace):
     bad = [k for k in lock if not 1 <= k <= N]
     if bad:
         raise UsageError(f"--lock axes must be in 1..{N}, got {_validate.fmt(bad)}")
+    kappa, axis = None, None
     if args.inertia == "quartet":
-        bounded("--kappa", args.kappa)
-        if args.axis is not None:
-            usage(_validate.integer, "--axis", args.axis, minimum=1, maximum=N)
+        kappa = number(args.kappa, "--kappa")
+        axis = N if args.axis is None else integer(args.axis, "--axis", minimum=1, maximum=N)
     elif args.axis is not None:
         raise UsageError(f"--axis applies to --inertia quartet only, got --inertia {args.inertia}")
     if args.sides is not None and args.inertia != "box":
@@ -134,7 +136,7 @@ def _scene_check(args: argparse.Namespace):
         raise UsageError(f"--omega needs N(N-1)/2 = {n} components for N = {N}, got {omega.size}")
     omega = np.where([any(k in p for k in lock) for p in planes(N)], 0.0, omega)
     return {"N": N, "frames": frames, "t_end": t_end, "axes": axes, "colour_axis": colour_axis or None,
-            "sides": sides, "omega": omega, "gif": gif, "seconds": seconds}
+            "sides": sides, "omega": omega, "gif": gif, "seconds": seconds, "kappa": kappa, "axis": axis}
 
 
 def run(args: argparse.Namespace) -> int:
@@ -149,7 +151,7 @@ def run(args: argparse.Namespace) -> int:
         out = outs.add(usage(output_file, args.output, option="--output", suffixes=(".png", ".gif"),
                               force=args.force))
         if args.inertia == "quartet":
-            inertia = usage(Inertia.quartet, args.kappa, axis=N if args.axis is None else args.axis, N=N)
+            inertia = usage(Inertia.quartet, s["kappa"], axis=s["axis"], N=N)
         elif args.inertia == "equal":
             inertia = Inertia.equal(N, 1.0)
         else:
