@@ -31,6 +31,7 @@ from typing import Any, Callable, ClassVar
 import numpy as np
 
 from hyperrotor import _validate
+from hyperrotor._pricing import BudgetError
 
 __all__ = ["Problem", "Solver", "FixedStepSolver", "StepBudgetError"]
 
@@ -222,7 +223,7 @@ class FixedStepSolver(Solver):
         return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
 
 
-class StepBudgetError(ValueError):
+class StepBudgetError(BudgetError):
     """A run whose estimated size exceeds a budget of :data:`hyperrotor.options` (``max_steps``, ...)."""
 
 

@@ -1,0 +1,307 @@
+r"""Priced work: the one place where a size-driven request is estimated and refused.
+
+Every public entry point whose cost grows with a size the user chooses (a dimension
+``N``, a degree ``l``, a representation's dimension, a number of output times or
+bodies) calls :func:`check` with those sizes at its door, before any allocation or
+loop::
+
+    _pricing.check("spinor_rep", N=N)
+
+:func:`check` evaluates the entry's cost model (:data:`MODELS`: bytes of working
+memory, estimated single-core seconds, output bytes, dense dimensions, as functions of
+the sizes) and compares every figure with its NAMED budget in :data:`hyperrotor.options`.
+A request over a budget raises :class:`BudgetError` (a ``ValueError``) with one message
+format::
+
+    spinor_rep: the generators (dimension 2^30) would need ~3.9e+20 bytes (working memory),
+    over the budget hr.options['max_memory_bytes'] = 4294967296; raise it with
+    hr.options(max_memory_bytes=...)
+
+The models describe the algorithms as they are implemented; the constants (bytes per
+entry, seconds per elementary operation) were measured on the reference machine (2 cores)
+by ``benchmarks/pricing.py``, which prints the estimate next to the measured time and peak
+memory of each priced entry point (they agree within a factor ~3; docs/safety.md).
+
+A budget is a number in :data:`hyperrotor.options`: ``max_memory_bytes`` and
+``max_seconds`` (registered here), and the older ones that keep their meaning
+(``max_output_bytes``, ``quantum_max_dense_dim``, ``sectors_dense_max_dim``, ...).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Callable
+
+from ._options import options, register
+
+__all__ = ["BudgetError", "Cost", "MODELS", "check", "estimate", "model"]
+
+
+class BudgetError(ValueError):
+    """A request whose estimated cost exceeds a budget of :data:`hyperrotor.options`.
+
+    Raised before any work by :func:`hyperrotor._pricing.check`; the message names the
+    entry point, the estimate, the budget (``hr.options['<key>']``) and how to raise it.
+    ``StepBudgetError`` (runs of :func:`hyperrotor.simulate`) is a subclass.
+    """
+
+
+register(
+    "max_memory_bytes", 2**32,
+    "Budget of every size-driven entry point (hyperrotor._pricing): largest working memory, in bytes, "
+    "that one call may need, estimated from its sizes before any allocation (dense matrices of a "
+    "representation, sparse generators of a tensor product or spinor representation, structure-constant "
+    "tables of so(N), ...). 4 GiB by default: the test machine is shared, and a request that would need "
+    "more is almost always a mistyped size (spinor_rep(60) would need ~1e20 bytes). Raise it with "
+    "hr.options(max_memory_bytes=...).",
+)
+register(
+    "max_seconds", 600.0,
+    "Budget of every size-driven entry point (hyperrotor._pricing): longest single-core run time, in "
+    "seconds, of one call, estimated from its sizes before any work (SymPy constructions, exact "
+    "rational bases, dense diagonalizations, Freudenthal's recursion, output loops). The estimates are "
+    "calibrated on the 2-core reference machine within a factor ~3 (benchmarks/pricing.py). Raise it with "
+    "hr.options(max_seconds=...) for a long run you mean.",
+)
+
+
+@dataclass(frozen=True)
+class Cost:
+    """One figure of a cost model: ``amount`` (in ``unit``) of ``what``, checked against ``options[key]``."""
+
+    what: str
+    amount: float
+    key: str
+    unit: str
+
+
+#: entry name -> (model, cheaper alternative or ""). A model maps the sizes to a tuple of Cost.
+MODELS: dict[str, tuple[Callable[..., tuple[Cost, ...]], str]] = {}
+
+
+def model(entry: str, alternative: str = "") -> Callable:
+    """Register the cost model of ``entry`` (decorator); ``alternative`` is named in the refusal."""
+
+    def deco(fn: Callable[..., tuple[Cost, ...]]) -> Callable[..., tuple[Cost, ...]]:
+        MODELS[entry] = (fn, alternative)
+        return fn
+
+    return deco
+
+
+def estimate(entry: str, **sizes: Any) -> tuple[Cost, ...]:
+    """The figures of ``entry``'s cost model for ``sizes`` (no check; used by the benchmark)."""
+    try:
+        fn, _ = MODELS[entry]
+    except KeyError:
+        raise KeyError(f"no cost model for {entry!r}; known: {', '.join(sorted(MODELS))}") from None
+    return fn(**sizes)
+
+
+def check(entry: str, **sizes: Any) -> None:
+    """Refuse ``entry`` with ``sizes`` (:class:`BudgetError`) if a figure of its cost model is over budget.
+
+    Call it at the door of the entry point, before any allocation or loop. The sizes are
+    plain numbers (Python ints may be arbitrarily large: the models compute in floats and
+    an overflow counts as infinitely expensive).
+    """
+    fn, alternative = MODELS[entry]
+    for c in fn(**sizes):
+        limit = options[c.key]
+        if not c.amount <= limit:  # also refuses NaN and inf
+            tail = f" or {alternative}" if alternative else ""
+            raise BudgetError(
+                f"{entry}: {c.what} would need ~{_amount(c.amount, c.unit)}, over the budget "
+                f"hr.options['{c.key}'] = {limit!r}; raise it with hr.options({c.key}=...){tail}"
+            )
+
+
+def _amount(x: float, unit: str) -> str:
+    if not math.isfinite(x):
+        return f"more than 1e308 ({unit})"
+    if unit == "bytes":
+        return f"{x:.3g} bytes ({x / 2**30:.3g} GiB)"
+    if unit == "seconds":
+        return f"{x:.3g} s of one core ({x / 3600:.3g} h)" if x >= 3600 else f"{x:.3g} s of one core"
+    return f"{x:.6g} ({unit})"
+
+
+def _f(x: Any) -> float:
+    """A size as a float (an int too large for a float is infinite)."""
+    try:
+        return float(x)
+    except OverflowError:
+        return math.inf
+
+
+def _mul(*xs: Any) -> float:
+    out = 1.0
+    for x in xs:
+        out *= _f(x)
+    return out
+
+
+def _memory(what: str, nbytes: float) -> Cost:
+    return Cost(what, nbytes, "max_memory_bytes", "bytes")
+
+
+def _seconds(what: str, seconds: float) -> Cost:
+    return Cost(what, seconds, "max_seconds", "seconds")
+
+
+def _n_planes(N: Any) -> float:
+    N = _f(N)
+    return N * (N - 1) / 2
+
+
+# ---------------------------------------------------------------------------------------------
+# constants measured by benchmarks/pricing.py on the reference machine (2 cores, one thread)
+# ---------------------------------------------------------------------------------------------
+#: seconds per flop of a dense LAPACK eigh / eigvalsh (complex counts 4 real flops)
+_EIGH_S = 1.0e-10
+#: seconds per SymPy term operation (a product or sum of two monomials with rational coefficients)
+_SYMPY_S = 2.0e-5
+#: seconds per pure-Python integer tuple operation (Freudenthal's recursion)
+_PY_S = 5.0e-7
+#: seconds per output time of evolve (a state Qobj per time, expectation values)
+_EVOLVE_S = 4.0e-5
+#: bytes held per stored output time of evolve besides the state's entries (Qobj and its data object)
+_QOBJ_BYTES = 900.0
+
+
+# ---------------------------------------------------------------------------------------------
+# the models: one per size-driven entry point
+# ---------------------------------------------------------------------------------------------
+@model("structure_constants")
+def _structure_constants(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_memory(f"the structure-constant table of so({N}) ({n:.0f}^3 int8 entries)", n ** 3),)
+
+
+@model("linearization")
+def _linearization(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_memory(f"the structure constants of so({N}) as floats ({n:.0f}^3 entries)", 9.0 * n ** 3),)
+
+
+@model("simulate", "use a body with fewer planes")
+def _simulate(N: Any, members: Any = 1) -> tuple[Cost, ...]:
+    # the Casimir shift rule compares every rate with every candidate value (n x n floats, twice)
+    n = _n_planes(N)
+    return (_memory(f"the Casimir shift of {n:.0f} planes (n x n rate differences)", 16.0 * n * n),)
+
+
+@model("dense_diagonalization", "use a representation whose symmetry sectors are smaller (rep=)")
+def _dense_diagonalization(dim: Any, complex: bool = True) -> tuple[Cost, ...]:
+    d = _f(dim)
+    item = 16.0 if complex else 8.0
+    flops = (4.0 if complex else 1.0) * 4.0 / 3.0 * d ** 3
+    return (
+        Cost(f"a dense block of dimension {dim}", d, "quantum_max_dense_dim", "dimension"),
+        _memory(f"a dense {dim} x {dim} block (two copies)", 2 * item * d * d),
+        _seconds(f"diagonalizing a dense {dim} x {dim} block", flops * _EIGH_S),
+    )
+
+
+@model("dense_representation", "use irrep(N, highest_weight) of a smaller dimension")
+def _dense_representation(dim: Any, copies: Any = 4) -> tuple[Cost, ...]:
+    # dense products, eigendecompositions or null spaces of dim x dim complex matrices
+    d = _f(dim)
+    return (
+        _memory(f"dense {dim} x {dim} complex matrices ({copies} of them)", 16.0 * _f(copies) * d * d),
+        _seconds(f"dense O(dim^3) linear algebra at dimension {dim}", 16.0 / 3.0 * d ** 3 * _EIGH_S),
+    )
+
+
+@model("spinor_rep")
+def _spinor_rep(N: Any) -> tuple[Cost, ...]:
+    # the gamma matrices are Kronecker products built densely: N of them, 2^(N//2) square
+    D = 2.0 ** (_f(N) // 2)
+    return (_memory(f"the {N} gamma matrices (dimension 2^{_f(N) // 2:.0f}, dense)", 16.0 * (_f(N) + 2) * D * D),)
+
+
+@model("tensor")
+def _tensor(dim_a: Any, dim_b: Any, nnz_a: Any, nnz_b: Any) -> tuple[Cost, ...]:
+    # X_p (x) 1 + 1 (x) Y_p for every plane: nnz_a * dim_b + dim_a * nnz_b stored entries (complex + index),
+    # built through COO (three arrays) and converted to CSR (a copy)
+    entries = _mul(nnz_a, dim_b) + _mul(dim_a, nnz_b)
+    return (_memory(f"the generators of a tensor product of dimension {_mul(dim_a, dim_b):.6g} "
+                    f"({entries:.3g} nonzeros)", 60.0 * entries),)
+
+
+@model("evolve", "ask for fewer output times (t) or pass e_ops to keep expectation values only")
+def _evolve(dim: Any, n_times: Any, states: bool = True) -> tuple[Cost, ...]:
+    per = (16.0 * _f(dim) + _QOBJ_BYTES) if states else 8.0
+    return (
+        Cost(f"{n_times} output states of dimension {dim}" if states else f"{n_times} output values",
+             _f(n_times) * per, "max_output_bytes", "bytes"),
+        _seconds(f"{n_times} output times", _f(n_times) * _EVOLVE_S),
+    )
+
+
+@model("lyapunov_sweep", "sweep fewer bodies per call")
+def _lyapunov_sweep(bodies: Any, orbits: Any, n: Any, k: Any = 1) -> tuple[Cost, ...]:
+    # per orbit: moments, rates, L0 (n each) and k orthonormal tangent vectors (n x k), a few copies
+    rows = _mul(bodies, orbits)
+    return (_memory(f"{rows:.6g} orbits ({bodies} bodies x {orbits} initial conditions)",
+                    rows * 8.0 * _f(n) * (6.0 + 3.0 * _f(k))),)
+
+
+# --- SymPy and exact-arithmetic constructions ------------------------------------------------
+@model("casimir_operator")
+def _casimir_operator(N: Any) -> tuple[Cost, ...]:
+    # sum over n planes of L_a^2, each a product of two first-order operators with 2 terms: ~ n * N terms
+    n = _n_planes(N)
+    return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", 12.0 * n * _SYMPY_S),)
+
+
+@model("harmonic_polynomial_basis")
+def _harmonic_polynomial_basis(N: Any, l: Any) -> tuple[Cost, ...]:
+    monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
+    dim = _harmonic_dim(N, l)
+    return (_seconds(f"{dim:.6g} harmonic polynomials of degree {l} in {N} variables ({monomials:.6g} monomials)",
+                     dim * monomials * _SYMPY_S),)
+
+
+@model("orthonormal_harmonic_basis")
+def _orthonormal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
+    monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
+    dim = _harmonic_dim(N, l)
+    return (_seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
+                     f"({monomials:.6g} monomials)", dim * dim * monomials * _SYMPY_S),)
+
+
+@model("bivector_product_table")
+def _bivector_product_table(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_seconds(f"the {n:.0f} x {n:.0f} symbolic product table", n * n * 3.0 * _SYMPY_S),)
+
+
+@model("euler_equations")
+def _euler_equations(N: Any) -> tuple[Cost, ...]:
+    # n equations, each a sum over the planes that share an axis with the plane (2(N-2) products)
+    n = _n_planes(N)
+    return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", n * n * _SYMPY_S),)
+
+
+@model("weight_multiplicities", "use weyl_dimension for the dimension only")
+def _weight_multiplicities(rank: Any, n_roots: Any, dim: Any, bound: Any) -> tuple[Cost, ...]:
+    # Freudenthal: every distinct weight (at most min(dim, (2 bound + 1)^rank)) sums over the
+    # positive roots and the strings mu + k alpha inside the bounding box (k <= 2 bound)
+    weights = min(_f(dim), (2.0 * _f(bound) + 1.0) ** _f(rank))
+    ops = weights * _f(n_roots) * (2.0 * _f(bound) + 1.0)
+    return (_seconds(f"Freudenthal's recursion over ~{weights:.3g} weights", ops * _f(rank) * _PY_S),)
+
+
+def _binomial(a: float, b: float) -> float:
+    if not (math.isfinite(a) and math.isfinite(b)):
+        return math.inf
+    try:
+        return math.exp(math.lgamma(a + 1) - math.lgamma(b + 1) - math.lgamma(a - b + 1))
+    except OverflowError:
+        return math.inf
+
+
+def _harmonic_dim(N: Any, l: Any) -> float:
+    N, l = _f(N), _f(l)
+    return _binomial(l + N - 1, N - 1) - (_binomial(l + N - 3, N - 1) if l >= 2 else 0.0)
