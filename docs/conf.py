@@ -60,6 +60,11 @@ myst_heading_anchors = 3
 myst_dmath_double_inline = True
 
 # -- notebooks (myst-nb) ----------------------------------------------------
+# Cells tagged "remove-cell" are executed but left off the page (myst-nb's default behaviour,
+# relied on here): each notebook's last cell, which asserts its results and prints the
+# HYPERROTOR_CHECKS line for tests/test_notebooks.py, is one of them. The executed copies
+# in <build>/jupyter_execute keep every cell and output. The kernels inherit MPLBACKEND=Agg
+# from above, so a notebook that plots selects "%matplotlib inline" itself (tests/test_docs.py).
 nb_execution_mode = "cache"
 nb_execution_timeout = 180  # per cell, seconds
 nb_execution_raise_on_error = True

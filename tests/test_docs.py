@@ -38,7 +38,7 @@ def _public_modules() -> list[str]:
     for info in pkgutil.walk_packages(hyperrotor.__path__, prefix="hyperrotor."):
         if any(part.startswith("_") for part in info.name.split(".")):
             continue
-        if info.name == "hyperrotor.cli" or info.name.endswith("__main__"):
+        if info.name.split(".")[:2] == ["hyperrotor", "cli"] or info.name.endswith("__main__"):
             continue  # the command line is documented by its --help
         names.append(info.name)
     return names
@@ -60,6 +60,19 @@ def test_every_notebook_is_in_the_toctree_and_committed_without_outputs():
         nb = json.loads(path.read_text())
         outputs = [c for c in nb["cells"] if c["cell_type"] == "code" and (c.get("outputs") or c.get("execution_count"))]
         assert not outputs, f"{path.name}: clear the outputs before committing (they are produced by the build)"
+
+
+def _plots(path: Path) -> bool:
+    cells = json.loads(path.read_text())["cells"]
+    return any("matplotlib" in "".join(c["source"]) for c in cells if c["cell_type"] == "code")
+
+
+def test_notebooks_that_plot_draw_on_the_page():
+    """The build's kernels inherit MPLBACKEND=Agg (docs/conf.py, these tests), with which figures never
+    reach the page: a notebook that plots selects the inline backend in its first code cell."""
+    for path in NOTEBOOKS:
+        first = next(c for c in json.loads(path.read_text())["cells"] if c["cell_type"] == "code")
+        assert not _plots(path) or "%matplotlib inline" in "".join(first["source"]).splitlines(), path.name
 
 
 @pytest.fixture(scope="session")
@@ -120,6 +133,11 @@ def test_docs_content(docs_build):
     images = {p.name for p in (html / "_images").glob("*.png")} if (html / "_images").exists() else set()
     for png in sorted((ROOT / "benchmarks" / "results").glob("*.png")):
         assert png.name in images, png.name
+    # each notebook's checks cell ran (tests/test_notebooks.py reads it) but is not on the page; figures are
+    for path in NOTEBOOKS:
+        page = (html / "notebooks" / f"{path.stem}.html").read_text()
+        assert "HYPERROTOR_CHECKS" not in page, f"{path.name}: the checks cell shows on the page"
+        assert not _plots(path) or "<img" in page, f"{path.name}: no figure on the page"
 
 
 # -- every page's code runs as written ----------------------------------------------------------

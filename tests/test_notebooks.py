@@ -3,7 +3,9 @@
 Each notebook ends with a cell that asserts its own results and prints one
 line ``HYPERROTOR_CHECKS {json}``; this test re-checks those numbers against
 the bounds in :data:`CHECKS` (so a notebook that silently stops asserting is
-caught too).
+caught too). That cell is plumbing for the tests: it carries the ``remove-cell``
+tag, so myst-nb executes it but leaves it off the rendered page (the executed
+copy in ``jupyter_execute`` keeps it, with its output).
 
 Execution happens once per pytest session: when ``tests/test_docs.py`` built
 the documentation in this session (myst-nb executed every notebook and wrote
@@ -166,6 +168,18 @@ def test_every_notebook_has_checks():
         "add the checks of each new notebook to CHECKS: "
         f"{sorted({p.stem for p in NOTEBOOKS} - set(CHECKS))}"
     )
+
+
+def test_the_checks_cell_is_the_last_code_cell_and_hidden_from_readers():
+    for path in NOTEBOOKS:
+        nb = nbformat.read(path, as_version=4)
+        code = [c for c in nb.cells if c.cell_type == "code"]
+        printing = [k for k, c in enumerate(code) if MARKER in c.source]
+        assert printing == [len(code) - 1], f"{path.name}: only the last code cell prints the {MARKER} line"
+        assert "remove-cell" in code[-1].metadata.get("tags", []), (
+            f"{path.name}: tag the {MARKER} cell 'remove-cell' (executed, not shown on the page)")
+        prose = "\n".join(c.source for c in nb.cells if c.cell_type == "markdown")
+        assert MARKER not in prose and "check line" not in prose, f"{path.name}: the text refers to the hidden cell"
 
 
 @pytest.mark.filterwarnings("ignore::DeprecationWarning:zmq.*")
