@@ -51,18 +51,18 @@ def test_paper_matrix_is_eq21():
 def test_round_trip_numpy_batched(N, convention):
     rng = np.random.default_rng(N)
     x = rng.normal(size=(3, 4, hr.n_planes(N)))
-    M = hr.to_matrix(x, convention)
+    M = hr.to_matrix(x, convention=convention)
     assert M.shape == (3, 4, N, N)
     assert np.array_equal(M, -np.swapaxes(M, -1, -2))
-    assert np.array_equal(hr.to_components(M, convention), x)
+    assert np.array_equal(hr.to_components(M, convention=convention), x)
 
 
 @pytest.mark.parametrize("convention", hr.CONVENTIONS)
 def test_round_trip_sympy(convention):
     w = hr.plane_symbols("w", 4)
-    M = hr.to_matrix(list(w), convention)
+    M = hr.to_matrix(list(w), convention=convention)
     assert isinstance(M, sp.MatrixBase)
-    assert list(hr.to_components(M, convention)) == list(w)
+    assert list(hr.to_components(M, convention=convention)) == list(w)
 
 
 @pytest.mark.parametrize("N", [3, 4, 5, 6])
@@ -70,20 +70,20 @@ def test_paper_is_sign_conjugate_of_standard(N):
     rng = np.random.default_rng(1)
     x = rng.normal(size=hr.n_planes(N))
     S = _sign_matrix(N)
-    assert np.allclose(hr.to_matrix(x, "paper"), S @ hr.to_matrix(x, "standard") @ S, atol=0, rtol=0)
+    assert np.allclose(hr.to_matrix(x, convention="paper"), S @ hr.to_matrix(x, convention="standard") @ S, atol=0, rtol=0)
 
 
 @given(arrays(np.float64, 10, elements=st.floats(-1e6, 1e6)))
 @settings(max_examples=50, deadline=None)
 def test_round_trip_property(x):
     for c in hr.CONVENTIONS:
-        assert np.array_equal(hr.to_components(hr.to_matrix(x, c), c), x)
+        assert np.array_equal(hr.to_components(hr.to_matrix(x, convention=c), convention=c), x)
 
 
 def _explicit_commutator_components(a, b, N, convention):
-    A = hr.basis_matrix(a, N, convention)
-    B = hr.basis_matrix(b, N, convention)
-    return hr.to_components(A @ B - B @ A, convention)
+    A = hr.basis_matrix(a, N, convention=convention)
+    B = hr.basis_matrix(b, N, convention=convention)
+    return hr.to_components(A @ B - B @ A, convention=convention)
 
 
 @pytest.mark.parametrize("convention", hr.CONVENTIONS)
@@ -109,8 +109,8 @@ def test_lie_bracket_numpy_matches_matrix():
     rng = np.random.default_rng(7)
     x, y = rng.normal(size=(2, 2, 10))
     z = hr.lie_bracket(x, y)
-    X, Y = hr.to_matrix(x, "standard"), hr.to_matrix(y, "standard")
-    assert np.allclose(z, hr.to_components(X @ Y - Y @ X, "standard"), rtol=0, atol=scaled_tol(norm(x) * norm(y), dim=5))
+    X, Y = hr.to_matrix(x, convention="standard"), hr.to_matrix(y, convention="standard")
+    assert np.allclose(z, hr.to_components(X @ Y - Y @ X, convention="standard"), rtol=0, atol=scaled_tol(norm(x) * norm(y), dim=5))
 
 
 def test_lie_poisson_gives_euler_equations_n5():
@@ -120,8 +120,8 @@ def test_lie_poisson_gives_euler_equations_n5():
     w = [l / i for l, i in zip(L, I)]
     # Euler equations from explicit matrices: dL/dt = W L - L W (standard and paper alike)
     for c in hr.CONVENTIONS:
-        W, Lm = hr.to_matrix(w, c), hr.to_matrix(L, c)
-        rhs = hr.to_components(W * Lm - Lm * W, c)
+        W, Lm = hr.to_matrix(w, convention=c), hr.to_matrix(L, convention=c)
+        rhs = hr.to_components(W * Lm - Lm * W, convention=c)
         for a, La in enumerate(L):
             assert sp.simplify(hr.lie_poisson_bracket(La, H, L) - rhs[a]) == 0
 
@@ -142,7 +142,7 @@ def test_casimir_commutes_with_everything():
 
 
 def test_bivector_table_same_in_both_conventions():
-    assert hr.bivector_product_table(5, "paper") == hr.bivector_product_table(5, "standard")
+    assert hr.bivector_product_table(5, convention="paper") == hr.bivector_product_table(5, convention="standard")
 
 
 def test_bivector_table_entries_n4():

@@ -74,7 +74,7 @@ from typing import Any, Callable, Iterable, Sequence
 
 import numpy as np
 
-from . import _lazy, _parse, _validate
+from . import _lazy, _parse, _pricing, _validate
 from ._lazy import sympy as sp  # SymPy is imported on first symbolic use (light ``import hyperrotor``)
 
 __all__ = [
@@ -194,7 +194,7 @@ def plane_symbols(name: str, N: int, *, function_of: sp.Symbol | None = None, **
     return tuple(out)
 
 
-def plane_signs(N: int, convention: str = "paper") -> np.ndarray:
+def plane_signs(N: int, *, convention: str = "paper") -> np.ndarray:
     """Sign of the ``(i, j)`` matrix entry relative to the component, per plane.
 
     ``(-1)**(i + j)`` for ``"paper"`` (eq. 21), ``+1`` for ``"standard"``.
@@ -238,7 +238,7 @@ def _sympy_matrix(name: str, value: Any, *, column: bool = False):
     return sp.Matrix(arr.shape[0], int(np.prod(arr.shape[1:])), entries)
 
 
-def basis_matrix(plane: Sequence[int], N: int, convention: str = "paper") -> np.ndarray:
+def basis_matrix(plane: Sequence[int], N: int, *, convention: str = "paper") -> np.ndarray:
     """The so(N) basis element of ``plane`` as an integer ``N x N`` matrix.
 
     ``to_matrix`` of the unit component vector of ``plane``: for ``"standard"``
@@ -248,14 +248,14 @@ def basis_matrix(plane: Sequence[int], N: int, convention: str = "paper") -> np.
     check_convention(convention)
     k = plane_index(plane, N)
     i, j = plane
-    s = int(plane_signs(N, convention)[k])
+    s = int(plane_signs(N, convention=convention)[k])
     E = np.zeros((N, N), dtype=int)
     E[i - 1, j - 1] = s
     E[j - 1, i - 1] = -s
     return E
 
 
-def to_matrix(components: Any, convention: str = "paper"):
+def to_matrix(components: Any, *, convention: str = "paper"):
     """Antisymmetric ``N x N`` matrix of a vector of plane components.
 
     Parameters
@@ -284,7 +284,7 @@ def to_matrix(components: Any, convention: str = "paper"):
     if is_symbolic(components):
         comps = list(_sympy_matrix("components", components, column=True))
         N = dimension_from_count(len(comps))
-        signs = plane_signs(N, convention)
+        signs = plane_signs(N, convention=convention)
         M = sp.zeros(N, N)
         for (i, j), s, c in zip(planes(N), signs, comps):
             M[i - 1, j - 1] = int(s) * c
@@ -296,7 +296,7 @@ def to_matrix(components: Any, convention: str = "paper"):
     if arr.dtype.kind not in "biufc":
         raise TypeError(f"components must be numeric (or SymPy expressions), got dtype {arr.dtype}")
     N = dimension_from_count(arr.shape[-1])
-    signs = plane_signs(N, convention)
+    signs = plane_signs(N, convention=convention)
     iu = np.array(planes(N)) - 1
     M = np.zeros(arr.shape[:-1] + (N, N), dtype=np.result_type(arr.dtype, np.int8))
     M[..., iu[:, 0], iu[:, 1]] = arr * signs
@@ -304,7 +304,7 @@ def to_matrix(components: Any, convention: str = "paper"):
     return M
 
 
-def to_components(matrix: Any, convention: str = "paper", *, atol: float | None = None):
+def to_components(matrix: Any, *, convention: str = "paper", atol: float | None = None):
     """Plane components (plane order) of an antisymmetric matrix; inverse of :func:`to_matrix`.
 
     Parameters
@@ -331,7 +331,7 @@ def to_components(matrix: Any, convention: str = "paper", *, atol: float | None 
         bad = [(i + 1, j + 1) for i in range(N) for j in range(i, N) if sp.simplify(M[i, j] + M[j, i]) != 0]
         if bad:
             raise ValueError(f"matrix is not antisymmetric: M + M^T != 0 at 1-based entries {bad[:5]}")
-        signs = plane_signs(N, convention)
+        signs = plane_signs(N, convention=convention)
         return sp.Matrix([int(s) * M[i - 1, j - 1] for (i, j), s in zip(planes(N), signs)])
     arr = np.asarray(matrix)
     if arr.dtype.kind not in "biufc":
@@ -351,7 +351,7 @@ def to_components(matrix: Any, convention: str = "paper", *, atol: float | None 
             f"at index {tuple(int(v) for v in worst)}"
         )
     iu = np.array(planes(N)) - 1
-    return arr[..., iu[:, 0], iu[:, 1]] * plane_signs(N, convention)
+    return arr[..., iu[:, 0], iu[:, 1]] * plane_signs(N, convention=convention)
 
 
 # ----------------------------------------------------------------------------
@@ -392,6 +392,7 @@ def structure_constants(N: int) -> np.ndarray:
     totally antisymmetric (the basis is orthogonal for the trace form), and the
     same in both matrix conventions (see the module docstring).
     """
+    _pricing.check("structure_constants", N=check_dimension(N))
     return _structure_constants(check_dimension(N))
 
 
@@ -461,7 +462,7 @@ def lie_poisson_bracket(F: sp.Expr, G: sp.Expr, L: Sequence[sp.Symbol]) -> sp.Ex
     return sp.expand(total)
 
 
-def bivector_product_table(N: int, convention: str = "paper", *, symbol: str = "e") -> sp.Matrix:
+def bivector_product_table(N: int, *, convention: str = "paper", symbol: str = "e") -> sp.Matrix:
     r"""The table of products of basis bivectors (paper's Table 2) for any N.
 
     Entry ``(a, b)`` is the commutator product
@@ -476,14 +477,15 @@ def bivector_product_table(N: int, convention: str = "paper", *, symbol: str = "
     :math:`\mathcal L_{ab} = \sum_c C_{bc}^{\;a} L_c = \sum_c C_{ab}^{\;c} L_c`.
     """
     N = check_dimension(N)
+    _pricing.check("bivector_product_table", N=N)
     check_convention(convention)
     e = plane_symbols(symbol, N)
     n = len(e)
     # basis matrices of the convention; expand commutators back in that basis
-    B = [basis_matrix(p, N, convention) for p in planes(N)]
+    B = [basis_matrix(p, N, convention=convention) for p in planes(N)]
     T = sp.zeros(n, n)
     for a in range(n):
         for b in range(n):
-            comp = to_components(B[a] @ B[b] - B[b] @ B[a], convention)
+            comp = to_components(B[a] @ B[b] - B[b] @ B[a], convention=convention)
             T[a, b] = sum((int(v) * e[c] for c, v in enumerate(comp) if v), sp.Integer(0))
     return T

@@ -32,10 +32,10 @@ def _sign_matrix(N):
 @given(components(batch=True), conventions)
 def test_components_matrix_round_trip(data, convention):
     N, x = data
-    M = hr.to_matrix(x, convention)
+    M = hr.to_matrix(x, convention=convention)
     assert M.shape == x.shape[:-1] + (N, N)
     assert np.array_equal(M, -np.swapaxes(M, -1, -2))  # antisymmetric, exactly
-    assert np.array_equal(hr.to_components(M, convention), x)  # a pure index/sign map: exact
+    assert np.array_equal(hr.to_components(M, convention=convention), x)  # a pure index/sign map: exact
 
 
 @SETTINGS
@@ -44,7 +44,7 @@ def test_matrix_components_round_trip(N, data):
     A = data.draw(arrays(np.float64, (N, N), elements=finite))
     M = A - A.T  # any antisymmetric matrix
     for c in hr.CONVENTIONS:
-        assert np.array_equal(hr.to_matrix(hr.to_components(M, c), c), M)
+        assert np.array_equal(hr.to_matrix(hr.to_components(M, convention=c), convention=c), M)
 
 
 @SETTINGS
@@ -53,13 +53,13 @@ def test_paper_and_standard_differ_by_the_checkerboard(data):
     """eq. (21): paper entry (i, j) = (-1)^(i+j) standard entry = S M S with S = diag((-1)^i)."""
     N, x = data
     S = _sign_matrix(N)
-    assert np.array_equal(hr.to_matrix(x, "paper"), S @ hr.to_matrix(x, "standard") @ S)
-    signs = hr.plane_signs(N, "paper")
+    assert np.array_equal(hr.to_matrix(x, convention="paper"), S @ hr.to_matrix(x, convention="standard") @ S)
+    signs = hr.plane_signs(N, convention="paper")
     assert np.array_equal(signs, [(-1) ** (i + j) for i, j in hr.planes(N)])
-    assert np.array_equal(hr.plane_signs(N, "standard"), np.ones(hr.n_planes(N)))
+    assert np.array_equal(hr.plane_signs(N, convention="standard"), np.ones(hr.n_planes(N)))
     # the map between the conventions' components is the sign vector (an involution)
-    assert np.array_equal(hr.to_components(hr.to_matrix(x, "paper"), "standard"), signs * x)
-    assert np.array_equal(hr.to_components(hr.to_matrix(signs * x, "standard"), "paper"), x)
+    assert np.array_equal(hr.to_components(hr.to_matrix(x, "paper"), convention="standard"), signs * x)
+    assert np.array_equal(hr.to_components(hr.to_matrix(signs * x, "standard"), convention="paper"), x)
 
 
 @SETTINGS
@@ -70,7 +70,7 @@ def test_basis_matrix_is_to_matrix_of_a_unit_vector(N, convention, data):
     assert hr.plane_index(p, N) == k
     e = np.zeros(hr.n_planes(N), dtype=int)
     e[k] = 1
-    assert np.array_equal(hr.basis_matrix(p, N, convention), hr.to_matrix(e, convention))
+    assert np.array_equal(hr.basis_matrix(p, N, convention=convention), hr.to_matrix(e, convention=convention))
     assert hr.dimension_from_count(hr.n_planes(N)) == N
 
 
@@ -79,10 +79,10 @@ def test_basis_matrix_is_to_matrix_of_a_unit_vector(N, convention, data):
 def test_lie_bracket_is_the_matrix_commutator_in_both_conventions(N, convention, data):
     x = data.draw(arrays(np.float64, hr.n_planes(N), elements=st.floats(-100, 100)))
     y = data.draw(arrays(np.float64, hr.n_planes(N), elements=st.floats(-100, 100)))
-    X, Y = hr.to_matrix(x, convention), hr.to_matrix(y, convention)
+    X, Y = hr.to_matrix(x, convention=convention), hr.to_matrix(y, convention=convention)
     z = hr.lie_bracket(x, y)
     tol = scaled_tol(norm(X) * norm(Y), dim=N)
-    np.testing.assert_allclose(z, hr.to_components(X @ Y - Y @ X, convention, atol=2 * tol), rtol=0, atol=tol)
+    np.testing.assert_allclose(z, hr.to_components(X @ Y - Y @ X, convention=convention, atol=2 * tol), rtol=0, atol=tol)
     np.testing.assert_allclose(z, -hr.lie_bracket(y, x), rtol=0, atol=tol)
 
 
