@@ -22,6 +22,7 @@ from . import classical
 from .classical import *  # noqa: F401,F403
 from ._options import UnknownOptionError, options
 from ._parse import ParseError
+from ._pricing import BudgetError
 
 __version__ = "0.1.0"
 
@@ -33,7 +34,7 @@ _LAZY_NAMES = {
     "TIME": ("hyperrotor.classical.rigid_body", "TIME"),
 }
 
-__all__ = [*conventions.__all__, *classical.__all__, "options", "UnknownOptionError", "ParseError", "verify_paper",
+__all__ = [*conventions.__all__, *classical.__all__, "options", "BudgetError", "UnknownOptionError", "ParseError", "verify_paper",
            "quantum", "classical", "conventions", "paper"]
 
 
