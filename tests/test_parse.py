@@ -121,3 +121,32 @@ def test_to_sympy_is_sympify_without_text_evaluation():
         _parse.to_sympy(float("nan"), "h")
     with pytest.raises(_parse.ParseError):
         _parse.to_sympy("__import__('os')", "h")
+
+
+#: Modules that may call a text-evaluating SymPy function, with the reason. Nothing a user passes
+#: reaches them: they read the preprint's formulas, constants shipped inside the package.
+EVALUATING_TEXT_ALLOWED = {
+    "paper/printed.py": "parses the printed equations of the preprint (package constants)",
+    "paper/printed_solutions.py": "parses the printed closed forms of the preprint (package constants)",
+}
+
+
+def test_no_module_evaluates_text_outside_the_parser():
+    """``sympify``/``parse_expr``/``eval``/``exec`` turn text into code; only ``_parse`` reads user text."""
+    import re
+    from pathlib import Path
+
+    import hyperrotor
+
+    root = Path(hyperrotor.__file__).parent
+    pattern = re.compile(r"\b(sympify|parse_expr)\s*\(|\bsp\.S\(|(?<![\w.])(eval|exec)\s*\(")
+    offenders = []
+    for path in sorted(root.rglob("*.py")):
+        rel = path.relative_to(root).as_posix()
+        if rel == "_parse.py" or rel in EVALUATING_TEXT_ALLOWED:
+            continue
+        for k, line in enumerate(path.read_text().splitlines(), 1):
+            code = line.split("#", 1)[0]
+            if pattern.search(code) and "def _sympify" not in code:
+                offenders.append(f"{rel}:{k}: {line.strip()}")
+    assert not offenders, "text may reach sympify/eval here (use hyperrotor._parse.to_sympy):\n" + "\n".join(offenders)
