@@ -25,7 +25,7 @@ def test_simplex_edges_all_pairs_equal_length(N):
 
 
 def test_bad_kind_and_shape(tmp_path):
-    with pytest.raises(ValueError, match="unknown body kind 'sphere'"):
+    with pytest.raises(ValueError, match="unknown kind 'sphere'; allowed: 'cube', 'simplex', 'points'"):
         body_edges(np.zeros((3, 3)), "sphere")
     with pytest.raises(ValueError, match=r"shape \(len\(t\), n_points, 3\)"):
         save_projection_frames(str(tmp_path / "a.png"), np.arange(2), np.zeros((2, 4, 2)), [])

@@ -22,6 +22,8 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
+from .classical.scenes import body_edges
+
 __all__ = [
     "body_edges",
     "draw_projection",
@@ -41,37 +43,6 @@ def _pyplot():
     except ImportError:  # pragma: no cover - depends on the environment
         raise ImportError("plotting needs matplotlib: pip install 'hyperrotor[viz]'") from None
     return plt
-
-
-def body_edges(points: np.ndarray, kind: str) -> list[tuple[int, int]]:
-    """Edges to draw between body points.
-
-    ``kind="cube"``: pairs of vertices differing in exactly one coordinate
-    (the edges of an axis-aligned hypercube, found in ``O(P N^2)`` by grouping
-    the vertices on their other coordinates); ``"simplex"``: all pairs;
-    ``"points"`` (e.g. an ellipsoid sample): none.
-    """
-    pts = np.asarray(points, dtype=float)
-    if kind == "points":
-        return []
-    n = len(pts)
-    if kind == "simplex":
-        return [(a, b) for a in range(n) for b in range(a + 1, n)]
-    if kind == "cube":
-        keys = np.round(pts, 9)
-        edges = []
-        for d in range(pts.shape[1]):
-            groups: dict[tuple, list[int]] = {}
-            rest = np.delete(keys, d, axis=1)
-            for idx, key in enumerate(map(tuple, rest)):
-                groups.setdefault(key, []).append(idx)
-            for members in groups.values():
-                for x, a in enumerate(members):
-                    for b in members[x + 1:]:
-                        if keys[a, d] != keys[b, d]:
-                            edges.append((min(a, b), max(a, b)))
-        return sorted(edges)
-    raise ValueError(f"unknown body kind {kind!r}; allowed: 'cube', 'simplex', 'points'")
 
 
 def _hidden_colour(projection: np.ndarray):

@@ -1,11 +1,12 @@
 """Classical rigid rotation in N dimensions: inertia, Euler equations, integrators, closed forms."""
-from . import closed_form, inertia, rigid_body, scenes, solvers, stability
+from . import closed_form, inertia, rigid_body, scene_html, scenes, solvers, stability
 from . import simulate as _simulate_module
 from . import chaos
 from .chaos import *  # noqa: F401,F403
 from .closed_form import *  # noqa: F401,F403
 from .inertia import *  # noqa: F401,F403
 from .rigid_body import *  # noqa: F401,F403
+from .scene_html import *  # noqa: F401,F403
 from .scenes import *  # noqa: F401,F403
 from .simulate import SIMULATION_METHODS, Trajectory, simulate
 from .solvers import SOLVERS, Solver, StepBudgetError, casimir_shift, splitting_coefficients
@@ -24,4 +25,5 @@ __all__ = [
     *chaos.__all__,
     *stability.__all__,
     *scenes.__all__,
+    *scene_html.__all__,
 ]

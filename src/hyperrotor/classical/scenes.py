@@ -55,6 +55,7 @@ __all__ = [
     "SCENE_OBSERVABLES",
     "Scene",
     "SceneResult",
+    "body_edges",
     "evaluate_scene",
     "hypercube_vertices",
     "simplex_vertices",
@@ -109,6 +110,37 @@ def ellipsoid_points(semi_axes: Sequence[float], n: int, *, rng: Any = None) -> 
     d = gen.normal(size=(int(n), a.size))
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     return d * a
+
+
+def body_edges(points: np.ndarray, kind: str) -> list[tuple[int, int]]:
+    """Edges to draw between body points.
+
+    ``kind="cube"``: pairs of vertices differing in exactly one coordinate
+    (the edges of an axis-aligned hypercube, found in ``O(P N^2)`` by grouping
+    the vertices on their other coordinates); ``"simplex"``: all pairs;
+    ``"points"`` (e.g. an ellipsoid sample): none.
+    """
+    pts = _v.finite_array("points", points, ndim=2)
+    kind = _v.choice("kind", kind, ("cube", "simplex", "points"))
+    if kind == "points":
+        return []
+    n = len(pts)
+    if kind == "simplex":
+        return [(a, b) for a in range(n) for b in range(a + 1, n)]
+    if kind == "cube":
+        keys = np.round(pts, 9)
+        edges = []
+        for d in range(pts.shape[1]):
+            groups: dict[tuple, list[int]] = {}
+            rest = np.delete(keys, d, axis=1)
+            for idx, key in enumerate(map(tuple, rest)):
+                groups.setdefault(key, []).append(idx)
+            for members in groups.values():
+                for x, a in enumerate(members):
+                    for b in members[x + 1:]:
+                        if keys[a, d] != keys[b, d]:
+                            edges.append((min(a, b), max(a, b)))
+    return sorted(edges)
 
 
 # ----------------------------------------------------------------------------
@@ -231,6 +263,32 @@ class Scene:
     def evaluate(self, *, minimal: bool = True) -> SceneResult:
         """Compute the scene; see :func:`evaluate_scene`."""
         return evaluate_scene(self, minimal=minimal)
+
+    @property
+    def rigid_body(self):
+        """The :class:`RigidBody` of ``body`` (plain moments and an ``Inertia`` in the paper convention)."""
+        return _as_body(self.body)
+
+    def to_plotly(self, *, edges: Any = "auto", title: str | None = None, result: SceneResult | None = None):
+        """The motion as an interactive :class:`plotly.graph_objects.Figure` (inline in notebooks).
+
+        Rotatable, zoomable 3D view of ``points`` projected on ``axes``, Play / Pause and
+        a time slider, the time and the invariants beside it; priced before any work.
+        See :func:`hyperrotor.classical.scene_html.scene_figure`.
+        """
+        from .scene_html import scene_figure
+
+        return scene_figure(self, edges=edges, title=title, result=result)
+
+    def to_html(self, path, *, edges: Any = "auto", title: str | None = None, result: SceneResult | None = None,
+                auto_play: bool = True) -> str:
+        """Write :meth:`to_plotly` as one self-contained HTML page (no network); returns the path.
+
+        See :func:`hyperrotor.classical.scene_html.write_scene_html`.
+        """
+        from .scene_html import write_scene_html
+
+        return write_scene_html(self, path, edges=edges, title=title, result=result, auto_play=auto_play)
 
 
 def _check_inputs(body: Any, omega0: Any, t: Any):
@@ -364,7 +422,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
             if need_att:
                 from ..conventions import to_matrix
 
-                U = _cf._expm_antisym(to_matrix(w_red, "standard").astype(float), tau)
+                U = _cf._expm_antisym(to_matrix(w_red, convention="standard").astype(float), tau)
         else:
             om_red, _ = _cf.closed_form_solution(I_red, w_red, tau)
             if need_att:  # T = exp(Theta W_r t) exp((W0 - Theta W_r) t), see quartet_attitude
