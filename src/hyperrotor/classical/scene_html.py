@@ -282,13 +282,13 @@ def write_scene_html(scene, path, *, edges: Any = "auto", title: str | None = No
     """Write the scene as one self-contained HTML page (plotly.js inside, no network); returns the path.
 
     The figure is :func:`scene_figure` (same ``edges``, ``title``, ``result``); the page
-    starts playing when opened (``auto_play``). The file is written to a temporary name
-    in the same directory and renamed at the end, so an interrupted run leaves no partial
-    page; an existing file at ``path`` is replaced.
+    starts playing when opened (``auto_play``). The file is HTML whatever its name (use
+    ``.html``); it is written to ``path + ".part"`` and renamed at the end, so an
+    interrupted run leaves no partial page; an existing file at ``path`` is replaced.
     """
-    path = os.fspath(path)
-    if not isinstance(path, str) or not path.lower().endswith((".html", ".htm")):
-        raise ValueError(f"path must end in .html or .htm, got {_v.fmt(path)}")
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path must be a file name (str or os.PathLike), got {_v.fmt(path)}")
+    path = os.fsdecode(path)
     _v.flag("auto_play", auto_play)
     fig = scene_figure(scene, edges=edges, title=title, result=result)
     tmp = path + ".part"
