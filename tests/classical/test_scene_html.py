@@ -69,7 +69,7 @@ def test_page_is_priced_before_any_work(tmp_path, monkeypatch):
     scene = _scene(N=10, K=200)  # 1024 points, 5120 edges, 200 frames: ~90 MB
     need = scene_html_bytes(200, 1024, 5120)
     with hr.options(scene_html_max_bytes=int(need / 2)):
-        with pytest.raises(ValueError, match="scene_html_max_bytes"):
+        with pytest.raises(hr.BudgetError, match="scene_html_max_bytes"):
             scene.to_html(tmp_path / "big.html")
     assert not list(tmp_path.iterdir())
 

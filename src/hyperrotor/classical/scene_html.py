@@ -30,8 +30,9 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from .. import _pricing
 from .. import _validate as _v
-from .._options import options, register
+from .._options import register
 
 __all__ = ["scene_figure", "write_scene_html", "scene_html_bytes"]
 
@@ -67,6 +68,14 @@ def scene_html_bytes(n_times: int, n_points: int, n_edges: int, *, colour: bool 
                (("n_times", n_times), ("n_points", n_points), ("n_edges", n_edges)))
     per_frame = ((3 + (1 if colour else 0)) * P + 9 * E) * _BYTES_PER_NUMBER + _FRAME_OVERHEAD
     return K * per_frame + (_PLOTLYJS_BYTES if plotlyjs else 0.0)
+
+
+@_pricing.model("Scene.to_html", "fewer times (t) or a smaller body")
+def _page_cost(n_times: int, n_points: int, n_edges: int, colour: bool = False) -> tuple:
+    """Cost model of a scene page (also :meth:`Scene.to_plotly`): its bytes, see :func:`scene_html_bytes`."""
+    what = f"a page of {n_times} times x ({n_points} points, {n_edges} edges)"
+    return (_pricing.Cost(what, scene_html_bytes(n_times, n_points, n_edges, colour=colour),
+                          "scene_html_max_bytes", "bytes"),)
 
 
 def _plotly():
@@ -112,14 +121,7 @@ def _price(scene, edges: Any):
         edges = kind
     else:
         n_edges = len(edges)
-    n_times = int(np.size(scene.t))
-    size = scene_html_bytes(n_times, P, n_edges, colour=n_axes == 4)
-    budget = options["scene_html_max_bytes"]
-    if size > budget:
-        raise ValueError(
-            f"an interactive scene of {n_times} times, {P} points and {n_edges} edges needs a page of about "
-            f"{size / 2**20:.1f} MiB, over the budget scene_html_max_bytes = {budget / 2**20:.1f} MiB; use fewer "
-            f"times, a smaller body, or raise it with hr.options(scene_html_max_bytes=...)")
+    _pricing.check("Scene.to_html", n_times=int(np.size(scene.t)), n_points=P, n_edges=n_edges, colour=n_axes == 4)
     return body, points, _edges_for(points, edges)
 
 
@@ -172,9 +174,10 @@ def scene_figure(scene, *, edges: Any = "auto", title: str | None = None, result
 
     Raises
     ------
+    hyperrotor.BudgetError
+        Over the ``scene_html_max_bytes`` budget (priced before the motion is computed).
     ValueError
-        Over the ``scene_html_max_bytes`` budget (priced before the motion is computed),
-        without points, or with other than 3 or 4 axes.
+        Without points, or with other than 3 or 4 axes.
     """
     from .scenes import Scene, evaluate_scene
 
