@@ -56,8 +56,8 @@ def test_print_is_matrix_entry_of_eq24(body, S):
     """(28)-(37) are the (i, j) entries of dL/dt - (wL - Lw) = m~ with the checkerboard matrices (21), (22)."""
     w = body.omega_symbols(function_of=TIME)
     I = body.inertia.symbolic_moments
-    W = hr.to_matrix(list(w), "paper")
-    L = hr.to_matrix([a * b for a, b in zip(I, w)], "paper")
+    W = hr.to_matrix(list(w), convention="paper")
+    L = hr.to_matrix([a * b for a, b in zip(I, w)], convention="paper")
     lhs = sp.diff(L, TIME) - (W * L - L * W)
     for k, (i, j) in enumerate(hr.planes(5)):
         assert sp.expand(lhs[i - 1, j - 1] - P.PRINTED_EULER[str(28 + k)].lhs) == 0
@@ -190,15 +190,15 @@ def test_table_1_meaning_Ldot_equals_table_times_omega():
     T1, _ = _independent_tables()
     w = sp.symbols("w1:11")
     L = hr.plane_symbols("L", 5)
-    lhs = hr.to_components(hr.to_matrix(list(w), "paper") * hr.to_matrix(list(L), "paper")
-                           - hr.to_matrix(list(L), "paper") * hr.to_matrix(list(w), "paper"), "paper")
+    lhs = hr.to_components(hr.to_matrix(list(w), convention="paper") * hr.to_matrix(list(L), convention="paper")
+                           - hr.to_matrix(list(L), convention="paper") * hr.to_matrix(list(w), convention="paper"), convention="paper")
     assert sp.expand(lhs - T1 * sp.Matrix(w)) == sp.zeros(10, 1)
 
 
 def test_generated_tables_equal_independent_derivation():
     T1, T2 = _independent_tables()
     assert hr.bivector_product_table(5) == T2
-    assert hr.bivector_product_table(5, "standard") == T2
+    assert hr.bivector_product_table(5, convention="standard") == T2
     C = hr.structure_constants(5)
     L = hr.plane_symbols("L", 5)
     gen_T1 = sp.Matrix(10, 10, lambda a, b: sum(int(C[a, b, c]) * L[c] for c in range(10)))

@@ -64,28 +64,74 @@ def test_form_keyword_everywhere():
 
 
 @pytest.mark.parametrize(
-    "call, new",
+    "call, word",
     [
-        (lambda: hq.irrep(3, (1,)).hermitian((1, 2), 2.0), 'form="hermitian"'),
-        (lambda: hq.irrep(3, (1,)).cartan_generators(hermitian=True), "form="),
-        (lambda: hq.irrep(3, (1,)).to_qobj(hermitian=False), "form="),
-        (lambda: hq.irrep(3, (1,)).to_qobj(), 'form="hermitian"'),
-        (lambda: hq.angular_momentum_operators(3, hermitian=True), "form="),
-        (lambda: hq.angular_momentum_operators(3, hbar=sp.Symbol("hbar")), 'form="hermitian"'),
-        (lambda: hq.angular_momentum_operator((1, 2), 3).hermitian(1), "as_form"),
-        (lambda: hq.operator_matrix(3, "paper", 1), "positional"),
-        (lambda: hq.rotor_hamiltonian(hq.vector_rep(3), [1, 2, 3], 2.0), "keyword"),
-        (lambda: hq.generator_expectations(hq.vector_rep(3), np.ones(3), 2.0), "keyword"),
-        (lambda: hq.evolve(np.eye(2), np.ones(2), times=[0.0, 1.0]), "t="),
-        (lambda: hq.spectrum(np.eye(2), tol=1e-3), "atol="),
-        (lambda: hq.spectrum(np.eye(2), max_dense_dim=10), "quantum_max_dense_dim"),
-        (lambda: hq.real_form(hq.vector_rep(3), atol=1e-9), "rtol="),
+        (lambda: hq.irrep(3, (1,)).hermitian((1, 2), 2.0), "hermitian"),
+        (lambda: hq.irrep(3, (1,)).cartan_generators(hermitian=True), "unexpected keyword argument 'hermitian'"),
+        (lambda: hq.irrep(3, (1,)).to_qobj(hermitian=False), "unexpected keyword argument 'hermitian'"),
+        (lambda: hq.angular_momentum_operators(3, hermitian=True), "unexpected keyword argument 'hermitian'"),
+        (lambda: hq.angular_momentum_operator((1, 2), 3).hermitian(1), "hermitian"),
+        (lambda: hq.operator_matrix(3, "paper"), "positional"),
+        (lambda: hq.contraction_identity(3, "paper"), "positional"),
+        (lambda: hq.rotor_hamiltonian(hq.vector_rep(3), [1, 2, 3], 2.0), "positional"),
+        (lambda: hq.rotor_hamiltonian(generators=hq.vector_rep(3), body=[1, 2, 3]), "unexpected keyword argument"),
+        (lambda: hq.rotor_hamiltonian(hq.vector_rep(3), inertia=[1, 2, 3]), "unexpected keyword argument 'inertia'"),
+        (lambda: hq.real_form(hq.vector_rep(3), atol=1e-9), "unexpected keyword argument 'atol'"),
     ],
     ids=lambda v: v if isinstance(v, str) else "",
 )
-def test_old_spellings_raise_type_error_naming_the_new_one(call, new):
-    with pytest.raises(TypeError, match=new):
+def test_old_spellings_get_pythons_own_errors(call, word):
+    """The package is unreleased: old spellings are gone, not shimmed (VOCAB.md, #23)."""
+    with pytest.raises((TypeError, AttributeError), match=word):
         call()
+
+
+def test_hbar_defaults_to_the_exact_one_and_is_refused_with_the_antihermitian_form():
+    rep = hq.irrep(3, (1,))
+    X = rep.generator((1, 2), format="dense")
+    assert np.array_equal(rep.generator((1, 2), hbar=1, format="dense"), X)  # the default, spelled out
+    assert rep.generator((1, 2), form="hermitian", exact=True) == -sp.I * rep.generator((1, 2), exact=True)
+    A = hq.angular_momentum_operator((1, 2), 3)
+    assert hq.angular_momentum_operator((1, 2), 3, form="hermitian") == -sp.I * A  # exact, no Float 1.0
+    for call in (lambda: rep.generator((1, 2), hbar=0.5), lambda: rep.to_qobj(hbar=2.0),
+                 lambda: hq.angular_momentum_operators(3, hbar=sp.Symbol("hbar")),
+                 lambda: hq.jmat_generators(1, hbar=0.5)):
+        with pytest.raises(ValueError, match='form="hermitian"'):
+            call()
+
+
+@pytest.mark.parametrize("call", [
+    lambda t: hq.angular_momentum_operators(3, form="hermitian", hbar=t),
+    lambda t: hq.casimir_operator(3, form="hermitian", hbar=t),
+    lambda t: hq.textbook_so3(hbar=t),
+    lambda t: hq.operator_matrix(3, form="hermitian", hbar=t),
+    lambda t: hq.irrep(3, (1,)).generator((1, 2), form="hermitian", hbar=t, exact=True),
+    lambda t: hq.irrep(3, (1,)).generators(form="hermitian", hbar=t),
+    lambda t: hq.irrep(3, (1,)).to_qobj(form="hermitian", hbar=t),
+    lambda t: hq.jmat_generators(1, form="hermitian", hbar=t),
+    lambda t: hq.rotor_hamiltonian(hq.vector_rep(3), [1.0, 2.0, 3.0], hbar=t),
+])
+@pytest.mark.parametrize("text", ["hbar", "__import__('os').system('touch PWNED')", "9**9**9**9"])
+def test_text_hbar_is_refused_everywhere_without_evaluation(call, text, tmp_path, monkeypatch):
+    """One behaviour for one input (#21): text for hbar is a TypeError naming hbar, never a Symbol or code."""
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(TypeError, match="hbar"):
+        call(text)
+    assert not (tmp_path / "PWNED").exists()
+
+
+def test_text_expressions_are_refused_by_the_symbolic_layer():
+    x1, x2, x3 = hq.coordinate_symbols(3)
+    f = sp.Function("f")(x1, x2, x3)
+    with pytest.raises(TypeError, match="expr"):
+        hq.WeylElement.from_sympy("x1*Derivative(f(x1, x2, x3), x2)", f, (x1, x2, x3))
+    with pytest.raises(TypeError, match="coefficient"):
+        hq.dict_to_polynomial({(1, 0, 0): "__import__('os')"}, (x1, x2, x3))
+    with pytest.raises(TypeError):
+        hq.WeylElement(3, {((0, 0, 0), (0, 0, 0)): "2"})
+    # the good inputs still work
+    assert hq.WeylElement.from_sympy(x1 * sp.Derivative(f, x2) - x2 * sp.Derivative(f, x1), f, (x1, x2, x3)) == \
+        hq.angular_momentum_operator((1, 2), 3).element
 
 
 # ----------------------------------------------------------------------------
@@ -186,7 +232,7 @@ def test_every_registered_method_evolves_and_refuses_unknown_options(method):
     psi /= np.linalg.norm(psi)
     t = np.linspace(0.0, 1.0, 5)
     table = hq.evolve_options(method)
-    assert {"store_states", "store_final_state", "progress_bar"} <= set(table)
+    assert {"store_states", "store_final_state"} <= set(table)
     opts = {"atol": 1e-12, "rtol": 1e-10} if method in ("sesolve", "mesolve") else {}
     res = hq.evolve(H, psi, t, method=method, options={"store_states": True, **opts})
     E, V = np.linalg.eigh(H.full())
@@ -249,17 +295,6 @@ def test_sphere_inner_product_and_weyl_action_on_plain_symbols():
     assert hq.sphere_inner_product(x1, x1, 3, normalized=True) == sp.Rational(1, 3)
     L = hq.angular_momentum_operator((1, 2), 3)
     assert hq.apply_to_polynomial(L.element, x1 * x2) == x1**2 - x2**2
-
-
-def test_old_module_names_still_export_the_same_objects():
-    from hyperrotor.quantum import representations, rotor
-
-    assert rotor.evolve is hq.evolve and rotor.rotor_hamiltonian is hq.rotor_hamiltonian
-    assert rotor.spectrum is hq.spectrum and representations.Representation is hq.Representation
-    assert representations.harmonic_rep is hq.harmonic_rep
-    from hyperrotor.paper.operator_products import contraction_identity
-
-    assert contraction_identity(3).factor == -1
 
 
 def test_irrep_messages_print_weights_as_numbers():

@@ -11,17 +11,10 @@ import sympy as sp
 from hyperrotor.conventions import basis_matrix, planes, structure_constants
 from hyperrotor.quantum.gelfand_tsetlin import irrep
 from hyperrotor.quantum.harmonic import harmonic_dimension
-from hyperrotor.quantum.representations import (
-    Representation,
-    adjoint_rep,
-    direct_sum,
-    harmonic_rep,
-    intertwiner,
-    real_form,
-    spinor_rep,
-    tensor,
-    vector_rep,
-)
+from hyperrotor.quantum.combine import direct_sum, tensor
+from hyperrotor.quantum.equivalence import intertwiner, real_form
+from hyperrotor.quantum.representation import Representation
+from hyperrotor.quantum.standard_reps import adjoint_rep, harmonic_rep, spinor_rep, vector_rep
 from hyperrotor.quantum.weights import casimir_eigenvalue, weight_multiplicities, weyl_dimension
 from tolerance import norm, scaled_tol
 
@@ -117,8 +110,8 @@ def test_vector_rep_is_the_plane_basis():
     for N in range(2, 8):
         rep = vector_rep(N)
         for p in planes(N):
-            np.testing.assert_array_equal(rep.generator(p, format="dense"), basis_matrix(p, N, "standard"))
-            assert rep.generator(p, exact=True) == sp.Matrix(basis_matrix(p, N, "standard"))
+            np.testing.assert_array_equal(rep.generator(p, format="dense"), basis_matrix(p, N, convention="standard"))
+            assert rep.generator(p, exact=True) == sp.Matrix(basis_matrix(p, N, convention="standard"))
         assert np.array_equal(rep.casimir(format="dense"), -(N - 1) * np.eye(N))
 
 
@@ -127,7 +120,7 @@ def test_adjoint_rep_is_ad():
     N = 5
     rep = adjoint_rep(N)
     pl = planes(N)
-    E = [basis_matrix(p, N, "standard") for p in pl]
+    E = [basis_matrix(p, N, convention="standard") for p in pl]
     for a, pa in enumerate(pl):
         M = rep.generator(pa, format="dense")
         for b in range(len(pl)):
@@ -310,3 +303,32 @@ def test_real_form_rejects_complex_and_quaternionic():
         real_form(np.eye(3))
     v = vector_rep(4)
     assert real_form(v) is v
+
+
+# ----------------------------------------------------------------------------
+# results travel (#21 §4): pickle and deepcopy, equal round trips
+# ----------------------------------------------------------------------------
+@pytest.mark.parametrize("make", [
+    lambda: irrep(5, (1, 1)), lambda: irrep(3, (H,)), lambda: harmonic_rep(4, 2), lambda: spinor_rep(6, 1),
+    lambda: tensor(vector_rep(3), spinor_rep(3)), lambda: direct_sum(vector_rep(4), adjoint_rep(4)),
+    lambda: real_form(irrep(3, (1,))),
+], ids=["irrep", "spin1/2", "harmonic", "chiral-spinor", "tensor", "direct_sum", "real_form"])
+def test_representations_pickle_and_deepcopy(make):
+    import copy
+    import pickle
+
+    from hyperrotor.quantum.hamiltonian import rotor_hamiltonian
+
+    rep = make()
+    for back in (pickle.loads(pickle.dumps(rep)), copy.deepcopy(rep)):
+        assert back == rep and back is not rep
+        assert back.highest_weight == rep.highest_weight and back.name == rep.name
+        if rep.has_exact_generators:  # the on-demand recipe travels too (no closure)
+            assert back.generator((1, 2), exact=True) == rep.generator((1, 2), exact=True)
+    # a changed generator is noticed
+    other = Representation(rep.N, {p: (2 * M if p == (1, 2) else M) for p, M in rep.generators().items()},
+                           highest_weight=rep.highest_weight, name=rep.name)
+    assert other != rep
+    H = rotor_hamiltonian(rep, np.linspace(1.0, 2.0, rep.N * (rep.N - 1) // 2))
+    H2 = pickle.loads(pickle.dumps(H))
+    assert H2 == H and H2._hyperrotor_rep == rep  # the sectors of spectrum/evolve still find the representation

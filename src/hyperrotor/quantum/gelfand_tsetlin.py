@@ -68,6 +68,7 @@ complex (the diagonal :math:`iC`); they are not real in this basis.
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -480,7 +481,8 @@ def irrep(
     m = _resolve_weight(N, highest_weight, dynkin)
     dim = _check_max_dim(N, m, max_dim)
     gens = _gt_generators_float(N, m)
-    exact_gens = _gt_generators_exact(N, m) if exact else (lambda: _gt_generators_exact(N, m))
+    exact = _validate.flag("exact", exact)
+    exact_gens = _gt_generators_exact(N, m) if exact else partial(_gt_generators_exact, N, m)
     name = f"so({N}) irrep {_fmt_weight(m)} (Gelfand-Tsetlin basis)"
     rep = Representation(N, gens, highest_weight=m, exact_generators=exact_gens, name=name, format=format)
     assert rep.dim == dim

@@ -99,19 +99,18 @@ def hermitian_matrix(H: Any, name: str = "H") -> tuple[sps.csr_matrix, list]:
 # ----------------------------------------------------------------------------
 # Hamiltonian
 # ----------------------------------------------------------------------------
-def rotor_hamiltonian(generators: Any, inertia: Any, *args: Any, hbar: float = 1.0, form: str = "antihermitian",
-                      **old: Any):
+def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "antihermitian"):
     r"""Rigid-rotor Hamiltonian :math:`\hat H = \sum_{i<j} (\hat L^{ij})^2/(2I_{ij})`.
 
     Parameters
     ----------
-    generators : Representation or mapping plane -> operator
+    rep : Representation or mapping plane -> operator
         A :class:`~hyperrotor.quantum.Representation`, or ``{(i, j): operator}``
         for every plane of so(N) with operators given as ``qutip.Qobj``,
         scipy.sparse matrices or 2-D arrays, in the form named by ``form``
         (e.g. ``rep.to_qobj(form="antihermitian")`` or
         :func:`~hyperrotor.quantum.jmat_generators`).
-    inertia : Inertia, RigidBody, mapping plane -> moment, or sequence
+    body : Inertia, RigidBody, mapping plane -> moment, or sequence
         The physical plane moments :math:`I_{ij}`: an :class:`hyperrotor.Inertia`,
         a body, ``{(i, j): I_ij}`` naming every plane once, or ``N(N-1)/2``
         finite positive real numbers in plane order.
@@ -132,8 +131,7 @@ def rotor_hamiltonian(generators: Any, inertia: Any, *args: Any, hbar: float = 1
     Raises
     ------
     TypeError
-        ``hbar`` given positionally (it is keyword-only), a symbolic inertia,
-        old keywords.
+        ``hbar`` given positionally (it is keyword-only), a symbolic body.
     ValueError
         Inertia of another N, a non-positive moment, ``hbar <= 0``, generators
         that are not anti-Hermitian in the declared form.
@@ -144,27 +142,24 @@ def rotor_hamiltonian(generators: Any, inertia: Any, *args: Any, hbar: float = 1
     :math:`C_2/(2I)` with the so(N) Casimir :math:`C_2 = \sum_a \hat L_a^2`
     (eq. 38's quadratic invariant, quantized).
     """
-    if args:
-        raise TypeError("rotor_hamiltonian() takes hbar as a keyword only: rotor_hamiltonian(rep, inertia, hbar=...)")
-    _validate.old_keywords("rotor_hamiltonian", old, {"hermitian": 'form="hermitian"'})
     hbar = _validate.hbar(hbar)
-    if isinstance(generators, Representation):
-        N, dim = generators.N, generators.dim
-        gens = generators.generators(format="csr")
-    elif hasattr(generators, "generators") and hasattr(generators, "N"):  # a Representation-like object
-        N, dim = int(generators.N), int(generators.dim)
-        gens = generators.generators()
-    elif isinstance(generators, Mapping):
+    if isinstance(rep, Representation):
+        N, dim = rep.N, rep.dim
+        gens = rep.generators(format="csr")
+    elif hasattr(rep, "generators") and hasattr(rep, "N"):  # a Representation-like object
+        N, dim = int(rep.N), int(rep.dim)
+        gens = rep.generators()
+    elif isinstance(rep, Mapping):
         form = _validate.form(form)
-        rep = Representation.from_qobj(generators, form=form, hbar=hbar if form == "hermitian" else None, check=False)
-        check_antihermitian(rep.generators(format="csr"), form=form)
-        N, dim, gens = rep.N, rep.dim, rep.generators(format="csr")
+        mapped = Representation.from_qobj(rep, form=form, hbar=hbar if form == "hermitian" else 1, check=False)
+        check_antihermitian(mapped.generators(format="csr"), form=form)
+        N, dim, gens = mapped.N, mapped.dim, mapped.generators(format="csr")
     else:
         raise TypeError(
-            "generators must be a Representation or a mapping plane -> operator (qutip.Qobj, scipy.sparse, array), "
-            f"got {type(generators).__name__}"
+            "rep must be a Representation or a mapping plane -> operator (qutip.Qobj, scipy.sparse, array), "
+            f"got {type(rep).__name__}"
         )
-    moments = _validate.moments(inertia, N)  # refuses complex moments too
+    moments = _validate.moments(body, N, name="body")  # refuses complex moments too
     H = sps.csr_matrix((dim, dim), dtype=float)
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below, with its cause
         for (i, j), m in zip(planes(N), moments):
@@ -179,7 +174,7 @@ def rotor_hamiltonian(generators: Any, inertia: Any, *args: Any, hbar: float = 1
         )
     if H.dtype.kind == "c":
         # exactly Hermitian: (H + H^dagger)/2 changes H by its round-off only (same argument as
-        # standard_reps._exact_antisymmetric); a real H of real generators is already exactly symmetric
+        # equivalence.exact_antisymmetric); a real H of real generators is already exactly symmetric
         H = 0.5 * (H + H.conj().T)
         if not np.any(H.data.imag):
             H = sps.csr_matrix(H.real)
@@ -187,9 +182,9 @@ def rotor_hamiltonian(generators: Any, inertia: Any, *args: Any, hbar: float = 1
     H.sum_duplicates()
     H.eliminate_zeros()
     Hq = _lazy.qutip.Qobj(H, dims=[[dim], [dim]])
-    if isinstance(generators, Representation):
+    if isinstance(rep, Representation):
         # for the symmetry sectors of spectrum/evolve (arithmetic on Hq gives new Qobjs without it)
-        Hq._hyperrotor_rep = generators
+        Hq._hyperrotor_rep = rep
     return Hq
 
 

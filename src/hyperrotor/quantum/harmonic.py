@@ -32,11 +32,10 @@ from typing import Any, Mapping
 import numpy as np
 import sympy as sp
 
-from .. import _validate
-from .._options import options
+from .. import _parse, _pricing, _validate
 from ..conventions import check_dimension
 from .normal_form import WeylElement, dict_to_polynomial, polynomial_to_dict
-from .operators import DifferentialOperator, _to_coordinates, coordinate_symbols
+from .operators import DifferentialOperator, coordinate_symbols, to_coordinates
 
 __all__ = [
     "harmonic_dimension",
@@ -58,16 +57,9 @@ def _check_degree(l: Any) -> int:
     return l
 
 
-def _check_size(N: int, l: int) -> None:
-    """Refuse a harmonic space beyond ``options["quantum_max_harmonic_dim"]`` before any work."""
-    d = harmonic_dimension(N, l)
-    limit = options["quantum_max_harmonic_dim"]
-    if d > limit:
-        raise ValueError(
-            f"degree l = {l} in N = {N} variables gives {d} harmonic polynomials > "
-            f"options['quantum_max_harmonic_dim'] = {limit} (exact rational construction); "
-            f"raise the limit with hyperrotor.options(quantum_max_harmonic_dim=...) or use irrep(N, (l,))"
-        )
+def _check_size(N: int, l: int, entry: str = "harmonic_polynomial_basis") -> None:
+    """Refuse a harmonic space over ``options["quantum_max_harmonic_dim"]`` or ``["max_seconds"]`` before any work."""
+    _pricing.check(entry, N=N, l=l)
 
 
 def harmonic_dimension(N: int, l: int) -> int:
@@ -230,7 +222,7 @@ def sphere_monomial_integral(exponents: Any, *, normalized: bool = False):
 def _as_dict(p: Any, coords: tuple) -> dict:
     if isinstance(p, Mapping):
         return dict(p)
-    p, _ = _to_coordinates(p, coords)  # symbols named like a coordinate are that coordinate
+    p, _ = to_coordinates(p, coords)  # symbols named like a coordinate are that coordinate
     return polynomial_to_dict(p, coords)
 
 
@@ -265,9 +257,7 @@ def sphere_inner_product(p: Any, q: Any, N: int, coordinates: Any = None, *, nor
     N = check_dimension(N)
     coords = coordinate_symbols(N, coordinates)
     total = _inner_dicts(_as_dict(p, coords), _as_dict(q, coords), N)
-    total = sp.nsimplify(total) if isinstance(total, float) else sp.sympify(
-        sp.Rational(total.numerator, total.denominator) if isinstance(total, Fraction) else total
-    )
+    total = sp.nsimplify(total) if isinstance(total, float) else _parse.to_sympy(total, "the inner product", text=False)
     return sp.expand(total) if normalized else sp.simplify(total * _sphere_area(N))
 
 
@@ -341,7 +331,7 @@ def orthogonal_harmonic_basis(N: int, l: int) -> tuple[list, list]:
         ``<u_a, L u_b> / sqrt(n_a n_b)`` (real antisymmetric).
     """
     N, l = check_dimension(N), _check_degree(l)
-    _check_size(N, l)
+    _check_size(N, l, "orthogonal_harmonic_basis")
     polys, norms = _orthogonal(N, l)
     return [dict(p) for p in polys], list(norms)
 
@@ -355,7 +345,7 @@ def orthonormal_harmonic_basis(N: int, l: int, coordinates: Any = None, *, exact
     measure divide by :math:`\sqrt{|S^{N-1}|}`.
     """
     N, l = check_dimension(N), _check_degree(l)
-    _check_size(N, l)
+    _check_size(N, l, "orthonormal_harmonic_basis")
     coords = coordinate_symbols(N, coordinates)
     polys, norms = _orthogonal(N, l)
     out = []
@@ -382,7 +372,7 @@ def apply_to_polynomial(op: Any, poly: Any, coordinates: Any = None):
         if isinstance(poly, Mapping):
             return op.apply_to_poly(poly)
         coords = coordinate_symbols(op.N, coordinates)
-        poly, back = _to_coordinates(poly, coords)
+        poly, back = to_coordinates(poly, coords)
         out = dict_to_polynomial(op.apply_to_poly(polynomial_to_dict(poly, coords)), coords)
         return out.xreplace(back) if back else out
     raise TypeError(f"op must be a DifferentialOperator or a WeylElement, got {type(op).__name__}")

@@ -36,6 +36,8 @@ from typing import Any, Iterable, Mapping, Sequence
 
 import sympy as sp
 
+from .. import _parse
+
 __all__ = ["WeylElement", "polynomial_to_dict", "dict_to_polynomial"]
 
 Key = tuple  # (m, alpha): two exponent tuples of length N
@@ -66,16 +68,15 @@ def _norm_scalar(c: Any):
     if isinstance(c, Rational):
         return _norm_scalar(Fraction(c.numerator, c.denominator))
     if isinstance(c, (float, complex)):
-        return _norm_scalar(sp.sympify(c))
+        return _norm_scalar(_parse.to_sympy(c, "coefficient", text=False))
     raise TypeError(
         f"a coefficient must be an int, a Fraction or a SymPy expression, got {c!r} of type {type(c).__name__}"
     )
 
 
 def _to_sympy_scalar(c):
-    if isinstance(c, Fraction):
-        return sp.Rational(c.numerator, c.denominator)
-    return sp.sympify(c)
+    """A coefficient (int, Fraction, number or SymPy scalar; never text) as a SymPy object."""
+    return _parse.to_sympy(c, "coefficient", text=False)
 
 
 def _is_zero(c) -> bool:
@@ -394,7 +395,7 @@ class WeylElement:
             raise TypeError(
                 f"operators apply to SymPy expressions, got {expr!r} of type {type(expr).__name__}"
             )
-        expr = sp.sympify(expr)
+        expr = _parse.to_sympy(expr, "expr", text=False)
         total = []
         for a, poly in self.by_derivative().items():
             spec = [(x, k) for x, k in zip(coords, a) if k]
@@ -426,6 +427,8 @@ class WeylElement:
 
         Raises
         ------
+        TypeError
+            If ``expr`` is text (build it with SymPy instead: text is never evaluated).
         ValueError
             If a term does not contain exactly one factor ``f`` / derivative of
             ``f``, or its coefficient is not a polynomial in the coordinates.
@@ -434,7 +437,8 @@ class WeylElement:
         N = len(coords)
         pos = {x: i for i, x in enumerate(coords)}
         out: dict = {}
-        for term in sp.Add.make_args(sp.expand(sp.sympify(expr))):
+        expr = _parse.to_sympy(expr, "expr", text=False)  # text is refused, never parsed as Python (#21)
+        for term in sp.Add.make_args(sp.expand(expr)):
             if term == 0:
                 continue
             hits, rest = [], []

@@ -1,7 +1,9 @@
 r"""The operator matrices of Section 5 of the preprint: product (144) and contraction identities (145)-(147).
 
-Paper-specific material (moved here from :mod:`hyperrotor.quantum.operators`,
-which keeps the operators themselves): :func:`operator_product` computes the
+The operators themselves are in :mod:`hyperrotor.quantum.operators`; this
+module combines their matrices (:func:`~hyperrotor.quantum.operators.operator_matrix`)
+as Section 5 of the preprint does, and :mod:`hyperrotor.paper` checks the
+printed equations with it. :func:`operator_product` computes the
 operator version of eq. (25) that eq. (144) prints, with the printed factor
 order, and :func:`contraction_identity` computes and verifies eqs. (145)-(147)
 for any N.
@@ -29,15 +31,15 @@ Where the printed paper differs (Section 5)
 from __future__ import annotations
 
 from collections import namedtuple
-from fractions import Fraction
 from typing import Any
 
 import numpy as np
 import sympy as sp
 
-from hyperrotor.conventions import check_convention, check_dimension
-from hyperrotor.quantum.normal_form import WeylElement, _to_sympy_scalar
-from hyperrotor.quantum.operators import DifferentialOperator, operator_matrix
+from .. import _parse, _validate
+from ..conventions import check_convention, check_dimension
+from .normal_form import WeylElement
+from .operators import DifferentialOperator, operator_matrix
 
 __all__ = ["operator_product", "contraction_identity", "ContractionIdentity"]
 
@@ -55,7 +57,7 @@ def _check_operator_matrix(A: Any, name: str) -> np.ndarray:
 _FORMS = ("eq144", "antisymmetrized")
 
 
-def operator_product(A: Any, B: Any, form: str = "eq144") -> np.ndarray:
+def operator_product(A: Any, B: Any, *, form: str = "eq144") -> np.ndarray:
     r"""The product of two operator matrices of eq. (144) (corrected), or its antisymmetrized variant.
 
     Parameters
@@ -105,18 +107,19 @@ def operator_product(A: Any, B: Any, form: str = "eq144") -> np.ndarray:
     factors matters; the printed order (``A`` left) is kept here, see
     :func:`contraction_identity` for what it implies for eqs. (145)-(147).
     """
-    if form not in _FORMS:
-        raise ValueError(f"unknown form {form!r}; allowed: {', '.join(map(repr, _FORMS))}")
+    form = _validate.choice("form", form, _FORMS)
     A = _check_operator_matrix(A, "A")
     B = _check_operator_matrix(B, "B")
     if A.shape != B.shape:
         raise ValueError(f"A and B have different shapes {A.shape} and {B.shape}")
-    A[0, 0]._same_space(B[0, 0])
+    coords = A[0, 0].coordinates
+    if any(op.coordinates != coords for op in (*A.flat, *B.flat)):
+        raise ValueError(f"A and B must act on one set of coordinates, the {coords} of A[0, 0]")
     N = A.shape[0]
     out = np.empty((N, N), dtype=object)
     for i in range(N):
         for j in range(N):
-            acc = A[0, 0]._wrap(WeylElement(A[0, 0].N, {}))
+            acc = DifferentialOperator(WeylElement(len(coords), {}), coords)
             for k in range(N):
                 if form == "eq144":
                     acc = acc + A[k, j] * B[i, k] - A[i, k] * B[k, j]
@@ -137,7 +140,7 @@ definition : str, the definition used
 """
 
 
-def contraction_identity(N: int, convention: str = "paper", form: str = "antisymmetrized",
+def contraction_identity(N: int, *, convention: str = "paper", form: str = "antisymmetrized",
                          transpose: bool = True, coordinates: Any = None) -> ContractionIdentity:
     r"""Compute and verify the contraction identities of eqs. (145)-(147) for any N.
 
@@ -179,6 +182,7 @@ def contraction_identity(N: int, convention: str = "paper", form: str = "antisym
     """
     N = check_dimension(N)
     convention = check_convention(convention)
+    transpose = _validate.flag("transpose", transpose)
     M = operator_matrix(N, convention=convention, coordinates=coordinates)
     Om = M.T.copy() if transpose else M.copy()
     P = operator_product(M, Om, form=form)
@@ -186,7 +190,7 @@ def contraction_identity(N: int, convention: str = "paper", form: str = "antisym
     ref = M[0, 1].element.terms
     key, cref = next(iter(ref.items()))
     got = P[0, 1].element.terms.get(key, 0)
-    factor = sp.Rational(_to_sympy_scalar(Fraction(got) / Fraction(cref))) if not isinstance(got, sp.Basic) else got / cref
+    factor = _parse.to_sympy(got, "coefficient") / _parse.to_sympy(cref, "coefficient")
     holds = all(P[i, j] == M[i, j] * factor for i in range(M.shape[0]) for j in range(M.shape[0]))
     tname = "L^T" if transpose else "L"
     if form == "antisymmetrized":

@@ -40,10 +40,10 @@ an exact operator identity.
 Paper material
 --------------
 The operator product of eq. (144) (with its three index typos) and the
-contraction identities of eqs. (145)-(147) are checked in
-:mod:`hyperrotor.paper.operator_products` (``operator_product``,
-``contraction_identity``): paper-specific material lives in
-:mod:`hyperrotor.paper`, not here.
+contraction identities of eqs. (145)-(147) are in
+:mod:`hyperrotor.quantum.operator_products` (``operator_product``,
+``contraction_identity``), which :mod:`hyperrotor.paper` uses to check the
+print; nothing in :mod:`hyperrotor.quantum` imports :mod:`hyperrotor.paper`.
 
 Symbols
 -------
@@ -63,7 +63,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from .. import _validate
+from .. import _pricing, _validate
 from ..conventions import check_convention, check_dimension, planes
 from .normal_form import WeylElement, dict_to_polynomial, polynomial_to_dict
 
@@ -81,20 +81,6 @@ __all__ = [
     "operator_matrix",
     "PAPER_COORDINATES",
 ]
-
-#: Old keyword spellings of the operator constructors and their replacement (TypeError naming it).
-_OLD = {"hermitian": 'form="hermitian" or form="antihermitian"'}
-#: Names moved to hyperrotor.paper.operator_products (served with a DeprecationWarning).
-_MOVED = ("operator_product", "contraction_identity", "ContractionIdentity")
-
-
-def __getattr__(name: str) -> Any:
-    """PEP 562: the eq. (144)-(147) material moved to :mod:`hyperrotor.paper.operator_products`."""
-    if name in _MOVED:  # old import path kept working; new code imports from hyperrotor.paper.operator_products
-        import importlib
-
-        return getattr(importlib.import_module("hyperrotor.paper.operator_products"), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 #: The paper's Cartesian coordinate names in 5D (Section 5): x, y, z, w, v.
 PAPER_COORDINATES = ("x", "y", "z", "w", "v")
@@ -164,18 +150,10 @@ def coordinate_symbols(N: int, coordinates: Any = None) -> tuple:
     return tuple(out)
 
 
-def _hbar(hbar: Any):
-    if isinstance(hbar, str):
-        return sp.Symbol(hbar, positive=True)
-    if isinstance(hbar, bool) or not isinstance(hbar, (Number, sp.Expr)):
-        raise TypeError(f"hbar must be a SymPy symbol/expression or a number, got {hbar!r} of type {type(hbar).__name__}")
-    return sp.sympify(hbar)
-
-
 # ----------------------------------------------------------------------------
 # the operator class
 # ----------------------------------------------------------------------------
-def _to_coordinates(expr: Any, coordinates: Sequence[sp.Symbol]) -> tuple[Any, dict]:
+def to_coordinates(expr: Any, coordinates: Sequence[sp.Symbol]) -> tuple[Any, dict]:
     """Replace the symbols of ``expr`` named like a coordinate (but with other assumptions) by it.
 
     Returns ``(expr in the coordinates, map back to the caller's symbols)``.
@@ -356,22 +334,20 @@ class DifferentialOperator:
         """``[self, other] = self*other - other*self`` as an operator."""
         return commutator(self, other)
 
-    def as_form(self, form: str, *, hbar: Any = None) -> "DifferentialOperator":
+    def as_form(self, form: str, *, hbar: Any = 1) -> "DifferentialOperator":
         r"""``self`` (``form="antihermitian"``) or :math:`-i\hbar\,\cdot` ``self`` (``form="hermitian"``, eq. 141).
 
-        ``hbar`` (keyword-only, default 1, only with ``"hermitian"``) is a SymPy
-        symbol/expression, a number, or a name (a positive symbol of that name). For the
+        ``hbar`` (keyword-only, default the exact 1) is a positive number or a SymPy
+        symbol/expression (e.g. ``sympy.Symbol("hbar", positive=True)``); text is
+        refused with ``TypeError``. With ``"antihermitian"`` only ``hbar=1`` is
+        allowed (any other value would be ignored). For the
         anti-Hermitian :math:`L^{ij}` of eq. (142) ``"hermitian"`` gives the
         physical angular momentum :math:`\mathbb L^{ij}`.
         """
-        form, hbar = _validate.form_hbar(form, hbar)
+        form, hbar = _validate.form_hbar(form, hbar, exact=True)
         if form == "antihermitian":
             return self
-        return self * (-sp.I * _hbar(hbar))
-
-    def hermitian(self, *args: Any, **kwargs: Any) -> "DifferentialOperator":
-        """Removed: use ``op.as_form("hermitian", hbar=...)`` (one keyword for the form)."""
-        raise TypeError('DifferentialOperator.hermitian(hbar) is now as_form("hermitian", hbar=...) (docs/conventions.md)')
+        return self * (-sp.I * hbar)
 
     # ------------------------------------------------------------ action
     def apply(self, f: Any) -> sp.Expr:
@@ -388,7 +364,7 @@ class DifferentialOperator:
             raise TypeError(
                 f"a DifferentialOperator applies to SymPy expressions, got {f!r} of type {type(f).__name__}"
             )
-        f, back = _to_coordinates(f, self.coordinates)
+        f, back = to_coordinates(f, self.coordinates)
         out = self.element.apply(f, self.coordinates)
         return out.xreplace(back) if back else out
 
@@ -415,7 +391,7 @@ class DifferentialOperator:
     def from_polynomial(cls, expr: Any, coordinates: Sequence[sp.Symbol]) -> "DifferentialOperator":
         """Multiplication by the polynomial ``expr`` (order 0); symbols named like a coordinate are that coordinate."""
         coords = tuple(coordinates)
-        expr, _ = _to_coordinates(expr, coords)
+        expr, _ = to_coordinates(expr, coords)
         return cls(WeylElement.multiplication(polynomial_to_dict(expr, coords), len(coords)), coords)
 
     def apply_to_polynomial(self, poly: Any):
@@ -427,7 +403,7 @@ class DifferentialOperator:
         """
         if isinstance(poly, Mapping):
             return self.element.apply_to_poly(poly)
-        poly, back = _to_coordinates(poly, self.coordinates)
+        poly, back = to_coordinates(poly, self.coordinates)
         d = polynomial_to_dict(poly, self.coordinates)
         out = dict_to_polynomial(self.element.apply_to_poly(d), self.coordinates)
         return out.xreplace(back) if back else out
@@ -503,8 +479,8 @@ def _plane_pair(plane: Any, N: int) -> tuple[int, int]:
     return i, j
 
 
-def angular_momentum_operator(plane: Any, N: int, *, form: str = "antihermitian", hbar: Any = None,
-                              coordinates: Any = None, **old: Any) -> DifferentialOperator:
+def angular_momentum_operator(plane: Any, N: int, *, form: str = "antihermitian", hbar: Any = 1,
+                              coordinates: Any = None) -> DifferentialOperator:
     r"""One generator :math:`L^{ij} = x_i\partial_j - x_j\partial_i` (eq. 142), or :math:`-i\hbar L^{ij}`.
 
     ``plane = (i, j)`` is 1-based; ``i > j`` is allowed and gives
@@ -516,7 +492,6 @@ def angular_momentum_operator(plane: Any, N: int, *, form: str = "antihermitian"
     >>> angular_momentum_operator((1, 2), 3)(x1 * x2)
     x1**2 - x2**2
     """
-    _validate.old_keywords("angular_momentum_operator", old, _OLD)
     N = check_dimension(N)
     coords = coordinate_symbols(N, coordinates)
     i, j = _plane_pair(plane, N)
@@ -524,8 +499,8 @@ def angular_momentum_operator(plane: Any, N: int, *, form: str = "antihermitian"
     return op.as_form(form, hbar=hbar)
 
 
-def angular_momentum_operators(N: int, *, form: str = "antihermitian", hbar: Any = None, coordinates: Any = None,
-                               **old: Any) -> dict:
+def angular_momentum_operators(N: int, *, form: str = "antihermitian", hbar: Any = 1,
+                               coordinates: Any = None) -> dict:
     r"""The so(N) angular-momentum operators of eqs. (141)-(142), keyed by plane.
 
     Parameters
@@ -536,10 +511,10 @@ def angular_momentum_operators(N: int, *, form: str = "antihermitian", hbar: Any
         ``"antihermitian"`` (default): the real generators of eq. (142),
         :math:`L^{ij} = x_i\,\partial/\partial x_j - x_j\,\partial/\partial x_i`;
         ``"hermitian"``: :math:`\mathbb L^{ij} = -i\hbar L^{ij}` of eq. (141).
-    hbar : SymPy expression, number or str, keyword-only, default 1
-        Only with ``form="hermitian"`` (given with the anti-Hermitian form it is
-        refused, since it used to select the Hermitian operators; a string is turned into a positive symbol
-        of that name).
+    hbar : positive number or SymPy expression, keyword-only, default 1 (exact)
+        Used by ``form="hermitian"``; with the anti-Hermitian form any value
+        other than 1 is refused (it would be ignored). Text (``"hbar"``) is
+        refused with ``TypeError``: pass ``sympy.Symbol("hbar", positive=True)``.
     coordinates : None, "paper" or sequence of N symbols/names
         See :func:`coordinate_symbols`; ``"paper"`` gives x, y, z, w, v for N = 5.
 
@@ -563,7 +538,6 @@ def angular_momentum_operators(N: int, *, form: str = "antihermitian", hbar: Any
     >>> L[(1, 2)](x**2 + y)
     -2*x*y + x
     """
-    _validate.old_keywords("angular_momentum_operators", old, _OLD)
     N = check_dimension(N)
     coords = coordinate_symbols(N, coordinates)
     out = {}
@@ -610,8 +584,8 @@ def multiplication_operator(poly: Any, N: int, coordinates: Any = None) -> Diffe
     return DifferentialOperator.from_polynomial(poly, coords)
 
 
-def casimir_operator(N: int, *, form: str = "antihermitian", hbar: Any = None, coordinates: Any = None,
-                     **old: Any) -> DifferentialOperator:
+def casimir_operator(N: int, *, form: str = "antihermitian", hbar: Any = 1,
+                     coordinates: Any = None) -> DifferentialOperator:
     r"""The quadratic Casimir :math:`C_2 = \sum_{i<j} (L^{ij})^2`.
 
     With ``form="antihermitian"`` (default) the exact operator identity
@@ -624,7 +598,7 @@ def casimir_operator(N: int, *, form: str = "antihermitian", hbar: Any = None, c
     :math:`\sum (\mathbb L^{ij})^2 = -\hbar^2 C_2`, with eigenvalue
     :math:`\hbar^2 l(l+N-2)`.
     """
-    _validate.old_keywords("casimir_operator", old, _OLD)
+    _pricing.check("casimir_operator", N=check_dimension(N))
     ops = angular_momentum_operators(N, form=form, hbar=hbar, coordinates=coordinates)
     it = iter(ops.values())
     first = next(it)
@@ -634,7 +608,7 @@ def casimir_operator(N: int, *, form: str = "antihermitian", hbar: Any = None, c
     return total
 
 
-def textbook_so3(*, hbar: Any = None, coordinates: Any = None) -> tuple:
+def textbook_so3(*, hbar: Any = 1, coordinates: Any = None) -> tuple:
     r"""The textbook 3D components ``(Lx, Ly, Lz)`` (Hermitian).
 
     :math:`L_x = \mathbb L^{23}`, :math:`L_y = \mathbb L^{31} = -\mathbb L^{13}`,
@@ -653,8 +627,8 @@ def _zero_like(op: DifferentialOperator) -> DifferentialOperator:
     return op._wrap(WeylElement(op.N, {}))
 
 
-def operator_matrix(N: int, convention: str = "paper", *, form: str = "antihermitian", hbar: Any = None,
-                    coordinates: Any = None, **old: Any) -> np.ndarray:
+def operator_matrix(N: int, *, convention: str = "paper", form: str = "antihermitian", hbar: Any = 1,
+                    coordinates: Any = None) -> np.ndarray:
     r"""The antisymmetric ``N x N`` matrix of operators of eq. (143) (``form="antihermitian"``) or eq. (141).
 
     Entry ``(i, j)`` (1-based, ``i < j``) is :math:`(-1)^{i+j} L^{ij}` for
@@ -668,7 +642,6 @@ def operator_matrix(N: int, convention: str = "paper", *, form: str = "antihermi
     numpy.ndarray of dtype object, shape ``(N, N)`` (0-based indexing), entries
     :class:`DifferentialOperator`.
     """
-    _validate.old_keywords("operator_matrix", old, _OLD)
     check_convention(convention)
     L = angular_momentum_operators(N, form=form, hbar=hbar, coordinates=coordinates)
     N = check_dimension(N)

@@ -67,12 +67,6 @@ __all__ = ["Representation", "as_csr", "check_antihermitian"]
 
 _FORMATS = ("csr", "dense")
 
-#: Old keyword spellings of the generator methods and their replacement (TypeError naming it).
-_OLD = {
-    "hermitian": 'form="hermitian" or form="antihermitian"',
-}
-
-
 def _check_format(format: str) -> str:
     if format is None:
         return "csr"
@@ -180,7 +174,9 @@ class Representation:
         Highest weight (orthogonal basis) when the representation is irreducible;
         ``None`` for a reducible one.
     exact_generators : mapping or callable, optional
-        Exact SymPy matrices (or a function computing them on demand).
+        Exact SymPy matrices, or a picklable callable computing them on demand
+        (a module-level function or a :func:`functools.partial` of one, so that
+        the representation pickles).
     name : str
     format : {"csr", "dense"}
         Default matrix format of :meth:`generator`, :meth:`generators`,
@@ -239,6 +235,26 @@ class Representation:
         hw = None if self.highest_weight is None else "(" + ", ".join(str(x) for x in self.highest_weight) + ")"
         return f"Representation(N={self.N}, dim={self.dim}, highest_weight={hw}, name={self.name!r})"
 
+    def __eq__(self, other: object) -> bool:
+        """Same so(N), highest weight, name, default format and generator matrices (entry by entry, exactly).
+
+        A representation pickles and deep-copies (the exact generators are
+        computed by picklable recipes, not closures); the copy compares equal.
+        """
+        if not isinstance(other, Representation):
+            return NotImplemented
+        if (self.N, self.dim, self.highest_weight, self.name, self.format) != (
+                other.N, other.dim, other.highest_weight, other.name, other.format):
+            return False
+        return all((self._gens[p] != other._gens[p]).nnz == 0 for p in self.planes)
+
+    __hash__ = None  # type: ignore[assignment]  (mutable cache of exact generators; compared by value)
+
+    @property
+    def has_exact_generators(self) -> bool:
+        """Whether :meth:`exact_generators` (and ``generator(..., exact=True)``) can give exact SymPy matrices."""
+        return self._exact is not None
+
     def _fmt(self, format):
         return self.format if format is None else _check_format(format)
 
@@ -257,8 +273,8 @@ class Representation:
         k = plane_index(plane, self.N)
         return self.planes[k]
 
-    def generator(self, plane: Sequence[int], *, form: str = "antihermitian", hbar: float | None = None,
-                  format: str | None = None, exact: bool = False, **old):
+    def generator(self, plane: Sequence[int], *, form: str = "antihermitian", hbar: Any = 1,
+                  format: str | None = None, exact: bool = False):
         r"""The generator of ``plane = (i, j)``: :math:`X_{(ij)}` or :math:`L^{ij} = -i\hbar X_{(ij)}`.
 
         Parameters
@@ -269,51 +285,48 @@ class Representation:
             :math:`E_{(ij)}`; ``"hermitian"``: the angular momentum
             :math:`L^{ij} = -i\hbar X_{(ij)}` of eq. (141).
         hbar : float, keyword-only, default 1
-            Only with ``form="hermitian"`` (refused with the anti-Hermitian form,
-            where it would be ignored).
+            Used by ``form="hermitian"``; with the anti-Hermitian form any value
+            other than 1 is refused (it would be ignored).
         format : {"csr", "dense"}, optional
             scipy.sparse CSR or numpy array; default :attr:`format` of the
             representation (``"csr"`` unless chosen at construction).
         exact : bool
             Return an exact ``sympy.Matrix`` instead (small dims only; with
-            ``form="hermitian"`` a symbolic ``hbar`` such as ``sympy.Symbol("hbar")`` is allowed).
+            ``form="hermitian"`` ``hbar`` may be a SymPy expression such as
+            ``sympy.Symbol("hbar", positive=True)``; text is refused with ``TypeError``).
         """
-        _validate.old_keywords("generator", old, _OLD)
-        form, hbar = _validate.form_hbar(form, hbar)
+        exact = _validate.flag("exact", exact)
         p = self._plane(plane)
         if exact:
-            X = self._exact_generators()[p]
-            return X if form == "antihermitian" else X * (-_lazy.sympy.I * _lazy.sympy.sympify(hbar))
+            form, hbar = _validate.form_hbar(form, hbar, exact=True)
+            X = self.exact_generators()[p]
+            return X if form == "antihermitian" else X * (-_lazy.sympy.I * hbar)
+        form, hbar = _validate.form_hbar(form, hbar)
         M = self._gens[p]
         if form == "hermitian":
-            M = (-1j * _validate.hbar(hbar)) * M
+            M = (-1j * hbar) * M
         return _as_format(M, self._fmt(format))
 
-    def generators(self, *, form: str = "antihermitian", hbar: float | None = None, format: str | None = None,
-                   exact: bool = False, **old) -> dict:
+    def generators(self, *, form: str = "antihermitian", hbar: Any = 1, format: str | None = None,
+                   exact: bool = False) -> dict:
         """All generators as ``{plane: matrix}`` in plane order (see :meth:`generator`)."""
-        _validate.old_keywords("generators", old, _OLD)
         return {p: self.generator(p, form=form, hbar=hbar, format=format, exact=exact) for p in self.planes}
 
-    def _exact_generators(self) -> dict:
+    def exact_generators(self) -> dict:
+        """The exact SymPy generators ``{plane: sympy.Matrix}`` (anti-Hermitian form), computed once on demand.
+
+        Raises ``ValueError`` when the representation has none (e.g. a real form
+        computed in floating point).
+        """
         if self._exact is None:
             raise ValueError(f"no exact (SymPy) generators are available for {self.name}")
-        if callable(self._exact):
+        if not isinstance(self._exact, Mapping):
             self._exact = dict(self._exact())
         return self._exact
 
-    def hermitian(self, *args: Any, **kwargs: Any):
-        """Removed: use ``generator(plane, form="hermitian", hbar=...)`` (one keyword for the form)."""
-        raise TypeError(
-            'Representation.hermitian(plane, hbar) is now generator(plane, form="hermitian", hbar=...) '
-            "(docs/conventions.md)"
-        )
-
     # -- Cartan, weights, ladders ------------------------------------------
-    def cartan_generators(self, *, form: str = "antihermitian", hbar: float | None = None, format: str | None = None,
-                          **old) -> list:
+    def cartan_generators(self, *, form: str = "antihermitian", hbar: Any = 1, format: str | None = None) -> list:
         r"""Cartan generators :math:`X_{(12)}, X_{(34)}, \dots` (``form="hermitian"``: :math:`H_k = -i\hbar X_{(2k-1,2k)}`)."""
-        _validate.old_keywords("cartan_generators", old, _OLD)
         return [self.generator((2 * k - 1, 2 * k), form=form, hbar=hbar, format=format) for k in range(1, self.rank + 1)]
 
     def weights(self, *, return_vectors: bool = False):
@@ -401,38 +414,29 @@ class Representation:
             return None
         return casimir_eigenvalue(self.N, self.highest_weight)
 
-    def to_qobj(self, plane: Sequence[int] | None = None, *, form: str | None = None, hbar: float | None = None, **old):
+    def to_qobj(self, plane: Sequence[int] | None = None, *, form: str = "antihermitian", hbar: Any = 1):
         r"""QuTiP operators with ``dims = [[dim], [dim]]``; the inverse of :meth:`from_qobj`.
 
         Parameters
         ----------
         plane : (i, j), optional
             One operator; ``None`` (default) gives ``{plane: Qobj}`` over all planes.
-        form : {"antihermitian", "hermitian"}, keyword-only, required
-            ``"hermitian"``: :math:`L^{ij} = -i\hbar X_{(ij)}` (eq. 141; what
-            ``to_qobj()`` returned before the keyword was unified);
-            ``"antihermitian"``: :math:`X_{(ij)}`. Required here (no default) so
-            that old calls do not silently change meaning.
+        form : {"antihermitian", "hermitian"}, keyword-only, default "antihermitian"
+            ``"antihermitian"``: :math:`X_{(ij)}`; ``"hermitian"``:
+            :math:`L^{ij} = -i\hbar X_{(ij)}` (eq. 141), as in :meth:`generator`.
         hbar : float, keyword-only, default 1
+            Used by ``form="hermitian"`` (any other value than 1 is refused with
+            the anti-Hermitian form).
         """
-        _validate.old_keywords("to_qobj", old, _OLD)
-        if form is None:
-            raise TypeError(
-                'to_qobj() needs form="hermitian" (L = -i hbar X, eq. 141) or form="antihermitian" (X); '
-                "there is no default (docs/conventions.md)"
-            )
+        form, hbar = _validate.form_hbar(form, hbar)
         qutip = _lazy.qutip
-
-        def one(p):
-            M = self.generator(p, form=form, hbar=hbar, format="csr")
-            return qutip.Qobj(sps.csr_matrix(M, dtype=complex), dims=[[self.dim], [self.dim]])
-
-        if plane is None:
-            return {p: one(p) for p in self.planes}
-        return one(plane)
+        planes_ = self.planes if plane is None else [self._plane(plane)]
+        out = {p: qutip.Qobj(sps.csr_matrix(self.generator(p, form=form, hbar=hbar, format="csr"), dtype=complex),
+                             dims=[[self.dim], [self.dim]]) for p in planes_}
+        return out if plane is None else out[planes_[0]]
 
     @classmethod
-    def from_qobj(cls, generators: Mapping, *, form: str = "antihermitian", hbar: float | None = None, check: bool = True,
+    def from_qobj(cls, generators: Mapping, *, form: str = "antihermitian", hbar: Any = 1, check: bool = True,
                   highest_weight: Sequence[Any] | None = None, name: str = "", format: str = "csr") -> "Representation":
         r"""A :class:`Representation` from ``{plane: operator}`` (``qutip.Qobj``, scipy.sparse or 2-D array).
 
@@ -448,6 +452,8 @@ class Representation:
             What the operators are: :math:`X_{(ij)}` or :math:`L^{ij} = -i\hbar X_{(ij)}`
             (then :math:`X = i L/\hbar` is stored).
         hbar : float, keyword-only, default 1
+            Used by ``form="hermitian"`` (any other value than 1 is refused with
+            the anti-Hermitian form).
         check : bool, default True
             Verify anti-Hermiticity and the brackets
             :math:`[X_a, X_b] = \sum_c C_{ab}^{\;c} X_c`
@@ -469,7 +475,8 @@ class Representation:
                 f"got {type(generators).__name__}"
             )
         form, hbar = _validate.form_hbar(form, hbar)
-        N = _validate._dimension_from_count(len(generators), "generators")
+        check = _validate.flag("check", check)
+        N = _validate.dimension_from_count(len(generators), name="generators", what="planes")
         mats = {}
         for p, M in generators.items():
             try:
@@ -480,7 +487,7 @@ class Representation:
                 raise ValueError(f"generators name the plane {q} twice")
             mats[q] = as_csr(M, f"generator of plane {q}")
         if form == "hermitian":
-            mats = {p: (1j / _validate.hbar(hbar)) * M for p, M in mats.items()}
+            mats = {p: (1j / hbar) * M for p, M in mats.items()}
         mats = {p: _real_if_possible(M) for p, M in mats.items()}
         rep = cls(N, mats, highest_weight=highest_weight, name=name, format=format)
         if check:
@@ -511,6 +518,19 @@ class Representation:
                         f"sum_c C_ab^c X_c by {res:.3g} (tolerance {rtol * scale:.3g}); check the plane labels, "
                         f"the form (antihermitian/hermitian) and, for qutip.jmat, use jmat_generators(j)"
                     )
+
+
+def check_same_algebra(*reps: Any) -> None:
+    """Refuse anything but :class:`Representation` objects of one so(N) (for combining or comparing them)."""
+    for k, r in enumerate(reps):
+        if not isinstance(r, Representation):
+            raise TypeError(
+                f"argument {k + 1} must be a Representation (e.g. irrep(3, (1,))), got {_validate.fmt(r)} "
+                f"of type {type(r).__name__}"
+            )
+    Ns = {r.N for r in reps}
+    if len(Ns) != 1:
+        raise ValueError(f"representations of different so(N) cannot be combined: N = {sorted(Ns)}")
 
 
 def _root_coefficients(N: int, alpha: tuple[int, ...]) -> dict:

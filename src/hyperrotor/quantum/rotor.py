@@ -4,8 +4,8 @@ Now split by job: :mod:`.hamiltonian` (:func:`rotor_hamiltonian`,
 :func:`symmetry_blocks`), :mod:`.evolve` (:func:`evolve` and its propagator
 classes) and :mod:`.spectrum` (:func:`spectrum`).
 """
-from .evolve import EVOLVE_METHODS, _krylov_propagator, _single_thread_blas, evolve  # noqa: F401
-from .hamiltonian import blocks_of as _blocks_of, rotor_hamiltonian, symmetry_blocks  # noqa: F401
+from .evolve import EVOLVE_METHODS, evolve  # noqa: F401
+from .hamiltonian import rotor_hamiltonian, symmetry_blocks  # noqa: F401
 from .spectrum import spectrum  # noqa: F401
 
 __all__ = ["EVOLVE_METHODS", "rotor_hamiltonian", "evolve", "spectrum", "symmetry_blocks"]

@@ -2,9 +2,10 @@ r"""The standard representations of so(N) and the operations that combine them.
 
 Constructors: :func:`vector_rep`, :func:`adjoint_rep`, :func:`spinor_rep`,
 :func:`harmonic_rep` (eq. 142 made into matrices), :func:`jmat_generators`
-(so(3) from ``qutip.jmat``, with the exact map); combinations :func:`tensor`,
-:func:`direct_sum`; equivalences :func:`intertwiner`, :func:`real_form`. The
-Gelfand-Tsetlin irreps are in :mod:`.gelfand_tsetlin`. Every result is a
+(so(3) from ``qutip.jmat``, with the exact map). Combinations
+(:func:`~.combine.tensor`, :func:`~.combine.direct_sum`) are in :mod:`.combine`,
+equivalences (:func:`~.equivalence.intertwiner`, :func:`~.equivalence.real_form`)
+in :mod:`.equivalence`, the Gelfand-Tsetlin irreps in :mod:`.gelfand_tsetlin`. Every result is a
 :class:`~.representation.Representation` obeying the conventions of
 :mod:`.representation`.
 
@@ -30,6 +31,7 @@ checks it for :math:`j = 1/2, 1, \dots, 3`.
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -39,8 +41,8 @@ from .. import _lazy, _validate
 from .._lazy import sympy as sp
 from .._options import options
 from ..conventions import check_dimension, planes, structure_constants
+from .equivalence import exact_antisymmetric
 from .representation import Representation
-from .weights import positive_roots
 
 __all__ = [
     "vector_rep",
@@ -49,17 +51,13 @@ __all__ = [
     "harmonic_rep",
     "JMAT_PLANES",
     "jmat_generators",
-    "tensor",
-    "direct_sum",
-    "intertwiner",
-    "real_form",
 ]
 
 #: so(3) planes -> (``qutip.jmat`` component, sign): :math:`L^{ij} = \text{sign}\cdot\hbar\,J_{\text{component}}` exactly.
 JMAT_PLANES = {(1, 2): ("z", 1), (1, 3): ("x", 1), (2, 3): ("y", 1)}
 
 
-def jmat_generators(j: Any, *, form: str = "antihermitian", hbar: float | None = None) -> dict:
+def jmat_generators(j: Any, *, form: str = "antihermitian", hbar: float = 1) -> dict:
     r"""The so(3) generators of spin ``j`` built from ``qutip.jmat`` with the exact map :data:`JMAT_PLANES`.
 
     Returns ``{plane: qutip.Qobj}`` equal, entry by entry, to
@@ -78,7 +76,6 @@ def jmat_generators(j: Any, *, form: str = "antihermitian", hbar: float | None =
     from .gelfand_tsetlin import DEFAULT_MAX_DIM
 
     form, hbar = _validate.form_hbar(form, hbar)
-    hbar = _validate.hbar(1.0 if hbar is None else hbar)
     if isinstance(j, Fraction):
         jj = j
     else:
@@ -95,24 +92,6 @@ def jmat_generators(j: Any, *, form: str = "antihermitian", hbar: float | None =
         out[p] = L if form == "hermitian" else (1j / hbar) * L
     return out
 
-
-def _exact_antisymmetric(M: np.ndarray, drop: float) -> np.ndarray:
-    r"""The antisymmetric part :math:`(M - M^{\mathsf T})/2` of a nearly antisymmetric ``M``, tiny entries dropped.
-
-    Why this is the same operator up to round-off: if :math:`M = X + E` with the
-    exact (antisymmetric) :math:`X` and a round-off error :math:`E`, then
-    :math:`(M - M^{\mathsf T})/2 = X + (E - E^{\mathsf T})/2`, whose error is
-    the antisymmetric part of :math:`E`, no larger than :math:`E` (the
-    projection onto antisymmetric matrices is orthogonal in the Frobenius norm
-    and has norm 1 in the max norm). In floating point
-    :math:`M_{ab} - M_{ba} = -(M_{ba} - M_{ab})` exactly and halving is exact,
-    so the result is antisymmetric bit for bit. Entries with
-    :math:`|Y_{ab}| <` ``drop`` :math:`\cdot\max(1, \max|Y|)` (round-off of exact
-    zeros) are set to zero; :math:`|Y_{ab}| = |Y_{ba}|`, so this keeps the symmetry.
-    """
-    Y = 0.5 * (M - M.T)
-    Y[np.abs(Y) < drop * max(1.0, float(np.abs(Y).max(initial=0.0)))] = 0.0
-    return Y
 
 # ----------------------------------------------------------------------------
 # constructors
@@ -234,14 +213,6 @@ def spinor_rep(N: int, chirality: int | None = None) -> Representation:
         M = 0.5 * (g[i - 1] @ g[j - 1])
         gens[(i, j)] = sps.csr_matrix(M[np.ix_(keep, keep)])
 
-    def exact():
-        # entries are 0, +-1/2, +-i/2 exactly
-        out = {}
-        for p, M in gens.items():
-            D = M.toarray()
-            out[p] = sp.Matrix(D.shape[0], D.shape[1], lambda r, c: sp.Rational(int(round(2 * D[r, c].real)), 2)
-                               + sp.I * sp.Rational(int(round(2 * D[r, c].imag)), 2))
-        return out
     half = Fraction(1, 2)
     if N % 2:
         hw = (half,) * n
@@ -251,212 +222,18 @@ def spinor_rep(N: int, chirality: int | None = None) -> Representation:
     else:
         hw = (half,) * (n - 1) + (half * chirality,)
         label = f"chirality {chirality:+d} spinor"
-    return Representation(N, gens, highest_weight=hw, exact_generators=exact, name=f"{label} rep of so({N})")
+    return Representation(N, gens, highest_weight=hw, exact_generators=partial(_half_units_exact, gens),
+                          name=f"{label} rep of so({N})")
 
 
-def tensor(a: Representation, b: Representation) -> Representation:
-    r"""Tensor product: :math:`X_{(ij)} \otimes 1 + 1 \otimes Y_{(ij)}` (Kronecker order a, b).
-
-    Reducible in general (``highest_weight=None``) unless a factor is trivial.
-    """
-    _check_same_N(a, b)
-    Ia, Ib = sps.identity(a.dim, format="csr"), sps.identity(b.dim, format="csr")
-    gens = {p: sps.kron(a._gens[p], Ib, format="csr") + sps.kron(Ia, b._gens[p], format="csr") for p in a.planes}
-    hw = None
-    if a.dim == 1 and a.highest_weight is not None and all(x == 0 for x in a.highest_weight):
-        hw = b.highest_weight
-    elif b.dim == 1 and b.highest_weight is not None and all(x == 0 for x in b.highest_weight):
-        hw = a.highest_weight
-    exact = None
-    if a._exact is not None and b._exact is not None:
-        def exact():
-            ea, eb = a._exact_generators(), b._exact_generators()
-            return {
-                p: sp.kronecker_product(ea[p], sp.eye(b.dim)) + sp.kronecker_product(sp.eye(a.dim), eb[p])
-                for p in a.planes
-            }
-    return Representation(a.N, gens, highest_weight=hw, exact_generators=exact, name=f"({a.name}) x ({b.name})")
-
-
-def direct_sum(*reps: Representation) -> Representation:
-    """Direct sum (block diagonal generators, blocks in argument order)."""
-    if not reps:
-        raise ValueError("direct_sum needs at least one Representation")
-    for r in reps:
-        if not isinstance(r, Representation):
-            raise TypeError(f"direct_sum takes Representation objects, got {type(r).__name__}")
-    _check_same_N(*reps)
-    N = reps[0].N
-    gens = {p: sps.block_diag([r._gens[p] for r in reps], format="csr") for p in planes(N)}
-    hw = reps[0].highest_weight if len(reps) == 1 else None
-    exact = None
-    if all(r._exact is not None for r in reps):
-        def exact():
-            ex = [r._exact_generators() for r in reps]
-            return {p: sp.diag(*[e[p] for e in ex]) for p in planes(N)}
-    return Representation(N, gens, highest_weight=hw, exact_generators=exact, name=" + ".join(f"({r.name})" for r in reps))
-
-
-def _highest_weight_vector(rep: "Representation", raising: list) -> np.ndarray:
-    """Joint kernel of the raising operators: null space of G = sum_E E^dagger E (Hermitian PSD)."""
-    if not raising:
-        return np.ones(1, dtype=complex)
-    G = sum((E.conj().T @ E for E in raising), sps.csr_matrix((rep.dim, rep.dim))).toarray()
-    w, V = np.linalg.eigh(G)
-    tol = 1e-10 * max(1.0, float(w[-1]))
-    K = V[:, w < tol]
-    if K.shape[1] != 1:
-        raise ValueError(
-            f"{rep.name} is not irreducible: its highest-weight space has dimension {K.shape[1]}"
-        )
-    return K[:, 0]
-
-
-def intertwiner(a: Representation, b: Representation, *, rtol: float = 1e-9) -> np.ndarray:
-    r"""An invertible ``T`` with :math:`T\,X^{(a)}_{(ij)} = X^{(b)}_{(ij)}\,T` for all planes (dense).
-
-    Both representations must be irreducible (a 1-dim joint kernel of the
-    raising operators :math:`E_\alpha`, :math:`\alpha > 0`). Construction: the
-    highest-weight vectors :math:`v_a, v_b` are matched, and so are the vectors
-    :math:`E_{-\beta_1}\cdots E_{-\beta_r} v` obtained by the same words of
-    lowering operators, until they span the space; the a-side vectors are
-    orthonormalized (Gram-Schmidt, twice) and the same linear combinations are
-    applied on the b-side, giving :math:`T = Y Q^\dagger` with Q unitary. By Schur's lemma ``T`` is unique up to a scalar; it is
-    scaled so that :math:`\|T\|_F^2 = \dim`, which makes it unitary when both
-    generator sets are anti-Hermitian in orthonormal bases.
-
-    Raises
-    ------
-    ValueError
-        If the representations are of different so(N), of different dimension,
-        reducible, or not equivalent.
-    """
-    _check_same_N(a, b)
-    if a.dim != b.dim:
-        raise ValueError(f"no intertwiner: dimensions differ ({a.dim} vs {b.dim})")
-    pos = positive_roots(a.N)
-    ra = [a.ladder(r, format="csr") for r in pos]
-    rb = [b.ladder(r, format="csr") for r in pos]
-    la = [a.ladder(tuple(-x for x in r), format="csr") for r in pos]
-    lb = [b.ladder(tuple(-x for x in r), format="csr") for r in pos]
-    va, vb = _highest_weight_vector(a, ra), _highest_weight_vector(b, rb)
-    d = a.dim
-    # Orthonormalize on the a-side and apply the same linear combinations on the
-    # b-side (T is linear), so that T = Y Q^dagger with Q unitary (well conditioned).
-    nva = np.linalg.norm(va)
-    Q = np.zeros((d, d), dtype=complex)
-    Y = np.zeros((d, d), dtype=complex)
-    Q[:, 0], Y[:, 0] = va / nva, vb / nva
-    k = 1
-    frontier = [0]
-    la = [sps.csr_matrix(E) for E in la]
-    lb = [sps.csr_matrix(E) for E in lb]
-    while frontier and k < d:
-        nxt = []
-        for col in frontier:
-            X2 = np.stack([E @ Q[:, col] for E in la], axis=1)
-            Y2 = np.stack([E @ Y[:, col] for E in lb], axis=1)
-            for x2, y2 in zip(X2.T, Y2.T):
-                nx = np.linalg.norm(x2)
-                if nx <= rtol:
-                    continue
-                Qk = Q[:, :k]
-                c = (x2.conj() @ Qk).conj()
-                r = x2 - Qk @ c
-                c2 = (r.conj() @ Qk).conj()
-                r = r - Qk @ c2
-                nr = np.linalg.norm(r)
-                if nr > 1e-8 * nx:
-                    Q[:, k] = r / nr
-                    Y[:, k] = (y2 - Y[:, :k] @ (c + c2)) / nr
-                    nxt.append(k)
-                    k += 1
-                    if k == d:
-                        break
-            if k == d:
-                break
-        frontier = nxt
-    if k < d:
-        raise ValueError(f"{a.name} is not irreducible (the lowering operators span only {k} of {d} dimensions)")
-    T = Y @ Q.conj().T
-    T *= np.sqrt(d) / np.linalg.norm(T)
-    res = max(
-        float(np.abs(T @ a._gens[p].toarray() - b._gens[p].toarray() @ T).max()) for p in a.planes
-    )
-    scale = max(1.0, max(float(abs(M).max()) for M in a._gens.values()) if a.planes else 1.0)
-    if res > 1e-6 * scale * max(1.0, np.abs(T).max()):
-        raise ValueError(f"{a.name} and {b.name} are not equivalent (intertwining residual {res:.2e})")
-    return T
-
-
-def real_form(rep: Representation, *, rtol: float | None = None, **old: Any) -> Representation:
-    r"""An equivalent representation with real antisymmetric generators (irreps of real type).
-
-    Let :math:`T` intertwine the complex-conjugate representation with ``rep``,
-    :math:`T\,\overline{X}_{(ij)} = X_{(ij)}\,T` (:func:`intertwiner`,
-    unitary). Then :math:`T\overline T = \varepsilon\,\mathbb 1` with
-    :math:`\varepsilon = +1` (real type) or :math:`-1` (quaternionic type,
-    e.g. spin 1/2 of so(3) or the spinor of so(5)). For real type :math:`T` is
-    symmetric unitary, :math:`T = W^2` with :math:`W = O\,e^{i\Theta/2} O^{\mathsf T}`
-    (O real orthogonal diagonalizing the commuting real and imaginary parts of
-    T), and :math:`Y_{(ij)} = W^\dagger X_{(ij)} W` is real antisymmetric.
-    Dense :math:`O(\dim^3)`; meant for moderate dimensions.
-
-    ``rtol`` (default ``options["quantum_real_form_rtol"]``) bounds the
-    imaginary part left in :math:`Y_{(ij)}` relative to :math:`\max(1, \max|Y|)`
-    (an internal consistency check); entries below
-    ``options["quantum_real_form_drop"]`` (relative) are round-off of exact
-    zeros and are dropped, symmetrically, so :math:`Y` stays exactly antisymmetric.
-
-    Raises
-    ------
-    ValueError
-        If ``rep`` is reducible, not self-conjugate (complex type, e.g. so(6)
-        (1, 1, 1)) or quaternionic.
-    """
-    _validate.old_keywords("real_form", old, {"atol": "rtol= (the check is relative to max|Y|)"})
-    if not isinstance(rep, Representation):
-        raise TypeError(f"real_form takes a Representation, got {type(rep).__name__}")
-    if rep.is_real:
-        return rep
-    conj = Representation(rep.N, {p: M.conj() for p, M in rep._gens.items()}, name=f"conjugate of {rep.name}")
-    try:
-        T = intertwiner(conj, rep)
-    except ValueError as err:
-        raise ValueError(f"{rep.name} has no real form: {err}") from None
-    TT = T @ T.conj()
-    eps = float(np.real(np.trace(TT))) / rep.dim
-    if abs(eps + 1) < 1e-6:
-        raise ValueError(f"{rep.name} is of quaternionic (pseudo-real) type: T conj(T) = -1, no real form")
-    if np.abs(TT - np.eye(rep.dim)).max() > 1e-8:  # pragma: no cover - internal
-        raise ArithmeticError("conjugation intertwiner is not an involution (internal error)")
-    T = 0.5 * (T + T.T)
-    A, B = T.real, T.imag
-    c = np.sqrt(2.0) + 0.1234
-    _, O = np.linalg.eigh(A + c * B)
-    theta = np.angle(np.einsum("ia,ij,ja->a", O, T, O))
-    W = (O * np.exp(0.5j * theta)) @ O.T
-    rtol = options["quantum_real_form_rtol"] if rtol is None else _validate.positive("rtol", rtol)
-    drop = options["quantum_real_form_drop"]
-    gens = {}
-    for p, X in rep._gens.items():
-        Y = W.conj().T @ X.toarray() @ W
-        if np.abs(Y.imag).max() > rtol * max(1.0, np.abs(Y).max()):
-            raise ArithmeticError(f"real form failed: imaginary part {np.abs(Y.imag).max():.2e} (internal error)")
-        gens[p] = sps.csr_matrix(_exact_antisymmetric(Y.real, drop))
-    return Representation(rep.N, gens, highest_weight=rep.highest_weight, name=f"real form of {rep.name}", format=rep.format)
-
-
-def _check_same_N(*reps):
-    for k, r in enumerate(reps):
-        if not isinstance(r, Representation):
-            raise TypeError(
-                f"argument {k + 1} must be a Representation (e.g. irrep(3, (1,))), got {_validate.fmt(r)} "
-                f"of type {type(r).__name__}"
-            )
-    Ns = {r.N for r in reps}
-    if len(Ns) != 1:
-        raise ValueError(f"representations of different so(N) cannot be combined: N = {sorted(Ns)}")
+def _half_units_exact(gens: dict) -> dict:
+    """Exact SymPy matrices of float generators whose entries are 0, +-1/2 and +-i/2 (the spinors)."""
+    out = {}
+    for p, M in gens.items():
+        D = M.toarray()
+        out[p] = sp.Matrix(D.shape[0], D.shape[1], lambda r, c: sp.Rational(int(round(2 * D[r, c].real)), 2)
+                           + sp.I * sp.Rational(int(round(2 * D[r, c].imag)), 2))
+    return out
 
 
 # ----------------------------------------------------------------------------
@@ -496,7 +273,7 @@ def harmonic_rep(N: int, l: int) -> Representation:
 
     The floating generators are **exactly** antisymmetric: the matrix computed
     through the (pseudo-)inverse of the monomial coefficients is projected by
-    :func:`_exact_antisymmetric`, which changes it by no more than its
+    :func:`.equivalence.exact_antisymmetric`, which changes it by no more than its
     round-off (see there) and makes :math:`X^{\mathsf T} = -X` hold bit for bit,
     so :math:`\hat H` of :func:`~hyperrotor.quantum.rotor_hamiltonian` is exactly symmetric.
     """
@@ -530,37 +307,40 @@ def harmonic_rep(N: int, l: int) -> Representation:
         if np.abs(U @ Cm - LU).max(initial=0.0) > 1e-9 * max(1.0, np.abs(LU).max(initial=0.0)):  # pragma: no cover
             raise ArithmeticError("harmonic space not invariant (internal error)")
         M = sq[:, None] * Cm / sq[None, :]
-        gens[p] = sps.csr_matrix(_exact_antisymmetric(M, options["quantum_harmonic_drop"]))
-
-    def exact():
-        cache: dict = {}
-
-        def inner(a: dict, b: dict) -> Fraction:
-            t = Fraction(0)
-            for m1, c1 in a.items():
-                for m2, c2 in b.items():
-                    e = tuple(x + y for x, y in zip(m1, m2))
-                    if all(x % 2 == 0 for x in e):
-                        t += Fraction(c1) * Fraction(c2) * _monomial_mean(e, cache)
-            return t
-
-        out = {}
-        for p in planes(N):
-            S = sp.zeros(d, d)
-            for b, img in enumerate(images[p]):
-                if not img:
-                    continue
-                for a in range(d):
-                    c = inner(polys[a], img)
-                    if c:
-                        r = c / Fraction(norms[a]) * 1  # coefficient of u_a
-                        S[a, b] = sp.Rational(r.numerator, r.denominator) * sp.sqrt(
-                            sp.Rational(Fraction(norms[a]).numerator * Fraction(norms[b]).denominator,
-                                        Fraction(norms[a]).denominator * Fraction(norms[b]).numerator)
-                        )
-            out[p] = S
-        return out
+        gens[p] = sps.csr_matrix(exact_antisymmetric(M, options["quantum_harmonic_drop"]))
 
     hw = None if (N == 2 and l > 0) else _zeros_hw(N, (l,))
-    return Representation(N, gens, highest_weight=hw, exact_generators=exact,
+    return Representation(N, gens, highest_weight=hw, exact_generators=partial(_harmonic_exact, N, polys, norms, images),
                           name=f"harmonic polynomials of degree {l} (so({N}))")
+
+
+def _harmonic_exact(N: int, polys: list, norms: list, images: dict) -> dict:
+    r"""Exact generators of :func:`harmonic_rep`: :math:`\langle h_a, \mathbb L^{ij} h_b\rangle` in rationals and square roots."""
+    d = len(polys)
+    cache: dict = {}
+
+    def inner(a: dict, b: dict) -> Fraction:
+        t = Fraction(0)
+        for m1, c1 in a.items():
+            for m2, c2 in b.items():
+                e = tuple(x + y for x, y in zip(m1, m2))
+                if all(x % 2 == 0 for x in e):
+                    t += Fraction(c1) * Fraction(c2) * _monomial_mean(e, cache)
+        return t
+
+    out = {}
+    for p in planes(N):
+        S = sp.zeros(d, d)
+        for b, img in enumerate(images[p]):
+            if not img:
+                continue
+            for a in range(d):
+                c = inner(polys[a], img)
+                if c:
+                    r = c / Fraction(norms[a])  # coefficient of u_a
+                    S[a, b] = sp.Rational(r.numerator, r.denominator) * sp.sqrt(
+                        sp.Rational(Fraction(norms[a]).numerator * Fraction(norms[b]).denominator,
+                                    Fraction(norms[a]).denominator * Fraction(norms[b]).numerator)
+                    )
+        out[p] = S
+    return out

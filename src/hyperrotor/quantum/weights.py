@@ -37,7 +37,7 @@ from typing import Any, Sequence
 import numpy as np
 import sympy as sp
 
-from hyperrotor import _validate
+from hyperrotor import _pricing, _validate
 from hyperrotor.conventions import check_dimension
 
 __all__ = [
@@ -346,6 +346,7 @@ def weight_multiplicities(N: int, highest_weight: Any) -> dict[tuple[Fraction, .
     mult: dict[tuple[int, ...], int] = {top: 1}
     level = [top]
     bound = max(abs(x) for x in top)
+    _pricing.check("weight_multiplicities", rank=len(top), n_roots=len(pos), dim=weyl_dimension(N, m), bound=bound)
     while level:
         candidates = set()
         for mu in level:

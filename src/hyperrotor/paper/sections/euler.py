@@ -32,7 +32,7 @@ def _table_candidates(sym: str) -> dict:
     """Derived tables: the commutator table (``bivector_product_table``) and its sign variants."""
     from hyperrotor.conventions import bivector_product_table
 
-    A = bivector_product_table(5, "paper", symbol=sym)
+    A = bivector_product_table(5, convention="paper", symbol=sym)
     s = [(-1) ** (i + j) for i, j in planes(5)]
     S = sp.Matrix(10, 10, lambda a, b: s[a] * s[b])
     C = A.multiply_elementwise(S)
@@ -138,7 +138,7 @@ def _eq38(sec: str) -> list:
     out = []
     Ls = plane_symbols("L", 5, real=True)
     lam = ps.printed("38")["lambda"]
-    Lp = to_matrix(list(Ls), "paper")
+    Lp = to_matrix(list(Ls), convention="paper")
     charpoly = sp.Poly(sp.expand((Lp - lam * sp.eye(5)).det(method="berkowitz")), lam)
     rhs = sp.Poly(ps.printed("38")["rhs"], lam)
     dpows = {m[0]: c for m, c in zip(charpoly.monoms(), charpoly.coeffs())}

@@ -21,8 +21,8 @@ from hyperrotor.paper.verdicts import Verdict, _antisym, _compare, _S
 
 def _entry_product(Lsyms, Wsyms) -> dict:
     """Plane -> (i, j) entry of W L - L W (paper matrices), generic components (eqs. 24-25)."""
-    Lm = to_matrix(list(Lsyms), "paper")
-    Wm = to_matrix(list(Wsyms), "paper")
+    Lm = to_matrix(list(Lsyms), convention="paper")
+    Wm = to_matrix(list(Wsyms), convention="paper")
     P = Wm * Lm - Lm * Wm
     return {(i, j): sp.expand(P[i - 1, j - 1]) for i, j in planes(5)}
 

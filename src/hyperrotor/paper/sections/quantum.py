@@ -7,7 +7,7 @@ constants; the operator matrices (141), (143) against
 :func:`hyperrotor.quantum.operators.operator_matrix`; the operator product (144)
 entry by entry (:mod:`hyperrotor.paper.sections.products`), naming the errors it
 shares with eq. (25); the contraction identities (145)-(147) against
-:func:`hyperrotor.paper.operator_products.contraction_identity`; and the section's
+:func:`hyperrotor.quantum.operator_products.contraction_identity`; and the section's
 cross-references.
 """
 from __future__ import annotations
@@ -25,7 +25,7 @@ from hyperrotor.paper.verdicts import Verdict
 
 @lru_cache(maxsize=None)
 def _sec_quantum() -> tuple:
-    from hyperrotor.paper.operator_products import contraction_identity
+    from hyperrotor.quantum.operator_products import contraction_identity
     from hyperrotor.quantum.operators import (
         DifferentialOperator,
         angular_momentum_operators,
@@ -62,7 +62,8 @@ def _sec_quantum() -> tuple:
     # (141), (143): sign patterns and prefactor
     for k, hb in (("141", hbar), ("143", None)):
         pk = ps.printed(k)
-        M = operator_matrix(5, "paper", form="antihermitian" if hb is None else "hermitian", hbar=hb, coordinates=coords)
+        M = operator_matrix(5, convention="paper", form="antihermitian" if hb is None else "hermitian",
+                            hbar=1 if hb is None else hb, coordinates=coords)
         wrong = []
         for r in range(5):
             for c in range(5):
@@ -77,7 +78,7 @@ def _sec_quantum() -> tuple:
                     wrong.append((r + 1, c + 1))
         pref_ok = sp.simplify(pk["prefactor"] - (-sp.I * sp.Symbol("hbar"))) == 0 if k == "141" else True
         out.append(Verdict(k, "holds" if not wrong and pref_ok else "typo",
-                           ("checkerboard matrix (-1)^(i+j) L^ij of the operators (eq. 21 pattern), = operator_matrix(5, 'paper'"
+                           ("checkerboard matrix (-1)^(i+j) L^ij of the operators (eq. 21 pattern), = operator_matrix(5, convention='paper'"
                             + (", hbar): the Hermitian -i hbar L^ij (the extraction shows the entries as 1^ij)" if k == "141" else ")"))
                            if not wrong and pref_ok else f"wrong entries {wrong}", None, None, sec))
         if k == "141":
@@ -94,7 +95,7 @@ def _sec_quantum() -> tuple:
                        (f"entries {', '.join(bad_lines)} are wrong"
                         + (", term for term the same errors as in (25) (see the verdicts 25 [ij], with L -> LOp, w -> OmegaOp)"
                            if same else "") + f"; e.g. [{first.equation.split('[')[1]} {first.detail}"
-                        + ". Corrected product: hyperrotor.paper.operator_products.operator_product(A, B, form='eq144')"),
+                        + ". Corrected product: hyperrotor.quantum.operator_product(A, B, form='eq144')"),
                        None, None, sec))
     # (145)-(147)
     for k in ("145", "146", "147"):
@@ -103,8 +104,8 @@ def _sec_quantum() -> tuple:
         anti = contraction_identity(N, form="antisymmetrized")
         e144 = contraction_identity(N, form="eq144")
         herm_factor = sp.I * (N - 2)  # for -i hbar L (stated in contraction_identity docs); recomputed below
-        Lh = operator_matrix(N, "paper", form="hermitian")
-        Lr = operator_matrix(N, "paper")
+        Lh = operator_matrix(N, convention="paper", form="hermitian")
+        Lr = operator_matrix(N, convention="paper")
         c01 = sum((Lh[0, kk] * Lh[1, kk] - Lh[1, kk] * Lh[0, kk] for kk in range(N)), Lh[0, 0])
         herm_ok = c01 == Lh[0, 1] * herm_factor
         holds = anti.holds and anti.factor == pk["factor"]

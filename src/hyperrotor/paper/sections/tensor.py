@@ -56,7 +56,7 @@ def _sec_tensor() -> tuple:
                            "I^{ijkl} = 1/2(-d_jk M_il + d_jl M_ik + d_ik M_jl - d_il M_jk)", sec))
     # eq. (4): L^{ij} = I^{ijkl} w_kl (full summation) vs L = int x ^ v dm with v = -W x (body frame, dT/dt = W T)
     wsym = plane_symbols("omega", N, real=True)
-    W = to_matrix(list(wsym), "standard")
+    W = to_matrix(list(wsym), convention="standard")
     L_phys = M * W + W * M
     Lfun = ps.printed("4")["L"]
     L4 = sp.Matrix(N, N, lambda i, j: sp.expand(Lfun(lambda a, b, c, d: T[(a, b, c, d)], W.tolist(), i, j, N)))
@@ -91,7 +91,7 @@ def _sec_tensor() -> tuple:
     # eqs. (26)-(27): matrix of L with entries I^{ijij} w_ij (paper checkerboard)
     half = {_S(f"I_{i}{j}"): (m[i - 1] + m[j - 1]) / 2 for i, j in planes(N)}  # I^{ijij} of eq. (3)
     Lcomp = [sp.expand(L4[i - 1, j - 1].subs({M[a, b]: Md[a, b] for a in range(N) for b in range(N)})) for i, j in planes(N)]
-    L_paper = to_matrix(Lcomp, "paper")
+    L_paper = to_matrix(Lcomp, convention="paper")
     for key, dot in (("26", False), ("27", True)):
         P = ps.printed(key).xreplace(half)
         if dot:
