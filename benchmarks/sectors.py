@@ -33,7 +33,8 @@ import numpy as np
 
 from hyperrotor.bench import best_of, write_csv
 from hyperrotor.quantum import irrep
-from hyperrotor.quantum.sectors import _hamiltonian, sector_spectra, symmetry_sectors
+from hyperrotor.quantum.sectors import sector_spectra, symmetry_sectors
+from hyperrotor.quantum.sectors.spectra import rotor_csr
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
 #: ten independent plane moments (planes 12, 13, ..., 45): a generic, non-Manakov body
@@ -54,7 +55,7 @@ def compare(irreps, repeats: int) -> list[dict]:
     rows = []
     for hw in irreps:
         rep = irrep(5, hw)
-        H = _hamiltonian(rep, MOMENTS, 1.0)
+        H = rotor_csr(rep, MOMENTS, 1.0)
         t_dense, E_dense = best_of(lambda: np.linalg.eigvalsh(H.toarray()), repeats)
         t_sec, spec = best_of(lambda: sector_spectra(rep, MOMENTS), repeats)
         E_sec = spec.eigenvalues()
@@ -76,9 +77,9 @@ def scale(parallel: bool) -> dict:
     t1 = time.perf_counter()
     secs = symmetry_sectors(rep)
     t2 = time.perf_counter()
-    spec = sector_spectra(rep, MOMENTS, parallel=parallel, progress=True)
+    spec = sector_spectra(rep, MOMENTS, workers=2 if parallel else 1, progress=True)
     t3 = time.perf_counter()
-    H = _hamiltonian(rep, MOMENTS, 1.0)
+    H = rotor_csr(rep, MOMENTS, 1.0)
     E = spec.eigenvalues()
     tr = float(H.diagonal().real.sum())
     fro2 = float((abs(H).power(2)).sum())

@@ -147,10 +147,12 @@ def test_evolution_blocks_rebuild_the_state():
 
 def test_sector_spectra_checks_its_switches_and_workers():
     rep = hq.irrep(3, (1,))
-    good = hq.sector_spectra(rep, [1.0, 2.0, 3.0], parallel=True, workers=1, progress=False)
-    assert good.eigenvalues() == pytest.approx(hq.spectrum(hq.rotor_hamiltonian(rep, [1.0, 2.0, 3.0]))[0])
+    good = hq.sector_spectra(rep, [1.0, 2.0, 3.0], workers=1, progress=False)
+    assert good.eigenvalues() == pytest.approx(hq.spectrum(hq.rotor_hamiltonian(rep, [1.0, 2.0, 3.0])).levels)
     with pytest.raises(TypeError, match="workers"):
-        hq.sector_spectra(rep, [1.0, 2.0, 3.0], workers="2")  # checked with or without parallel=True
+        hq.sector_spectra(rep, [1.0, 2.0, 3.0], workers="2")
+    with pytest.raises(TypeError, match="parallel"):  # the old switch is gone (workers=1 is serial)
+        hq.sector_spectra(rep, [1.0, 2.0, 3.0], parallel=True)
     with pytest.raises(TypeError, match="progress"):
         hq.sector_spectra(rep, [1.0, 2.0, 3.0], progress="no")
     with pytest.raises(TypeError, match="rep must be"):

@@ -1,10 +1,11 @@
-"""Symmetry sectors of the sign rotations (hyperrotor.quantum.sectors, issue #16).
+"""Symmetry sectors of the sign rotations and the reflection (hyperrotor.quantum.sectors, issues #16, #24).
 
 Every assertion is an invariant that a wrong construction breaks: the monomial
 matrices equal the dense exponentials exp(pi X), they conjugate every generator
-with the right signs, the sector bases are orthonormal and H-invariant, the class
-sizes of D2 follow the closed formulas, and the union of the sector spectra (with
-the forced degeneracies) is the dense spectrum.
+with the right signs, the sector bases are orthonormal, real-gauged and H-invariant,
+every sector is irreducible (a second inertia connects all eigenvectors of a first
+one), the class sizes of D2 follow the closed formulas, and the union of the sector
+spectra (with the forced degeneracies) is the dense spectrum.
 """
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ import numpy as np
 import pytest
 import scipy.linalg as sla
 import scipy.sparse as sps
+from scipy.sparse.csgraph import connected_components
 
 import hyperrotor as hr
 from hyperrotor.quantum import (
@@ -26,6 +28,7 @@ from hyperrotor.quantum import (
     tensor,
     vector_rep,
 )
+from hyperrotor.quantum._gt_monomials import gt_patterns_of
 from hyperrotor.quantum.sectors import (
     pi_rotation,
     sector_blocks,
@@ -33,6 +36,7 @@ from hyperrotor.quantum.sectors import (
     sector_spectra,
     symmetry_sectors,
 )
+from hyperrotor.quantum.sectors.group import gt_reflection
 from tolerance import norm, scaled_tol
 
 H_ = F(1, 2)
@@ -40,8 +44,8 @@ H_ = F(1, 2)
 #: (N, highest weight) of GT irreps covering odd/even N, tensor/spinor
 GT_CASES = [
     (3, (3,)), (3, (F(5, 2),)), (4, (2, 1)), (4, (2, -1)), (4, (F(3, 2), -H_)),
-    (5, (2, 1)), (5, (3, 0)), (5, (F(3, 2), H_)), (6, (1, 1, 0)), (6, (F(3, 2), H_, -H_)),
-    (7, (1, 1, 0)),
+    (4, (2, 0)), (5, (2, 1)), (5, (3, 0)), (5, (F(3, 2), H_)), (6, (1, 1, 0)), (6, (2, 1, 1)),
+    (6, (F(3, 2), H_, -H_)), (7, (1, 1, 0)), (7, (H_, H_, H_)),
 ]
 
 
@@ -164,6 +168,7 @@ def _check_sectors(rep, secs, H, *, complete):
         # invariant under H: H B = B (B^H H B)
         Hs = sector_hamiltonian(H, s)
         np.testing.assert_allclose(H @ B, B @ Hs, rtol=0, atol=scaled_tol(norm(H), k=16, dim=dim))
+        assert s.real == sps.issparse(s.basis)  # real gauge for every GT sector, not for the dense fallback
         if s.real:
             assert Hs.dtype == np.float64
     assert covered == dim
@@ -212,8 +217,8 @@ def test_gt_sectors_invariant_and_spectrum(N, hw, rng):
     secs = symmetry_sectors(rep)
     if spin:
         assert len(secs) == 1 and secs[0].degeneracy == 2 ** ((N - 1) // 2)
-    else:  # (Z2)^(N-1); for even N the centre -1 fixes one more sign
-        assert len(secs) == 2 ** (N - 1 if N % 2 else N - 2)
+    else:  # (Z2)^(N-1); for even N the centre -1 fixes one more sign, and the reflection doubles them if m_n = 0
+        assert len(secs) == 2 ** (N - 1 if N % 2 else N - 2) * (2 if N % 2 == 0 and hw[-1] == 0 else 1)
     moments = _moments(N, rng)
     H = _dense_H(rep, moments)
     _check_sectors(rep, secs, H, complete=not spin)
@@ -229,6 +234,68 @@ def test_sector_characters_are_eigenvalues_of_the_rotations():
         for (i, j), lam in s.character.items():
             np.testing.assert_allclose(pi_rotation(rep, (i, j)) @ B, lam * B, atol=1e-13)
         assert s.label == tuple(s.character[(k, k + 1)] for k in range(1, 5))
+
+
+@pytest.mark.parametrize("N, hw", [(4, (2, 0)), (4, (3, 0)), (6, (2, 1, 0)), (6, (1, 1, 0))],
+                         ids=_ids([(4, (2, 0)), (4, (3, 0)), (6, (2, 1, 0)), (6, (1, 1, 0))]))
+def test_reflection_is_a_signed_permutation_implementing_r(N, hw):
+    """U X_ij U^-1 = -X_ij when exactly one of i, j is 1 (r = diag(-1, 1, ..., 1)), U^2 = 1, U commutes with
+    the sign rotations, and every sector is an eigenspace of U with the parity of its character."""
+    rep = irrep(N, hw)
+    chain = {q: rep.generator((q, q + 1), format="csr") for q in range(1, N)}
+    U = gt_reflection(rep, gt_patterns_of(rep), chain).matrix()
+    assert U.nnz == rep.dim and set(np.unique(np.abs(U.data))) == {1.0}
+    np.testing.assert_array_equal((U @ U).toarray(), np.eye(rep.dim))
+    for (i, j), X in rep.generators().items():
+        sign = -1 if (i == 1) != (j == 1) else 1
+        np.testing.assert_allclose((U @ X @ U.conj().T).toarray(), sign * X.toarray(), rtol=0,
+                                   atol=scaled_tol(X, k=8, dim=1))
+    for k in range(1, N):
+        D = pi_rotation(rep, (k, k + 1))
+        np.testing.assert_array_equal((U @ D).toarray(), (D @ U).toarray())
+    for s in symmetry_sectors(rep):
+        np.testing.assert_allclose(U @ s.basis.toarray(), s.character["reflection"] * s.basis.toarray(), atol=1e-13)
+
+
+#: N = 3..7, tensor (real and complex type, with and without reflection) and spinor irreps
+IRREDUCIBLE_CASES = [
+    (3, (4,)), (3, (F(7, 2),)), (4, (2, 0)), (4, (4, 0)), (4, (3, -2)), (4, (F(5, 2), H_)), (5, (3, 1)),
+    (5, (F(5, 2), F(3, 2))), (6, (2, 1, 0)), (6, (2, 1, 1)), (6, (F(3, 2), H_, -H_)), (7, (2, 1, 0)),
+    (7, (F(3, 2), H_, H_)),
+]
+
+
+@pytest.mark.parametrize("N, hw", IRREDUCIBLE_CASES, ids=_ids(IRREDUCIBLE_CASES))
+def test_every_sector_is_irreducible_and_real(N, hw, rng):
+    """In the eigenbasis of one generic inertia's block, the block of a second generic inertia connects every
+    eigenvector (one connected component per sector): no symmetry is left inside a sector. Both blocks real."""
+    rep = irrep(N, hw)
+    H1, H2 = (rotor_hamiltonian(rep, _moments(N, rng)) for _ in range(2))
+    for s in symmetry_sectors(rep):
+        if not s.dim:
+            continue
+        A, B = sector_hamiltonian(H1, s), sector_hamiltonian(H2, s)
+        assert s.real and A.dtype == B.dtype == np.float64
+        _, W = np.linalg.eigh(A)
+        C = np.abs(W.T @ B @ W) > scaled_tol(norm(B), k=1e4, dim=s.dim)
+        assert connected_components(sps.csr_matrix(C), directed=False)[0] == 1, s.label
+
+
+def test_h_that_breaks_the_symmetry_and_bad_bases_are_refused(rng):
+    rep = irrep(4, (2, 1))
+    H = rotor_hamiltonian(rep, _moments(4, rng)).full()
+    sec = symmetry_sectors(rep)[0]
+    X = rep.generator((1, 2), format="dense")
+    broken = H + 0.1j * X  # Hermitian, but -i X_12 is odd under the rotations by pi in planes 23, 34, ...
+    with pytest.raises(ValueError, match="invariant"):
+        sector_hamiltonian(broken, sec)
+    with pytest.raises(ValueError, match="invariant"):
+        sector_blocks(broken, rep)
+    with pytest.raises(ValueError, match="orthonormal"):
+        sector_hamiltonian(H, 2.0 * sec.basis)
+    with hr.options(max_memory_bytes=10**6):  # so(3) tensor irreps: the dense block for exp(pi X_23) is priced
+        with pytest.raises(hr.BudgetError):
+            symmetry_sectors(irrep(3, (300,)))
 
 
 def test_sectors_commute_with_any_inertia_including_physical_bodies(rng):
@@ -275,7 +342,7 @@ def test_parallel_threads_agree_with_serial(rng):
     rep = irrep(5, (4, 2))
     moments = _moments(5, rng)
     a = sector_spectra(rep, moments)
-    b = sector_spectra(rep, moments, parallel=True, workers=2)
+    b = sector_spectra(rep, moments, workers=2)
     assert list(a) == list(b)
     for k in a:
         np.testing.assert_allclose(a[k], b[k], rtol=1e-12, atol=1e-12 * np.abs(a[k]).max())
@@ -309,8 +376,10 @@ def test_errors():
         sector_spectra(irrep(3, (1,)), [1, 2, 3], hbar=0.0)
     with pytest.raises(ValueError, match="so\\(3\\) needs 3"):
         sector_spectra(irrep(3, (1,)), [1, 2, 3, 4, 5, 6])
-    with pytest.raises(TypeError, match="parallel"):
-        sector_spectra(irrep(3, (1,)), [1, 2, 3], parallel="yes")
+    with pytest.raises(ValueError, match="workers"):
+        sector_spectra(irrep(3, (1,)), [1, 2, 3], workers=0)
+    with pytest.raises(ValueError, match="format"):
+        sector_hamiltonian(np.eye(3), np.eye(3), format="sparse")
     with pytest.raises(ValueError, match="plane"):
         pi_rotation(irrep(3, (1,)), (2, 2))
 
@@ -323,8 +392,9 @@ def test_spectrum_uses_sectors_for_a_generic_inertia(rng):
     H = rotor_hamiltonian(rep, moments)
     dense = np.linalg.eigvalsh(H.full())
     with hr.options(quantum_max_dense_dim=100, quantum_eigen_max_block=60):
-        levels, degeneracies = hr.quantum.spectrum(H)
-    np.testing.assert_allclose(np.repeat(levels, degeneracies), dense, rtol=1e-10)
+        res = hr.quantum.spectrum(H)
+    assert isinstance(res, hr.quantum.Spectrum)
+    np.testing.assert_allclose(np.repeat(res.levels, res.degeneracies), dense, rtol=1e-10)
     spin = irrep(5, (F(5, 2), F(3, 2)))
     with hr.options(quantum_eigen_max_block=8):
         _, deg = hr.quantum.spectrum(rotor_hamiltonian(spin, moments))

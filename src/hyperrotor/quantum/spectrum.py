@@ -1,19 +1,28 @@
 r"""Energy levels of rotor Hamiltonians (block-wise dense diagonalization)."""
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
-from .. import _validate
+from .. import _pricing, _validate
 from .._options import options
 from .hamiltonian import blocks_of, hermitian_matrix
+from .sectors import nonempty_blocks, restrict
 
-__all__ = ["spectrum"]
+__all__ = ["Spectrum", "spectrum"]
 
 
-def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, rep: Any = None,
-             **old: Any) -> tuple[np.ndarray, np.ndarray]:
+class Spectrum(NamedTuple):
+    """Result of :func:`spectrum`: distinct levels and their multiplicities (unpacks as ``levels, degeneracies``)."""
+
+    #: increasing distinct energies (the mean of each cluster)
+    levels: np.ndarray
+    #: multiplicity of each level (integers summing to the dimension)
+    degeneracies: np.ndarray
+
+
+def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, rep: Any = None) -> Spectrum:
     r"""Energy levels of a Hermitian ``H`` with their degeneracies.
 
     ``H`` is split into its invariant blocks (:func:`~hyperrotor.quantum.symmetry_blocks`),
@@ -41,30 +50,33 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
 
     Returns
     -------
-    levels : ndarray
-        Increasing distinct energies (the mean of each cluster).
-    degeneracies : ndarray of int
-        Multiplicity of each level; they sum to ``dim``.
+    Spectrum
+        ``(levels, degeneracies)``: increasing distinct energies (the mean of each
+        cluster) and the multiplicity of each (integers summing to ``dim``).
+
+    Raises
+    ------
+    hyperrotor.BudgetError
+        A block (sparsity block, or symmetry sector) over the dense budget
+        (``options["quantum_max_dense_dim"]``), refused before any dense work.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> levels, degeneracies = spectrum(np.diag([1.0, 2.0, 2.0]))
+    >>> levels.tolist(), degeneracies.tolist()
+    ([1.0, 2.0], [1, 2])
     """
-    _validate.old_keywords("spectrum", old, {
-        "tol": "atol= (absolute) or rtol= (relative to max|E|)",
-        "max_dense_dim": 'hyperrotor.options["quantum_max_dense_dim"] (e.g. with hr.options(quantum_max_dense_dim=...))',
-    })
     mat, _ = hermitian_matrix(H)
     rep = rep if rep is not None else getattr(H, "_hyperrotor_rep", None)
     if rep is not None:
         rep = _validate.representation("rep", rep, dim=mat.shape[0])
     blocks = blocks_of(mat)
     big = max(len(b) for b in blocks)
-    limit = int(options["quantum_max_dense_dim"])
     evs = _sector_eigenvalues(mat, rep) if rep is not None and big > int(options["quantum_eigen_max_block"]) else None
     if evs is not None:
         return _levels(np.sort(evs), atol, rtol)
-    if big > limit:
-        raise ValueError(
-            f"spectrum would diagonalize a dense block of dimension {big} > options['quantum_max_dense_dim'] = {limit}; "
-            f"raise it with hyperrotor.options(quantum_max_dense_dim=...) if the memory ({8 * big * big / 2**30:.2g} GiB) is available"
-        )
+    _pricing.check("dense_diagonalization", dim=big, complex=np.iscomplexobj(mat.data))
     evs = []
     for b in blocks:
         if len(b) == 1:
@@ -76,26 +88,19 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
 
 def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
     """All eigenvalues (with multiplicity) from the symmetry sectors of ``rep``, or ``None`` if there are none."""
-    from . import sectors
-
-    parts = sectors._nonempty_blocks(rep, False)  # mat and rep are checked by spectrum
+    parts = nonempty_blocks(rep, False)  # mat and rep are checked by spectrum
     if parts is None:
         return None
-    limit = int(options["quantum_max_dense_dim"])
     evs = []
-    for basis, degeneracy, label in parts:
-        if basis.shape[1] > limit:
-            raise ValueError(
-                f"spectrum would diagonalize the sector {label} of dimension {basis.shape[1]} > "
-                f"options['quantum_max_dense_dim'] = {limit}"
-            )
-        block = sectors._block(mat, basis)  # mat is checked; real symmetric for tensor irreps (cheaper eigvalsh)
+    for basis, degeneracy, _ in parts:
+        _pricing.check("dense_diagonalization", dim=basis.shape[1])
+        block = restrict(mat, basis)  # mat is checked; real symmetric for GT irreps (cheaper eigvalsh)
         e = np.linalg.eigvalsh(block)
         evs.append(np.repeat(e, int(degeneracy)))
     return np.concatenate(evs).real
 
 
-def _levels(E: np.ndarray, atol: float | None, rtol: float | None) -> tuple[np.ndarray, np.ndarray]:
+def _levels(E: np.ndarray, atol: float | None, rtol: float | None) -> Spectrum:
     if atol is None:
         r = options["quantum_level_rtol"] if rtol is None else _validate.positive("rtol", rtol, allow_zero=True)
         tol = r * max(1.0, float(np.max(np.abs(E))))
@@ -103,4 +108,4 @@ def _levels(E: np.ndarray, atol: float | None, rtol: float | None) -> tuple[np.n
         tol = _validate.positive("atol", atol, allow_zero=True)
     cuts = np.nonzero(np.diff(E) > tol)[0] + 1
     groups = np.split(E, cuts)
-    return np.array([g.mean() for g in groups]), np.array([g.size for g in groups], dtype=int)
+    return Spectrum(np.array([g.mean() for g in groups]), np.array([g.size for g in groups], dtype=int))
