@@ -54,6 +54,7 @@ CHECKS: dict[str, dict[str, tuple[str, object]]] = {
         "n_frames": (">=", 10),
         "max_distance_drift": ("<=", 1e-9),
         "locked_axis_fixed_max": ("<=", 1e-12),
+        "interactive_one_frame_per_time": ("==", True),
     },
     "04_tennis_racket": {
         "stable_planes_agree_with_rule": ("==", True),
