@@ -68,7 +68,6 @@ __all__ = [
     "EULER_EQUATION_PLANES",
     "printed_symbols",
     "equation_plane",
-    "parse_equation",
 ]
 
 #: Time symbol of the printed equations (the same as ``hyperrotor.classical.rigid_body.TIME``).
@@ -179,7 +178,7 @@ def printed_symbols() -> dict[str, object]:
     return names
 
 
-def parse_equation(text: str) -> sp.Eq:
+def _parse_equation(text: str) -> sp.Eq:
     """Parse one transcription ``"lhs = rhs"`` of the mini-language into an unevaluated ``sympy.Eq``."""
     lhs, rhs = text.split("=")
     names = printed_symbols()
@@ -213,9 +212,9 @@ def _parse_table(text: str, name: str) -> sp.Matrix:
 
 
 #: (28)-(37) as printed, keyed by equation number.
-PRINTED_EULER: dict[str, sp.Eq] = {k: parse_equation(v) for k, v in EQUATION_TEXT.items() if int(k) <= 37}
+PRINTED_EULER: dict[str, sp.Eq] = {k: _parse_equation(v) for k, v in EQUATION_TEXT.items() if int(k) <= 37}
 #: (42)-(81) as printed.
-PRINTED_REDUCTIONS: dict[str, sp.Eq] = {k: parse_equation(v) for k, v in EQUATION_TEXT.items() if int(k) >= 42}
+PRINTED_REDUCTIONS: dict[str, sp.Eq] = {k: _parse_equation(v) for k, v in EQUATION_TEXT.items() if int(k) >= 42}
 #: All transcribed equations.
 PRINTED_EQUATIONS: dict[str, sp.Eq] = {**PRINTED_EULER, **PRINTED_REDUCTIONS}
 #: Table 1 as printed (entries in ``L_ij``).

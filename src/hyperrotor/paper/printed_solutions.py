@@ -9,7 +9,7 @@ How the transcription is made
 -----------------------------
 :data:`LATEX` holds each equation's LaTeX exactly as the text extraction of
 the preprint prints it (doi:10.20944/preprints202508.0136.v2). A small,
-documented converter (:func:`tex_to_sympy`) turns the scalar formulas into
+documented converter (:func:`_tex_to_sympy`) turns the scalar formulas into
 SymPy with these readings, chosen to keep every printed index as printed:
 
 * ``\omega_{ij}`` -> ``omega_ij``, index order kept as printed (also ``omega_51``, ``omega_31``);
@@ -42,7 +42,7 @@ import sympy as sp
 from sympy.parsing.sympy_parser import convert_xor, implicit_multiplication, parse_expr, standard_transformations
 
 
-__all__ = ["LATEX", "CLAIMS", "LITERAL", "READINGS", "printed", "tex_to_sympy", "symbol", "printed_keys"]
+__all__ = ["LATEX", "CLAIMS", "LITERAL", "READINGS", "printed", "symbol", "printed_keys"]
 
 #: Verbatim LaTeX of the printed equations (text extraction of the preprint), keyed by number.
 LATEX: dict[str, str] = {
@@ -162,7 +162,7 @@ _RULES = [
 ]
 
 
-def tex_to_sympy(tex: str) -> sp.Expr:
+def _tex_to_sympy(tex: str) -> sp.Expr:
     """Convert one printed scalar formula (no ``=``) to SymPy with the readings of the module docstring."""
     s = tex
     for pat, rep in _RULES:
@@ -179,7 +179,7 @@ def _zero_form(tex: str) -> sp.Expr:
     """``lhs - rhs`` of a printed ``lhs = rhs`` (only the part before ``\\quad``)."""
     tex = tex.split(r"\quad")[0]
     lhs, rhs = tex.split("=")
-    return sp.expand(tex_to_sympy(lhs) - tex_to_sympy(rhs))
+    return sp.expand(_tex_to_sympy(lhs) - _tex_to_sympy(rhs))
 
 
 def _cells(tex: str) -> list[list[str]]:
@@ -338,7 +338,7 @@ def printed(key: str) -> Any:
         for r, row in enumerate(cells):
             for c, cell in enumerate(row):
                 cell = re.sub(r"omegadot_\{(\d\d)\}", r" omegadot_\1 ", cell)
-                M[r, c] = tex_to_sympy(cell)
+                M[r, c] = _tex_to_sympy(cell)
         return M
     if key == "38":
         lam = sp.Symbol("lambda")
@@ -361,31 +361,31 @@ def printed(key: str) -> Any:
         return {"ode": ode, "initial": (_plane(m.group(1)), symbol("c_" + m.group(2)))}
     if key == "100":
         th, ka, rng = [p.strip() for p in tex.split(r"\quad")]
-        theta = tex_to_sympy(re.sub(r"\\frac\{(.*?)\}\{(.*?)\}", r"((\1)/(\2))", th.split("=")[1]))
-        kappa = tex_to_sympy(r"((sqrt(1 - \Theta^2))/(\Theta - 1))")
+        theta = _tex_to_sympy(re.sub(r"\\frac\{(.*?)\}\{(.*?)\}", r"((\1)/(\2))", th.split("=")[1]))
+        kappa = _tex_to_sympy(r"((sqrt(1 - \Theta^2))/(\Theta - 1))")
         return {"Theta": theta, "kappa": kappa, "range": (-1, 1), "strict": (rng.count("<") == 2 and "\\leq" not in rng)}
     if key == "101":
         return {p: symbol(f"C_{a}{b}") * sp.exp(sp.I * symbol("Omega") * symbol("t"))
                 for p, (a, b) in ((_plane(x), x) for x in re.findall(r"C_\{(\d\d)\}", tex))}
     if key == "106":
-        M = sp.Matrix([[tex_to_sympy(c) for c in row] for row in _cells(tex.split(r"\mathcal{M} =")[1])])
+        M = sp.Matrix([[_tex_to_sympy(c) for c in row] for row in _cells(tex.split(r"\mathcal{M} =")[1])])
         return M
     if key == "107":
-        return tex_to_sympy(tex.split(r"\equiv")[1].split("=")[0])
+        return _tex_to_sympy(tex.split(r"\equiv")[1].split("=")[0])
     if key == "108":
         a, b = tex.split(r"\quad")
         out = {}
         for name, part in (("l_2", a), ("l_0", b)):
             expr, rel, _ = re.split(r"(<|>|\\leq|\\geq)", part.split("=", 1)[1])
-            out[name] = tex_to_sympy(expr)
+            out[name] = _tex_to_sympy(expr)
             out[name + " relation"] = {"\\leq": "<=", "\\geq": ">="}.get(rel, rel)
         return out
     if key == "109":
         lhs, rhs = tex.split("=")
-        return sp.Eq(tex_to_sympy(lhs), tex_to_sympy(rhs), evaluate=False)
+        return sp.Eq(_tex_to_sympy(lhs), _tex_to_sympy(rhs), evaluate=False)
     if key == "110":
         pieces = re.split(r"(>|\\geq)", tex.rstrip("."))
-        parts = [tex_to_sympy(p) for p in pieces[::2]]
+        parts = [_tex_to_sympy(p) for p in pieces[::2]]
         rels = set(pieces[1::2])
         return {"chain": tuple(parts), "relation": ">" if rels == {">"} else ">="}
     if key == "after 118":
@@ -399,7 +399,7 @@ def printed(key: str) -> Any:
         out = {}
         for a, rest in re.findall(r"\\omega_\{(\d\d)\} = ([^,]*)", tex):
             rest = rest.replace(r"\varepsilon", " epsilon ").replace("(t)", "")
-            out[_plane(a)] = tex_to_sympy(rest)
+            out[_plane(a)] = _tex_to_sympy(rest)
         return out
     if key == "131":
         return {symbol("J_" + n): _plane(ab) for n, ab in re.findall(r"J_\{?(\d+)\}? = I\^\{(\d\d)\d\d\}", tex)}
@@ -409,12 +409,12 @@ def printed(key: str) -> Any:
         lhs, rhs = tex.split("=")
         rhs = re.sub(r"\\(sin|cos) \\Omega v_(\d) t", r"\\\1(\\Omega v_\2 t)", rhs)
         rhs = rhs.replace(r"\sin", "sin").replace(r"\cos", "cos")
-        return sp.Eq(tex_to_sympy(lhs), tex_to_sympy(rhs), evaluate=False)
+        return sp.Eq(_tex_to_sympy(lhs), _tex_to_sympy(rhs), evaluate=False)
     if key in ("134", "136 (varpi_6)", "137"):
         lhs = tex.split("=")[0]
-        return {"lhs": tex_to_sympy(lhs), "literal": LITERAL[key], "reading": _sympify(READINGS[key])}
+        return {"lhs": _tex_to_sympy(lhs), "literal": LITERAL[key], "reading": _sympify(READINGS[key])}
     if key in ("135", "136", "138"):
-        return {"lhs": tex_to_sympy(tex.split("=")[0]), "literal": _sympify(LITERAL[key])}
+        return {"lhs": _tex_to_sympy(tex.split("=")[0]), "literal": _sympify(LITERAL[key])}
     if key in ("139", "140"):
         rel = ">=" if r"\geq" in tex else "<="
         return {"order": tuple(symbol("J_" + x) for x in re.findall(r"J_\{?(\d+)\}?", tex)), "relation": rel}

@@ -23,6 +23,8 @@ from dataclasses import asdict, dataclass
 
 import sympy as sp
 
+from hyperrotor import _parse
+
 from hyperrotor.paper import printed_solutions as ps
 
 
@@ -87,7 +89,7 @@ def _fmt(expr) -> str:
 
 def _plain(expr):
     """Replace ``omega_ij(t)`` and its time derivative by the plain symbols ``omega_ij`` / ``omegadot_ij``."""
-    expr = sp.sympify(expr)
+    expr = _parse.to_sympy(expr, "expr", text=False)  # a derived SymPy object, never text
     reps = {}
     for d in expr.atoms(sp.Derivative):
         reps[d] = _S("omegadot_" + d.expr.func.__name__.split("_")[1])

@@ -310,7 +310,7 @@ class DifferentialOperator:
         if isinstance(other, Integral) and not isinstance(other, bool):
             return self * Fraction(1, int(other))
         if _is_scalar(other):
-            return self * (1 / sp.sympify(other))
+            return self * (1 / _parse.to_sympy(other, "divisor", text=False))
         return NotImplemented
 
     def __pow__(self, n: int) -> "DifferentialOperator":
