@@ -44,7 +44,16 @@ def test_densities_vanish_outside_their_support_and_keep_their_values_inside(ens
 def test_degenerate_spectra_are_refused_with_the_reason():
     with pytest.raises(ValueError, match="no spacing ratio"):
         hq.spacing_ratio(np.full(5, 2.0))
-    assert hq.spacing_ratio([0.0, 1.0, 1.0, 1.0, 3.0]) == pytest.approx(0.0)  # one zero ratio, one dropped triple
+    with pytest.raises(ValueError, match="2 of the 4 spacings of levels vanish"):
+        hq.spacing_ratio([0.0, 1.0, 1.0, 1.0, 3.0])  # was 0.0 silently (one zero ratio, one dropped triple)
+    E = np.cumsum(np.arange(1.0, 11.0) ** 1.5)  # 10 spacings with the repeated level below, one zero: a warning
+    with pytest.warns(RuntimeWarning, match="1 of the 10 spacings"):
+        assert 0 < hq.spacing_ratio(np.insert(E, 3, E[3])) < hq.spacing_ratio(E)
+    # a spinor irrep: every level four times in the full spectrum (refused), once in its sector (fine)
+    spec = hq.sector_spectra(hq.irrep(5, (1.5, 0.5)), 0.5 + np.arange(10) / 7)
+    with pytest.raises(ValueError, match="12 of the 15 spacings"):
+        hq.spacing_ratio(spec.eigenvalues())
+    assert 0 < hq.spacing_ratio(spec["spinor"]) < 1
     with pytest.raises(ValueError, match="coincide"):
         hq.unfold(np.full(10, 3.5))
     with pytest.raises(ValueError, match="2 distinct values"):

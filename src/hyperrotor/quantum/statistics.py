@@ -33,6 +33,7 @@ tests check :data:`R_MEAN` within a tolerance set by the sample size).
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -125,12 +126,23 @@ def spacing_ratio(levels: Any, *, return_error: bool = False):
     float, or (float, float)
         Compare with :data:`R_MEAN`: Poisson 0.3863, GOE 0.5307, GUE 0.5996.
 
+    Raises
+    ------
+    ValueError
+        When a quarter or more of the spacings vanish (within
+        ``options["quantum_level_rtol"] * max|E|``, the rule by which
+        :func:`~hyperrotor.quantum.spectrum` merges levels): forced degeneracies
+        (e.g. the multiplets of a spinor irrep, or several sectors' levels merged)
+        would pull the mean towards 0. Fewer vanishing spacings give a
+        ``RuntimeWarning`` (accidental degeneracies: each makes a ratio 0).
+
     Examples
     --------
     >>> round(spacing_ratio(sample_spectrum("poisson", 20000, rng=1)), 2)
     0.39
     """
     return_error = _validate.flag("return_error", return_error)
+    _check_degeneracies(levels)
     r = spacing_ratios(levels)
     if not r.size:
         raise ValueError("levels has no spacing ratio: every three consecutive levels coincide (all spacings are zero)")
@@ -139,6 +151,23 @@ def spacing_ratio(levels: Any, *, return_error: bool = False):
         return mean
     err = float(r.std(ddof=1) / math.sqrt(max(r.size / 2, 1))) if r.size > 1 else float("inf")
     return mean, err
+
+
+def _check_degeneracies(levels: Any) -> None:
+    """Refuse (a quarter or more) or warn about vanishing spacings (see :func:`spacing_ratio`)."""
+    E = _levels(levels, 3)
+    tol = options["quantum_level_rtol"] * float(np.abs(E).max())
+    zero = int(np.count_nonzero(np.diff(E) <= tol))
+    n = E.size - 1
+    if not zero or zero == n:  # none, or all (refused with its own message below)
+        return
+    text = (f"{zero} of the {n} spacings of levels vanish (<= options['quantum_level_rtol'] * max|E| = {tol:.2e}), "
+            f"and each gives a spacing ratio of 0")
+    if 4 * zero >= n:
+        raise ValueError(f"{text}: forced degeneracies? Pass the levels of one symmetry sector "
+                         f"(sector_spectra; a spinor irrep's multiplets count once there) or distinct levels "
+                         f"(spectrum(H).levels)")
+    warnings.warn(f"{text} (accidental degeneracies?)", RuntimeWarning, stacklevel=3)
 
 
 def ratio_density(r: Any, ensemble: str) -> np.ndarray:
