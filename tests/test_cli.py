@@ -1,10 +1,8 @@
 """Tests of the ``hyperrotor`` command line (``hyperrotor.cli.main``)."""
 import os
 import re
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -51,7 +49,7 @@ def test_demo_invariants_recomputed(capsys):
     assert _value(out, "Casimir c_4 (lambda^1 coefficient of det(lambda - L))") == pytest.approx(poly[4], rel=1e-10)
     np.testing.assert_allclose(_vector(out, "  L"), L, rtol=1e-11)
     np.testing.assert_allclose(_vector(out, "d omega/dt"), body.rhs(omega), rtol=1e-11)
-    A = hr.to_matrix(L, "standard") + np.diag([1, 1, 1, 1, 0.25]) ** 2  # L + J^2, J = (1, 1, 1, 1, kappa^2)
+    A = hr.to_matrix(L, convention="standard") + np.diag([1, 1, 1, 1, 0.25]) ** 2  # L + J^2, J = (1, 1, 1, 1, kappa^2)
     for k in range(2, 6):
         assert _value(out, f"Manakov tr((L + J^2)^{k})") == pytest.approx(
             np.trace(np.linalg.matrix_power(A, k)), rel=1e-10)
@@ -365,33 +363,6 @@ def _umask():
     return mask
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("sig,status,word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
-def test_ctrl_c_during_a_gif_keeps_the_old_file(tmp_path, sig, status, word):
-    old = tmp_path / "x.gif"
-    old.write_bytes(b"old animation")
-    env = dict(os.environ, MPLBACKEND="Agg", PYTHONWARNINGS="ignore")
-    p = subprocess.Popen([sys.executable, "-m", "hyperrotor.cli", "scene", "--output", "x.gif", "--frames", "400",
-                          "--force"], cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        deadline = time.monotonic() + 120
-        while not any(n.startswith(".x.gif.") for n in os.listdir(tmp_path)):  # reserved: the work has begun
-            assert p.poll() is None, p.communicate()
-            assert time.monotonic() < deadline
-            time.sleep(0.05)
-        time.sleep(1.0)  # well inside the 400 frames (they take tens of seconds)
-        assert p.poll() is None
-        p.send_signal(sig)
-        out, err = p.communicate(timeout=60)
-    finally:
-        if p.poll() is None:
-            p.kill()
-    assert p.returncode == status
-    assert word in _one_line(err) and out == ""
-    assert old.read_bytes() == b"old animation"
-    assert _files(tmp_path) == ["x.gif"]  # no temporary file left
-
-
 def test_closed_pipe_ends_quietly(tmp_path):
     env = dict(os.environ, MPLBACKEND="Agg", PYTHONWARNINGS="ignore")
     p = subprocess.Popen([sys.executable, "-m", "hyperrotor.cli", "demo", "--no-png"], cwd=tmp_path, env=env,
@@ -507,3 +478,37 @@ def test_file_appearing_during_the_run_is_not_clobbered(capsys, tmp_path, monkey
     assert code == 1 and out == ""
     assert err.count("\n") == 1 and "appeared while this command ran" in err
     assert target.read_bytes() == b"written by someone else meanwhile" and _files(tmp_path) == ["s.png"]
+
+
+def test_long_output_names(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    name = "r" * 246 + ".md"  # 249 characters: legal (the temporary name is shortened, not the target)
+    code, out, err = _run(capsys, ["verify", "--section", "euler", "-o", name])
+    assert code == 0, err
+    assert _files(tmp_path) == [name] and out == f"written: {name} (" + out.split(" (", 1)[1]
+    too_long = "r" * 257 + ".md"  # 260 characters: over NAME_MAX, a usage error before any work
+    code, out, err = _run(capsys, ["verify", "--section", "euler", "-o", too_long])
+    assert code == 2 and out == ""
+    assert "is 260 bytes long; the file system allows at most 255" in _one_line(err)
+    assert _files(tmp_path) == [name]
+
+
+class _FullDisk:
+    """A standard output that fails as /dev/full does."""
+
+    def write(self, text):
+        raise OSError(28, "No space left on device")
+
+    def flush(self):
+        pass
+
+
+def test_stdout_failing_after_the_files_were_written_says_so(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "stdout", _FullDisk())
+    code = main(["verify", "--section", "euler", "-o", "r.md"])
+    err = capsys.readouterr().err
+    assert code == EXIT_CODES["failed"] == 1
+    assert "No space left on device" in _one_line(err)
+    assert "(written before the failure, complete: r.md)" in err
+    assert _files(tmp_path) == ["r.md"] and (tmp_path / "r.md").read_text().startswith("# Verification")

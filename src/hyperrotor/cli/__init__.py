@@ -29,9 +29,11 @@ Conventions of every subcommand
   (``hr.options["cli_max_memory"]``, ``["cli_max_seconds"]``; ``--max-memory``,
   ``--max-seconds``) are refused with **one line** on stderr naming the value
   and what is allowed, and exit status 2.
-* **Exit status.** 0 success; 1 the work failed (one line on stderr); 2 usage
-  error; 130 interrupted by Ctrl-C (SIGINT); 143 terminated (SIGTERM); 141
-  standard output closed early (``hyperrotor demo | head -1``): the command
+* **Exit status.** 0 success; 1 the work failed (one line on stderr, naming
+  the files already written if any); 2 usage error; 130 interrupted by Ctrl-C
+  (SIGINT), 143 terminated (SIGTERM), 129 hung up (SIGHUP), each within a
+  second whatever the command is doing, numba compiling included
+  (:mod:`hyperrotor.cli._signals`); 141 standard output closed early (``hyperrotor demo | head -1``): the command
   stops quietly with the status a shell reports for a program ended by
   SIGPIPE, as ``yes | head -1`` does (so ``set -o pipefail`` treats both alike).
   ``--debug`` adds the Python traceback to an error.
@@ -55,22 +57,20 @@ import os
 import re
 import signal
 import sys
+import time
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Sequence
 
-from hyperrotor.cli import bench, demo, scene, verify
+from hyperrotor.cli import _files, _signals, bench, demo, scene, verify
 from hyperrotor.cli._common import UsageError
 
 __all__ = ["main", "build_parser", "Subcommand", "SUBCOMMANDS", "UsageError", "EXIT_CODES"]
 
 #: The exit statuses of ``hyperrotor`` (module docstring).
-EXIT_CODES = {"ok": 0, "failed": 1, "usage": 2, "interrupted": 130, "broken-pipe": 141, "terminated": 143}
-
-
-class _Terminated(BaseException):
-    """SIGTERM, turned into an exception so that temporary files are removed."""
+EXIT_CODES = {"ok": 0, "failed": 1, "usage": 2, "hung-up": 129, "interrupted": 130, "broken-pipe": 141,
+              "terminated": 143}
 
 
 @dataclass(frozen=True)
@@ -117,7 +117,7 @@ SUBCOMMANDS: dict[str, Subcommand] = {
 }
 
 _EPILOG = ("Exit status: 0 ok, 1 the work failed, 2 usage error (one line on stderr), 130 Ctrl-C, "
-           "141 standard output closed early (e.g. '| head'), 143 SIGTERM. Output files are never "
+           "141 standard output closed early (e.g. '| head'), 143 SIGTERM, 129 SIGHUP. Output files are never "
            "overwritten without --force and never left half-written.")
 
 
@@ -157,8 +157,14 @@ def _silence_stdout() -> None:
         pass
 
 
-def _on_sigterm(signum, frame):
-    raise _Terminated()
+def _stopped(prog: str, stop: _signals.Stop) -> int:
+    """A signal acted on: unfinished files removed, one line on stderr, the signal's exit status."""
+    _files.discard_all()
+    if _signals.claim():
+        _say(prog, _signals.message(stop.signum))
+    else:  # the watchdog is reporting and ending the process right now
+        time.sleep(2 * _signals.GRACE)
+    return stop.status
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -168,19 +174,34 @@ def main(argv: Sequence[str] | None = None) -> int:
     ``--help`` and ``--version`` exit through ``SystemExit(0)`` (argparse).
     """
     argv = list(sys.argv[1:] if argv is None else argv)
-    debug = "--debug" in argv
     prog = "hyperrotor"
     if argv and argv[0] in SUBCOMMANDS:
         prog = f"hyperrotor {argv[0]}"
+    _files.forget_written()
+    installed = _signals.install(prog)
     try:
-        old_term = signal.signal(signal.SIGTERM, _on_sigterm)
-    except ValueError:  # not the main thread
-        old_term = None
+        return _run(argv, prog)
+    except _signals.Stop as stop:  # a signal in the last moments, after _run's own handlers
+        return _stopped(prog, stop)
+    finally:
+        _files.discard_all()
+        if installed:
+            _signals.restore()
+
+
+def _written_note() -> str:
+    written = _files.written_files()
+    return f" (written before the failure, complete: {', '.join(map(str, written))})" if written else ""
+
+
+def _run(argv: list[str], prog: str) -> int:
+    debug = "--debug" in argv
     try:
         args = build_parser().parse_args(argv)
         with warnings.catch_warnings(record=True) as caught:  # reported one line each, after the work
             warnings.simplefilter("default")
             code = int(args._run(args))
+        _signals.checkpoint()  # a signal that could not be acted on during the work
         for w in caught:
             _say(prog, f"warning: {w.category.__name__}: {w.message} ({Path(w.filename).name}:{w.lineno})")
         sys.stdout.flush()
@@ -192,14 +213,14 @@ def main(argv: Sequence[str] | None = None) -> int:
             traceback.print_exc()
         _say(prog, f"error: {err}")
         return EXIT_CODES["usage"]
-    except KeyboardInterrupt:
-        _say(prog, "interrupted (Ctrl-C); unfinished output files were removed, existing files left as they were")
-        return EXIT_CODES["interrupted"]
-    except _Terminated:
-        _say(prog, "terminated (SIGTERM); unfinished output files were removed")
-        return EXIT_CODES["terminated"]
+    except _signals.Stop as stop:
+        return _stopped(prog, stop)
+    except KeyboardInterrupt:  # not the main thread: Python's own Ctrl-C
+        return _stopped(prog, _signals.Stop(signal.SIGINT))
     except BrokenPipeError:
         _silence_stdout()
+        if _files.written_files():
+            _say(prog, "standard output was closed early" + _written_note())
         return EXIT_CODES["broken-pipe"]
     except Exception as err:  # noqa: BLE001 - the command line reports every failure in one line
         if debug:
@@ -208,9 +229,5 @@ def main(argv: Sequence[str] | None = None) -> int:
             traceback.print_exc()
         detail = f"{type(err).__name__}: {err}" if not isinstance(err, (OSError, RuntimeError)) or not str(err) \
             else str(err)
-        _say(prog, f"failed: {detail}" + ("" if debug else " (--debug shows the traceback)"))
+        _say(prog, f"failed: {detail}" + _written_note() + ("" if debug else " (--debug shows the traceback)"))
         return EXIT_CODES["failed"]
-    finally:
-        if old_term is not None:
-            signal.signal(signal.SIGTERM, old_term)
-

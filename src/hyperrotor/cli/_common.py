@@ -9,17 +9,18 @@ from __future__ import annotations
 import argparse
 import math
 import re
-import sys
 from typing import Callable
 
 import numpy as np
 
 from hyperrotor import _parse, _validate
 from hyperrotor._options import options
+from hyperrotor._parallel import progress_bar
+from hyperrotor.cli._signals import bar_shown, checkpoint
 
 __all__ = ["UsageError", "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number", "integer", "number_list", "int_list",
            "choice_of",
-           "byte_size", "size_text", "duration_text", "check_budget", "show_progress", "bar",
+           "byte_size", "size_text", "duration_text", "check_budget", "bar",
            "have_matplotlib", "add_common", "check_common"]
 
 
@@ -170,17 +171,38 @@ def check_budget(args: argparse.Namespace, what: str, seconds: float, memory: fl
                          f"{duration_text(max_s)} (--max-seconds, default hr.options['cli_max_seconds']){tail}")
 
 
-def show_progress(args: argparse.Namespace) -> bool:
-    """``--progress`` / ``--no-progress``, default: stderr is a terminal."""
-    return args.progress if args.progress is not None else sys.stderr.isatty()
+class _Steps:
+    """Progress of a command: a bar (or none) whose every step is also a safe point for signals."""
+
+    def __init__(self, pbar) -> None:
+        self._bar = pbar
+        bar_shown(pbar is not None)
+
+    def update(self, n: int = 1) -> None:
+        checkpoint()  # a signal deferred while numba compiled is acted on here
+        if self._bar is not None:
+            self._bar.update(n)
+
+    def set_postfix_str(self, text: str) -> None:
+        if self._bar is not None:
+            self._bar.set_postfix_str(text)
+
+    def __enter__(self) -> "_Steps":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self._bar is not None:
+            self._bar.close()
+            bar_shown(False)
 
 
-def bar(args: argparse.Namespace, total: int, desc: str, unit: str):
-    """A tqdm bar on stderr (disabled unless :func:`show_progress`)."""
-    from tqdm import tqdm
+def bar(args: argparse.Namespace, total: int, desc: str, unit: str) -> _Steps:
+    """The package's progress bar on stderr (``--progress``/``--no-progress``, default on a terminal).
 
-    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, disable=not show_progress(args),
-                leave=False, dynamic_ncols=True, mininterval=0.2)
+    Use as ``with bar(...) as steps: ... steps.update()``; each update is a
+    safe point where a pending signal stops the command (:mod:`hyperrotor.cli._signals`).
+    """
+    return _Steps(progress_bar(args.progress, total, desc, unit=unit, leave=False))
 
 
 def have_matplotlib() -> bool:

@@ -1,0 +1,146 @@
+"""Signals of the ``hyperrotor`` command: SIGINT -> 130, SIGTERM -> 143, SIGHUP -> 129, within a second.
+
+The handler records the signal (a flag) and acts on it at a safe point:
+
+* in plain Python code it raises :class:`Stop` at once, so the command unwinds
+  as from an error: every unfinished output file is removed, nothing else is
+  touched, and :func:`hyperrotor.cli.main` returns the exit status;
+* inside numba (compiling or loading a kernel) or while an output file is
+  reserved or committed (:mod:`hyperrotor.cli._files`), raising would be
+  swallowed or would break a half-built object (numba then fails later with
+  "no compiled object yet", or carries on to the end): there the flag is only
+  recorded, and :func:`checkpoint` (called between the steps of the work)
+  raises :class:`Stop` at the next safe point.
+
+Either way a watchdog thread, started by the first signal, ends the process
+:data:`GRACE` seconds later if the command has not ended by then (the flag
+was set where no checkpoint comes soon, e.g. during a long compile): it
+removes every unfinished output file (under the lock that serialises commits,
+so a file is complete at its target or absent), reports the signal on stderr
+in one line and exits with the signal's status.
+"""
+from __future__ import annotations
+
+import os
+import signal
+import threading
+
+from hyperrotor.cli import _files
+
+__all__ = ["Stop", "SIGNALS", "GRACE", "install", "restore", "checkpoint", "claim", "message",
+           "bar_shown"]
+
+#: signal -> (exit status, how it is reported).
+SIGNALS = {
+    signal.SIGINT: (130, "interrupted (Ctrl-C)"),
+    signal.SIGTERM: (143, "terminated (SIGTERM)"),
+}
+if hasattr(signal, "SIGHUP"):  # POSIX only
+    SIGNALS[signal.SIGHUP] = (129, "hung up (SIGHUP)")
+
+#: Seconds between a signal and the watchdog's exit when the command has not ended by itself.
+GRACE = 0.7
+
+#: Modules in whose code a raised exception would be swallowed or leave a broken state.
+_DEFER_IN = ("numba.", "llvmlite.", "hyperrotor.cli._files")
+
+
+class Stop(BaseException):
+    """A signal acted on at a safe point (a BaseException, like KeyboardInterrupt: no ``except Exception`` stops it)."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+    @property
+    def status(self) -> int:
+        return SIGNALS[self.signum][0]
+
+
+class _State:
+    prog = "hyperrotor"
+    signum: int | None = None
+    ended = threading.Event()      # the command has ended (or is reporting): later signals are ignored
+    bar_shown = False              # a progress bar is on stderr: the watchdog starts a new line
+    reporter = threading.Lock()    # taken by whoever reports the end: the command or the watchdog
+    previous: dict = {}
+
+
+def message(signum: int) -> str:
+    """The one stderr line (without the program name) for a command ended by ``signum``."""
+    text = SIGNALS[signum][1] + "; unfinished output files were removed, existing files left as they were"
+    written = _files.written_files()
+    if written:
+        text += "; written before the signal: " + ", ".join(map(str, written))
+    return text
+
+
+def _deferred(frame) -> bool:
+    while frame is not None:
+        name = frame.f_globals.get("__name__", "")
+        if name.startswith(_DEFER_IN):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _watchdog() -> None:
+    if _State.ended.wait(GRACE) or not _State.reporter.acquire(blocking=False):
+        return
+    _State.ended.set()
+    _files.discard_all()
+    signum = _State.signum
+    try:
+        line = ("\n" if _State.bar_shown else "") + f"{_State.prog}: {message(signum)}\n"
+        os.write(2, line.encode())
+    except OSError:
+        pass
+    os._exit(SIGNALS[signum][0])
+
+
+def _handler(signum, frame) -> None:
+    if _State.ended.is_set():
+        return
+    if _State.signum is None:
+        _State.signum = signum
+        threading.Thread(target=_watchdog, name="hyperrotor-signal-watchdog", daemon=True).start()
+    if not _deferred(frame):
+        raise Stop(_State.signum)
+
+
+def install(prog: str) -> bool:
+    """Install the handlers (main thread only; returns False elsewhere, where Python's defaults stay)."""
+    if threading.current_thread() is not threading.main_thread():
+        return False
+    _State.prog, _State.signum = prog, None
+    _State.ended = threading.Event()
+    _State.reporter = threading.Lock()
+    _State.previous = {s: signal.signal(s, _handler) for s in SIGNALS}
+    return True
+
+
+def restore() -> None:
+    """The command has ended: stop the watchdog (see :func:`claim`) and put the previous handlers back."""
+    claim()
+    for s, old in _State.previous.items():
+        signal.signal(s, old)
+    _State.previous = {}
+
+
+def bar_shown(shown: bool) -> None:
+    """A progress bar is (``True``) or is no longer (``False``) drawn on stderr."""
+    _State.bar_shown = shown
+
+
+def checkpoint() -> None:
+    """A safe point: raise :class:`Stop` if a signal arrived while it could not be acted on."""
+    if _State.signum is not None:
+        raise Stop(_State.signum)
+
+
+def claim() -> bool:
+    """End the signal handling: True for the first caller (it reports), False if the watchdog already does."""
+    got = _State.reporter.acquire(blocking=False)
+    _State.ended.set()
+    return got
+
