@@ -22,10 +22,15 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-__all__ = ["best_of", "WorkPrecisionPoint", "work_precision", "n_runs", "estimate_seconds", "speedup_at", "write_csv", "plot_work_precision", "BENCH_PROBLEMS"]
+from .plotting import plot_work_precision  # the figure of this module's points (drawn in plotting)
+
+__all__ = ["best_of", "WorkPrecisionPoint", "work_precision", "n_runs", "estimate_seconds", "speedup_at", "write_csv",
+           "plot_work_precision", "BENCH_PROBLEMS", "BENCH_SPANS"]
 
 #: Problems of :func:`work_precision`.
 BENCH_PROBLEMS = ("quartet", "euler-poinsot")
+#: Dimension N and final time t_end of each problem (its output grid: 101 times on [0, t_end]).
+BENCH_SPANS = {"quartet": (5, 200.0), "euler-poinsot": (3, 100.0)}
 
 _SETTINGS = {  # method -> (keyword, values): hyperrotor's integrators by step, scipy by tolerance
     "splitting2": ("dt", (0.02, 0.005, 0.001)),
@@ -84,12 +89,12 @@ def _problem(name: str):
     if name == "quartet":
         body = RigidBody(Inertia.quartet(0.5))
         w0 = np.array([0.3, -0.5, 0.8, 1.0, 0.2, -0.7, 0.4, 0.6, -0.9, 0.5])
-        t = np.linspace(0.0, 200.0, 101)
+        t = np.linspace(0.0, BENCH_SPANS[name][1], 101)
         return body, w0, t, quartet_solution(0.5, w0, t)
     if name == "euler-poinsot":
         moments = np.array([2.0, 3.0, 4.0])
         w0 = np.array([0.6, 1.0, -0.5])
-        t = np.linspace(0.0, 100.0, 101)
+        t = np.linspace(0.0, BENCH_SPANS[name][1], 101)
         return RigidBody(moments), w0, t, euler_poinsot(moments, w0, t)
     raise ValueError(f"unknown problem {name!r}; allowed: {', '.join(BENCH_PROBLEMS)}")
 
@@ -179,44 +184,6 @@ def write_csv(rows: Sequence, path) -> str:
         writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
-    return str(path)
-
-
-def plot_work_precision(points: Sequence[WorkPrecisionPoint], path, *, format: str | None = "png") -> str:
-    """Log-log plot of wall time against error, one line per method and one panel per problem.
-
-    The error axis is the *relative* error of the module docstring (maximum over
-    the output times of the largest component error, divided by the largest
-    initial component), the same number as the printed table's ``error``
-    column; accuracy grows to the right. The legend sits below the panels,
-    off the data. ``format`` is passed to ``savefig`` (``path`` may be a
-    temporary name).
-    """
-    from hyperrotor.plotting import _pyplot
-
-    plt = _pyplot()
-    problems = list(dict.fromkeys(p.problem for p in points))
-    fig, axes = plt.subplots(1, len(problems), figsize=(5.5 * len(problems), 4.6), squeeze=False)
-    handles = {}
-    for ax, prob in zip(axes[0], problems):
-        for k, method in enumerate(dict.fromkeys(p.method for p in points)):
-            sel = sorted((p for p in points if p.problem == prob and p.method == method), key=lambda p: p.error)
-            if not sel:
-                continue
-            line, = ax.loglog([max(p.error, 1e-17) for p in sel], [p.seconds for p in sel], "o-", ms=3,
-                              color=f"C{k}", label=method)
-            handles.setdefault(method, line)
-        ax.set(xlabel="max relative error  max|ω - ω_exact| / max|ω_0|", ylabel="wall time [s] (best of repeats)",
-               title=f"{prob}: time to reach an error")
-        ax.invert_xaxis()
-        ax.grid(True, which="major", alpha=0.3)
-    fig.legend(list(handles.values()), list(handles), loc="lower center", ncol=min(len(handles), 7), fontsize=8,
-               frameon=False)
-    fig.tight_layout(rect=(0, 0.08, 1, 1))
-    try:
-        fig.savefig(path, dpi=110, format=format)
-    finally:
-        plt.close(fig)
     return str(path)
 
 

@@ -18,10 +18,11 @@ whether an error is absolute or relative.
 """
 from __future__ import annotations
 
-from typing import Callable, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
+from . import _validate as _v
 from .classical.scenes import body_edges
 
 __all__ = [
@@ -30,6 +31,8 @@ __all__ = [
     "save_projection_frames",
     "save_projection_animation",
     "save_motion_comparison",
+    "plot_poincare",
+    "plot_work_precision",
 ]
 
 
@@ -84,10 +87,10 @@ def draw_projection(ax, frame: np.ndarray, edges: Sequence[tuple[int, int]], *, 
     tick = float(f"{lim / 1.05:.1g}")  # a round coordinate inside the box: the scale of the picture
     for setter in (ax.set_xticks, ax.set_yticks, ax.set_zticks):
         setter([-tick, 0.0, tick])
-    ax.set_xlabel(f"x{axes_labels[0]}", labelpad=-6, fontsize=9)
-    ax.set_ylabel(f"x{axes_labels[1]}", labelpad=-6, fontsize=9)
-    ax.set_zlabel(f"x{axes_labels[2]}", labelpad=-6, fontsize=9)
-    ax.tick_params(labelsize=6, pad=-2, length=0)
+    ax.set_xlabel(f"x{axes_labels[0]}", labelpad=-2, fontsize=9)
+    ax.set_ylabel(f"x{axes_labels[1]}", labelpad=-2, fontsize=9)
+    ax.set_zlabel(f"x{axes_labels[2]}", labelpad=-2, fontsize=9)
+    ax.tick_params(labelsize=8, pad=-1, length=0)
     return sc
 
 
@@ -217,8 +220,9 @@ def save_motion_comparison(path, t: np.ndarray, exact: np.ndarray, runs: Mapping
     if marked is not None:
         ax1.plot([], [], "o", ms=3, color="0.4", label=f"dots: {marked}")
     ax1.set_ylabel("angular velocity $\\omega_{ij}$")
+    ax1.set_title("closed form (lines)" + (f" and {marked} (dots)" if marked is not None else ""), fontsize=9)
     if title:
-        ax1.set_title(title, fontsize=10)
+        fig.suptitle(title, fontsize=10)
     ax1.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     floor = np.finfo(float).eps / 10
     for name, omega in runs.items():
@@ -228,7 +232,118 @@ def save_motion_comparison(path, t: np.ndarray, exact: np.ndarray, runs: Mapping
     ax2.set_ylabel("relative error\n$\\max_{ij}|\\omega - \\omega_{exact}|\\,/\\,\\max|\\omega_0|$", fontsize=8)
     ax2.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     ax2.grid(True, which="major", alpha=0.3)
+    ax2.set_title("relative error of each run", fontsize=9)
     fig.tight_layout()
+    try:
+        fig.savefig(path, dpi=110, format=format)
+    finally:
+        plt.close(fig)
+    return str(path)
+
+
+def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = None, labels: Sequence[str] | None = None,
+                  **scatter_options: Any):
+    r"""Scatter plot of one or several :class:`~hyperrotor.classical.chaos.PoincareSection` in the plane of two momentum components.
+
+    Parameters
+    ----------
+    sections : PoincareSection or list of them
+        the sections (one colour each).
+    x, y : pair or str
+        the planes whose components :math:`L_x`, :math:`L_y` are drawn.
+    ax : matplotlib Axes, optional
+        where to draw (default: a new figure; matplotlib is imported only here).
+    labels : sequence of str, optional
+        legend entries, one per section.
+    **scatter_options
+        passed to ``ax.scatter`` (default ``s=2``).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    from .classical.chaos import PoincareSection
+
+    if isinstance(sections, PoincareSection):
+        secs = [sections]
+    elif isinstance(sections, (list, tuple)):
+        secs = list(sections)
+    else:
+        secs = []
+    if not secs or not all(isinstance(s_, PoincareSection) for s_ in secs):
+        raise TypeError(f"sections must be a PoincareSection or a list of them, got {_v.fmt(sections)}")
+    N = secs[0].N
+    px, py = _v.plane(x, N), _v.plane(y, N)
+    if labels is not None:
+        if not isinstance(labels, (list, tuple)) or not all(isinstance(lab, str) for lab in labels):
+            raise TypeError(f"labels must be a list of strings (one per section), got {_v.fmt(labels)}")
+        if len(labels) != len(secs):
+            raise ValueError(f"labels must name each of the {len(secs)} sections, got {len(labels)}")
+    if ax is not None and not callable(getattr(ax, "scatter", None)):
+        raise TypeError(f"ax must be a matplotlib Axes (or None for a new figure), got {_v.fmt(ax)} "
+                        f"of type {type(ax).__name__}")
+    if ax is None:
+        _, ax = _pyplot().subplots(figsize=(4.5, 4.5))
+    opts = {"s": 2}
+    opts.update(scatter_options)
+    for k, sec in enumerate(secs):
+        xy = sec.coordinates(px, py)
+        try:
+            ax.scatter(xy[:, 0], xy[:, 1], label=None if labels is None else labels[k], **opts)
+        except AttributeError as exc:  # matplotlib's answer to an unknown property
+            if "unexpected keyword argument" not in str(exc):
+                raise
+            raise TypeError(f"scatter_options {sorted(scatter_options)}: {exc} (they go to matplotlib's "
+                            f"Axes.scatter)") from None
+    s0 = secs[0]
+    ax.set_xlabel(f"$L_{{{px[0]}{px[1]}}}$")
+    ax.set_ylabel(f"$L_{{{py[0]}{py[1]}}}$")
+    sign = {1: "upward", -1: "downward", 0: "both directions"}[s0.direction]
+    ax.set_title(f"section $L_{{{s0.plane[0]}{s0.plane[1]}}} = {s0.value:g}$ ({sign})")
+    if labels is not None:
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), markerscale=4, frameon=False)
+    return ax
+
+
+def plot_work_precision(points: Sequence, path, *, format: str | None = "png") -> str:
+    r"""Log-log plot of wall time against error, one line per method and one panel per problem.
+
+    ``points``: :class:`hyperrotor.bench.WorkPrecisionPoint` records. The error axis is
+    the *relative* error :math:`\max_t \lVert\omega - \omega_\text{exact}\rVert_\infty /
+    \lVert\omega_0\rVert_\infty` of :mod:`hyperrotor.bench` (the printed table's
+    ``error`` column). It is reversed, so that accuracy grows to the right (the usual
+    work-precision layout): the x label says so. Each panel's title names the problem,
+    its dimension N and final time :math:`t_\text{end}`. The legend sits below the
+    panels, off the data. ``format`` is passed to ``savefig`` (``path`` may be a
+    temporary name).
+    """
+    from .bench import BENCH_SPANS
+
+    plt = _pyplot()
+    problems = list(dict.fromkeys(p.problem for p in points))
+    if not problems:
+        raise ValueError("plot_work_precision needs at least one point")
+    fig, axes = plt.subplots(1, len(problems), figsize=(5.8 * len(problems), 4.8), squeeze=False)
+    handles = {}
+    for ax, prob in zip(axes[0], problems):
+        for k, method in enumerate(dict.fromkeys(p.method for p in points)):
+            sel = sorted((p for p in points if p.problem == prob and p.method == method), key=lambda p: p.error)
+            if not sel:
+                continue
+            line, = ax.loglog([max(p.error, 1e-17) for p in sel], [p.seconds for p in sel], "o-", ms=3,
+                              color=f"C{k}", label=method)
+            handles.setdefault(method, line)
+        N, t_end = BENCH_SPANS.get(prob, (None, None))
+        span = f" (N = {N}, $t_\\mathrm{{end}}$ = {t_end:g})" if N is not None else ""
+        ax.set_xlabel("relative error $\\max_t\\,\\|\\omega - \\omega_\\mathrm{exact}\\|_\\infty"
+                      " / \\|\\omega_0\\|_\\infty$\n(axis reversed: more accurate to the right $\\rightarrow$)")
+        ax.set_ylabel("wall time $t_\\mathrm{wall}$ [s] (best of repeats)")
+        ax.set_title(f"{prob}{span}: time to reach an error", fontsize=10)
+        ax.invert_xaxis()
+        ax.grid(True, which="major", alpha=0.3)
+    fig.legend(list(handles.values()), list(handles), loc="lower center", ncol=min(len(handles), 7), fontsize=8,
+               frameon=False)
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
     try:
         fig.savefig(path, dpi=110, format=format)
     finally:

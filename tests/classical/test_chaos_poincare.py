@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import hyperrotor as hr
-from hyperrotor.classical.chaos import PoincareSection, plot_poincare, poincare_section
+from hyperrotor.classical.chaos import PoincareSection, poincare_section
+from hyperrotor.plotting import plot_poincare
 from hyperrotor.classical.closed_form import euler_poinsot_period
 from hyperrotor.conventions import plane_index, planes
 

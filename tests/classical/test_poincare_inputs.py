@@ -3,7 +3,8 @@ import numpy as np
 import pytest
 
 import hyperrotor as hr
-from hyperrotor.classical.chaos import PoincareSection, plot_poincare
+from hyperrotor.classical.chaos import PoincareSection
+from hyperrotor.plotting import plot_poincare
 
 
 def _section():

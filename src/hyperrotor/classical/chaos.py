@@ -55,7 +55,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from hyperrotor import _parallel, _validate
+from hyperrotor import _parallel, _pricing, _validate
 from hyperrotor._options import options
 from hyperrotor.conventions import dimension_from_count, plane_index
 
@@ -63,7 +63,7 @@ from .solvers._tangent_kernels import tangent_run, tangent_run_lanes
 from .simulate import simulate
 from .solvers.splitting import casimir_shift, rotation_tables, splitting_word
 
-__all__ = ["lyapunov", "lyapunov_sweep", "LYAPUNOV_METHODS", "poincare_section", "PoincareSection", "plot_poincare"]
+__all__ = ["lyapunov", "lyapunov_sweep", "LYAPUNOV_METHODS", "poincare_section", "PoincareSection"]
 
 #: ``method=`` names of :func:`lyapunov` (the splittings of :func:`hyperrotor.simulate`).
 LYAPUNOV_METHODS = ("splitting2", "splitting4", "splitting6", "splitting8")
@@ -367,6 +367,7 @@ def lyapunov_sweep(
     moments = np.array(rows)
     P = moments.shape[0]
     w0 = _validate.components("omega0", omega0, n, what="angular velocities omega_ij in plane order")
+    _pricing.check("lyapunov_sweep", bodies=P, orbits=w0.shape[-2] if w0.ndim > 1 else 1, n=n)
     if w0.ndim == 2:
         Mrows, Wrows = _parallel.grid_rows(moments, w0)
         M = w0.shape[0]
@@ -510,69 +511,3 @@ def poincare_section(
     L_ev = np.asarray(traj.L_events[0]).reshape(-1, n)
     return PoincareSection(t=np.asarray(traj.t_events[0], dtype=float), L=L_ev, omega=L_ev / moments, plane=ij,
                            value=value, direction=int(direction), N=N)
-
-
-def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = None, labels: Sequence[str] | None = None,
-                  **scatter_options: Any):
-    r"""Scatter plot of one or several :class:`PoincareSection` in the plane of two momentum components.
-
-    Parameters
-    ----------
-    sections : PoincareSection or list of them
-        the sections (one colour each).
-    x, y : pair or str
-        the planes whose components :math:`L_x`, :math:`L_y` are drawn.
-    ax : matplotlib Axes, optional
-        where to draw (default: a new figure; matplotlib is imported only here).
-    labels : sequence of str, optional
-        legend entries, one per section.
-    **scatter_options
-        passed to ``ax.scatter`` (default ``s=2``).
-
-    Returns
-    -------
-    matplotlib Axes
-    """
-    if isinstance(sections, PoincareSection):
-        secs = [sections]
-    elif isinstance(sections, (list, tuple)):
-        secs = list(sections)
-    else:
-        secs = []
-    if not secs or not all(isinstance(s_, PoincareSection) for s_ in secs):
-        raise TypeError(f"sections must be a PoincareSection or a list of them, got {_validate.fmt(sections)}")
-    N = secs[0].N
-    px, py = _validate.plane(x, N), _validate.plane(y, N)
-    if labels is not None:
-        if not isinstance(labels, (list, tuple)) or not all(isinstance(lab, str) for lab in labels):
-            raise TypeError(f"labels must be a list of strings (one per section), got {_validate.fmt(labels)}")
-        if len(labels) != len(secs):
-            raise ValueError(f"labels must name each of the {len(secs)} sections, got {len(labels)}")
-    if ax is not None and not callable(getattr(ax, "scatter", None)):
-        raise TypeError(f"ax must be a matplotlib Axes (or None for a new figure), got {_validate.fmt(ax)} "
-                        f"of type {type(ax).__name__}")
-    if ax is None:
-        try:
-            import matplotlib.pyplot as plt
-        except ImportError:  # pragma: no cover - depends on the environment
-            raise ImportError("plot_poincare needs matplotlib: pip install 'hyperrotor[viz]'") from None
-        _, ax = plt.subplots(figsize=(4.5, 4.5))
-    opts = {"s": 2}
-    opts.update(scatter_options)
-    for k, sec in enumerate(secs):
-        xy = sec.coordinates(px, py)
-        try:
-            ax.scatter(xy[:, 0], xy[:, 1], label=None if labels is None else labels[k], **opts)
-        except AttributeError as exc:  # matplotlib's answer to an unknown property
-            if "unexpected keyword argument" not in str(exc):
-                raise
-            raise TypeError(f"scatter_options {sorted(scatter_options)}: {exc} (they go to matplotlib's "
-                            f"Axes.scatter)") from None
-    s0 = secs[0]
-    ax.set_xlabel(f"$L_{{{px[0]}{px[1]}}}$")
-    ax.set_ylabel(f"$L_{{{py[0]}{py[1]}}}$")
-    sign = {1: "upward", -1: "downward", 0: "both directions"}[s0.direction]
-    ax.set_title(f"section $L_{{{s0.plane[0]}{s0.plane[1]}}} = {s0.value:g}$ ({sign})")
-    if labels is not None:
-        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), markerscale=4, frameon=False)
-    return ax
