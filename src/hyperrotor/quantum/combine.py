@@ -12,6 +12,7 @@ from functools import partial
 
 import scipy.sparse as sps
 
+from .. import _pricing
 from .._lazy import sympy as sp
 from ..conventions import planes
 from .representation import Representation, check_same_algebra
@@ -25,8 +26,10 @@ def tensor(a: Representation, b: Representation) -> Representation:
     Reducible in general (``highest_weight=None``) unless a factor is trivial.
     """
     check_same_algebra(a, b)
-    Ia, Ib = sps.identity(a.dim, format="csr"), sps.identity(b.dim, format="csr")
     ga, gb = a.generators(format="csr"), b.generators(format="csr")
+    _pricing.check("tensor", dim_a=a.dim, dim_b=b.dim, nnz_a=sum(g.nnz for g in ga.values()),
+                   nnz_b=sum(g.nnz for g in gb.values()))
+    Ia, Ib = sps.identity(a.dim, format="csr"), sps.identity(b.dim, format="csr")
     gens = {p: sps.kron(ga[p], Ib, format="csr") + sps.kron(Ia, gb[p], format="csr") for p in a.planes}
     hw = None
     if a.dim == 1 and a.highest_weight is not None and all(x == 0 for x in a.highest_weight):

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sps
 
-from .. import _validate
+from .. import _pricing, _validate
 from .._options import options
 from .representation import Representation, check_same_algebra
 from .weights import positive_roots
@@ -87,6 +87,7 @@ def intertwiner(a: Representation, b: Representation, *, rtol: float | None = No
     rtol = options["quantum_intertwiner_rtol"] if rtol is None else _validate.positive("rtol", rtol)
     if a.dim != b.dim:
         raise ValueError(f"no intertwiner: dimensions differ ({a.dim} vs {b.dim})")
+    _pricing.check("dense_representation", dim=max(a.dim, b.dim))
     pos = positive_roots(a.N)
     ra = [a.ladder(r, format="csr") for r in pos]
     rb = [b.ladder(r, format="csr") for r in pos]
@@ -172,6 +173,7 @@ def real_form(rep: Representation, *, rtol: float | None = None) -> Representati
         raise TypeError(f"real_form takes a Representation, got {type(rep).__name__}")
     if rep.is_real:
         return rep
+    _pricing.check("dense_representation", dim=rep.dim)
     gens_in = rep.generators(format="csr")
     conj = Representation(rep.N, {p: M.conj() for p, M in gens_in.items()}, name=f"conjugate of {rep.name}")
     try:

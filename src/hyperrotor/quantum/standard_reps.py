@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sps
 
-from .. import _lazy, _validate
+from .. import _lazy, _pricing, _validate
 from .._lazy import sympy as sp
 from .._options import options
 from ..conventions import check_dimension, planes, structure_constants
@@ -202,6 +202,7 @@ def spinor_rep(N: int, chirality: int | None = None) -> Representation:
         raise ValueError(f"chirality must be None, +1 or -1, got {chirality!r}")
     if N % 2 and chirality is not None:
         raise ValueError(f"so({N}) (odd N) has a single spinor irrep; chirality must be None, got {chirality!r}")
+    _pricing.check("spinor_rep", N=N)
     g = _gammas(N)
     dim = 2 ** n
     keep = np.arange(dim)
