@@ -158,15 +158,25 @@ def _n_planes(N: Any) -> float:
 # constants measured by benchmarks/pricing.py on the reference machine (2 cores, one thread)
 # ---------------------------------------------------------------------------------------------
 #: seconds per flop of a dense LAPACK eigh / eigvalsh (complex counts 4 real flops)
-_EIGH_S = 1.0e-10
+_EIGH_S = 8.0e-11
 #: seconds per SymPy term operation (a product or sum of two monomials with rational coefficients)
 _SYMPY_S = 2.0e-5
+#: seconds per plane pair of the structure-constant table (a Python loop)
+_PAIR_S = 5.0e-6
+#: seconds per entry of an n^3 table converted and sliced (memory bound)
+_TABLE_S = 2.0e-8
+#: seconds per dim^3 of the dense products building the spinor generators
+_DENSE_S = 3.6e-9
+#: seconds per dim^2 of real_form (measured: dominated by dim^2 work up to dim ~1000)
+_REAL_FORM_S = 2.2e-5
 #: seconds per pure-Python integer tuple operation (Freudenthal's recursion)
-_PY_S = 5.0e-7
+_PY_S = 1.0e-6
+#: seconds per dim^2 of the Lanczos highest-weight search
+_LANCZOS_S = 1.8e-8
 #: seconds per output time of evolve (a state Qobj per time, expectation values)
-_EVOLVE_S = 4.0e-5
+_EVOLVE_S = 7.0e-5
 #: bytes held per stored output time of evolve besides the state's entries (Qobj and its data object)
-_QOBJ_BYTES = 900.0
+_QOBJ_BYTES = 360.0
 
 
 # ---------------------------------------------------------------------------------------------
@@ -175,13 +185,16 @@ _QOBJ_BYTES = 900.0
 @model("structure_constants")
 def _structure_constants(N: Any) -> tuple[Cost, ...]:
     n = _n_planes(N)
-    return (_memory(f"the structure-constant table of so({N}) ({n:.0f}^3 int8 entries)", n ** 3),)
+    return (_memory(f"the structure-constant table of so({N}) ({n:.0f}^3 int8 entries)", n ** 3),
+            _seconds(f"the structure-constant table of so({N}) ({n:.0f}^2 plane pairs in Python)", n * n * _PAIR_S))
 
 
 @model("linearization")
 def _linearization(N: Any) -> tuple[Cost, ...]:
     n = _n_planes(N)
-    return (_memory(f"the structure constants of so({N}) as floats ({n:.0f}^3 entries)", 9.0 * n ** 3),)
+    return (_memory(f"the structure constants of so({N}) as floats ({n:.0f}^3 entries)", 9.0 * n ** 3),
+            _seconds(f"the structure constants of so({N}) as floats ({n:.0f}^3 entries)",
+                     n * n * _PAIR_S + n ** 3 * _TABLE_S))
 
 
 @model("simulate", "use a body with fewer planes")
@@ -198,9 +211,46 @@ def _dense_diagonalization(dim: Any, complex: bool = True) -> tuple[Cost, ...]:
     flops = (4.0 if complex else 1.0) * 4.0 / 3.0 * d ** 3
     return (
         Cost(f"a dense block of dimension {dim}", d, "quantum_max_dense_dim", "dimension"),
-        _memory(f"a dense {dim} x {dim} block (two copies)", 2 * item * d * d),
+        # sparse copies of the block (CSR: entry + index), the dense block and eigvalsh's copy
+        _memory(f"a dense {dim} x {dim} block (and its sparse and working copies)", 6 * item * d * d),
         _seconds(f"diagonalizing a dense {dim} x {dim} block", flops * _EIGH_S),
     )
+
+
+@model("highest_weight_state", "build the state from the Gelfand-Tsetlin basis directly")
+def _highest_weight_state(dim: Any) -> tuple[Cost, ...]:
+    # Lanczos (eigsh, tol 1e-14) for the top eigenvector of a Cartan combination whose eigenvalues are
+    # equally spaced: the iterations grow like dim, each costs O(dim) (measured ~ dim^2 behaviour)
+    d = _f(dim)
+    return (_seconds(f"the Lanczos search for the highest weight vector (dimension {dim})", _LANCZOS_S * d * d),)
+
+
+@model("sectors_dense", "use irrep(N, highest_weight) (sparse sectors at any dimension)")
+def _sectors_dense(dim: Any, N: Any = 3) -> tuple[Cost, ...]:
+    # exp(pi X) of each chain plane and the projectors: ~N dense dim x dim complex matrices
+    d = _f(dim)
+    return (Cost(f"the dense symmetry sectors of a representation of dimension {dim}", d,
+                 "sectors_dense_max_dim", "dimension"),
+            _memory(f"dense {dim} x {dim} complex matrices ({N} rotations and projectors)", 16.0 * (_f(N) + 2) * d * d),
+            _seconds(f"{N} dense matrix exponentials of dimension {dim}", _f(N) * 20.0 * d ** 3 * _EIGH_S))
+
+
+@model("sector_spectra", "use a smaller representation or a body with more symmetry")
+def _sector_spectra(dim: Any, real: bool = True) -> tuple[Cost, ...]:
+    d = _f(dim)
+    item = 8.0 if real else 16.0
+    flops = (1.0 if real else 4.0) * 4.0 / 3.0 * d ** 3
+    return (Cost(f"the largest sector (dimension {dim}) diagonalized densely", d, "sectors_max_block_dim", "dimension"),
+            _memory(f"the dense {dim} x {dim} sector block (two copies)", 2.0 * item * d * d),
+            _seconds(f"diagonalizing a dense {dim} x {dim} sector block", flops * _EIGH_S))
+
+
+@model("real_form")
+def _real_form(dim: Any) -> tuple[Cost, ...]:
+    # a dense change of basis (dim x dim complex, a few copies) and a per-plane dense conjugation
+    d = _f(dim)
+    return (_memory(f"dense {dim} x {dim} complex matrices (the change of basis and its copies)", 128.0 * d * d),
+            _seconds(f"the real form of a representation of dimension {dim}", _REAL_FORM_S * d * d))
 
 
 @model("dense_representation", "use irrep(N, highest_weight) of a smaller dimension")
@@ -217,7 +267,9 @@ def _dense_representation(dim: Any, copies: Any = 4) -> tuple[Cost, ...]:
 def _spinor_rep(N: Any) -> tuple[Cost, ...]:
     # the gamma matrices are Kronecker products built densely: N of them, 2^(N//2) square
     D = 2.0 ** (_f(N) // 2)
-    return (_memory(f"the {N} gamma matrices (dimension 2^{_f(N) // 2:.0f}, dense)", 16.0 * (_f(N) + 2) * D * D),)
+    return (_memory(f"the {N} gamma matrices (dimension 2^{_f(N) // 2:.0f}, dense)", 16.0 * (_f(N) + 2) * D * D),
+            _seconds(f"the {N} gamma matrices and their products (dimension 2^{_f(N) // 2:.0f}, dense)",
+                     _f(N) * D ** 3 * _DENSE_S))
 
 
 @model("tensor")
@@ -226,7 +278,7 @@ def _tensor(dim_a: Any, dim_b: Any, nnz_a: Any, nnz_b: Any) -> tuple[Cost, ...]:
     # built through COO (three arrays) and converted to CSR (a copy)
     entries = _mul(nnz_a, dim_b) + _mul(dim_a, nnz_b)
     return (_memory(f"the generators of a tensor product of dimension {_mul(dim_a, dim_b):.6g} "
-                    f"({entries:.3g} nonzeros)", 60.0 * entries),)
+                    f"({entries:.3g} nonzeros)", 30.0 * entries),)
 
 
 @model("evolve", "ask for fewer output times (t) or pass e_ops to keep expectation values only")
@@ -244,7 +296,7 @@ def _lyapunov_sweep(bodies: Any, orbits: Any, n: Any, k: Any = 1) -> tuple[Cost,
     # per orbit: moments, rates, L0 (n each) and k orthonormal tangent vectors (n x k), a few copies
     rows = _mul(bodies, orbits)
     return (_memory(f"{rows:.6g} orbits ({bodies} bodies x {orbits} initial conditions)",
-                    rows * 8.0 * _f(n) * (6.0 + 3.0 * _f(k))),)
+                    rows * 8.0 * _f(n) * (15.0 + 8.0 * _f(k))),)
 
 
 # --- SymPy and exact-arithmetic constructions ------------------------------------------------
@@ -255,33 +307,34 @@ def _casimir_operator(N: Any) -> tuple[Cost, ...]:
     return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", 12.0 * n * _SYMPY_S),)
 
 
-@model("harmonic_polynomial_basis")
+@model("harmonic_polynomial_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
 def _harmonic_polynomial_basis(N: Any, l: Any) -> tuple[Cost, ...]:
     monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
     dim = _harmonic_dim(N, l)
-    return (_seconds(f"{dim:.6g} harmonic polynomials of degree {l} in {N} variables ({monomials:.6g} monomials)",
+    return (_harmonic_space(N, l, dim), _seconds(f"{dim:.6g} harmonic polynomials of degree {l} in {N} variables ({monomials:.6g} monomials)",
                      dim * monomials * _SYMPY_S),)
 
 
-@model("orthonormal_harmonic_basis")
+@model("orthogonal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
+@model("orthonormal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
 def _orthonormal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
     monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
     dim = _harmonic_dim(N, l)
-    return (_seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
+    return (_harmonic_space(N, l, dim), _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
                      f"({monomials:.6g} monomials)", dim * dim * monomials * _SYMPY_S),)
 
 
 @model("bivector_product_table")
 def _bivector_product_table(N: Any) -> tuple[Cost, ...]:
     n = _n_planes(N)
-    return (_seconds(f"the {n:.0f} x {n:.0f} symbolic product table", n * n * 3.0 * _SYMPY_S),)
+    return (_seconds(f"the {n:.0f} x {n:.0f} symbolic product table", n * n * 9.0 * _SYMPY_S),)
 
 
 @model("euler_equations")
 def _euler_equations(N: Any) -> tuple[Cost, ...]:
     # n equations, each a sum over the planes that share an axis with the plane (2(N-2) products)
     n = _n_planes(N)
-    return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", n * n * _SYMPY_S),)
+    return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", n * n * 3.0 * _SYMPY_S),)
 
 
 @model("weight_multiplicities", "use weyl_dimension for the dimension only")
@@ -293,9 +346,16 @@ def _weight_multiplicities(rank: Any, n_roots: Any, dim: Any, bound: Any) -> tup
     return (_seconds(f"Freudenthal's recursion over ~{weights:.3g} weights", ops * _f(rank) * _PY_S),)
 
 
+def _harmonic_space(N: Any, l: Any, dim: float) -> Cost:
+    return Cost(f"the harmonic polynomials of degree {l} in {N} variables (exact rational construction)", dim,
+                "quantum_max_harmonic_dim", "dimension")
+
+
 def _binomial(a: float, b: float) -> float:
     if not (math.isfinite(a) and math.isfinite(b)):
         return math.inf
+    if a < 1e5:  # exact (a dimension compared with a budget must not round up)
+        return float(math.comb(int(a), int(b))) if 0 <= b <= a else 0.0
     try:
         return math.exp(math.lgamma(a + 1) - math.lgamma(b + 1) - math.lgamma(a - b + 1))
     except OverflowError:
