@@ -31,10 +31,12 @@ _LAZY_MODULES = ("quantum", "paper", "plotting")
 #: Names served lazily: name -> (module, attribute).
 _LAZY_NAMES = {
     "verify_paper": ("hyperrotor.paper", "verify_paper"),
+    "plot_poincare": ("hyperrotor.plotting", "plot_poincare"),
     "TIME": ("hyperrotor.classical.rigid_body", "TIME"),
 }
 
 __all__ = [*conventions.__all__, *classical.__all__, "options", "BudgetError", "UnknownOptionError", "ParseError", "verify_paper",
+           "plot_poincare",
            "quantum", "classical", "conventions", "paper"]
 
 
