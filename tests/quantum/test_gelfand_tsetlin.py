@@ -272,3 +272,34 @@ def test_bad_plane_and_format():
         rep.generator((1, 2), format="coo")
     with pytest.raises(ValueError, match="not a root"):
         rep.ladder((2, 0))
+
+
+# ----------------------------------------------------------------------------
+# rotations by pi as monomial matrices (the trusted cores behind the symmetry sectors)
+# ----------------------------------------------------------------------------
+@pytest.mark.parametrize("N, m", [(3, (2,)), (4, (2, -1)), (5, (2, 1)), (5, (Fraction(3, 2), Fraction(1, 2))),
+                                  (6, (1, 1, 0)), (6, (2, 1, -1)), (7, (1, 1, 0))])
+def test_pi_rotations_are_the_exponentials(N, m):
+    import scipy.linalg as sla
+
+    from hyperrotor.quantum._gt_monomials import gt_rotations
+
+    rep = irrep(N, m)
+    D = gt_rotations(rep, list(range(1, N)))
+    for k in range(1, N):
+        E = sla.expm(np.pi * rep.generator((k, k + 1), format="dense"))
+        assert np.abs(D[k].matrix().toarray() - E).max() <= scaled_tol(E, dim=rep.dim, k=4 * rep.dim)
+
+
+def test_pi_rotation_of_a_large_so3_irrep_is_built_without_dense_work():
+    """irrep(3, (99999,)): exp(pi X_23) |j, m> = (-1)^(j-m) |j, -m> from the trace, under a 100 MB budget."""
+    import hyperrotor as hr
+    from hyperrotor.quantum._gt_monomials import gt_rotations
+
+    rep = irrep(3, (99999,))
+    with hr.options(max_memory_bytes=10**8):  # a dense block would need 596 GiB
+        D = gt_rotations(rep, [1, 2])
+    a = np.arange(rep.dim)  # basis index a <-> m = j - a
+    assert np.array_equal(D[2].perm, rep.dim - 1 - a)
+    assert np.array_equal(D[2].phase, np.where(a % 2 == 0, 1.0, -1.0))
+    assert np.array_equal(D[1].perm, a) and np.array_equal(D[1].phase, np.where(a % 2 == 0, -1.0, 1.0))

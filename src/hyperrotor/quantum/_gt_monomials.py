@@ -14,6 +14,10 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 from scipy.sparse.csgraph import breadth_first_order
 
+from .. import _pricing
+from .gelfand_tsetlin import PatternIndex, patterns
+from .weights import weyl_dim
+
 __all__: list[str] = []
 
 #: The phases i^0, i^1, i^2, i^3 (all entries of the monomial matrices are among them).
@@ -53,29 +57,28 @@ def _row_last_column(N: int, k: int) -> int:
 
 
 def gt_patterns_of(rep):
-    """The GT patterns of ``rep`` when it is (claims to be) a Gelfand-Tsetlin irrep, else None."""
-    from .gelfand_tsetlin import gt_patterns, gt_size
+    """The GT patterns of ``rep`` when it is (claims to be) a Gelfand-Tsetlin irrep, else None.
 
-    if rep.highest_weight is None:
+    Trusted: ``rep`` is a Representation whose ``highest_weight`` its constructor
+    checked; nothing is validated again (one check at the caller's public door).
+    """
+    m = rep.highest_weight
+    if m is None or weyl_dim(rep.N, m) != rep.dim:
         return None
-    try:
-        if gt_size(rep.N, rep.highest_weight) != rep.dim:
-            return None
-        return gt_patterns(rep.N, rep.highest_weight, max_dim=max(rep.dim, 1))
-    except (ValueError, TypeError):
-        return None
+    return patterns(rep.N, m)
 
 
-def _flip_perm(rep, P: np.ndarray, rows: list[int]) -> np.ndarray:
+def _flip_perm(N: int, P: np.ndarray, index: PatternIndex, rows: list[int]) -> np.ndarray:
     """Index map of the GT patterns with the last label of each row ``M_k`` (k in ``rows``) negated."""
-    from .gelfand_tsetlin import gt_index
-
     if not rows:
-        return np.arange(rep.dim)
+        return np.arange(len(P))
     Q = P.copy()
     for k in rows:
-        Q[:, _row_last_column(rep.N, k)] *= -1.0
-    return np.asarray(gt_index(rep.N, rep.highest_weight, Q), dtype=np.int64)
+        Q[:, _row_last_column(N, k)] *= -1.0
+    perm = index.lookup(Q)
+    if np.any(perm < 0):
+        raise ArithmeticError("the sign flip of a last GT label leaves the irrep: not a GT irrep")
+    return perm
 
 
 def _intertwining_phases(chain: dict, perm: np.ndarray, sigma: dict, conj: bool) -> np.ndarray:
@@ -133,25 +136,65 @@ def _monomial_residual(U: Monomial, chain: dict, sigma: dict, conj: bool) -> flo
     return worst
 
 
-def _gt_pi_rotation(rep, P: np.ndarray, k: int, chain: dict) -> Monomial:
-    """D(g_(k,k+1)) = exp(pi X_(k,k+1)) of a GT irrep as a monomial matrix (no dense dim x dim work)."""
-    dim = rep.dim
-    perm = _flip_perm(rep, P, [k] if k % 2 == 0 else [])
+def gt_intertwiner(rep, P: np.ndarray, chain: dict, rows: list[int], sigma: dict, *, conj: bool,
+                   index: PatternIndex | None = None) -> Monomial | None:
+    r"""The monomial U with :math:`U Y_q = \sigma_q X_q U` for every chain generator, if there is one.
+
+    :math:`Y_q = \bar X_q` (``conj=True``) or :math:`X_q`; the permutation of U negates
+    the last label of the rows :math:`M_k`, ``k`` in ``rows``; ``sigma`` maps each
+    chain index ``q`` (plane ``(q, q+1)``) to :math:`\pm1`. The overall constant is
+    left as found (the phase of basis vector 0 is 1). ``None`` when the relation
+    fails on some nonzero (relative residual over 1e-9) or no consistent phases
+    exist. Trusted: ``rep``, ``P`` (:func:`gt_patterns_of`) and ``chain``
+    (``{q: X_(q,q+1)}`` as CSR) are not validated again.
+    """
+    try:
+        if index is None:
+            index = PatternIndex(P, rep.highest_weight)
+        perm = _flip_perm(rep.N, P, index, rows)
+        U = Monomial(perm, _intertwining_phases(chain, perm, sigma, conj))
+    except (ArithmeticError, ValueError):
+        return None
+    if _monomial_residual(U, chain, sigma, conj) > 1e-9:
+        return None
+    return U
+
+
+def _gt_pi_rotation(rep, P: np.ndarray, k: int, chain: dict, index: PatternIndex) -> Monomial:
+    """D(g_(k,k+1)) = exp(pi X_(k,k+1)) of a GT irrep as a monomial matrix (no dense dim x dim work).
+
+    The phases come from :func:`gt_intertwiner` (s = -1 on the axes k, k+1); the
+    overall constant ``c0`` of ``D = c0 * Phi``:
+
+    * tensor irreps, ``k >= 2``: ``g_(k,k+1)`` is conjugate in SO(N) to ``g_(1,2)``,
+      whose ``D`` is the diagonal ``(-1)^(M_2,1)`` (``X_(12) = i diag(M_2,1)``), so
+      ``tr D = sum_a (-1)^(M_2,1(a)) = c0 * sum of phi_a over the fixed points of the
+      permutation``; this gives ``c0`` in O(dim) whenever that sum is not zero;
+    * otherwise one column of the dense ``exp(pi X)`` on the block of
+      ``X_(k,k+1)`` holding vector 0 (one entry for ``k = 1``, where X is diagonal),
+      priced first (``dense_representation``).
+    """
     sigma = {q: (-1.0 if q in (k - 1, k + 1) else 1.0) for q in chain}  # s_q s_{q+1}, s = -1 on k, k+1
-    phi = _intertwining_phases(chain, perm, sigma, conj=False)
-    # overall constant: one column of exp(pi X) on the small block of X_(k,k+1) holding vector 0
-    X = chain[k]
-    block, _ = breadth_first_order(abs(X) + sps.identity(dim, format="csr"), 0, directed=False)
-    block = np.sort(block)
-    E = sla.expm(np.pi * X[block][:, block].toarray())
-    loc = {int(b): i for i, b in enumerate(block)}
-    if int(perm[0]) not in loc:  # pragma: no cover - internal
-        raise ArithmeticError("pi rotation leaves the block of X_(k,k+1): not a GT irrep")
-    c0 = _round_phase(np.array([E[loc[int(perm[0])], 0] / phi[0]]), "overall phase")[0]
-    D = Monomial(perm, c0 * phi)
-    if _monomial_residual(D, chain, sigma, conj=False) > 1e-9:
+    D = gt_intertwiner(rep, P, chain, [k] if k % 2 == 0 else [], sigma, conj=False, index=index)
+    if D is None:
         raise ArithmeticError("the monomial pi rotation fails the intertwining check: not a GT irrep")
-    return D
+    perm, phi = D.perm, D.phase
+    tensor_irrep = all(x.denominator == 1 for x in rep.highest_weight)
+    fixed_sum = complex(phi[perm == np.arange(len(perm))].sum()) if (tensor_irrep and k >= 2) else 0j
+    if abs(fixed_sum) > 0.5:  # a sum of phases in {1, i, -1, -i}: a Gaussian integer, zero or >= 1
+        trace = float(np.sum(1.0 - 2.0 * (np.rint(P[:, -1]).astype(np.int64) % 2)))
+        c0 = _round_phase(np.array([trace / fixed_sum]), "overall phase from the trace")[0]
+    else:
+        X = chain[k]
+        block, _ = breadth_first_order(abs(X) + sps.identity(rep.dim, format="csr"), 0, directed=False)
+        block = np.sort(block)
+        _pricing.check("dense_representation", dim=len(block), copies=2)
+        E = sla.expm(np.pi * X[block][:, block].toarray())
+        loc = {int(b): i for i, b in enumerate(block)}
+        if int(perm[0]) not in loc:  # pragma: no cover - internal
+            raise ArithmeticError("pi rotation leaves the block of X_(k,k+1): not a GT irrep")
+        c0 = _round_phase(np.array([E[loc[int(perm[0])], 0] / phi[0]]), "overall phase")[0]
+    return Monomial(perm, c0 * phi)
 
 
 def gt_conjugation(rep, P: np.ndarray, chain: dict) -> Monomial | None:
@@ -164,18 +207,13 @@ def gt_conjugation(rep, P: np.ndarray, chain: dict) -> Monomial | None:
     imaginary diagonal :math:`iC` of every :math:`X_{(2p+1,2p+2)}`: :math:`C` is odd in
     the last labels of rows :math:`2p` and :math:`2p+2`). ``None`` when no such U
     exists: spinor irreps are quaternionic (:math:`U\bar U = -1`), so(4k+2) irreps with
-    :math:`m_n \ne 0` are of complex type.
+    :math:`m_n \ne 0` are of complex type. Trusted like :func:`gt_intertwiner`.
     """
     rows = list(range(2, rep.N, 4))
     if not rows:
         return None
-    sigma = {q: 1.0 for q in chain}
-    try:
-        perm = _flip_perm(rep, P, rows)
-        U = Monomial(perm, _intertwining_phases(chain, perm, sigma, conj=True))
-    except (ArithmeticError, ValueError):
-        return None
-    if _monomial_residual(U, chain, sigma, conj=True) > 1e-9:
+    U = gt_intertwiner(rep, P, chain, rows, {q: 1.0 for q in chain}, conj=True)
+    if U is None:
         return None
     # (U conj(U)) e_a = conj(phi_a) phi_{pi(a)} e_{pi(pi(a))}
     UU = np.conj(U.phase) * U.phase[U.perm]
@@ -185,14 +223,19 @@ def gt_conjugation(rep, P: np.ndarray, chain: dict) -> Monomial | None:
 
 
 def gt_rotations(rep, planes_k: list[int]) -> dict[int, Monomial] | None:
+    """``{k: D(g_(k,k+1))}`` as monomial matrices for a GT irrep (None for any other representation).
+
+    Trusted: ``rep`` is a Representation checked at the caller's door.
+    """
     P = gt_patterns_of(rep)
     if P is None:
         return None
+    index = PatternIndex(P, rep.highest_weight)
     chain = {q: sps.csr_matrix(rep.generator((q, q + 1), format="csr")) for q in range(1, rep.N)}
     out = {}
     for k in planes_k:
         try:
-            out[k] = _gt_pi_rotation(rep, P, k, chain)
+            out[k] = _gt_pi_rotation(rep, P, k, chain, index)
         except (ArithmeticError, ValueError):
             return None
     return out

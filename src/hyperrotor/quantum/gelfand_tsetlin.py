@@ -78,7 +78,7 @@ import sympy as sp
 from hyperrotor import _validate
 from hyperrotor.conventions import check_dimension
 
-from .weights import _fmt as _fmt_weight, check_highest_weight, dynkin_to_orthogonal, weyl_dimension
+from .weights import check_highest_weight, dynkin_to_orthogonal, format_weight, weyl_dim
 
 __all__ = ["irrep", "gt_patterns", "gt_size", "gt_index", "DEFAULT_MAX_DIM", "EXACT_MAX_DIM"]
 
@@ -111,8 +111,12 @@ def _resolve_weight(N: int, highest_weight: Any, dynkin: Any) -> tuple[Fraction,
     return check_highest_weight(N, highest_weight)
 
 
-def _patterns(N: int, m: tuple[Fraction, ...]) -> np.ndarray:
-    """All GT patterns (float array, exact half-integers), lexicographically decreasing."""
+def patterns(N: int, m: tuple[Fraction, ...]) -> np.ndarray:
+    """All GT patterns (float array, exact half-integers), lexicographically decreasing.
+
+    Trusted core of :func:`gt_patterns` (``N`` and ``m`` already checked, e.g. a
+    Representation's ``highest_weight``): no validation, no size guard.
+    """
     P = np.array([[float(x) for x in m]], dtype=float)
     for k in range(N, 2, -1):
         top = P[:, -(k // 2):]
@@ -140,10 +144,14 @@ def _patterns(N: int, m: tuple[Fraction, ...]) -> np.ndarray:
     return P
 
 
-class _PatternIndex:
-    """Sorted integer keys of the patterns (mixed radix of doubled entries) for vectorized lookup."""
+class PatternIndex:
+    """Sorted integer keys of the patterns (mixed radix of doubled entries) for vectorized lookup.
 
-    def __init__(self, P: np.ndarray, m1: float):
+    ``PatternIndex(P, m)``: ``P`` from :func:`patterns` of the checked highest weight ``m``.
+    """
+
+    def __init__(self, P: np.ndarray, m: tuple):
+        m1 = float(max(abs(x) for x in m)) if m else 0.0
         self.m1 = m1
         self.radix = int(round(4 * m1)) + 1
         E = P.shape[1]
@@ -186,8 +194,7 @@ class _PatternIndex:
 def gt_size(N: int, highest_weight: Any = None, *, dynkin: Any = None) -> int:
     """Number of GT patterns of the so(N) irrep (= its Weyl dimension, :func:`.weights.weyl_dimension`)."""
     N = check_dimension(N)
-    m = _resolve_weight(N, highest_weight, dynkin)
-    return weyl_dimension(N, m)
+    return weyl_dim(N, _resolve_weight(N, highest_weight, dynkin))
 
 
 def gt_patterns(N: int, highest_weight: Any = None, *, dynkin: Any = None, max_dim: int = DEFAULT_MAX_DIM) -> np.ndarray:
@@ -202,7 +209,7 @@ def gt_patterns(N: int, highest_weight: Any = None, *, dynkin: Any = None, max_d
     N = check_dimension(N)
     m = _resolve_weight(N, highest_weight, dynkin)
     _check_max_dim(N, m, max_dim)
-    return _patterns(N, m)
+    return patterns(N, m)
 
 
 def gt_index(N: int, highest_weight: Any, pattern: Any) -> Any:
@@ -214,16 +221,16 @@ def gt_index(N: int, highest_weight: Any, pattern: Any) -> Any:
     """
     N = check_dimension(N)
     m = check_highest_weight(N, highest_weight)
-    P = _patterns(N, m)
+    P = patterns(N, m)
     Q = np.asarray(pattern, dtype=float)
     single = Q.ndim == 1
     Q = np.atleast_2d(Q)
     if Q.shape[1] != P.shape[1]:
         raise ValueError(f"a GT pattern of so({N}) has {P.shape[1]} entries (rows M_N..M_2 flattened), got {Q.shape[1]}")
-    idx = _PatternIndex(P, float(max(abs(x) for x in m)) if m else 0.0).lookup(Q)
+    idx = PatternIndex(P, m).lookup(Q)
     if np.any(idx < 0):
         bad = Q[int(np.argmax(idx < 0))]
-        raise ValueError(f"{bad.tolist()} is not a Gelfand-Tsetlin pattern of the so({N}) irrep {_fmt_weight(m)}")
+        raise ValueError(f"{bad.tolist()} is not a Gelfand-Tsetlin pattern of the so({N}) irrep {format_weight(m)}")
     return int(idx[0]) if single else idx
 
 
@@ -243,7 +250,7 @@ def _lvals(P: np.ndarray, N: int, k: int, offs) -> np.ndarray:
     return P[:, a:b] + shift
 
 
-def _chain_elements(P: np.ndarray, N: int, k: int, index: _PatternIndex, Pf: np.ndarray, exact: bool):
+def _chain_elements(P: np.ndarray, N: int, k: int, index: PatternIndex, Pf: np.ndarray, exact: bool):
     """Raising matrix elements (rows, cols, values) and the diagonal C of X_(k,k+1)."""
     offs = _row_offsets(N)
     lk = _lvals(P, N, k, offs)
@@ -294,7 +301,7 @@ def _chain_elements(P: np.ndarray, N: int, k: int, index: _PatternIndex, Pf: np.
 
 
 def _check_max_dim(N: int, m, max_dim):
-    dim = weyl_dimension(N, m)
+    dim = weyl_dim(N, m)
     if isinstance(max_dim, bool) or not isinstance(max_dim, (int, np.integer)) or max_dim < 1:
         raise TypeError(f"max_dim must be a positive integer, got {_validate.fmt(max_dim)}")
     if dim > max_dim:
@@ -302,7 +309,7 @@ def _check_max_dim(N: int, m, max_dim):
         # rough nnz: each generator has O(N) non-zeros per row
         est_bytes = dim * n_pl * N * 20
         raise ValueError(
-            f"the so({N}) irrep {_fmt_weight(m)} has dimension {dim} > max_dim = {max_dim}; "
+            f"the so({N}) irrep {format_weight(m)} has dimension {dim} > max_dim = {max_dim}; "
             f"its {n_pl} sparse generators need roughly {est_bytes / 2**20:.0f} MiB. "
             f"Pass a larger max_dim (e.g. max_dim={dim}) to build it anyway."
         )
@@ -345,9 +352,9 @@ def _dok_commutator(A: dict, B: dict) -> dict:
 
 
 def _gt_generators_float(N: int, m) -> dict:
-    P = _patterns(N, m)
+    P = patterns(N, m)
     dim = len(P)
-    index = _PatternIndex(P, float(max(abs(x) for x in m)))
+    index = PatternIndex(P, m)
     X = {}
     complex_needed = False
     chain = {}
@@ -376,14 +383,14 @@ def _gt_generators_float(N: int, m) -> dict:
 
 
 def _gt_generators_exact(N: int, m) -> dict:
-    dim = weyl_dimension(N, m)
+    dim = weyl_dim(N, m)
     if dim > EXACT_MAX_DIM:
         raise ValueError(
             f"exact (SymPy) generators are limited to dim <= {EXACT_MAX_DIM} (EXACT_MAX_DIM); "
-            f"the so({N}) irrep {_fmt_weight(m)} has dim {dim}: use the float CSR generators"
+            f"the so({N}) irrep {format_weight(m)} has dim {dim}: use the float CSR generators"
         )
-    P = _patterns(N, m)
-    index = _PatternIndex(P, float(max(abs(x) for x in m)))
+    P = patterns(N, m)
+    index = PatternIndex(P, m)
     Pe = np.array([[Fraction(x).limit_denominator(2) for x in row] for row in P.tolist()], dtype=object).reshape(P.shape)
     X = {}
     for k in range(1, N):
@@ -483,7 +490,7 @@ def irrep(
     gens = _gt_generators_float(N, m)
     exact = _validate.flag("exact", exact)
     exact_gens = _gt_generators_exact(N, m) if exact else partial(_gt_generators_exact, N, m)
-    name = f"so({N}) irrep {_fmt_weight(m)} (Gelfand-Tsetlin basis)"
+    name = f"so({N}) irrep {format_weight(m)} (Gelfand-Tsetlin basis)"
     rep = Representation(N, gens, highest_weight=m, exact_generators=exact_gens, name=name, format=format)
     assert rep.dim == dim
     return rep

@@ -117,21 +117,22 @@ def check_highest_weight(N: int, highest_weight: Any) -> tuple[Fraction, ...]:
     m = tuple(_to_fraction(v, "highest_weight entry") for v in highest_weight)
     for v in m:
         if v.denominator not in (1, 2):
-            raise ValueError(f"highest_weight entries must be integers or half-integers, got {v} in {_fmt(m)}")
+            raise ValueError(f"highest_weight entries must be integers or half-integers, got {v} in {format_weight(m)}")
     kinds = {v.denominator for v in m}
     if len(kinds) > 1:
         raise ValueError(
-            f"highest_weight entries must be all integers or all half-integers, got the mixture {_fmt(m)}"
+            f"highest_weight entries must be all integers or all half-integers, got the mixture {format_weight(m)}"
         )
-    if not is_dominant(N, m):
+    if not _dominant(N, m):
         rule = (
             "m1 >= m2 >= ... >= m_n >= 0" if N % 2 else "m1 >= ... >= m_(n-1) >= |m_n|"
         )
-        raise ValueError(f"highest_weight {_fmt(m)} of so({N}) is not dominant: need {rule}")
+        raise ValueError(f"highest_weight {format_weight(m)} of so({N}) is not dominant: need {rule}")
     return m
 
 
-def _fmt(m: Sequence[Fraction]) -> str:
+def format_weight(m: Sequence[Fraction]) -> str:
+    """``(1, 1/2, ...)``: a weight as the messages and names of the package print it."""
     return "(" + ", ".join(str(v) for v in m) + ")"
 
 
@@ -142,6 +143,12 @@ def is_dominant(N: int, weight: Sequence[Any]) -> bool:
     n = N // 2
     if len(m) != n:
         raise ValueError(f"a weight of so({N}) has {n} entries, got {len(m)}")
+    return _dominant(N, m)
+
+
+def _dominant(N: int, m: Sequence[Fraction]) -> bool:
+    """:func:`is_dominant` of checked input (``N`` valid, ``floor(N/2)`` Fractions)."""
+    n = N // 2
     if N == 2:
         return True
     if any(m[i] < m[i + 1] for i in range(n - 1)):
@@ -173,7 +180,10 @@ def simple_roots(N: int) -> list[tuple[int, ...]]:
 
 def positive_roots(N: int) -> list[tuple[int, ...]]:
     r"""Positive roots :math:`e_i \pm e_j` (:math:`i<j`) and, for odd N, :math:`e_i`."""
-    N = check_dimension(N)
+    return _positive_roots(check_dimension(N))
+
+
+def _positive_roots(N: int) -> list[tuple[int, ...]]:
     n = N // 2
     roots = []
     for i in range(n):
@@ -285,17 +295,27 @@ def weyl_dimension(N: int, highest_weight: Any) -> int:
     :math:`\dim(m_1, m_2) = \tfrac16 (2m_1+3)(2m_2+1)(m_1-m_2+1)(m_1+m_2+2)`.
     """
     N = check_dimension(N)
-    m = check_highest_weight(N, highest_weight)
+    return weyl_dim(N, check_highest_weight(N, highest_weight))
+
+
+def weyl_dim(N: int, m: Sequence[Fraction]) -> int:
+    """:func:`weyl_dimension` of a checked highest weight (``m`` as :func:`check_highest_weight` returns it).
+
+    The trusted core for callers that hold a validated weight (a
+    :class:`~.representation.Representation`'s ``highest_weight``, the
+    Gelfand-Tsetlin construction): no second validation.
+    """
     if N == 2:
         return 1
     rho = _rho(N)
     num = Fraction(1)
     den = Fraction(1)
-    for r in positive_roots(N):
+    for r in _positive_roots(N):
         num *= sum((mi + ri) * a for mi, ri, a in zip(m, rho, r))
         den *= sum(ri * a for ri, a in zip(rho, r))
     d = num / den
-    assert d.denominator == 1
+    if d.denominator != 1:  # pragma: no cover - internal
+        raise ArithmeticError(f"Weyl dimension {d} is not an integer (internal error)")
     return int(d)
 
 
@@ -336,7 +356,7 @@ def weight_multiplicities(N: int, highest_weight: Any) -> dict[tuple[Fraction, .
         return {m: 1}
     top = tuple(int(2 * x) for x in m)  # doubled coordinates
     rho2 = tuple(int(2 * x) for x in _rho(N))
-    pos = [tuple(2 * a for a in r) for r in positive_roots(N)]  # doubled roots
+    pos = [tuple(2 * a for a in r) for r in _positive_roots(N)]  # doubled roots
     simple = [tuple(2 * a for a in r) for r in simple_roots(N)]
 
     def norm2(v):
@@ -346,7 +366,7 @@ def weight_multiplicities(N: int, highest_weight: Any) -> dict[tuple[Fraction, .
     mult: dict[tuple[int, ...], int] = {top: 1}
     level = [top]
     bound = max(abs(x) for x in top)
-    _pricing.check("weight_multiplicities", rank=len(top), n_roots=len(pos), dim=weyl_dimension(N, m), bound=bound)
+    _pricing.check("weight_multiplicities", rank=len(top), n_roots=len(pos), dim=weyl_dim(N, m), bound=bound)
     while level:
         candidates = set()
         for mu in level:
