@@ -187,6 +187,23 @@ def test_scene_writes_png_and_takes_the_minimal_route(capsys, tmp_path, argv, ro
     assert out_png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_scene_html_is_the_library_page(capsys, tmp_path):
+    page = tmp_path / "scene.html"
+    code, out, err = _run(capsys, ["scene", "--frames", "5", "--output", str(page)])
+    assert code == 0, err
+    assert f"written: {page}" in out and _files(tmp_path) == ["scene.html"]
+    html = page.read_text()
+    assert html.lstrip().lower().startswith("<!doctype html>") and "Plotly.newPlot" in html
+    assert 'src="http' not in html and len(html) > 3_000_000  # self-contained: plotly.js is inside
+    assert html.count('"name":"') >= 5  # one animation frame per time (--frames 5)
+
+
+def test_scene_help_mentions_html(capsys):
+    with pytest.raises(SystemExit):
+        main(["scene", "--help"])
+    assert "FILE.html (interactive page" in " ".join(capsys.readouterr().out.split())
+
+
 def test_scene_gif(capsys, tmp_path):
     gif = tmp_path / "scene.gif"
     code, _, err = _run(capsys, ["scene", "--frames", "4", "--output", str(gif)])
@@ -199,7 +216,7 @@ def test_scene_gif(capsys, tmp_path):
     (["scene", "--axes", "1,2,9"], "--axes must be three different axes in 1..5"),
     (["scene", "--lock", "0"], "--lock axes must be in 1..5"),
     (["scene", "--omega", "1,2,3"], "needs N(N-1)/2 = 10 components"),
-    (["scene", "--output", "x.jpg"], "--output 'x.jpg' has extension '.jpg'; allowed: .png, .gif"),
+    (["scene", "--output", "x.jpg"], "--output 'x.jpg' has extension '.jpg'; allowed: .png, .gif, .html"),
     (["scene", "--N", "2"], "--N must be an integer >= 3, got 2"),
     (["scene", "--frames", "1"], "--frames must be an integer >= 2, got 1"),
 ])
@@ -265,7 +282,7 @@ FINDINGS = [
 #: More refusals, checked in-process (same code path, no interpreter start-up).
 MORE = [
     (["verify", "--json", "-o", "r.md"], ["'.md'", "allowed: .json"]),
-    (["scene", "--output", "x.jpg"], ["'.jpg'", "allowed: .png, .gif"]),
+    (["scene", "--output", "x.jpg"], ["'.jpg'", "allowed: .png, .gif, .html"]),
     (["bench", "--repeats", "0"], ["--repeats must be an integer >= 1, got 0"]),
     (["bench", "--error", "2"], ["--error is a relative error level and must be < 1, got 2.0"]),
     (["scene", "--frames", "100000000", "--shape", "simplex"], ["GiB of memory", "budget", "fewer --frames"]),
@@ -445,9 +462,9 @@ def test_runtime_failure_exits_1_and_leaves_no_file(capsys, tmp_path, monkeypatc
 
 
 def test_scene_estimate_of_the_40_cube():
-    memory, seconds = scene_estimate("cube", 40, 60, gif=False, integrate=False)
+    memory, seconds = scene_estimate("cube", 40, 60)
     assert memory >= 2**40 * 40 * 8  # the vertex array alone: 8 TiB
-    small, quick = scene_estimate("cube", 5, 60, gif=False, integrate=False)
+    small, quick = scene_estimate("cube", 5, 60)
     assert small < 2**27 and quick < 10
 
 

@@ -17,7 +17,8 @@ Subcommands
 ``verify``
     The preprint checked equation by equation (:mod:`hyperrotor.paper.verify`).
 ``scene``
-    The 3D projection of a body rotating in N dimensions, PNG snapshots or a GIF.
+    The 3D projection of a body rotating in N dimensions: PNG snapshots, a GIF or
+    an interactive HTML page (the library's :meth:`hyperrotor.Scene.to_html`).
 ``bench``
     A quick work-precision run (:mod:`hyperrotor.bench`), a CSV and a PNG.
 
@@ -110,7 +111,8 @@ SUBCOMMANDS: dict[str, Subcommand] = {
         run=bench.run,
     ),
     "scene": Subcommand(
-        help="render the 3D projection of a body rotating in N dimensions to PNG (snapshots) or GIF",
+        help="render the 3D projection of a body rotating in N dimensions to PNG (snapshots), GIF or an "
+             "interactive HTML page (--output FILE.html)",
         configure=scene.configure,
         run=scene.run,
     ),

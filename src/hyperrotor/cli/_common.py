@@ -18,9 +18,8 @@ from hyperrotor._options import options
 from hyperrotor._parallel import progress_bar
 from hyperrotor.cli._signals import bar_shown, checkpoint
 
-__all__ = ["UsageError", "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number", "integer", "number_list", "int_list",
-           "choice_of",
-           "byte_size", "size_text", "duration_text", "check_budget", "bar",
+__all__ = ["UsageError", "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number", "integer", "number_list",
+           "int_list", "choice_of", "byte_size", "size_text", "duration_text", "check_budget", "bar", "have_module",
            "have_matplotlib", "add_common", "check_common"]
 
 
@@ -205,11 +204,16 @@ def bar(args: argparse.Namespace, total: int, desc: str, unit: str) -> _Steps:
     return _Steps(progress_bar(args.progress, total, desc, unit=unit, leave=False))
 
 
-def have_matplotlib() -> bool:
-    """Whether matplotlib can be imported (the ``viz`` extra)."""
+def have_module(name: str) -> bool:
+    """Whether the module ``name`` can be imported (matplotlib, plotly: the ``viz`` extra)."""
     import importlib.util
 
-    return importlib.util.find_spec("matplotlib") is not None
+    return importlib.util.find_spec(name) is not None
+
+
+def have_matplotlib() -> bool:
+    """Whether matplotlib can be imported (the ``viz`` extra)."""
+    return have_module("matplotlib")
 
 
 def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool = False) -> None:

@@ -36,6 +36,9 @@ from typing import Sequence
 
 __all__ = ["OutputFile", "Outputs", "output_file", "discard_all", "written_files", "forget_written"]
 
+#: Suffix a library writer may add to the temporary name for its own staging (Scene.to_html): kept in the
+#: length budget of the temporary name, and removed with it.
+_STAGING = ".part"
 _LOCK = threading.RLock()
 _PENDING: list["OutputFile"] = []  # reserved temporary files, neither committed nor discarded
 _WRITTEN: list[Path] = []          # files committed since forget_written()
@@ -98,12 +101,13 @@ class OutputFile:
         return self.path
 
     def discard(self) -> None:
-        """Remove the temporary file (if it is still there)."""
+        """Remove the temporary file (if it is still there), and a writer's own staging file ``<tmp>.part``."""
         with _LOCK:
-            try:
-                os.unlink(self.tmp)
-            except FileNotFoundError:
-                pass
+            for name in (self.tmp, Path(str(self.tmp) + _STAGING)):
+                try:
+                    os.unlink(name)
+                except FileNotFoundError:
+                    pass
             if self in _PENDING:
                 _PENDING.remove(self)
 
@@ -146,7 +150,8 @@ def output_file(text: str, *, option: str, suffixes: Sequence[str], force: bool)
             if not path.is_file():
                 raise ValueError(f"{option} {text!r} exists and is not a regular file; not replacing it")
         suffix = f".part{path.suffix}"
-        fd, tmp = tempfile.mkstemp(prefix=_tmp_prefix(path.name, name_max - len(os.fsencode(suffix)) - 8),
+        room = name_max - len(os.fsencode(suffix)) - 8 - len(_STAGING)  # 8: mkstemp's random part
+        fd, tmp = tempfile.mkstemp(prefix=_tmp_prefix(path.name, room),
                                    suffix=suffix, dir=folder)
     except OSError as err:
         raise ValueError(f"{option} {_short(text)!r}: cannot write in the folder {_short(str(folder))!r} "

@@ -1,4 +1,9 @@
-"""``hyperrotor scene``: the 3D projection of a body rotating in N dimensions, PNG snapshots or a GIF."""
+"""``hyperrotor scene``: the 3D projection of a body rotating in N dimensions: PNG snapshots, a GIF or an HTML page.
+
+The interactive page (``--output FILE.html``) is the library's
+:meth:`hyperrotor.Scene.to_html` (plotly, self-contained: rotatable and
+zoomable 3D view, play/pause, a time slider, the time and the invariants).
+"""
 from __future__ import annotations
 
 import argparse
@@ -7,21 +12,29 @@ import numpy as np
 
 from hyperrotor import _validate
 from hyperrotor.cli._common import (UsageError, add_common, bar, check_budget, check_common, choice_of,
-                                    have_matplotlib, int_list, integer, num, number, number_list, usage)
+                                    have_matplotlib, have_module, int_list, integer, num, number, number_list,
+                                    usage)
 from hyperrotor.cli._files import Outputs, output_file
+from hyperrotor.cli._signals import checkpoint
 
-__all__ = ["configure", "run", "scene_estimate", "SCENE_SHAPES", "SCENE_INERTIAS"]
+__all__ = ["configure", "run", "scene_estimate", "SCENE_SHAPES", "SCENE_INERTIAS", "SCENE_FORMATS"]
 
 
 SCENE_SHAPES = ("cube", "simplex", "ellipsoid")
 #: Bodies of ``scene --inertia``.
 SCENE_INERTIAS = ("quartet", "equal", "box")
+#: Formats of ``scene --output``, chosen by the file's suffix.
+SCENE_FORMATS = (".png", ".gif", ".html")
 #: Points of the ellipsoid sample of ``scene --shape ellipsoid``.
 _ELLIPSOID_POINTS = 400
 #: Cost model of ``scene`` (seconds, measured on the shared 2-core machine: --N 12 cube PNG 15.8 s
 #: wall against 13.7 s estimated): start-up (imports), per drawn frame, per drawn edge and point of
 #: a frame, per frame-plane of the motion, per cube vertex and axis^2 (finding the edges).
-_SCENE_COST = {"start": 5.0, "frame_png": 0.35, "frame_gif": 0.1, "edge": 3.5e-5, "point": 1e-5,
+#: The page (--output .html, measured the same way: cube N = 5, 8, 10 took 4.1, 9.1, 46 s against 6.4,
+#: 15.6, 55 s estimated, 0.26, 0.32, 0.56 GB peak against 0.30, 0.35, 0.44 GB): per frame, per edge and point
+#: of a frame (plotly builds and validates every frame), memory ~14 copies of the page's text.
+_SCENE_COST = {"start": 5.0, "frame_png": 0.35, "frame_gif": 0.1, "frame_html": 0.01, "edge": 3.5e-5,
+               "point": 1e-5, "html_edge": 1.5e-4, "html_point": 5e-5, "html_copies": 14,
                "motion": 2e-7, "cube_edges": 2e-6}
 _GIF_FRAME_BYTES = 540 * 480 * 4  # Pillow keeps every RGBA frame until the file is written
 
@@ -51,7 +64,9 @@ def configure(p: argparse.ArgumentParser) -> None:
                    help="number of time samples: GIF frames, or the grid the 6 PNG snapshots are taken from "
                         "(default 60)")
     p.add_argument("--output", default="hyperrotor-scene.png", metavar="FILE",
-                   help="FILE.png (6 snapshots) or FILE.gif (animation, one frame per time) "
+                   help="the suffix picks the format: FILE.png (6 snapshots), FILE.gif (animation, one frame per "
+                        "time) or FILE.html (interactive page: rotate, zoom, play/pause, time slider, invariants; "
+                        "self-contained, opens offline in a browser; needs plotly) "
                         "(default hyperrotor-scene.png; an existing file is kept unless --force)")
     add_common(p, budget=True, memory=True)
 
@@ -66,26 +81,39 @@ def _scene_size(shape: str, N: int) -> tuple[float, float]:
     return float(_ELLIPSOID_POINTS), 0.0
 
 
-def scene_estimate(shape: str, N: int, frames: int, gif: bool, integrate: bool) -> tuple[float, float]:
+def scene_estimate(shape: str, N: int, frames: int, *, format: str = ".png", integrate: bool = False,
+                   colour: bool = True) -> tuple[float, float]:
     """Memory (bytes) and wall time (s) of ``hyperrotor scene``, estimated from its arguments.
 
     Memory: body points ``P x N``, the edge list (about 120 bytes per edge as
     Python tuples, plus the cube's grouping ``P x (60 + 40 N)``), the attitudes
     ``K x N^2`` (4 copies) and projections ``K x P x 4`` (2 copies), the drawn
-    segments of one frame, and for a GIF every rendered frame (Pillow keeps
-    them until the end). Time: :data:`_SCENE_COST`: start-up, per drawn frame,
-    edge and point, the cube's edge search, plus the motion (integrated bodies
-    cost more).
+    segments of one frame, for a GIF every rendered frame (Pillow keeps them
+    until the end), for a page copies of its text
+    (:func:`hyperrotor.classical.scene_html.scene_html_bytes`: the figure, its
+    validated frames, its JSON, the file). Time: :data:`_SCENE_COST`: start-up, per drawn frame,
+    edge and point (per byte of a page), the cube's edge search, plus the
+    motion on the closed-form routes (an integrated motion is priced by
+    :func:`hyperrotor.classical.simulate.estimate_cost`, see :func:`run`).
     """
     P, E = _scene_size(shape, N)
     K = float(frames)
-    drawn = K if gif else min(6.0, K)
     memory = (P * N * 8 + E * 120 + (P * (60 + 40 * N) if shape == "cube" else 0)
-              + 4 * K * N * N * 8 + 2 * K * P * 4 * 8 + E * 500 + (K * _GIF_FRAME_BYTES if gif else 0))
-    frame = _SCENE_COST["frame_gif" if gif else "frame_png"]
-    seconds = (_SCENE_COST["start"] + drawn * (frame + E * _SCENE_COST["edge"] + P * _SCENE_COST["point"])
-               + K * N * N * _SCENE_COST["motion"] * (50 if integrate else 1)
+              + 4 * K * N * N * 8 + 2 * K * P * 4 * 8)
+    seconds = (_SCENE_COST["start"] + K * N * N * _SCENE_COST["motion"] * (50 if integrate else 1)
                + (P * N * N * _SCENE_COST["cube_edges"] if shape == "cube" else 0))
+    if format == ".html":
+        from hyperrotor.classical.scene_html import scene_html_bytes
+
+        page = scene_html_bytes(int(min(K, 2**62)), int(min(P, 2**62)), int(min(E, 2**62)), colour=colour)
+        memory += _SCENE_COST["html_copies"] * page
+        seconds += K * (_SCENE_COST["frame_html"] + E * _SCENE_COST["html_edge"] + P * _SCENE_COST["html_point"])
+    else:
+        gif = format == ".gif"
+        drawn = K if gif else min(6.0, K)
+        memory += E * 500 + (K * _GIF_FRAME_BYTES if gif else 0)
+        frame = _SCENE_COST["frame_gif" if gif else "frame_png"]
+        seconds += drawn * (frame + E * _SCENE_COST["edge"] + P * _SCENE_COST["point"])
     return memory, seconds
 
 
@@ -121,8 +149,9 @@ def _scene_check(args: argparse.Namespace):
         raise UsageError(f"--axis applies to --inertia quartet only, got --inertia {args.inertia}")
     if args.sides is not None and args.inertia != "box":
         raise UsageError(f"--sides applies to --inertia box only, got --inertia {args.inertia}")
-    gif = args.output.lower().endswith(".gif")
-    memory, seconds = scene_estimate(args.shape, N, frames, gif, args.inertia == "box" or bool(lock))
+    fmt = next((f for f in SCENE_FORMATS if args.output.lower().endswith(f)), ".png")  # others: refused later
+    memory, seconds = scene_estimate(args.shape, N, frames, format=fmt, integrate=args.inertia == "box" or bool(lock),
+                                     colour=bool(colour_axis))
     P, E = _scene_size(args.shape, N)
     count = f"2^{N} points, {N} x 2^{N - 1} edges" if args.shape == "cube" and N > 30 else f"{P:.4g} points, {E:.4g} edges"
     what = f"scene --N {N} --shape {args.shape} ({count}, {frames} frames)"
@@ -136,20 +165,24 @@ def _scene_check(args: argparse.Namespace):
         raise UsageError(f"--omega needs N(N-1)/2 = {n} components for N = {N}, got {omega.size}")
     omega = np.where([any(k in p for k in lock) for p in planes(N)], 0.0, omega)
     return {"N": N, "frames": frames, "t_end": t_end, "axes": axes, "colour_axis": colour_axis or None,
-            "sides": sides, "omega": omega, "gif": gif, "seconds": seconds, "kappa": kappa, "axis": axis}
+            "sides": sides, "omega": omega, "format": fmt, "seconds": seconds, "memory": memory, "kappa": kappa,
+            "axis": axis}
 
 
 def run(args: argparse.Namespace) -> int:
     from hyperrotor import Inertia, RigidBody
-    from hyperrotor.classical.scenes import Scene, ellipsoid_points, hypercube_vertices, simplex_vertices
+    from hyperrotor.classical.scenes import (Scene, body_edges, ellipsoid_points, hypercube_vertices,
+                                             simplex_vertices)
 
     s = _scene_check(args)
-    if not have_matplotlib():
-        raise UsageError("scene needs matplotlib: pip install 'hyperrotor[viz]'")
+    fmt = s["format"]
+    if fmt == ".html" and not have_module("plotly"):
+        raise UsageError("--output FILE.html needs plotly: pip install 'hyperrotor[viz]' (or write .png or .gif)")
+    if fmt != ".html" and not have_matplotlib():
+        raise UsageError(f"--output FILE{fmt} needs matplotlib: pip install 'hyperrotor[viz]'")
     N = s["N"]
     with Outputs() as outs:
-        out = outs.add(usage(output_file, args.output, option="--output", suffixes=(".png", ".gif"),
-                              force=args.force))
+        out = outs.add(usage(output_file, args.output, option="--output", suffixes=SCENE_FORMATS, force=args.force))
         if args.inertia == "quartet":
             inertia = usage(Inertia.quartet, s["kappa"], axis=s["axis"], N=N)
         elif args.inertia == "equal":
@@ -157,29 +190,44 @@ def run(args: argparse.Namespace) -> int:
         else:
             inertia = usage(Inertia.box, 1.0, s["sides"])
         # --- work ------------------------------------------------------------------
-        from hyperrotor.plotting import body_edges, save_projection_animation, save_projection_frames
-
         points = {"cube": lambda: hypercube_vertices(N),
                   "simplex": lambda: simplex_vertices(N),
                   "ellipsoid": lambda: ellipsoid_points(np.linspace(1.0, 0.4, N), _ELLIPSOID_POINTS, rng=0)}[
             args.shape]()
         t = np.linspace(0.0, s["t_end"], s["frames"])
         proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
-        scene = Scene(RigidBody(inertia), s["omega"], t, observables=("projection",), points=points, axes=proj_axes,
+        observables = ("projection", "omega") if fmt == ".html" else ("projection",)  # the page shows invariants
+        scene = Scene(RigidBody(inertia), s["omega"], t, observables=observables, points=points, axes=proj_axes,
                       progress=args.progress)  # a bar while an integrated motion is computed
         res = scene.evaluate()
-        edges = body_edges(points, "points" if args.shape == "ellipsoid" else args.shape)
+        checkpoint()
+        kind = "points" if args.shape == "ellipsoid" else args.shape
+        edges = body_edges(points, kind)
         title = (f"{args.shape} in {N}D, {args.inertia} inertia: space axes {', '.join(map(str, s['axes']))} drawn"
                  + (f", colour = x{s['colour_axis']}" if s["colour_axis"] else ""))
-        n_drawn = len(t) if s["gif"] else min(6, len(t))
-        with bar(args, n_drawn, f"scene: drawing {'GIF frames' if s['gif'] else 'snapshots'}", "frame") as pbar:
-            kw = dict(title=title, axes_labels=s["axes"], colour_axis=s["colour_axis"], progress=pbar.update)
-            if s["gif"]:
-                save_projection_animation(out.tmp, res.t, res.projection, edges, **kw)
-            else:
-                save_projection_frames(out.tmp, res.t, res.projection, edges, format="png", **kw)
+        if fmt == ".html":
+            from hyperrotor._options import options
+
+            with options(scene_html_max_bytes=max(float(options["scene_html_max_bytes"]), s["memory"])):
+                scene.to_html(out.tmp, edges=kind, title=title, result=res)
+        else:
+            _draw(args, s, out.tmp, res, edges, title)
         outs.commit()
     print(f"scene: {len(points)} body points, {len(edges)} edges, {len(res.t)} times in [0, {num(s['t_end'], 6)}], "
           f"route {res.path!r} ({res.stats['wall_time']:.3f} s)")
     print(f"written: {out.path}")
     return 0
+
+
+def _draw(args, s: dict, path, res, edges, title: str) -> None:
+    """The PNG (6 snapshots) or the GIF (one frame per time), with matplotlib."""
+    from hyperrotor.plotting import save_projection_animation, save_projection_frames
+
+    gif = s["format"] == ".gif"
+    n_drawn = len(res.t) if gif else min(6, len(res.t))
+    with bar(args, n_drawn, f"scene: drawing {'GIF frames' if gif else 'snapshots'}", "frame") as steps:
+        kw = dict(title=title, axes_labels=s["axes"], colour_axis=s["colour_axis"], progress=steps.update)
+        if gif:
+            save_projection_animation(path, res.t, res.projection, edges, **kw)
+        else:
+            save_projection_frames(path, res.t, res.projection, edges, format="png", **kw)
