@@ -304,3 +304,11 @@ def test_irrep_messages_print_weights_as_numbers():
     with pytest.raises(ValueError, match=r"irrep \(401/2, 201/2\) has dimension"):
         hq.irrep(5, (200.5, 100.5))
     assert "(5/2, 1/2)" in hq.irrep(5, (2.5, 0.5)).name
+
+
+def test_operator_division_by_a_scalar_and_never_by_text():
+    A = hq.angular_momentum_operator((1, 2), 3)
+    h = sp.Symbol("h", positive=True)
+    assert (A / h) * h == A and A / 2 == A * sp.Rational(1, 2)
+    with pytest.raises(TypeError):
+        A / "__import__('os')"

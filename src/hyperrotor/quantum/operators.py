@@ -63,7 +63,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
-from .. import _pricing, _validate
+from .. import _parse, _pricing, _validate
 from ..conventions import check_convention, check_dimension, planes
 from .normal_form import WeylElement, dict_to_polynomial, polynomial_to_dict
 
