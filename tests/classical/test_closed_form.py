@@ -421,10 +421,25 @@ def test_euler_poinsot_bad_input():
         euler_poinsot(np.ones(6), np.ones(3), [0.0])
     with pytest.raises(ValueError, match="3 plane components"):
         euler_poinsot(np.ones(3) * [1, 2, 3], np.ones(4), [0.0])
-    with pytest.raises(ValueError, match="positive"):
+    with pytest.raises(ValueError, match="> 0"):
         euler_poinsot([1.0, -2.0, 3.0], np.ones(3), [0.0])
     with pytest.raises(TypeError):
         euler_poinsot(object(), np.ones(3), [0.0])
+
+
+@pytest.mark.parametrize("moment_scale, omega_scale", [(1e-310, 1.0), (1e300, 1.0), (1.0, 1e-200), (1.0, 1e150)])
+def test_euler_poinsot_extreme_scales(moment_scale, omega_scale):
+    """The motion is unchanged by I -> c I and is w(t) = s w~(s t) for w0 -> s w0: tiny or huge scales
+    (moments of 1e-310 gave NaN, #21) give the unit-scale solution, to the precision of the input."""
+    I, w0 = np.array([2.0, 3.0, 4.0]), np.array([0.6, 1.0, -0.5])
+    t = np.linspace(0.0, 10.0, 7)
+    ref = euler_poinsot(I, w0, t)
+    got = euler_poinsot(I * moment_scale, w0 * omega_scale, t / omega_scale) / omega_scale
+    # subnormal moments keep only ~52 - (1074 - 1030) bits: the ratios I_a / I_b are that precise
+    rel = 2.0**-40 if moment_scale < 1e-300 else 1e-14
+    np.testing.assert_allclose(got, ref, rtol=0, atol=scaled_tol(1.0, k=64) + 64 * rel)
+    period = euler_poinsot_period(I * moment_scale, w0 * omega_scale) * omega_scale
+    assert period == pytest.approx(euler_poinsot_period(I, w0), rel=64 * rel)
 
 
 @pytest.mark.parametrize("convention,axis,N", [("paper", 5, 5), ("standard", 2, 5), ("paper", 1, 4), ("standard", 6, 6)])
@@ -448,3 +463,15 @@ def test_quartet_attitude_against_simulate(convention, axis, N):
 
     W0 = body.matrix(w0)
     np.testing.assert_allclose(quartet_attitude(1.0, w0, t[:3], axis, convention=convention)[2], expm(W0 * t[2]), atol=1e-13)
+
+
+def test_detect_closed_form_tolerance_is_an_option():
+    """rtol=None reads hr.options["closed_form_rtol"]: moments 1e-12 apart are a quartet only when it allows."""
+    import hyperrotor as hr
+
+    I = np.array(hr.Inertia.quartet(0.5, axis=4, N=4).moments)
+    I[0] *= 1 + 1e-12
+    assert detect_closed_form(I) is None
+    with hr.options(closed_form_rtol=1e-11):
+        assert detect_closed_form(I)["kind"] == "quartet"
+    assert detect_closed_form(I, rtol=1e-11)["kind"] == "quartet"

@@ -253,9 +253,9 @@ def test_eq3_tensor_symmetries_and_normalization(rng):
     for i, j in itertools.permutations(range(N), 2):
         assert Tp[i, j, i, j] == pytest.approx((Jm[i] + Jm[j]) / 2, rel=1e-12)  # I^{ijij} = (m_i+m_j)/2
     # full summation of eq. (4): L^ij = I^{ijkl} w_kl = I_ij w_ij = 2 I^{ijij} w_ij
-    w = hr.to_matrix(rng.standard_normal(hr.n_planes(N)), "standard")
+    w = hr.to_matrix(rng.standard_normal(hr.n_planes(N)), convention="standard")
     L = np.einsum("ijkl,kl->ij", Tp, w)
-    Lexp = hr.to_matrix(I.moments * hr.to_components(w, "standard"), "standard")
+    Lexp = hr.to_matrix(I.moments * hr.to_components(w, convention="standard"), convention="standard")
     np.testing.assert_allclose(L, Lexp, rtol=0, atol=scaled_tol(np.abs(Tp).max() * N**2 * np.abs(w).max(), dim=N**2, k=16))
     for (i, j), Iij in zip(I.planes, I.moments):
         assert Iij == pytest.approx(2 * Tp[i - 1, j - 1, i - 1, j - 1], rel=1e-12)
@@ -263,7 +263,7 @@ def test_eq3_tensor_symmetries_and_normalization(rng):
     # it is TWICE the kinetic energy 1/2 sum_{i<j} I_ij w_ij^2 (paper's factor-2 slip)
     W6 = 0.5 * np.einsum("ij,ijkl,kl->", w, Tp, w)
     body = hr.RigidBody(I)
-    assert W6 == pytest.approx(2 * body.energy(hr.to_components(w, "standard")), rel=1e-12)
+    assert W6 == pytest.approx(2 * body.energy(hr.to_components(w, convention="standard")), rel=1e-12)
 
 
 def test_tensor_symmetries_for_generalized_inertia():
@@ -328,3 +328,21 @@ def test_repr_and_hash():
     assert "12: 1" in repr(I)
     assert hash(I) == hash(Inertia.equal(3, 1))
     assert math.isclose(I[(1, 2)], 1.0)
+
+
+def test_subs_reads_text_safely(tmp_path, monkeypatch):
+    """#21: Inertia.subs never sympifies: text goes through hyperrotor._parse (names, numbers, arithmetic)."""
+    monkeypatch.chdir(tmp_path)
+    a = sp.Symbol("a")
+    inertia = hr.Inertia([a, 2, 3])
+    for payload in ("__import__('os').system('touch pwned')", "().__class__.__mro__", "9**9**9**9"):
+        with pytest.raises(hr.ParseError):
+            inertia.subs("a", payload)
+        with pytest.raises(hr.ParseError):
+            inertia.subs({"a": payload})
+    assert not (tmp_path / "pwned").exists()
+    assert inertia.subs("a", "1/2").moments.tolist() == [0.5, 2.0, 3.0]
+    assert inertia.subs({a: sp.Rational(1, 2)}).symbolic_moments[0] == sp.Rational(1, 2)
+    assert inertia.subs([(a, 5)]).symbolic_moments[0] == 5
+    with pytest.raises(TypeError, match="subs takes"):
+        inertia.subs("a")

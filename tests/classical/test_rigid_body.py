@@ -40,9 +40,9 @@ def test_rhs_is_matrix_commutator(rng, N, convention):
     """I w' = components of (W L - L W) with the matrices of the convention (eq. 24)."""
     body = _random_body(rng, N, convention)
     w = rng.standard_normal(hr.n_planes(N))
-    W = hr.to_matrix(w, convention)
-    L = hr.to_matrix(body.inertia.moments * w, convention)
-    expected = hr.to_components(W @ L - L @ W, convention) / body.inertia.moments
+    W = hr.to_matrix(w, convention=convention)
+    L = hr.to_matrix(body.inertia.moments * w, convention=convention)
+    expected = hr.to_components(W @ L - L @ W, convention=convention) / body.inertia.moments
     # a commutator of N x N matrices of sizes |w| and |L|, divided by the moments
     np.testing.assert_allclose(body.rhs(w), expected, rtol=0, atol=scaled_tol(norm(W) * norm(L) / body.inertia.moments.min(), dim=N, k=8))
 
@@ -60,11 +60,11 @@ def test_rhs_components_identical_in_both_conventions(rng):
 def test_paper_matrix_is_sign_conjugate_of_standard(rng, N):
     L = rng.standard_normal(hr.n_planes(N))
     S = _S(N)
-    np.testing.assert_array_equal(hr.to_matrix(L, "paper"), S @ hr.to_matrix(L, "standard") @ S)
+    np.testing.assert_array_equal(hr.to_matrix(L, convention="paper"), S @ hr.to_matrix(L, convention="standard") @ S)
     body_p = _random_body(rng, N, "paper")
     body_s = RigidBody(body_p.inertia, "standard")
     np.testing.assert_array_equal(body_p.matrix(L), S @ body_s.matrix(L) @ S)
-    np.testing.assert_array_equal(body_p.matrix(L), hr.to_matrix(L, "paper"))
+    np.testing.assert_array_equal(body_p.matrix(L), hr.to_matrix(L, convention="paper"))
 
 
 def test_component_example_from_brief():
@@ -418,3 +418,21 @@ def test_invariants_conserved_along_numerical_flow(rng, N):
     for f in (body.energy, body.casimirs, lambda w: body.manakov_integrals(w, 0.7)):
         a, b = np.atleast_1d(f(w0)), np.atleast_1d(f(w1))
         np.testing.assert_allclose(b, a, rtol=1e-8, atol=1e-9 * np.max(np.abs(a)))
+
+
+@pytest.mark.parametrize("where", ["torque", "omega"])
+def test_text_is_never_evaluated(tmp_path, monkeypatch, where):
+    """#21: a string component is refused with a TypeError naming the argument (never sympified)."""
+    monkeypatch.chdir(tmp_path)
+    payload = "__import__('os').system('touch pwned')"
+    body = hr.RigidBody([1, 2, 3])
+    x = sp.Symbol("x")
+    with pytest.raises(TypeError, match=rf"{where}\[1\] must be a number or a SymPy expression, not text"):
+        if where == "torque":
+            body.euler_equations(torque=[x, payload, 1])
+        else:
+            body.symbolic_rhs([x, payload, 1])
+    assert not (tmp_path / "pwned").exists()
+    # numbers and SymPy expressions still work, exactly
+    eqs = body.euler_equations(torque=[1, 0, sp.Rational(1, 2)])
+    assert eqs[2].rhs == -sp.Rational(1, 2)

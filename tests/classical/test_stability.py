@@ -175,8 +175,8 @@ def test_physical_body_mass_criterion():
             assert linear_stability(I, (i, j), 1.0).stable == (not between)
 
 
-def _perturbed_growth(I, plane, Omega, t_end, eps=1e-8, seed=0):
-    return perturbation_growth(I, plane, Omega, np.linspace(0.0, t_end, 201), eps=eps, seed=seed)
+def _perturbed_growth(I, plane, omega0, t_end, eps=1e-8, rng=0):
+    return perturbation_growth(I, plane, omega0, np.linspace(0.0, t_end, 201), eps=eps, rng=rng)
 
 
 def test_tennis_racket_5d_nonlinear():
@@ -209,9 +209,13 @@ def test_bad_input():
         linear_stability(I, (1, 6), 1.0)
     with pytest.raises(ValueError, match="finite"):
         linear_stability(I, (1, 2), np.inf)
-    with pytest.raises(TypeError, match="Omega"):
+    with pytest.raises(TypeError, match="omega0"):
         linear_stability(I, (1, 2), "fast")
-    with pytest.raises(ValueError, match="positive"):
+    with pytest.raises(TypeError, match="unexpected keyword argument 'Omega'"):
+        linear_stability(I, (1, 2), Omega=1.0)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'seed'"):
+        perturbation_growth(I, (1, 2), 1.0, [0.0, 1.0], seed=1)
+    with pytest.raises(ValueError, match="> 0"):
         linear_stability(-I, (1, 2), 1.0)
     with pytest.raises(ValueError, match="N\\(N-1\\)/2"):
         linear_stability(np.ones(7), (1, 2), 1.0)

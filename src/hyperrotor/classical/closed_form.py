@@ -73,7 +73,17 @@ import numpy as np
 from ..conventions import check_dimension, dimension_from_count, plane_index, planes
 from .. import _validate
 from .._lazy import LazyModule
-from .inertia import Inertia, body_moments
+from .._options import options, register
+from .inertia import Inertia
+
+register(
+    "closed_form_rtol", 1e-14,
+    "detect_closed_form / closed_form_solution (and the scene routes): two plane moments count as equal "
+    "when they differ by at most this times the largest moment. 1e-14 (~50 eps) accepts moments that "
+    "went through a few float operations (J_i + J_j, unit conversions) and nothing else: a body whose "
+    "moments differ by 1e-12 relative is not a quartet, and its motion leaves the closed form after "
+    "~1e12 / |omega| time units.",
+)
 
 #: scipy.special (elliptic functions), loaded on first use: ``import hyperrotor`` stays light.
 special = LazyModule("scipy.special")
@@ -107,21 +117,18 @@ def _times(t: Any) -> np.ndarray:
 
 
 def _omega0(omega0: Any, count: int | None = None) -> np.ndarray:
+    """``omega0`` (batch + ``(n,)``) through :mod:`hyperrotor._validate`; ``n`` a plane count."""
+    if count is not None:
+        return _validate.components("omega0", omega0, count)
     w = _validate.finite_array("omega0", omega0)
     if w.ndim == 0:
-        raise ValueError(f"omega0 must be a vector of plane components, got the scalar {omega0!r}")
-    if count is not None and w.shape[-1] != count:
-        raise ValueError(f"omega0 must have {count} plane components (last axis), got shape {w.shape}")
-    dimension_from_count(w.shape[-1])
-    if not np.all(np.isfinite(w)):
-        raise ValueError("omega0 must be finite")
+        raise ValueError(f"omega0 must be a vector of plane components, got the scalar {_validate.fmt(omega0)}")
+    _validate.dimension_from_count(w.shape[-1], name="omega0")
     return w
 
 
 def _check_axis(axis: Any, N: int) -> int:
-    if isinstance(axis, bool) or not isinstance(axis, (int, np.integer)) or not 1 <= int(axis) <= N:
-        raise ValueError(f"axis must be an integer in 1..{N} (1-based), got {axis!r}")
-    return int(axis)
+    return _validate.integer("axis", axis, minimum=1, maximum=N)
 
 
 # ----------------------------------------------------------------------------
@@ -326,7 +333,7 @@ def _quartet_attitude_std(theta: float, omega0: np.ndarray, tt: np.ndarray, axis
     from ..conventions import to_matrix
 
     N = dimension_from_count(omega0.size)
-    W0 = to_matrix(omega0, "standard").astype(float)
+    W0 = to_matrix(omega0, convention="standard").astype(float)
     Wr = W0.copy()
     Wr[axis - 1, :] = 0.0
     Wr[:, axis - 1] = 0.0
@@ -420,16 +427,26 @@ def _ellipj(u: np.ndarray, m: float):
     return sg * sn, sg * cn, dn
 
 
-def _ep_setup(moments3: Any, omega0: Any):
-    I = body_moments(moments3)
+def _pow2(x: float) -> float:
+    """The power of two nearest above ``x > 0`` (1 for 0): a scale that divides exactly."""
+    return float(np.ldexp(1.0, np.frexp(x)[1])) if x > 0 else 1.0
+
+
+def _ep_setup(body: Any, omega0: Any):
+    I = _validate.moments(body, name="body")
     if I.size != 3:
         raise ValueError(f"euler_poinsot needs the 3 plane moments (I_12, I_13, I_23) of a 3D body, got {I.size}")
     w = _omega0(omega0, 3)
     if w.ndim != 1:
         raise ValueError(f"omega0 must be a single vector (w12, w13, w23), got shape {w.shape}")
+    # The motion does not change under I -> c I and scales as w(t) = c w~(c t) under w0 -> c w0:
+    # compute with moments and omega0 divided by powers of two (exact), so that no product of the
+    # formulas below under- or overflows (moments of 1e-310 gave NaN, #21).
+    scale = _pow2(float(np.max(np.abs(w))))
+    In, wn = I / _pow2(float(np.max(I))), w / scale
     # textbook map: W1 = w23, W2 = -w13, W3 = w12; I1 = I23, I2 = I13, I3 = I12
-    Itb = np.array([I[2], I[1], I[0]])
-    Wtb = np.array([w[2], -w[1], w[0]])
+    Itb = np.array([In[2], In[1], In[0]])
+    Wtb = np.array([wn[2], -wn[1], wn[0]])
     order = np.argsort(Itb, kind="stable")  # ascending
     lo, mid, hi = order
     # sign of L^2 - 2 E I_mid, cancellation-free
@@ -461,7 +478,8 @@ def _ep_setup(moments3: Any, omega0: Any):
     nu = np.sign(J3 - J2) * np.sqrt(max(nu2, 0.0))
     m = 0.0 if (q == 0 or J2 == J1) else (J2 - J1) * q / ((J3 - J2) * r)
     m = float(min(max(m, 0.0), 1.0))
-    return dict(I=I, w=w, perm=perm, flip=flip, sg=sg, V=V, J=J, A=A, B=B, C=C, nu=nu, m=m)
+    # V, A, B, C, nu describe omega0 / scale; the motion is scale times them at time scale * t
+    return dict(I=I, w=w, perm=perm, flip=flip, sg=sg, V=V, J=J, A=A, B=B, C=C, nu=nu, m=m, scale=scale)
 
 
 def _is_steady(P) -> bool:
@@ -472,7 +490,7 @@ def _is_steady(P) -> bool:
     )
 
 
-def euler_poinsot(moments3: Any, omega0: Any, t: Any) -> np.ndarray:
+def euler_poinsot(body: Any, omega0: Any, t: Any) -> np.ndarray:
     r"""Exact 3D torque-free motion (Euler-Poinsot) with Jacobi elliptic functions.
 
     Components in the package order ``(w12, w13, w23)``; internally the textbook
@@ -503,8 +521,9 @@ def euler_poinsot(moments3: Any, omega0: Any, t: Any) -> np.ndarray:
 
     Parameters
     ----------
-    moments3 : RigidBody, Inertia or array_like (3,)
-        Plane moments ``(I_12, I_13, I_23)``.
+    body : RigidBody, Inertia or array_like (3,)
+        Plane moments ``(I_12, I_13, I_23)`` (any positive scale: the formulas are evaluated
+        with the moments and ``omega0`` scaled by powers of two, so tiny or huge values are exact).
     omega0 : array_like (3,)
         ``(w12, w13, w23)`` at t = 0.
     t : array_like (n_t,)
@@ -514,7 +533,7 @@ def euler_poinsot(moments3: Any, omega0: Any, t: Any) -> np.ndarray:
     numpy.ndarray, shape (n_t, 3)
     """
     tt = _times(t)
-    P = _ep_setup(moments3, omega0)
+    P = _ep_setup(body, omega0)
     w = P["w"]
     if _is_steady(P):  # steady rotation about a principal axis (or rest)
         return np.broadcast_to(w, (tt.size, 3)).copy()
@@ -524,34 +543,37 @@ def euler_poinsot(moments3: Any, omega0: Any, t: Any) -> np.ndarray:
     u0 = float(special.ellipkinc(phi0, m))
     if not np.isfinite(u0):  # m = 1 and V1 = 0: the unstable middle-axis equilibrium
         return np.broadcast_to(w, (tt.size, 3)).copy()
-    sn, cn, dn = _ellipj(u0 + nu * tt, m)
-    V = np.stack([A * cn, B * sn, C * dn], axis=-1) * P["sg"] * P["flip"]
+    s = P["scale"]
+    sn, cn, dn = _ellipj(u0 + nu * (s * tt), m)
+    V = np.stack([A * cn, B * sn, C * dn], axis=-1) * (P["sg"] * P["flip"] * s)
     Wtb = np.empty_like(V)
     Wtb[:, list(P["perm"])] = V
     return np.stack([Wtb[:, 2], -Wtb[:, 1], Wtb[:, 0]], axis=-1)
 
 
-def euler_poinsot_period(moments3: Any, omega0: Any) -> float:
+def euler_poinsot_period(body: Any, omega0: Any) -> float:
     r"""Period of :math:`\omega(t)` of the 3D free body: :math:`4K(m)/|\nu|` (``inf`` on the
     separatrix, ``inf`` for steady rotation)."""
-    P = _ep_setup(moments3, omega0)
+    P = _ep_setup(body, omega0)
     if _is_steady(P) or P["m"] >= 1.0:
         return float("inf")
-    return 4.0 * float(special.ellipk(P["m"])) / abs(P["nu"])
+    return 4.0 * float(special.ellipk(P["m"])) / abs(P["nu"]) / P["scale"]
 
 
 # ----------------------------------------------------------------------------
 # detection and dispatch
 # ----------------------------------------------------------------------------
-def detect_closed_form(body: Any, *, rtol: float = 1e-14) -> dict | None:
+def detect_closed_form(body: Any, *, rtol: float | None = None) -> dict | None:
     r"""Which closed form the inertia admits, if any.
 
     Returns ``{"kind": "equal"}``, ``{"kind": "quartet", "axis": a, "theta": Theta}``
     (any N; moments ``alpha`` on the planes containing ``a`` and ``beta`` on the
     others, :math:`\Theta = 1 - \beta/\alpha`), ``{"kind": "euler-poinsot"}``
-    (N = 3) or ``None``. Moments are compared with relative tolerance ``rtol``.
+    (N = 3) or ``None``. Moments are compared with relative tolerance ``rtol``
+    (default ``hr.options["closed_form_rtol"]``, 1e-14).
     """
-    I = body_moments(body)
+    I = _validate.moments(body, name="body")
+    rtol = options["closed_form_rtol"] if rtol is None else _validate.positive("rtol", rtol, allow_zero=True)
     N = dimension_from_count(I.size)
     scale = float(np.max(np.abs(I)))
 
@@ -570,7 +592,7 @@ def detect_closed_form(body: Any, *, rtol: float = 1e-14) -> dict | None:
     return None
 
 
-def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float = 1e-14) -> tuple[np.ndarray, str]:
+def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float | None = None) -> tuple[np.ndarray, str]:
     """Exact omega(t) for an inertia admitting a closed form, and the name of the form used.
 
     Dispatches to :func:`equal_moments_solution`, the quartet flow (any axis, any
@@ -583,7 +605,7 @@ def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float = 1e-14)
     omega : numpy.ndarray, shape (..., n_t, n_planes)
     kind : str, ``"equal"``, ``"quartet"`` or ``"euler-poinsot"``
     """
-    I = body_moments(body)
+    I = _validate.moments(body, name="body")
     info = detect_closed_form(I, rtol=rtol)
     if info is None:
         raise ValueError("this inertia admits no closed form (not equal, not one-distinguished-axis, not 3D)")

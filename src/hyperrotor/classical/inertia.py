@@ -44,7 +44,7 @@ import numpy as np
 
 from hyperrotor._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
-from hyperrotor import _validate
+from hyperrotor import _parse, _validate
 from hyperrotor.conventions import (
     check_dimension,
     dimension_from_count,
@@ -110,7 +110,26 @@ def _to_float_array(values: Sequence[sp.Expr]) -> np.ndarray | None:
     return np.array([float(v) for v in values], dtype=np.float64)
 
 
-def _sympify_seq(x: Any, what: str) -> list:
+def _subs_pairs(args: tuple) -> list:
+    """``Inertia.subs`` arguments as ``[(old, new), ...]`` of SymPy objects (never ``sympify``).
+
+    SymPy's ``subs`` would ``sympify`` -- evaluate -- a string ``old`` or ``new``: here
+    text is read by :func:`hyperrotor._parse.to_sympy` (numbers, names and arithmetic only).
+    """
+    if len(args) == 2:
+        pairs = [tuple(args)]
+    elif len(args) == 1 and isinstance(args[0], Mapping):
+        pairs = list(args[0].items())
+    elif len(args) == 1 and isinstance(args[0], Iterable) and not isinstance(args[0], (str, bytes)):
+        pairs = [tuple(p) for p in args[0]]
+    else:
+        raise TypeError(f"subs takes (old, new), a mapping or a sequence of (old, new) pairs, got {_validate.fmt(args)}")
+    if any(len(p) != 2 for p in pairs):
+        raise TypeError(f"subs pairs must be (old, new), got {_validate.fmt(args)}")
+    return [(_parse.to_sympy(o, "subs: old"), _parse.to_sympy(n, "subs: new")) for o, n in pairs]
+
+
+def _as_list(x: Any, what: str) -> list:
     if isinstance(x, sp.MatrixBase):
         return list(x)
     if isinstance(x, (str, bytes)) or not isinstance(x, Iterable):
@@ -288,7 +307,7 @@ class Inertia:
         if isinstance(moments, Mapping):
             values, N_ = self._values_from_mapping(moments, N)
         else:
-            seq = _sympify_seq(moments, "moments")
+            seq = _as_list(moments, "moments")
             N_ = dimension_from_count(len(seq)) if len(seq) else None
             if N_ is None:
                 raise ValueError("moments must not be empty (got []): give N(N-1)/2 plane moments (N >= 2)")
@@ -384,7 +403,7 @@ class Inertia:
         ``J_i`` may be zero (a flat body) as long as every plane moment is
         positive.
         """
-        seq = _sympify_seq(J, "J")
+        seq = _as_list(J, "J")
         if len(seq) < 2:
             raise ValueError(f"J needs N >= 2 entries, got {_validate.fmt(J)}")
         Js = tuple(_as_value(v, f"J_{k + 1}", allow_zero=True) for k, v in enumerate(seq))
@@ -423,7 +442,7 @@ class Inertia:
         (3D: :math:`I_1 = M(b^2 + c^2)/12`, the textbook cuboid).
         """
         M = _as_value(mass, "mass")
-        a = [_as_value(v, f"side length a_{k + 1}") for k, v in enumerate(_sympify_seq(side_lengths, "side_lengths"))]
+        a = [_as_value(v, f"side length a_{k + 1}") for k, v in enumerate(_as_list(side_lengths, "side_lengths"))]
         if len(a) < 2:
             raise ValueError(f"side_lengths: a box needs N >= 2 side lengths, got {len(a)}")
         return cls.from_mass_tensor([M * x**2 / 12 for x in a])
@@ -436,7 +455,7 @@ class Inertia:
         unit N-ball is :math:`1/(N+2)`), so :math:`I_{ij} = M(a_i^2 + a_j^2)/(N+2)`.
         """
         M = _as_value(mass, "mass")
-        a = [_as_value(v, f"semi-axis a_{k + 1}") for k, v in enumerate(_sympify_seq(semi_axes, "semi_axes"))]
+        a = [_as_value(v, f"semi-axis a_{k + 1}") for k, v in enumerate(_as_list(semi_axes, "semi_axes"))]
         N = len(a)
         if N < 2:
             raise ValueError(f"semi_axes: an ellipsoid needs N >= 2 semi-axes, got {N}")
@@ -529,8 +548,9 @@ class Inertia:
 
     def subs(self, *args, **kwargs) -> "Inertia":
         """New :class:`Inertia` with ``sympy.subs`` applied to every moment."""
-        values = [sp.sympify(v).subs(*args, **kwargs) for v in self._values]
-        J = None if self._J is None else tuple(sp.sympify(v).subs(*args, **kwargs) for v in self._J)
+        pairs = _subs_pairs(args)
+        values = [_parse.to_sympy(v, "moment").subs(pairs, **kwargs) for v in self._values]
+        J = None if self._J is None else tuple(_parse.to_sympy(v, "J").subs(pairs, **kwargs) for v in self._J)
         values = [_as_value(v, f"moment I_{plane_label(p, self._N)}") for v, p in zip(values, self.planes)]
         return Inertia._from_values(values, self._N, J, self.principal_axes)
 
@@ -609,7 +629,7 @@ class Inertia:
             return False
         if isinstance(J, np.ndarray):
             return bool(np.all(J >= -atol * float(np.max(self._numeric))))
-        signs = [sp.sympify(v).is_nonnegative for v in J]
+        signs = [_parse.to_sympy(v, "J").is_nonnegative for v in J]
         if any(s is False for s in signs):
             return False
         return True if all(signs) else None
@@ -633,23 +653,3 @@ class Inertia:
             t[a, b, a, b] = t[b, a, b, a] = h
             t[a, b, b, a] = t[b, a, a, b] = -h
         return t
-
-
-def body_moments(body: Any) -> np.ndarray:
-    """Plane moments (float64, plane order) of a RigidBody, an Inertia or a 1-D array of moments.
-
-    The one adapter the numerical modules (integrators, closed forms, stability,
-    scenes) use to accept any of the three. Raises ``TypeError`` for anything
-    else and ``ValueError`` for a wrong count or non-finite / non-positive moments.
-    """
-    if hasattr(body, "inertia") and hasattr(body.inertia, "moments"):
-        body = body.inertia.moments
-    elif hasattr(body, "moments"):
-        body = body.moments
-    I = _validate.finite_array("plane moments (a RigidBody, an Inertia or a 1-D array)", body)
-    if I.ndim != 1:
-        raise ValueError(f"plane moments must be a 1-D array of N(N-1)/2 values, got {_validate.fmt(body)} of shape {I.shape}")
-    dimension_from_count(I.size)
-    if not np.all(np.isfinite(I)) or np.any(I <= 0):
-        raise ValueError(f"plane moments must be finite and positive, got {I.tolist()}")
-    return I

@@ -56,7 +56,7 @@ from hyperrotor.conventions import (
     structure_constants,
     to_matrix,
 )
-from hyperrotor import _validate
+from hyperrotor import _parse, _pricing, _validate
 from hyperrotor.classical.inertia import Inertia
 
 __all__ = ["RigidBody"]  # and TIME, served by __getattr__ below (not star-imported: that would load SymPy)
@@ -89,16 +89,16 @@ def _manakov_traces(L: Any, J: Any, lam: Any = 1):
     the flow exactly when the plane moments are :math:`J_i + J_j` (Manakov).
     """
     if is_symbolic(L) or is_symbolic(J) or is_symbolic(lam):
-        Lm = to_matrix(list(L), "standard") if not isinstance(L, sp.MatrixBase) else L
+        Lm = to_matrix(list(L), convention="standard") if not isinstance(L, sp.MatrixBase) else L
         Lm = sp.Matrix(Lm)
         N = Lm.rows
-        A = Lm + lam * sp.diag(*[sp.sympify(j) ** 2 for j in J])
+        A = Lm + _parse.to_sympy(lam, "lam", text=False) * sp.diag(*[_parse.to_sympy(j, "J", text=False) ** 2 for j in J])
         out, P = [], A
         for _ in range(2, N + 1):
             P = P * A
             out.append(sp.expand(P.trace()))
         return out
-    Lm = to_matrix(np.asarray(L, dtype=np.float64), "standard")
+    Lm = to_matrix(np.asarray(L, dtype=np.float64), convention="standard")
     J = np.asarray(J, dtype=np.float64)
     N = Lm.shape[-1]
     A = Lm + lam * np.diag(J**2)
@@ -275,6 +275,7 @@ class RigidBody:
         :math:`m_{ij}` (``None`` = torque-free).
         """
         w = list(self.omega_symbols() if omega is None else omega)
+        w = [_parse.to_sympy(v, f"omega[{k}]", text=False) for k, v in enumerate(w)]
         if len(w) != len(self.planes):
             raise ValueError(f"omega must have {len(self.planes)} components, got {len(w)}")
         I = self.inertia.symbolic_moments
@@ -286,14 +287,17 @@ class RigidBody:
         n = len(self.planes)
         if torque is None:
             return [sp.Integer(0)] * n if default_zero else None
-        if isinstance(torque, (int, float, sp.Basic)) and not isinstance(torque, bool) and sp.sympify(torque) == 0:
+        if isinstance(torque, (int, float, sp.Basic)) and not isinstance(torque, bool) and (
+                _parse.to_sympy(torque, "torque", text=False) == 0):
             return [sp.Integer(0)] * n
         if isinstance(torque, (str, bytes)) or not hasattr(torque, "__len__"):
-            raise TypeError(f"torque must be None, 0 or a sequence of {n} components, got {torque!r}")
+            raise TypeError(f"torque must be None, 0 or a sequence of {n} components (numbers or SymPy "
+                            f"expressions, not text), got {_validate.fmt(torque)}")
         seq = list(torque)
         if len(seq) != n:
             raise ValueError(f"torque must have {n} components for N = {self.N}, got {len(seq)}")
-        return [sp.sympify(v) for v in seq]
+        # never sympify: a string component would be evaluated as Python (#21)
+        return [_parse.to_sympy(v, f"torque[{k}]", text=False) for k, v in enumerate(seq)]
 
     def euler_equations(self, torque: Any = None) -> list:
         r"""The Euler equations as ``sympy.Eq``, one per plane in plane order.
@@ -317,6 +321,7 @@ class RigidBody:
         -------
         list of sympy.Eq
         """
+        _pricing.check("euler_equations", N=self.N)
         TIME = sp.Symbol("t")
         w = self.omega_symbols(function_of=TIME)
         I = self.inertia.symbolic_moments
@@ -368,7 +373,7 @@ class RigidBody:
         Paper: entry ``(p, q)`` is :math:`(-1)^{a_p + a_q}` times the component of
         plane :math:`(a_p, a_q)` with the *original* axis labels ``a``.
         """
-        plain = to_matrix(components, "standard")
+        plain = to_matrix(components, convention="standard")
         if self.convention == "standard":
             return plain
         s = [(-1) ** a for a in self.axes]
@@ -413,7 +418,7 @@ class RigidBody:
         if is_symbolic(L):
             L = list(L)
             self._check_len(L)
-            M = to_matrix(L, "standard")
+            M = to_matrix(L, convention="standard")
             out = []
             for k in range(1, N // 2 + 1):
                 tot = sp.Integer(0)
@@ -422,7 +427,7 @@ class RigidBody:
                 out.append(sp.expand(tot))
             return out
         L = self._check_omega(L, "L")
-        M = to_matrix(L, "standard")
+        M = to_matrix(L, convention="standard")
         # Newton's identities: k e_k = sum_{i=1}^k (-1)^(i-1) e_{k-i} p_i, p_i = tr(M^i)
         p, P = [None], np.broadcast_to(np.eye(N), M.shape)
         for _ in range(N):
@@ -534,14 +539,14 @@ class RigidBody:
             _locked=tuple(sorted(self.locked_axes + locked)),
         )
 
-    def stability(self, plane: Any, Omega: Any):
-        """Linear stability of the steady rotation ``Omega`` in ``plane``.
+    def stability(self, plane: Any, omega0: Any):
+        """Linear stability of the steady rotation ``omega0`` in ``plane``.
 
         Delegates to :func:`hyperrotor.classical.stability.linear_stability`.
         """
         from hyperrotor.classical.stability import linear_stability
 
-        return linear_stability(self, plane, Omega)
+        return linear_stability(self, plane, omega0)
 
     def __repr__(self) -> str:
         extra = f", axes={self.axes}" if self.axes != tuple(range(1, self.N + 1)) else ""

@@ -68,8 +68,21 @@ import numpy as np
 from .._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, plane_label, plane_symbols, planes, structure_constants
-from .. import _validate
-from .inertia import body_moments
+from .. import _pricing, _validate
+from .._options import options, register
+
+register(
+    "stability_rtol", 1e-12,
+    "linear_stability: a moment difference |I_p - I_q| <= this * max(I) counts as an equality (a neutral or "
+    "secular pair instead of a tiny frequency or growth rate). 1e-12 is far above the round-off of moments "
+    "computed from a mass distribution (~1e-15 relative) and far below any physical splitting.",
+)
+register(
+    "perturbation_growth_rtol", 1e-11,
+    "perturbation_growth: rtol of its integration (hyperrotor.simulate). The tracked off-plane components "
+    "start at eps (1e-8 by default) times |omega0|; 1e-11 keeps the integration error ~1000x below them, so "
+    "the growth measured is the body's, not the integrator's.",
+)
 
 __all__ = [
     "CoupledPair",
@@ -133,7 +146,8 @@ class StabilityResult:
     Attributes
     ----------
     plane : tuple
-    Omega : float
+    omega0 : float
+        The steady angular velocity :math:`\Omega` in the plane.
     jacobian : ndarray (n_planes, n_planes)
         :math:`J_{ad} = \Omega C_{dp}^{\;a} (I_p - I_d)/I_a`.
     eigenvalues : ndarray, complex (n_planes,)
@@ -155,7 +169,7 @@ class StabilityResult:
     """
 
     plane: tuple
-    Omega: float
+    omega0: float
     jacobian: np.ndarray = field(repr=False)
     eigenvalues: np.ndarray
     frequencies: np.ndarray
@@ -166,15 +180,16 @@ class StabilityResult:
     reason: str
 
 
-def linearization(body: Any, plane: Any, Omega: float) -> np.ndarray:
-    r"""Jacobian of the Euler equations at :math:`\omega = \Omega e_p`:
+def linearization(body: Any, plane: Any, omega0: float) -> np.ndarray:
+    r"""Jacobian of the Euler equations at :math:`\omega = \Omega e_p` (:math:`\Omega` = ``omega0``):
     :math:`J_{ad} = \Omega\,C_{dp}^{\;a}\,(I_p - I_d)/I_a` (matrix ``(n_planes, n_planes)``)."""
-    I = body_moments(body)
+    I = _validate.moments(body, name="body")
     N = dimension_from_count(I.size)
+    _pricing.check("linearization", N=N)
     p = plane_index(_plane(plane, N), N)
     C = structure_constants(N).astype(float)
     # J[a, d] = Omega * C[d, p, a] * (I_p - I_d) / I_a
-    return _validate.real("Omega", Omega) * C[:, p, :].T * (I[p] - I)[None, :] / I[:, None]
+    return _validate.real("omega0", omega0) * C[:, p, :].T * (I[p] - I)[None, :] / I[:, None]
 
 
 def stability_condition(plane: Any, N: int, *, symbol: str = "I"):
@@ -197,7 +212,7 @@ def stability_condition(plane: Any, N: int, *, symbol: str = "I"):
     return sp.And(*terms)
 
 
-def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12) -> StabilityResult:
+def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None = None) -> StabilityResult:
     r"""Linear stability of steady rotation :math:`\omega = \Omega e_{\text{plane}}` (Sec. 4, corrected).
 
     Parameters
@@ -207,10 +222,11 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     plane : (i, j)
         1-based rotation plane, ``i < j``, in the body's axis labels (a body
         from :meth:`RigidBody.lock` keeps its original labels).
-    Omega : float
-        Angular velocity of the steady rotation.
-    rtol : float
-        Moment differences below ``rtol * max(I)`` count as zero.
+    omega0 : float
+        Angular velocity :math:`\Omega` of the steady rotation.
+    rtol : float, optional
+        Moment differences below ``rtol * max(I)`` count as zero (default
+        ``hr.options["stability_rtol"]``, 1e-12).
 
     Returns
     -------
@@ -227,14 +243,13 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     >>> linear_stability(I, (1, 3), 1.0).stable  # intermediate moment: tennis racket
     False
     """
-    I = body_moments(body)
+    I = _validate.moments(body, name="body")
     N = dimension_from_count(I.size)
     labels = _labels(body, N)
     i, j = _local_plane(plane, labels)
     lab = lambda q: (labels[q[0] - 1], labels[q[1] - 1])  # noqa: E731  local -> body labels
-    Om = _validate.real("Omega", Omega)
-    if not (rtol >= 0):
-        raise ValueError(f"rtol must be >= 0, got {rtol!r}")
+    Om = _validate.real("omega0", omega0)
+    rtol = options["stability_rtol"] if rtol is None else _validate.positive("rtol", rtol, allow_zero=True)
     p = plane_index((i, j), N)
     tol = rtol * float(np.max(I))
     pairs, eig = [], []
@@ -273,7 +288,7 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     eig += [0j] * (I.size - len(eig))
     stable = not (unstable or secular)
     if Om == 0.0:
-        reason = "Omega = 0: the linearisation vanishes (rest is trivially stable)"
+        reason = "omega0 = 0: the linearisation vanishes (rest is trivially stable)"
     elif unstable:
         bad = [pr for pr in pairs if pr.kind == "unstable"]
         reason = "I_p is strictly intermediate in the triple(s) k = " + ", ".join(str(pr.k) for pr in bad) + " (exponential growth)"
@@ -284,7 +299,7 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
         reason = "I_p is the largest or the smallest moment of every coupled triple"
     return StabilityResult(
         plane=lab((i, j)),
-        Omega=Om,
+        omega0=Om,
         jacobian=linearization(I, (i, j), Om),
         eigenvalues=np.array(eig, dtype=complex),
         frequencies=np.array(freqs),
@@ -296,18 +311,22 @@ def linear_stability(body: Any, plane: Any, Omega: float, *, rtol: float = 1e-12
     )
 
 
-def perturbation_growth(body: Any, plane: Any, Omega: float, t: Any, *, eps: float = 1e-8, seed: int = 0,
-                        method: str = "DOP853", rtol: float = 1e-11) -> np.ndarray:
+def perturbation_growth(body: Any, plane: Any, omega0: float, t: Any, *, eps: float = 1e-8, rng: Any = 0,
+                        method: str = "DOP853", rtol: float | None = None) -> np.ndarray:
     r"""Nonlinear check of (in)stability: largest off-plane component of a perturbed steady rotation.
 
     Integrates the full Euler equations (:func:`hyperrotor.simulate`) from
-    :math:`\omega_0 = \Omega e_p + \epsilon\,\xi` (:math:`\xi` standard normal,
-    ``seed``) and returns :math:`\max_{q \ne p} |\omega_q(t)|` on the grid ``t``
+    :math:`\omega_0 = \Omega e_p + \epsilon\,\xi` (:math:`\Omega` = ``omega0``, :math:`\xi`
+    standard normal drawn from ``rng``: an int seed, a :class:`numpy.random.Generator` or
+    ``None`` for fresh entropy; the default seed 0 makes the result reproducible) and returns :math:`\max_{q \ne p} |\omega_q(t)|` on the grid ``t``
     (``t[0]`` is the initial time). For an unstable plane it grows like
     :math:`\epsilon\,e^{\sigma t}` with :math:`\sigma` the largest entry of
     :attr:`StabilityResult.growth_rates` (the N-dimensional tennis-racket
     effect) until it saturates at the size of :math:`\Omega`; for a stable plane
     it stays of order :math:`\epsilon`.
+
+    The integration uses ``method`` and ``rtol`` (default
+    ``hr.options["perturbation_growth_rtol"]``, 1e-11).
 
     Returns
     -------
@@ -316,15 +335,16 @@ def perturbation_growth(body: Any, plane: Any, Omega: float, t: Any, *, eps: flo
     from .simulate import simulate
     from .solvers import StepBudgetError
 
-    I = body_moments(body)
+    I = _validate.moments(body, name="body")
     N = dimension_from_count(I.size)
     i, j = _local_plane(plane, _labels(body, N))
     p = plane_index((i, j), N)
-    w0 = float(eps) * np.random.default_rng(seed).normal(size=I.size)
-    w0[p] = _validate.real("Omega", Omega)
+    rtol = options["perturbation_growth_rtol"] if rtol is None else _validate.positive("rtol", rtol)
+    w0 = _validate.real("eps", eps) * _validate.rng(rng).normal(size=I.size)
+    w0[p] = _validate.real("omega0", omega0)
     try:
         traj = simulate(I, w0, t, method=method, rtol=rtol)
     except StepBudgetError as exc:  # name the arguments that set the size of the run
-        raise StepBudgetError(f"perturbation_growth(Omega = {_validate.fmt(Omega)}, t up to "
+        raise StepBudgetError(f"perturbation_growth(omega0 = {_validate.fmt(omega0)}, t up to "
                               f"{_validate.fmt(float(np.max(np.abs(_validate.time_grid(t)))))}): {exc}") from None
     return np.max(np.abs(np.delete(traj.omega, p, axis=-1)), axis=-1)
