@@ -10,7 +10,8 @@ Two parts (issue #16):
   one sector after the other. Both timed in the same run (best of ``--repeats``),
   the spectra compared (max |difference| / max |E|). Writes
   ``benchmarks/results/sectors.csv`` and ``sectors.png``.
-* ``--scale``: the 52,976-dimensional irrep (20, 10), every level, once; wall time
+* ``--scale``: the 52,976-dimensional irrep (20, 10) (or ``--highest-weight 29,14``,
+  dim 212,280, the stretch target of #24: < 30 min, < 6 GB), every level, once; wall time
   of each stage, peak resident memory (``resource.getrusage``), and the checks
   sum(levels) = tr H, sum(levels^2) = ||H||_F^2. A dense diagonalization would need
   16 * 52,976^2 bytes = 45 GB for the complex matrix alone. Writes
@@ -20,7 +21,8 @@ The machine is shared: the load average (``os.getloadavg``) is recorded with eac
 the comparison runs both paths on ONE BLAS thread (``--blas-threads``): with two OpenBLAS
 threads on this loaded 2-core machine a dense eigvalsh ran ~4x slower than with one.
 
-Usage: python benchmarks/sectors.py [--quick] [--repeats R] [--blas-threads T] [--scale] [--parallel]
+Usage: python benchmarks/sectors.py [--quick] [--repeats R] [--blas-threads T]
+       python benchmarks/sectors.py --scale [--highest-weight M1,M2] [--workers W]
 """
 from __future__ import annotations
 
@@ -71,21 +73,22 @@ def compare(irreps, repeats: int) -> list[dict]:
     return rows
 
 
-def scale(parallel: bool) -> dict:
+def scale(hw: tuple, workers: int) -> dict:
     t0 = time.perf_counter()
-    rep = irrep(5, (20, 10))
+    rep = irrep(5, hw, max_dim=10**6)
     t1 = time.perf_counter()
     secs = symmetry_sectors(rep)
     t2 = time.perf_counter()
-    spec = sector_spectra(rep, MOMENTS, workers=2 if parallel else 1, progress=True)
+    spec = sector_spectra(rep, MOMENTS, workers=workers, progress=True)
     t3 = time.perf_counter()
     H = rotor_csr(rep, MOMENTS, 1.0)
     E = spec.eigenvalues()
     tr = float(H.diagonal().real.sum())
     fro2 = float((abs(H).power(2)).sum())
     row = {
-        "highest_weight": "(20, 10)", "dim": rep.dim, "levels": int(E.size), "sectors": len(secs),
-        "sector_dims": "/".join(str(s.dim) for s in secs), "parallel": parallel,
+        "highest_weight": f"({hw[0]}, {hw[1]})", "dim": rep.dim, "levels": int(E.size), "sectors": len(secs),
+        "real_sectors": sum(s.real for s in secs), "sector_dims": "/".join(str(s.dim) for s in secs),
+        "workers": workers,
         "build_irrep_s": round(t1 - t0, 2), "build_sectors_s": round(t2 - t1, 2),
         "sector_spectra_s": round(t3 - t2, 1), "total_s": round(t3 - t0, 1),
         "peak_rss_GB": round(_peak_rss_gb(), 2),
@@ -123,14 +126,18 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="two small irreps only")
     ap.add_argument("--repeats", type=int, default=1)
-    ap.add_argument("--scale", action="store_true", help="the dim-52,976 irrep (20, 10) instead")
-    ap.add_argument("--parallel", action="store_true", help="--scale: sectors on threads")
+    ap.add_argument("--scale", action="store_true", help="one large irrep instead (default (20, 10), dim 52,976)")
+    ap.add_argument("--highest-weight", default="20,10",
+                    help="--scale: so(5) highest weight m1,m2 (the #24 stretch: 29,14, dim 212,280)")
+    ap.add_argument("--workers", type=int, default=1, help="--scale: sectors on this many threads")
     ap.add_argument("--blas-threads", type=int, default=1, help="comparison: BLAS threads of both paths")
     args = ap.parse_args()
     os.makedirs(RESULTS, exist_ok=True)
     if args.scale:
-        row = scale(args.parallel)
-        print("wrote", write_csv([row], os.path.join(RESULTS, "sectors_scale.csv")))
+        hw = tuple(int(x) for x in args.highest_weight.split(","))
+        row = scale(hw, args.workers)
+        name = "sectors_scale.csv" if hw == (20, 10) else f"sectors_scale_{hw[0]}_{hw[1]}.csv"
+        print("wrote", write_csv([row], os.path.join(RESULTS, name)))
         return
     from threadpoolctl import threadpool_limits
 

@@ -293,9 +293,16 @@ def test_h_that_breaks_the_symmetry_and_bad_bases_are_refused(rng):
         sector_blocks(broken, rep)
     with pytest.raises(ValueError, match="orthonormal"):
         sector_hamiltonian(H, 2.0 * sec.basis)
-    with hr.options(max_memory_bytes=10**6):  # so(3) tensor irreps: the dense block for exp(pi X_23) is priced
-        with pytest.raises(hr.BudgetError):
-            symmetry_sectors(irrep(3, (300,)))
+    with hr.options(sectors_dense_max_dim=3):  # no sectors to offer: the caller uses its own blocks
+        assert sector_blocks(rotor_hamiltonian(vector_rep(4), np.ones(6)), vector_rep(4)) is None
+
+
+def test_so3_is_served_by_the_monomial_construction():
+    """A large so(3) irrep: no dense exp(pi X_23) of the whole irrep (#21: it was a 596 GiB attempt at l = 99999)."""
+    J = 4000
+    with hr.options(max_memory_bytes=10**8):  # a dense 8001 x 8001 block would be refused
+        secs = symmetry_sectors(irrep(3, (J,)))
+    assert {s.label: s.dim for s in secs} == _d2_sizes(J) and all(s.real for s in secs)
 
 
 def test_sectors_commute_with_any_inertia_including_physical_bodies(rng):
@@ -367,10 +374,10 @@ def test_errors():
     with pytest.raises(ValueError, match="mixes tensor and spinor"):
         symmetry_sectors(direct_sum(vector_rep(3), spinor_rep(3)))
     with hr.options(sectors_dense_max_dim=3):
-        with pytest.raises(ValueError, match="sectors_dense_max_dim"):
+        with pytest.raises(hr.BudgetError, match="sectors_dense_max_dim"):
             symmetry_sectors(vector_rep(5))
     with hr.options(sectors_max_block_dim=2):
-        with pytest.raises(ValueError, match="sectors_max_block_dim"):
+        with pytest.raises(hr.BudgetError, match="sectors_max_block_dim"):
             sector_spectra(irrep(5, (3, 1)), np.ones(10))
     with pytest.raises(ValueError, match="hbar"):
         sector_spectra(irrep(3, (1,)), [1, 2, 3], hbar=0.0)

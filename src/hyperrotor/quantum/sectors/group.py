@@ -1,32 +1,25 @@
-r"""The symmetry group of the sectors: sign rotations, their characters, and the reflection parity.
+r"""The symmetry group of the sectors: sign rotations, the reflection parity, the antiunitary, the characters.
 
-Labels and characters of :class:`Sector` (see the package docstring for the theory),
-and, for even ``N``, the reflection :math:`r = \mathrm{diag}(-1, 1, \dots, 1)` in the
-Gelfand-Tsetlin basis (:func:`gt_reflection`).
+:func:`group_of` builds the :class:`SignGroup` of a representation once (the monomial
+matrices of a Gelfand-Tsetlin irrep, or dense exponentials for other
+representations); its :meth:`SignGroup.characters` are the labels of the
+:class:`Sector` s. For even ``N`` the reflection :math:`r = \mathrm{diag}(-1, 1, \dots, 1)`
+joins the group (:func:`gt_reflection`), and :func:`real_structure` finds the
+antiunitary symmetry that makes every block real (package docstring).
 """
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
 import numpy as np
+import scipy.linalg as sla
 import scipy.sparse as sps
 
-from .._gt_monomials import Monomial
-
-try:
-    from .._gt_monomials import gt_intertwiner
-except ImportError:  # TEMPORARY until qreps lands gt_intertwiner
-    from .._gt_monomials import _flip_perm, _intertwining_phases, _monomial_residual
-
-    def gt_intertwiner(rep, P, chain, rows, sigma, *, conj):
-        try:
-            perm = _flip_perm(rep, P, rows)
-            U = Monomial(perm, _intertwining_phases(chain, perm, sigma, conj))
-        except (ArithmeticError, ValueError):
-            return None
-        return None if _monomial_residual(U, chain, sigma, conj) > 1e-9 else U
+from ... import _pricing
+from .._gt_monomials import Monomial, gt_intertwiner, gt_patterns_of, gt_rotations
 
 __all__ = ["Sector"]
 
@@ -171,3 +164,144 @@ def gt_reflection(rep, P: np.ndarray, chain: dict) -> Monomial | None:
     if np.any(U.perm[U.perm] != np.arange(len(U.perm))) or np.abs(sq - 1).max() > 1e-9:
         return None  # pragma: no cover - U^2 = 1 holds whenever the intertwining check passes
     return U
+
+
+def _commutes_conj(V: Monomial, U: Monomial) -> bool:
+    r""":math:`V \bar U = U V` for monomial matrices (U with entries in {+-1, +-i})."""
+    if np.any(V.perm[U.perm] != U.perm[V.perm]):
+        return False
+    # V conj(U) e_a = conj(u_a) v_{rho a} e_{pi rho a};  U V e_a = v_a u_{pi a} e_{rho pi a}
+    return bool(np.abs(np.conj(U.phase) * V.phase[U.perm] - V.phase * U.phase[V.perm]).max() <= 1e-9)
+
+
+def real_structure(rep, P: np.ndarray, chain: dict, *, cartan: list[int] | None, reflection: Monomial | None):
+    r"""A monomial V such that :math:`A = VK` is antiunitary, :math:`A^2 = 1`, commutes with every rotor
+    Hamiltonian and preserves every sector; ``None`` if no candidate passes.
+
+    Candidates: :math:`A = D(g_s)\,T` for sign vectors ``s`` (any determinant), i.e.
+    :math:`V \bar X_{(q,q+1)} V^{-1} = s_q s_{q+1} X_{(q,q+1)}`; in the GT basis V negates
+    the last label of the rows :math:`M_m` with :math:`m \equiv 2 \pmod 4` (complex
+    conjugation) and of the even rows with :math:`\prod_{i \le m} s_i = -1` (the sign
+    rotation), the two sets combined by symmetric difference. :math:`A H A^{-1} = H`
+    for every rotor Hamiltonian (it only has squares of generators). ``cartan``
+    (spinor irreps): the Cartan planes of the sectors, on which :math:`A` must
+    reverse the generator (:math:`s_k s_{k+1} = -1`): an antiunitary maps the
+    eigenvalue :math:`\pm i` of :math:`D(g_{(k,k+1)})` to :math:`\mp i` times that sign.
+    ``reflection``: :math:`A` must commute with it. Plain conjugation (``s = 1``) is
+    tried first.
+    """
+    N = rep.N
+    conj_rows = {m for m in range(2, N + 1, 2) if m % 4 == 2}
+    top_zero = rep.highest_weight[-1] == 0 if N % 2 == 0 else True
+    candidates = sorted(itertools.product((1, -1), repeat=N - 1), key=lambda t: (t.count(-1), t))
+    for tail in candidates:
+        s = np.array(tail + (1,))
+        sigma = {q: float(s[q - 1] * s[q]) for q in chain}
+        if cartan and any(sigma[k] != -1.0 for k in cartan):
+            continue
+        rows = conj_rows ^ {m for m in range(2, N + 1, 2) if np.prod(s[:m]) == -1}
+        if N in rows:
+            if not top_zero:
+                continue  # maps the irrep to the one with the last label negated
+            rows.discard(N)
+        V = gt_intertwiner(rep, P, chain, sorted(rows), sigma, conj=True)
+        if V is None or np.any(V.perm[V.perm] != np.arange(len(V.perm))):
+            continue
+        if np.abs(np.conj(V.phase) * V.phase[V.perm] - 1).max() > 1e-9:
+            continue  # A^2 = -1 (quaternionic for this s)
+        if reflection is not None and not _commutes_conj(V, reflection):
+            continue
+        return V
+    return None
+
+
+# ----------------------------------------------------------------------------
+# the group of a representation
+# ----------------------------------------------------------------------------
+@dataclass
+class SignGroup:
+    """The commuting symmetries that define the sectors of one representation (:func:`group_of`).
+
+    ``ops``: one operator per plane ``(k, k+1)``, ``k`` in ``ks`` (monomial matrices of a
+    GT irrep, dense exponentials otherwise), then the reflection :math:`U_r` when
+    ``reflection``; ``centre``: the scalar of :math:`-1 = g_{(12)} g_{(34)} \\cdots` (even N
+    tensor irreps); ``antiunitary``: V of :math:`A = VK` (real gauge), GT irreps only.
+    """
+
+    N: int
+    spinorial: bool
+    ks: list
+    alphabet: tuple
+    degeneracy: int
+    ops: list
+    monomial: bool
+    centre: int | None = None
+    reflection: bool = False
+    antiunitary: Monomial | None = None
+
+    @property
+    def real(self) -> bool:
+        """Every sector block is real (GT irreps; N <= 2 has only 1 x 1 blocks)."""
+        return self.antiunitary is not None or (self.monomial and self.N <= 2)
+
+    def characters(self, complete: bool):
+        """``(eigenvalues of ops, label, character)`` of every candidate sector, in label order."""
+        parities = (1, -1) if self.reflection else (None,)
+        for eigs in itertools.product(self.alphabet, repeat=len(self.ks)):
+            if self.centre is not None and np.prod([eigs[k - 1] for k in range(1, self.N, 2)]) != self.centre:
+                continue  # -1 = g_(12) g_(34) ... is central: it acts as the scalar `centre`
+            for parity in parities:
+                character = {(k, k + 1): eig_text(e) for k, e in zip(self.ks, eigs)}
+                if parity is not None:
+                    character[REFLECTION] = parity
+                yield (eigs if parity is None else eigs + (parity,),
+                       label(self.N, self.spinorial, eigs, complete, parity), character)
+
+
+def check_dense_dim(rep) -> None:
+    """Price the dense fallback (dense exponentials and projectors of a non-GT representation)."""
+    _pricing.check("sectors_dense", dim=rep.dim, N=rep.N)
+
+
+def group_of(rep) -> SignGroup:
+    """The :class:`SignGroup` of a checked ``rep``: monomial for a GT irrep, dense exponentials otherwise."""
+    half = is_half_integer(rep)
+    group = _gt_group(rep, half) if half is not None else None
+    return group if group is not None else _dense_group(rep)
+
+
+def _gt_group(rep, half: bool) -> SignGroup | None:
+    N = rep.N
+    ks, alphabet, degen = structure(N, half)
+    ops = gt_rotations(rep, sorted(set(ks) | ({1} if N > 1 else set())))
+    if ops is None:
+        return None
+    U = V = None
+    if N >= 3:
+        P = gt_patterns_of(rep)
+        chain = {q: sps.csr_matrix(rep.generator((q, q + 1), format="csr")) for q in range(1, N)}
+        U = None
+        if has_reflection(rep, half):
+            U = gt_reflection(rep, P, chain)
+        V = real_structure(rep, P, chain, cartan=ks if half else None, reflection=U)
+    return SignGroup(N, half, ks, alphabet, degen, [ops[k] for k in ks] + ([U] if U is not None else []),
+                     monomial=True, centre=centre_scalar(ops, N, half), reflection=U is not None, antiunitary=V)
+
+
+def _dense_group(rep) -> SignGroup:
+    check_dense_dim(rep)
+    dim = rep.dim
+    D1 = sla.expm(np.pi * rep.generator((1, 2), format="dense"))
+    sq = D1 @ D1
+    if np.abs(sq - np.eye(dim)).max() < 1e-8:
+        spinorial = False
+    elif np.abs(sq + np.eye(dim)).max() < 1e-8:
+        spinorial = True
+    else:
+        raise ValueError(
+            f"{rep.name} mixes tensor and spinor parts (exp(2 pi X_12) is neither +1 nor -1); "
+            f"decompose it and take the sectors of each part"
+        )
+    ks, alphabet, degen = structure(rep.N, spinorial)
+    Ds = [sla.expm(np.pi * rep.generator((k, k + 1), format="dense")) for k in ks]
+    return SignGroup(rep.N, spinorial, ks, alphabet, degen, Ds, monomial=False)

@@ -14,8 +14,7 @@ import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sps
 
-from ... import _validate
-from ..._options import options
+from ... import _pricing, _validate
 from ..hamiltonian import hermitian_matrix, rotor_hamiltonian
 from ..representation import as_csr
 from .construction import sectors_of
@@ -345,9 +344,12 @@ def sector_spectra(
 
     Raises
     ------
+    hyperrotor.BudgetError
+        A sector larger than ``options["sectors_max_block_dim"]``, or over the memory
+        and time budgets (a real dense block of dimension ``n`` needs ``2 * 8 n^2``
+        bytes), before any work.
     ValueError
-        A sector larger than ``options["sectors_max_block_dim"]`` (dense memory
-        ``8 n^2`` bytes, real blocks), or bad body / hbar.
+        Bad body or hbar.
 
     Notes
     -----
@@ -365,12 +367,7 @@ def sector_spectra(
     progress = _validate.flag("progress", progress, allow_none=True)
     secs = sectors_of(rep, False)
     big = max((s.dim for s in secs), default=0)
-    lim = int(options["sectors_max_block_dim"])
-    if big > lim:
-        raise ValueError(
-            f"the largest sector of {rep.name} has dimension {big} > options['sectors_max_block_dim'] = {lim} "
-            f"(dense diagonalization needs {8 * big**2 / 2**30:.1f} GiB); raise the option to run it anyway"
-        )
+    _pricing.check("sector_spectra", dim=big, real=all(s.real for s in secs))
     from ..._parallel import map_rows
 
     idx = np.arange(len(secs))
