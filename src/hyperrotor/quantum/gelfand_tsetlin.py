@@ -481,10 +481,10 @@ def irrep(
     >>> irrep(5, dynkin=[0, 1]).dim     # the spinor, highest weight (1/2, 1/2)
     4
     """
-    from .representation import Representation, _check_format
+    from .representation import FORMATS, Representation
 
     N = check_dimension(N)
-    _check_format(format)
+    _validate.choice("format", format, FORMATS)
     m = _resolve_weight(N, highest_weight, dynkin)
     dim = _check_max_dim(N, m, max_dim)
     gens = _gt_generators_float(N, m)

@@ -65,14 +65,13 @@ from .weights import casimir_eigenvalue, check_highest_weight, positive_roots
 
 __all__ = ["Representation", "as_csr", "check_antihermitian"]
 
-_FORMATS = ("csr", "dense")
+#: The matrix formats of :meth:`Representation.generator` and friends.
+FORMATS = ("csr", "dense")
 
 def _check_format(format: str) -> str:
     if format is None:
         return "csr"
-    if format not in _FORMATS:
-        raise ValueError(f"unknown format {format!r}; allowed: 'csr' (scipy.sparse CSR) or 'dense' (numpy array)")
-    return format
+    return _validate.choice("format", format, FORMATS)
 
 
 def _as_format(M, format: str):
