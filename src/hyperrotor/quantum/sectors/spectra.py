@@ -148,11 +148,10 @@ def restrict(M: sps.csr_matrix, B, *, dense: bool = True, real: bool = False):
         rows = np.unique(B.indices)  # the support S: B^H H B = W^H H[S, S] W
         W = B[rows]
         Hs = (sps.csr_matrix(W.conj().T) @ (M[rows][:, rows] @ W)).tocsr()
+        Hs = ((Hs + Hs.conj().T) * 0.5).tocsr()  # exactly Hermitian, symmetrized while sparse (one dense copy)
         if np.iscomplexobj(Hs.data) and Hs.nnz:
             Hs = _real_part(Hs, Hs.data, real)
-        if not dense:
-            return Hs
-        Hs = Hs.toarray()
+        return Hs.toarray() if dense else Hs
     else:
         Hs = np.asarray(B).conj().T @ (M @ B)
         if not dense:
