@@ -46,7 +46,7 @@ def _moments(rep, psi, hbar=1.0):
 def _simple_bivector(rng, N):
     """A random simple bivector u ^ v (one plane of rotation), as plane components."""
     u, v = rng.normal(size=(2, N))
-    return to_components(np.outer(u, v) - np.outer(v, u), "standard")
+    return to_components(np.outer(u, v) - np.outer(v, u), convention="standard")
 
 
 @pytest.mark.parametrize("N, l", [(3, 1), (3, 4), (4, 2), (5, 1), (5, 3), (6, 2)])
@@ -79,7 +79,7 @@ def test_minimal_uncertainty_equals_casimir_minus_weight_squared(N, m, rng):
     for k, wk in enumerate(w):
         B[2 * k, 2 * k + 1], B[2 * k + 1, 2 * k] = wk, -wk
     Q = special_ortho_group.rvs(N, random_state=int(rng.integers(1 << 30)))
-    L = to_components(Q @ B @ Q.T, "standard")
+    L = to_components(Q @ B @ Q.T, convention="standard")
     hbar = 0.8
     psi = coherent_state(rep, L, hbar=hbar)
     first, second = _moments(rep, psi, hbar)
@@ -140,7 +140,7 @@ def test_apply_rotation_is_equivariant(N, m, rng):
     assert abs(np.linalg.norm(phi) - 1.0) <= scaled_tol(1.0, dim=rep.dim, k=64)  # U(Q) is unitary
     mu0, _ = _moments(rep, psi)
     mu1, _ = _moments(rep, phi)
-    expected = to_components(Q @ to_matrix(mu0, "standard") @ Q.T, "standard")
+    expected = to_components(Q @ to_matrix(mu0, convention="standard") @ Q.T, convention="standard")
     X = max(norm(rep.generator(p, format="dense")) for p in planes(N))
     np.testing.assert_allclose(mu1, expected, rtol=0, atol=scaled_tol(X, dim=rep.dim, k=64 * N))
 
@@ -163,7 +163,7 @@ def test_refusals_name_the_problem(rng):
     B = np.zeros((5, 5))
     B[0, 1], B[1, 0], B[2, 3], B[3, 2] = 2.0, -2.0, 1.0, -1.0
     with pytest.raises(ValueError, match="not a positive multiple"):
-        coherent_state(rep, to_components(B, "standard"))
+        coherent_state(rep, to_components(B, convention="standard"))
     with pytest.raises(ValueError, match="frame"):
         coherent_state(rep, _simple_bivector(rng, 5), frame="lab")
     with pytest.raises((ValueError, TypeError), match="hbar"):

@@ -1,6 +1,6 @@
 r"""Quantum <-> classical correspondence for the rigid rotor.
 
-Sign relation (derived in :mod:`hyperrotor.quantum.rotor`): for a representation
+Sign relation (derived in :mod:`hyperrotor.quantum.hamiltonian`): for a representation
 :math:`X_a` with :math:`[X_a, X_b] = C_{ab}^{\;c} X_c`, the Hermitian generators
 :math:`\hat L_a = -i\hbar X_a` obey :math:`[\hat L_a, \hat L_b] = -i\hbar C_{ab}^{\;c}\hat L_c`
 (space-frame sign), while the classical body-frame Lie-Poisson bracket is
@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 import qutip
 import sympy as sp
+import scipy.linalg as sla
 from scipy.integrate import solve_ivp
 
 import hyperrotor
@@ -25,7 +26,7 @@ from hyperrotor.quantum.coherent import (
     highest_weight_state,
     normal_form_rotation,
 )
-from hyperrotor.quantum.rotor import evolve, rotor_hamiltonian
+from hyperrotor.quantum import evolve, rotor_hamiltonian
 from tolerance import norm, scaled_tol
 
 
@@ -291,3 +292,33 @@ def test_ehrenfest_so5_error_shrinks_like_one_over_l():
     slope, errs, rev = _report("so(5) rotor, coherent states (l, 0), hbar = 1/l", rows)
     assert -1.3 < slope < -0.7
     assert np.all(rev > 0.3)
+
+
+def test_ehrenfest_time_against_brute_force():
+    r"""ehrenfest_time == dense expm of H (quantum), solve_ivp (classical) and the first crossing found here."""
+    moments = np.array([1.0, 1.6, 2.3])
+    L0 = np.array([0.5, -0.3, 0.81]) * 1.7
+    t = np.linspace(0.0, 6.0, 61)
+    res = hyperrotor.quantum.ehrenfest_time(moments, L0, [2, 5], t, threshold=0.15)
+    ref_cl = _classical(moments, L0, t)
+    np.testing.assert_allclose(res.classical, ref_cl, rtol=0, atol=1e-7 * np.linalg.norm(L0))
+    for row, l in enumerate((2, 5)):
+        rep = irrep(3, (l,))
+        hbar = np.linalg.norm(L0) / l
+        assert res.hbar[row] == pytest.approx(hbar, rel=1e-15) and res.dims[row] == 2 * l + 1
+        Hd = rotor_hamiltonian(rep, moments, hbar=hbar).full()
+        psi = coherent_state(rep, L0, hbar=hbar, frame="body").full().ravel()
+        ops = [-rep.generator(p, form="hermitian", hbar=hbar).toarray() for p in planes(3)]
+        q = []
+        for tk in t:
+            v = sla.expm(-1j * tk * Hd / hbar) @ psi
+            q.append([np.vdot(v, o @ v).real for o in ops])
+        q = np.array(q)
+        np.testing.assert_allclose(res.quantum[row], q, rtol=0, atol=1e-9 * np.linalg.norm(L0))
+        dev = np.linalg.norm(q - ref_cl, axis=1) / np.linalg.norm(L0)
+        k = int(np.argmax(dev >= 0.15))
+        assert dev[k] >= 0.15 > dev[k - 1]  # crosses inside the window
+        assert t[k - 1] <= res.t_E[row] <= t[k]
+        expected = t[k - 1] + (0.15 - dev[k - 1]) / (dev[k] - dev[k - 1]) * (t[k] - t[k - 1])
+        assert res.t_E[row] == pytest.approx(expected, abs=1e-6)
+    assert res.t_E[1] > res.t_E[0]  # smaller hbar_eff: the state follows the classical orbit longer

@@ -2,6 +2,7 @@
 
 Layers: ``operators``/``normal_form``/``harmonic`` (symbolic, eq. 142) and
 ``weights``/``representation``/``standard_reps``/``gelfand_tsetlin`` (matrices)
+sit below ``hamiltonian`` (the rotor Hamiltonian), ``evolve`` (propagators),
 ``spectrum`` and ``coherent`` (coherent states); the classical subpackage never
 imports this one. The vocabulary (``form=``, keyword-only ``hbar``, ``t``,
 ``rtol``/``atol``, ``rng``) is documented in docs/conventions.md.
@@ -12,6 +13,7 @@ from . import (coherent, combine, equivalence, evolve as _evolve_module, gelfand
 from . import rotor  # noqa: F401  (old module name, re-exports; goes when tests/quantum/test_correspondence.py moved)
 from .coherent import *  # noqa: F401,F403
 from .combine import *  # noqa: F401,F403
+from .correspondence import *  # noqa: F401,F403
 from .equivalence import *  # noqa: F401,F403
 from .evolve import *  # noqa: F401,F403
 from .gelfand_tsetlin import *  # noqa: F401,F403
@@ -20,6 +22,7 @@ from .harmonic import *  # noqa: F401,F403
 from .normal_form import *  # noqa: F401,F403
 from .operator_products import *  # noqa: F401,F403
 from .operators import *  # noqa: F401,F403
+from .propagators import *  # noqa: F401,F403
 from .representation import *  # noqa: F401,F403
 from .sectors import *  # noqa: F401,F403
 from .spectrum import *  # noqa: F401,F403
@@ -39,9 +42,11 @@ __all__ = [
     *equivalence.__all__,
     *gelfand_tsetlin.__all__,
     *hamiltonian.__all__,
+    *propagators.__all__,
     *_evolve_module.__all__,
     *_spectrum_module.__all__,
     *coherent.__all__,
+    *correspondence.__all__,
     *sectors.__all__,
     *statistics.__all__,
 ]

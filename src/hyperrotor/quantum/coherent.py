@@ -22,7 +22,7 @@ These are the states of minimal uncertainty,
 roots), so :math:`\langle\hat L\rangle/(\hbar |w|)` becomes sharp as
 :math:`|w| \to \infty`: the classical limit used by the Ehrenfest tests.
 Because the classical Euler equations are body-frame equations, use
-``frame="body"`` to compare with them (see :mod:`hyperrotor.quantum.rotor`).
+``frame="body"`` to compare with them (see :mod:`hyperrotor.quantum.hamiltonian`).
 """
 from __future__ import annotations
 
@@ -34,10 +34,16 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 import scipy.sparse.linalg as spla
 
-from .. import _validate
+from .. import _pricing, _validate
 from .._options import options
 from ..conventions import n_planes, planes, to_matrix
-from .evolve import _krylov_propagator, _single_thread_blas
+from ._krylov import krylov_propagator, single_thread_blas
+
+options.register(
+    "quantum_coherent_rtol", 1e-8,
+    "hyperrotor.quantum.coherent_state: relative tolerance of the check that the normal form of L is a positive "
+    "multiple of the highest weight of the irrep (a coherent state along L exists only then).",
+)
 
 __all__ = [
     "generator_expectations",
@@ -52,7 +58,7 @@ def _vector(psi: Any, dim: int, name: str = "psi") -> np.ndarray:
     return _validate.ket(name, psi, dim, of="the representation")
 
 
-def generator_expectations(rep: Any, psi: Any, *args: Any, hbar: float = 1.0) -> np.ndarray:
+def generator_expectations(rep: Any, psi: Any, *, hbar: float = 1) -> np.ndarray:
     r"""Expectation values :math:`\langle\psi|\hat L_a|\psi\rangle/\langle\psi|\psi\rangle`, plane order.
 
     Parameters
@@ -68,8 +74,6 @@ def generator_expectations(rep: Any, psi: Any, *args: Any, hbar: float = 1.0) ->
     ndarray of shape ``(N(N-1)/2,)``, real. The body-frame values are the
     negatives (see :mod:`hyperrotor.quantum.hamiltonian`).
     """
-    if args:
-        raise TypeError("generator_expectations() takes hbar as a keyword only: generator_expectations(rep, psi, hbar=...)")
     hbar = _validate.hbar(hbar)
     _validate.representation("rep", rep)
     vec = _vector(psi, int(rep.dim))
@@ -103,12 +107,13 @@ def highest_weight_state(rep: Any) -> tuple[np.ndarray, np.ndarray]:
     _validate.representation("rep", rep)
     N = int(rep.N)
     dim = int(rep.dim)
+    _pricing.check("highest_weight_state", dim=dim)
     gens = rep.generators()
     cp = _cartan_planes(N)
     K = sps.csr_matrix((dim, dim), dtype=complex)
     for k, p in enumerate(cp):
         K = K + (-1j * 2.0 ** (-k)) * sps.csr_matrix(gens[p])
-    with _single_thread_blas():
+    with single_thread_blas():
         if dim <= 200:
             _, V = np.linalg.eigh(K.toarray())
             psi = V[:, -1]
@@ -206,7 +211,7 @@ def apply_rotation(rep: Any, Q: Any, psi: Any) -> np.ndarray:
 
     ``Q`` is factored into plane rotations :math:`\prod_k \exp(\theta_k E_{p_k})`
     (Givens) and each factor :math:`e^{\theta_k X_{p_k}}\psi` is applied by the
-    Lanczos propagator of :mod:`hyperrotor.quantum.evolve` (Krylov, tolerance
+    Lanczos propagator of :mod:`hyperrotor.quantum._krylov` (Krylov, tolerance
     ``options["quantum_rotation_atol"]`` = 1e-14; ``scipy.sparse.linalg.expm_multiply`` gives the same vectors but was
     ~10x slower here).
     """
@@ -219,18 +224,18 @@ def apply_rotation(rep: Any, Q: Any, psi: Any) -> np.ndarray:
         raise ValueError(f"Q must be a rotation (orthogonal with det +1), got {_validate.fmt(Q)}")
     vec = _vector(psi, int(rep.dim))
     gens = rep.generators()
-    with _single_thread_blas():
+    with single_thread_blas():
         for plane, theta in reversed(_givens_angles(Q)):
             # exp(theta X) v = exp(-i H |theta|) v with the Hermitian H = i sign(theta) X (Lanczos)
             Hp = sps.csr_matrix(gens[plane]) * (1j * np.sign(theta))
-            prop = _krylov_propagator(Hp, vec, np.array([0.0, abs(theta)]), 1.0, {},
+            prop = krylov_propagator(Hp, vec, np.array([0.0, abs(theta)]), 1.0, {},
                                       atol=options["quantum_rotation_atol"], m_max=options["quantum_krylov_dim"])
             next(prop)
             vec = next(prop)
     return vec
 
 
-def coherent_state(rep: Any, L: Any, *, hbar: float = 1.0, frame: str = "space", rtol: float = 1e-8) -> qutip.Qobj:
+def coherent_state(rep: Any, L: Any, *, hbar: float = 1, frame: str = "space", rtol: float | None = None) -> qutip.Qobj:
     r"""Spin-coherent state whose angular momentum points along the classical ``L``.
 
     Parameters
@@ -247,8 +252,9 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1.0, frame: str = "space",
         the sign that follows the classical Euler equations forward in time.
         In both cases :math:`c = \hbar |w| / |L|` (:math:`w` the highest
         weight; for :math:`(l, 0, \dots)`, :math:`c = \hbar l/|L|`).
-    rtol : float, default 1e-8
-        Tolerance of the proportionality check :math:`\lambda \propto w`.
+    rtol : float, optional
+        Tolerance of the proportionality check :math:`\lambda \propto w`
+        (default ``hr.options["quantum_coherent_rtol"]`` = 1e-8).
 
     Returns
     -------
@@ -263,6 +269,7 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1.0, frame: str = "space",
         bivector in an irrep :math:`(l, 0, \dots)`).
     """
     _validate.hbar(hbar)
+    rtol = options["quantum_coherent_rtol"] if rtol is None else _validate.positive("rtol", rtol)
     frame = _validate.choice("frame", frame, ("space", "body"))
     _validate.representation("rep", rep)
     N = int(rep.N)

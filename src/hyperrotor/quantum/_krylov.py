@@ -1,0 +1,164 @@
+r"""Lanczos (Krylov) propagation of :math:`e^{-i H t/\hbar} v` on a time grid: the one home of this machinery.
+
+Used by :mod:`hyperrotor.quantum.evolve` (method ``"krylov"``, and ``"auto"`` for
+large blocks), :mod:`hyperrotor.quantum.coherent` (rotations of a state,
+:func:`~hyperrotor.quantum.apply_rotation`) and :mod:`hyperrotor.quantum.correspondence`
+(operators in the Heisenberg picture). The names here are shared inside the
+package; the module itself is private.
+"""
+from __future__ import annotations
+
+from typing import Iterator
+
+import numpy as np
+import scipy.linalg as sla
+from scipy.linalg.blas import zgemv
+import scipy.sparse as sps
+
+__all__ = ["krylov_propagator", "matvec_factory", "norm", "single_thread_blas"]
+
+
+def matvec_factory(mat: sps.csr_matrix):
+    """``v -> mat @ v`` for complex ``v``; a real matrix is applied to (Re, Im) in one pass."""
+    if mat.dtype.kind == "f":
+        def mv(v: np.ndarray) -> np.ndarray:
+            x = np.ascontiguousarray(v).view(np.float64).reshape(-1, 2)
+            return np.ascontiguousarray(mat @ x).reshape(-1).view(np.complex128)
+        return mv
+    return lambda v: mat @ v
+
+
+def single_thread_blas():
+    """Run the thin Krylov products on one BLAS thread (restored afterwards).
+
+    The products of the ``(m, dim)`` Krylov basis with vectors gain nothing from
+    threads, and on a loaded machine OpenBLAS thread over-subscription made them
+    ~10x slower in our measurements. Uses ``threadpoolctl``; its scan of the loaded
+    libraries (~10 ms) is made once per process (numpy's and scipy's BLAS are
+    loaded when this module is imported).
+    """
+    global _CONTROLLER
+    if _CONTROLLER is None:
+        from threadpoolctl import ThreadpoolController
+
+        _CONTROLLER = ThreadpoolController()
+    return _CONTROLLER.limit(limits=1, user_api="blas")
+
+
+_CONTROLLER = None
+
+
+def norm(v: np.ndarray) -> float:
+    x = v.view(np.float64) if v.dtype == np.complex128 and v.flags.c_contiguous else np.concatenate([v.real, v.imag])
+    return float(np.sqrt(x @ x))
+
+
+def krylov_propagator(mat, v0, times, hbar, stats, *, atol: float, m_max: int) -> Iterator[np.ndarray]:
+    """Lanczos propagation of ``exp(-i H t / hbar) v0`` on a time grid.
+
+    Each restart builds an orthonormal Krylov basis ``V`` of dimension ``m`` at the
+    current state ``v`` (norm ``beta0``) with the tridiagonal ``T``; then
+    ``exp(-i H tau/hbar) v ~ beta0 V exp(-i T tau/hbar) e1`` with the error estimate
+    ``beta0 * beta_m * |e_m^T exp(-i T tau/hbar) e1|``. Every remaining output
+    time whose estimate is <= ``tol`` is served from this basis; the next restart
+    begins at the last of them (or, if none is reachable, after a sub-step ``tau``
+    meeting the tolerance, found by bisection).
+    """
+    tol = atol
+    n = v0.shape[0]
+    mv = matvec_factory(mat)
+    m_max = max(1, min(int(m_max), n))
+    t_cur = times[0]
+    v = v0.astype(complex)
+    yield v
+    k = 1
+    nt = times.size
+    V = np.empty((m_max + 1, n), dtype=complex)
+    while k < nt:
+        beta0 = norm(v)
+        V[0] = v / beta0
+        alpha = np.zeros(m_max)
+        beta = np.zeros(m_max)
+        m = m_max
+        breakdown = False
+        for j in range(m_max):
+            w = mv(V[j])
+            stats["n_matvec"] = stats.get("n_matvec", 0) + 1
+            alpha[j] = np.vdot(V[j], w).real
+            w -= alpha[j] * V[j]
+            if j > 0:
+                w -= beta[j - 1] * V[j - 1]
+            VjT = V[: j + 1].T  # Fortran-ordered view: BLAS gemv without a copy
+            for _ in range(2):  # full re-orthogonalization (classical Gram-Schmidt, twice): w -= V (V^H w)
+                w = zgemv(-1.0, VjT, zgemv(1.0, VjT, w, trans=2), beta=1.0, y=w, trans=0, overwrite_y=1)
+            beta[j] = norm(w)
+            if beta[j] <= 1e-13 * max(1.0, abs(alpha[j])):
+                m = j + 1
+                breakdown = True
+                break
+            V[j + 1] = w / beta[j]
+        stats["n_krylov"] = stats.get("n_krylov", 0) + 1
+        if m == 1:
+            theta, S = np.array([alpha[0]]), np.ones((1, 1))
+        else:
+            theta, S = sla.eigh_tridiagonal(alpha[:m], beta[: m - 1])
+        s0 = S[0, :]
+        bm = 0.0 if breakdown else beta[m - 1]
+
+        def coeffs(tau: np.ndarray) -> np.ndarray:
+            # columns: exp(-i T tau/hbar) e1 for each tau
+            return S @ (np.exp(-1j * np.outer(theta, tau) / hbar) * s0[:, None])
+
+        Tm = np.diag(alpha[:m]) + np.diag(beta[: m - 1], 1) + np.diag(beta[: m - 1], -1)
+
+        floor = 4 * m * np.finfo(float).eps * beta0 * bm
+
+        def err(tau: np.ndarray) -> np.ndarray:
+            # beta0 beta_m |e_m^T exp(-i T tau/hbar) e1|. From the eigen-decomposition the value
+            # has an absolute round-off floor ~ m eps beta0 beta_m: above it, return the safe
+            # bound value + floor; when tol is close to the floor, use Pade instead (scipy expm
+            # keeps the exact zeros of the powers of the tridiagonal T, so tiny values keep
+            # their relative accuracy).
+            tau = np.asarray(tau, dtype=float)
+            if bm == 0.0:
+                return np.zeros(len(tau))
+            if tol > 2 * floor:
+                return beta0 * bm * np.abs(coeffs(tau)[m - 1]) + floor
+            E = sla.expm((-1j / hbar) * tau[:, None, None] * Tm[None])
+            return beta0 * bm * np.abs(E[:, m - 1, 0])
+
+        taus = times[k:] - t_cur
+        # serve the output times in order, checking them in growing batches
+        nok, start, batch = 0, 0, 4
+        while start < len(taus):
+            ok = err(taus[start : start + batch]) <= tol
+            nok = start + (len(ok) if ok.all() else int(np.argmin(ok)))
+            if not ok.all():
+                break
+            start, batch = start + batch, 2 * batch
+        if nok > 0:
+            C = coeffs(taus[:nok]) * beta0
+            for q in range(nok):
+                state = C[:, q] @ V[:m]
+                yield state
+            v = state
+            t_cur = times[k + nok - 1]
+            k += nok
+        else:
+            # largest sub-step meeting the tolerance (bisection; the estimate grows ~ tau^m)
+            lo, hi = 0.0, taus[0]
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                if err(np.array([mid]))[0] <= tol:
+                    lo = mid
+                else:
+                    hi = mid
+                if hi - lo <= 1e-3 * hi:
+                    break
+            if lo <= 0:
+                raise RuntimeError(
+                    f"Krylov propagation cannot meet atol = {tol:.3g}; increase the option 'krylov_dim' or 'atol'"
+                )
+            tau = lo
+            v = beta0 * (coeffs(np.array([tau]))[:, 0] @ V[:m])
+            t_cur = t_cur + tau

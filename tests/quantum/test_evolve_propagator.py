@@ -1,0 +1,103 @@
+"""SectorPropagator (hyperrotor.quantum.evolve): build once, apply to many states and times.
+
+Checked against the dense exponential scipy.linalg.expm of the whole Hamiltonian: the states of
+every engine (eigen, Krylov, the rent-or-buy switch of "auto"), forwards and backwards
+(``apply`` with negative times), for a generic so(5) rotor (symmetry sectors) and a quartet body
+(sparsity blocks); the state normalization near the overflow and the underflow; the output budget.
+"""
+import numpy as np
+import pytest
+import scipy.linalg as sla
+
+import hyperrotor as hr
+from hyperrotor.quantum import SectorPropagator, evolve, irrep, rotor_hamiltonian
+from tolerance import scaled_tol
+
+
+def _generic(rng, hw=(3, 1)):
+    rep = irrep(5, hw)
+    return rep, rotor_hamiltonian(rep, rng.uniform(1.0, 2.0, size=10))
+
+
+def _state(rng, dim):
+    v = rng.normal(size=dim) + 1j * rng.normal(size=dim)
+    return v / np.linalg.norm(v)
+
+
+@pytest.mark.parametrize("method", ["auto", "eigen", "krylov"])
+def test_many_states_and_grids_match_expm(method, rng):
+    rep, H = _generic(rng)
+    Hd = H.full()
+    with hr.options(quantum_eigen_max_block=20):  # the sectors of (3, 1) (dim 81) go to Krylov under "krylov"
+        U = SectorPropagator(H, method=method)
+    assert U.stats["sectors"] == 16
+    t = np.array([0.0, 0.4, 1.3, 2.0])
+    tol = scaled_tol(1.0, dim=rep.dim, k=1e4)  # Krylov atol 1e-12 per restart
+    for _ in range(3):  # the same propagator, several states (eigendecompositions cached)
+        psi = _state(rng, rep.dim)
+        S = U.states(psi, t)
+        for k, tk in enumerate(t):
+            np.testing.assert_allclose(S[k], sla.expm(-1j * tk * Hd) @ psi, rtol=0, atol=tol)
+    X = np.column_stack([_state(rng, rep.dim) for _ in range(3)])
+    for tau in (0.7, -1.1):  # backwards too: exp(+i H 1.1)
+        np.testing.assert_allclose(U.apply(X, tau), sla.expm(-1j * tau * Hd) @ X, rtol=0, atol=tol)
+
+
+def test_auto_diagonalizes_a_large_block_once_krylov_would_cost_more(rng):
+    """Rent-or-buy: a short window stays in Krylov, a long one (or repeated use) ends in the cached eigh."""
+    rep, H = _generic(rng, (6, 3))  # dim 770, sectors of ~48
+    psi = _state(rng, rep.dim)
+    with hr.options(quantum_eigen_max_block=2, quantum_krylov_dim=6):
+        U = SectorPropagator(H)
+        U.states(psi, [0.0, 1e-3])
+        assert U.stats["block_methods"] == ["krylov"] and U.stats["n_eigh"] == 0
+        S = U.states(psi, np.linspace(0.0, 50.0, 3))
+        assert U.stats["block_methods"] == ["eigen"] and U.stats["n_eigh"] == 16
+        U.states(psi, np.linspace(0.0, 50.0, 3))
+        assert U.stats["n_eigh"] == 0  # cached
+    np.testing.assert_allclose(S[-1], sla.expm(-50j * H.full()) @ psi, rtol=0, atol=scaled_tol(1.0, dim=rep.dim, k=1e4))
+
+
+def test_quartet_sparsity_blocks_and_evolve_result(rng):
+    """A quartet body is block diagonal in the GT basis: no sectors, the populated blocks only."""
+    rep = irrep(5, (3, 1))
+    kappa = 0.7
+    moments = np.array([1 + kappa**2 if 5 in p else 2.0 for p in hr.conventions.planes(5)])
+    H = rotor_hamiltonian(rep, moments)
+    psi = np.zeros(rep.dim, complex)
+    psi[:7] = _state(rng, 7)
+    t = np.linspace(0.0, 3.0, 5)
+    res = evolve(H, psi, t, e_ops=[H], options={"store_states": True})
+    assert "sectors" not in res.stats
+    for k, tk in enumerate(t):
+        exact = sla.expm(-1j * tk * H.full()) @ psi
+        np.testing.assert_allclose(res.states[k].full().ravel(), exact, rtol=0, atol=scaled_tol(1.0, dim=rep.dim, k=1e3))
+    E0 = np.vdot(psi, H.full() @ psi).real
+    np.testing.assert_allclose(res.expect[0], E0, rtol=0, atol=scaled_tol(abs(E0), dim=rep.dim, k=1e3))
+
+
+@pytest.mark.parametrize("scale", [1e200, 1e-200, 1e-310])
+def test_huge_and_tiny_states_keep_their_direction(scale, rng):
+    H = np.diag([1.0, 2.0, 3.0])
+    t = [0.0, 1.0]
+    with pytest.warns(UserWarning, match="norm"):
+        res = evolve(H, np.full(3, scale), t, options={"store_states": True})
+    np.testing.assert_allclose(res.states[-1].full().ravel(), np.exp(-1j * np.diag(H)) / np.sqrt(3), rtol=0, atol=1e-14)
+    with pytest.raises(ValueError, match="zero vector"):
+        evolve(H, np.zeros(3), t)
+
+
+def test_output_budget_refuses_before_work():
+    """10^6 output times of a 3-level system are priced (max_output_bytes) and refused at once."""
+    H = np.diag([1.0, 2.0, 3.0])
+    t = np.linspace(0.0, 1.0, 10**6)
+    with hr.options(max_output_bytes=10**8), pytest.raises(hr.BudgetError, match="max_output_bytes"):
+        evolve(H, np.ones(3) / np.sqrt(3), t)
+
+
+def test_keyword_only_after_t_and_progress_refuses_non_flags():
+    H = np.diag([1.0, 2.0])
+    with pytest.raises(TypeError):
+        evolve(H, np.ones(2), [0.0, 1.0], None)  # e_ops is keyword-only
+    with pytest.raises((TypeError, ValueError), match="progress"):
+        evolve(H, np.ones(2) / np.sqrt(2), [0.0, 1.0], progress="yes")
