@@ -18,7 +18,7 @@ from hyperrotor.paper import printed as P
 
 @pytest.fixture(scope="module")
 def body():
-    return RigidBody(Inertia.symbolic(5), "paper")
+    return RigidBody(Inertia.symbolic(5), convention="paper")
 
 
 @pytest.fixture(scope="module")

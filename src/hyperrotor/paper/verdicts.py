@@ -1,19 +1,20 @@
 r"""Verdicts and the comparison helpers that produce them.
 
 A :class:`Verdict` records the outcome of checking one printed equation or
-claim of the preprint; :data:`STATUSES` lists the allowed outcomes. The private
+claim of the preprint; :data:`STATUSES` lists the allowed outcomes. The
 helpers here are shared by the section checkers in
-:mod:`hyperrotor.paper.sections`:
+:mod:`hyperrotor.paper.sections` (package-internal: not in ``__all__``; names
+with an underscore are used in this module only):
 
-* text: ``_fmt`` (compact SymPy text), ``_grouped`` (grouped by the monomials
-  of the dynamical variables), ``_diff_text``, ``_eq_str``;
-* normalisation: ``_plain`` (``omega_ij(t)`` to plain symbols), ``_eq_zero``
-  (``lhs - rhs`` of an equation), ``_antisym`` (reversed indices read by
+* text: ``fmt_expr`` (compact SymPy text), ``grouped`` (grouped by the monomials
+  of the dynamical variables), ``_diff_text``, ``eq_str``;
+* normalisation: ``_plain`` (``omega_ij(t)`` to plain symbols), ``eq_zero``
+  (``lhs - rhs`` of an equation), ``antisym`` (reversed indices read by
   antisymmetry, eq. 1);
-* comparison: ``_terms``, ``_term_diff``, ``_proportional``, ``_scale_like``,
+* comparison: ``expr_terms``, ``_term_diff``, ``_proportional``, ``_scale_like``,
   ``_mismatch``, ``_agrees``;
-* verdict builders: ``_compare`` (printed vs derived expression, ``"holds"`` or
-  ``"typo"``) and ``_claim`` (a checked statement, ``"holds"`` or
+* verdict builders: ``compare`` (printed vs derived expression, ``"holds"`` or
+  ``"typo"``) and ``claim`` (a checked statement, ``"holds"`` or
   ``"claim-false"``).
 """
 from __future__ import annotations
@@ -29,6 +30,8 @@ from hyperrotor.paper import printed_solutions as ps
 
 
 #: The allowed verdict statuses.
+__all__ = ["Verdict", "STATUSES"]
+
 STATUSES = ("holds", "typo", "claim-false", "not-checkable")
 
 
@@ -72,10 +75,10 @@ class Verdict:
 # ----------------------------------------------------------------------------
 # formatting and comparison helpers
 # ----------------------------------------------------------------------------
-_S = ps.symbol
+psym = ps.symbol
 
 
-def _fmt(expr) -> str:
+def fmt_expr(expr) -> str:
     """Compact, readable text of a SymPy object (w12 for omega_12, w12' for its derivative, ...)."""
     s = sp.sstr(expr)
     for pat, rep in (
@@ -92,66 +95,66 @@ def _plain(expr):
     expr = _parse.to_sympy(expr, "expr", text=False)  # a derived SymPy object, never text
     reps = {}
     for d in expr.atoms(sp.Derivative):
-        reps[d] = _S("omegadot_" + d.expr.func.__name__.split("_")[1])
+        reps[d] = psym("omegadot_" + d.expr.func.__name__.split("_")[1])
     expr = expr.xreplace(reps)
-    reps = {f: _S(f.func.__name__) for f in expr.atoms(sp.core.function.AppliedUndef)}
+    reps = {f: psym(f.func.__name__) for f in expr.atoms(sp.core.function.AppliedUndef)}
     return expr.xreplace(reps)
 
 
-def _eq_zero(eq) -> sp.Expr:
+def eq_zero(eq) -> sp.Expr:
     """``lhs - rhs`` of an ``Eq`` with plain symbols, expanded."""
     return sp.expand(_plain(eq.lhs) - _plain(eq.rhs))
 
 
-def _antisym(expr):
+def antisym(expr):
     """Read reversed-index components by antisymmetry: ``omega_ji -> -omega_ij`` (also ``L``, ``Omega``)."""
     reps = {}
     for s in expr.free_symbols:
         m = re.fullmatch(r"(omega|L|Omega|OmegaOp|LOp)_(\d)(\d)", s.name)
         if m and int(m.group(2)) > int(m.group(3)):
-            reps[s] = -_S(f"{m.group(1)}_{m.group(3)}{m.group(2)}")
+            reps[s] = -psym(f"{m.group(1)}_{m.group(3)}{m.group(2)}")
     return expr.xreplace(reps)
 
 
-def _terms(expr) -> dict:
+def expr_terms(expr) -> dict:
     """Monomial -> coefficient of an expanded polynomial expression."""
     return sp.expand(expr).as_coefficients_dict()
 
 
 def _term_diff(printed, derived) -> tuple[list, list]:
     """Terms of ``printed`` not in ``derived`` (``extra``) and of ``derived`` not in ``printed`` (``missing``)."""
-    p, d = _terms(printed), _terms(derived)
+    p, d = expr_terms(printed), expr_terms(derived)
     extra = [c * m for m, c in p.items() if sp.simplify(c - d.get(m, 0)) != 0]
     missing = [c * m for m, c in d.items() if sp.simplify(c - p.get(m, 0)) != 0]
     return extra, missing
 
 
 _DYN = re.compile(r"^(omega|omegadot|varpi|varpidot|L|C|LOp|OmegaOp)_\d+$")
-_KAPPA = _S("kappa")  # the quartet parameter of eqs. (84)-(85); _grouped factors polynomials in it
+KAPPA = psym("kappa")  # the quartet parameter of eqs. (84)-(85); grouped factors polynomials in it
 
 
-def _grouped(expr) -> str:
+def grouped(expr) -> str:
     """Text of ``expr`` grouped by the monomials of the dynamical variables, coefficients factored."""
     expr = sp.expand(expr)
     gens = sorted((s for s in expr.free_symbols if _DYN.match(s.name)), key=lambda s: s.name)
     if not gens or expr == 0:
-        return _fmt(expr)
+        return fmt_expr(expr)
     text = ""
     for mono, coef in sp.Poly(expr, *gens).terms():
-        m = _fmt(sp.Mul(*[g**e for g, e in zip(gens, mono)]))
+        m = fmt_expr(sp.Mul(*[g**e for g, e in zip(gens, mono)]))
         c = sp.factor(coef)
-        if coef.free_symbols == {_KAPPA}:
+        if coef.free_symbols == {KAPPA}:
             k2 = sp.Dummy("k2")
-            c = sp.factor(sp.expand(coef).subs(_KAPPA**2, k2)).subs(k2, _KAPPA**2)
+            c = sp.factor(sp.expand(coef).subs(KAPPA**2, k2)).subs(k2, KAPPA**2)
         neg = c.could_extract_minus_sign()
         if neg:
             c = -c
         if c == 1:
             body = m
         elif c.is_Atom or (c.is_Mul and all(a.is_Atom or a.is_Pow for a in c.args)):
-            body = f"{_fmt(c)}*{m}"
+            body = f"{fmt_expr(c)}*{m}"
         else:
-            body = f"({_fmt(c)})*{m}"
+            body = f"({fmt_expr(c)})*{m}"
         text += (" - " if neg else " + ") + body if text else ("-" if neg else "") + body
     return text
 
@@ -159,9 +162,9 @@ def _grouped(expr) -> str:
 def _diff_text(extra: list, missing: list) -> str:
     parts = []
     if extra:
-        parts.append("printed has " + _grouped(sp.Add(*extra)))
+        parts.append("printed has " + grouped(sp.Add(*extra)))
     if missing:
-        parts.append("derived has " + _grouped(sp.Add(*missing)))
+        parts.append("derived has " + grouped(sp.Add(*missing)))
     return "; ".join(parts)
 
 
@@ -170,9 +173,9 @@ def _proportional(printed, derived):
     printed, derived = sp.expand(printed), sp.expand(derived)
     if derived == 0:
         return None
-    dterms = _terms(derived)
+    dterms = expr_terms(derived)
     mono, coef = next(iter(dterms.items()))
-    c = sp.simplify(_terms(printed).get(mono, 0) / coef)
+    c = sp.simplify(expr_terms(printed).get(mono, 0) / coef)
     if c == 0:
         return None
     return c if sp.expand(printed - c * derived) == 0 else None
@@ -180,7 +183,7 @@ def _proportional(printed, derived):
 
 def _scale_like(p, d):
     """Scale ``d`` so that its derivative term (or first common term) has the printed coefficient."""
-    pp, dd = _terms(p), _terms(d)
+    pp, dd = expr_terms(p), expr_terms(d)
     common = [m for m in pp if m in dd]
     dots = [m for m in common if any("dot" in s.name for s in m.free_symbols)]
     ref = (dots or common or [None])[0]
@@ -198,7 +201,7 @@ def _agrees(p, d, zero_form) -> bool:
     return sp.expand(p - d) == 0 or (zero_form and _proportional(p, d) is not None)
 
 
-def _compare(key, section, printed, derived, *, zero_form=False, correct=None, note="", corrections=()):
+def compare(key, section, printed, derived, *, zero_form=False, correct=None, note="", corrections=()):
     """Verdict from comparing a printed expression with the derived one.
 
     ``zero_form``: both stand for ``expr = 0``, so equality up to a non-zero
@@ -207,18 +210,18 @@ def _compare(key, section, printed, derived, *, zero_form=False, correct=None, n
     makes it agree, or removes some of the differences, the detail says so (the
     status stays ``"typo"``).
     """
-    p = _antisym(sp.expand(printed))
+    p = antisym(sp.expand(printed))
     d = sp.expand(derived)
-    shown_correct = correct if correct is not None else (_grouped(_scale_like(p, d) if zero_form else d)
+    shown_correct = correct if correct is not None else (grouped(_scale_like(p, d) if zero_form else d)
                                                          + (" = 0" if zero_form else ""))
     if _agrees(p, d, zero_form):
         return Verdict(key, "holds", ("agrees with the derived form" + (f" ({note})" if note else "")),
-                       _grouped(printed), shown_correct, section)
+                       grouped(printed), shown_correct, section)
     extra, missing = _mismatch(p, d, zero_form)
     detail = _diff_text(extra, missing)
     best = None
     for desc, fn in corrections:
-        q = sp.expand(_antisym(fn(printed)))
+        q = sp.expand(antisym(fn(printed)))
         if _agrees(q, d, zero_form):
             best = (desc, [], [])
             break
@@ -232,19 +235,19 @@ def _compare(key, section, printed, derived, *, zero_form=False, correct=None, n
             detail += f"; even when {best[0]}, {_diff_text(best[1], best[2])}"
     if note:
         detail += f" ({note})"
-    return Verdict(key, "typo", detail + f". Correct: {shown_correct}", _grouped(printed), shown_correct, section)
+    return Verdict(key, "typo", detail + f". Correct: {shown_correct}", grouped(printed), shown_correct, section)
 
 
-def _claim(key, section, ok: bool, detail_true: str, detail_false: str, printed=None, correct=None):
+def claim(key, section, ok: bool, detail_true: str, detail_false: str, printed=None, correct=None):
     return Verdict(key, "holds" if ok else "claim-false", detail_true if ok else detail_false, printed, correct, section)
 
 
-def _eq_str(zero_expr, rhs_symbol=None) -> str:
+def eq_str(zero_expr, rhs_symbol=None) -> str:
     """``lhs = rhs`` text from ``lhs - rhs`` (moving a torque symbol to the right)."""
     if rhs_symbol is not None:
-        return f"{_grouped(zero_expr + rhs_symbol)} = {_fmt(rhs_symbol)}"
-    return f"{_grouped(zero_expr)} = 0"
+        return f"{grouped(zero_expr + rhs_symbol)} = {fmt_expr(rhs_symbol)}"
+    return f"{grouped(zero_expr)} = 0"
 
 
-def _mtilde(p):
+def mtilde(p):
     return sp.Symbol(f"mtilde_{p[0]}{p[1]}")

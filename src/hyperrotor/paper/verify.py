@@ -59,13 +59,13 @@ from typing import Iterable
 from hyperrotor.paper import printed_solutions as ps
 from hyperrotor.paper.report import render, render_json, render_markdown, render_table, summary
 from hyperrotor.paper.sections import SECTIONS
-from hyperrotor.paper.sections.closed_form import _quartet_forms, _quartet_rhs, _quartet_rhs_theta, _sec_closed_form
-from hyperrotor.paper.sections.derived import _euler_entry_forms
-from hyperrotor.paper.sections.euler import _sec_euler
-from hyperrotor.paper.sections.quantum import _sec_quantum
-from hyperrotor.paper.sections.reductions import _sec_reductions
-from hyperrotor.paper.sections.stability import _linearized, _sec_stability
-from hyperrotor.paper.sections.tensor import _sec_tensor
+from hyperrotor.paper.sections.closed_form import quartet_forms, quartet_rhs, quartet_rhs_theta, sec_closed_form
+from hyperrotor.paper.sections.derived import euler_entry_forms
+from hyperrotor.paper.sections.euler import sec_euler
+from hyperrotor.paper.sections.quantum import sec_quantum
+from hyperrotor.paper.sections.reductions import sec_reductions
+from hyperrotor.paper.sections.stability import linearized, sec_stability
+from hyperrotor.paper.sections.tensor import sec_tensor
 from hyperrotor.paper.verdicts import STATUSES, Verdict
 
 __all__ = [
@@ -89,10 +89,10 @@ def clear_cache(derived: bool = True) -> None:
     object (the Euler equations of the symbolic and quartet bodies) and only
     drops the printed objects and everything computed from them.
     """
-    fns = [_sec_tensor, _sec_euler, _sec_reductions, _sec_closed_form, _sec_stability, _sec_quantum,
-           _linearized, ps.printed]
+    fns = [sec_tensor, sec_euler, sec_reductions, sec_closed_form, sec_stability, sec_quantum,
+           linearized, ps.printed]
     if derived:
-        fns += [_euler_entry_forms, _quartet_forms, _quartet_rhs, _quartet_rhs_theta]
+        fns += [euler_entry_forms, quartet_forms, quartet_rhs, quartet_rhs_theta]
     for fn in fns:
         fn.cache_clear()
 

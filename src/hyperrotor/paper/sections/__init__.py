@@ -21,21 +21,21 @@ from __future__ import annotations
 
 from typing import Callable
 
-from hyperrotor.paper.sections.closed_form import _sec_closed_form
-from hyperrotor.paper.sections.euler import _sec_euler
-from hyperrotor.paper.sections.quantum import _sec_quantum
-from hyperrotor.paper.sections.reductions import _sec_reductions
-from hyperrotor.paper.sections.stability import _sec_stability
-from hyperrotor.paper.sections.tensor import _sec_tensor
+from hyperrotor.paper.sections.closed_form import sec_closed_form
+from hyperrotor.paper.sections.euler import sec_euler
+from hyperrotor.paper.sections.quantum import sec_quantum
+from hyperrotor.paper.sections.reductions import sec_reductions
+from hyperrotor.paper.sections.stability import sec_stability
+from hyperrotor.paper.sections.tensor import sec_tensor
 
 __all__ = ["SECTIONS"]
 
 #: Section key -> (title, checker).
 SECTIONS: dict[str, tuple[str, Callable[[], tuple]]] = {
-    "tensor": ("Sec. 1: inertia tensor, angular momentum, energy (eqs. 3-6, 26-27)", _sec_tensor),
-    "euler": ("Sec. 2.1: product (25), Tables 1-2, Euler equations (28)-(37), invariants (38)", _sec_euler),
-    "reductions": ("Sec. 2.2-2.5: reductions (42)-(81), headings and locked sets", _sec_reductions),
-    "closed-form": ("Sec. 3: closed-form solutions (82)-(118)", _sec_closed_form),
-    "stability": ("Sec. 4: stability (119)-(140)", _sec_stability),
-    "quantum": ("Sec. 5: quantum angular momentum (141)-(147)", _sec_quantum),
+    "tensor": ("Sec. 1: inertia tensor, angular momentum, energy (eqs. 3-6, 26-27)", sec_tensor),
+    "euler": ("Sec. 2.1: product (25), Tables 1-2, Euler equations (28)-(37), invariants (38)", sec_euler),
+    "reductions": ("Sec. 2.2-2.5: reductions (42)-(81), headings and locked sets", sec_reductions),
+    "closed-form": ("Sec. 3: closed-form solutions (82)-(118)", sec_closed_form),
+    "stability": ("Sec. 4: stability (119)-(140)", sec_stability),
+    "quantum": ("Sec. 5: quantum angular momentum (141)-(147)", sec_quantum),
 }

@@ -14,16 +14,18 @@ from functools import lru_cache
 
 from hyperrotor.classical.inertia import Inertia
 from hyperrotor.classical.rigid_body import RigidBody
-from hyperrotor.paper.verdicts import _eq_zero
+from hyperrotor.paper.verdicts import eq_zero
+
+__all__: list[str] = []  # helpers shared by the section checkers (package-internal)
 
 
 @lru_cache(maxsize=None)
-def _body5() -> RigidBody:
-    return RigidBody(Inertia.symbolic(5), "paper")
+def body5() -> RigidBody:
+    return RigidBody(Inertia.symbolic(5), convention="paper")
 
 
 @lru_cache(maxsize=None)
-def _euler_entry_forms(locked: tuple = ()) -> dict:
+def euler_entry_forms(locked: tuple = ()) -> dict:
     """Plane -> expanded ``lhs - rhs`` of the (locked) body's Euler equations, paper matrix-entry form."""
-    body = _body5().lock(locked) if locked else _body5()
-    return {p: _eq_zero(eq) for p, eq in zip(body.planes, body.euler_equations())}
+    body = body5().lock(locked) if locked else body5()
+    return {p: eq_zero(eq) for p, eq in zip(body.planes, body.euler_equations())}

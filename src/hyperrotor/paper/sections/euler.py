@@ -1,6 +1,6 @@
 r"""Sec. 2.1 of the preprint: product (25), Tables 1-2, Euler equations (28)-(37), invariants (38).
 
-``_sec_euler`` checks the printed entries of :math:`\omega L - L\omega`
+``sec_euler`` checks the printed entries of :math:`\omega L - L\omega`
 (eq. 25, via :mod:`hyperrotor.paper.sections.products`); Tables 1 and 2 of
 bivector products against the commutator table
 (:func:`hyperrotor.conventions.bivector_product_table`) and its sign variants,
@@ -20,9 +20,11 @@ import sympy as sp
 
 from hyperrotor.conventions import lie_poisson_bracket, plane_symbols, planes, to_matrix
 from hyperrotor.paper import printed_solutions as ps
-from hyperrotor.paper.sections.derived import _body5, _euler_entry_forms
-from hyperrotor.paper.sections.products import _product_verdicts
-from hyperrotor.paper.verdicts import Verdict, _claim, _compare, _eq_str, _eq_zero, _fmt, _mtilde, _S
+from hyperrotor.paper.sections.derived import body5, euler_entry_forms
+from hyperrotor.paper.sections.products import product_verdicts
+from hyperrotor.paper.verdicts import Verdict, claim, compare, eq_str, eq_zero, fmt_expr, mtilde, psym
+
+__all__: list[str] = []  # the checker of this section is package-internal (sections.SECTIONS)
 
 
 _COMM = "the commutator table [e_a, e_b] (bivector_product_table)"
@@ -62,7 +64,7 @@ def _table_verdict(key: str, sec: str, P: sp.Matrix, sym: str) -> tuple[Verdict,
     nbad, name, D, bad = scored[0]
     if nbad == 0:
         return Verdict(key, "holds", f"equals {name}", None, None, sec), name, D
-    cells = ", ".join(f"({_label(a)},{_label(b)}): {_fmt(P[a, b])} -> {_fmt(D[a, b])}" for a, b in bad)
+    cells = ", ".join(f"({_label(a)},{_label(b)}): {fmt_expr(P[a, b])} -> {fmt_expr(D[a, b])}" for a, b in bad)
     others = "; ".join(f"{n}: {k}" for k, n, _, _ in scored[1:])
     return Verdict(key, "typo",
                    f"no sign convention reproduces the printed table; closest derived table: {name}, with {nbad} wrong cells "
@@ -71,13 +73,13 @@ def _table_verdict(key: str, sec: str, P: sp.Matrix, sym: str) -> tuple[Verdict,
 
 
 @lru_cache(maxsize=None)
-def _sec_euler() -> tuple:
+def sec_euler() -> tuple:
     from hyperrotor.paper import printed as pr
 
     sec = "euler"
     out = []
     # eq. (25)
-    out += _product_verdicts("25", sec, "L", "omega")
+    out += product_verdicts("25", sec, "L", "omega")
     # Tables 1 and 2
     T1 = pr.PRINTED_TABLE_1
     T2 = pr.PRINTED_TABLE_2
@@ -91,43 +93,43 @@ def _sec_euler() -> tuple:
         "Table 2 (antisymmetry)", "holds" if not asym else "typo",
         ("the printed table is antisymmetric" if not asym else
          "the products are antisymmetric (derived table: " + ("yes" if true_asym else "NO") + "), but the printed table is not: "
-         + ", ".join(f"({_label(a)},{_label(b)})={_fmt(T2[a, b])} vs ({_label(b)},{_label(a)})={_fmt(T2[b, a])}" for a, b in asym)),
+         + ", ".join(f"({_label(a)},{_label(b)})={fmt_expr(T2[a, b])} vs ({_label(b)},{_label(a)})={fmt_expr(T2[b, a])}" for a, b in asym)),
         ps.CLAIMS["Table 2 (antisymmetric)"]["quote"], None, sec))
     # disjoint planes give zero products
     disjoint = [(a, b) for a, p in enumerate(planes(5)) for b, q in enumerate(planes(5)) if not set(p) & set(q)]
     der_zero = all(comm[a, b] == 0 for a, b in disjoint)
     pr_zero = all(T2[a, b] == 0 for a, b in disjoint)
-    out.append(_claim("Table 2 (disjoint planes)", sec, der_zero and pr_zero,
+    out.append(claim("Table 2 (disjoint planes)", sec, der_zero and pr_zero,
                       f"computed: [e_ij, e_kl] = 0 for all {len(disjoint)} ordered pairs of disjoint planes, and the printed table has 0 there",
                       "a product of disjoint planes is non-zero", ps.CLAIMS["Table 2 (disjoint planes)"]["quote"]))
-    e_to_L = {s: _S("L_" + s.name.split("_")[1]) for s in T2.free_symbols | D2.free_symbols}
+    e_to_L = {s: psym("L_" + s.name.split("_")[1]) for s in T2.free_symbols | D2.free_symbols}
     derived_same = sp.expand(D2.xreplace(e_to_L) - D1) == sp.zeros(10, 10)
     diff = [(a, b) for a in range(10) for b in range(10) if sp.expand(T2.xreplace(e_to_L)[a, b] - T1[a, b]) != 0]
-    out.append(_claim("Tables 1-2 (same signs)", sec, not diff,
+    out.append(claim("Tables 1-2 (same signs)", sec, not diff,
                       "the printed tables agree cell by cell (e -> L)",
                       "the printed tables differ in " + str(len(diff)) + " cells: "
-                      + ", ".join(f"({_label(a)},{_label(b)}) T1={_fmt(T1[a, b])} T2={_fmt(T2[a, b])}" for a, b in diff)
+                      + ", ".join(f"({_label(a)},{_label(b)}) T1={fmt_expr(T1[a, b])} T2={fmt_expr(T2[a, b])}" for a, b in diff)
                       + (" (the derived tables do coincide, e -> L)" if derived_same else " (the derived tables differ too)"),
                       ps.CLAIMS["Tables 1-2 (same signs)"]["quote"]))
     # Euler equations (28)-(37)
-    ref = _euler_entry_forms()
+    ref = euler_entry_forms()
     for k, eq in pr.PRINTED_EULER.items():
         p = pr.equation_plane(eq)
         d = ref[p]
-        out.append(_compare(k, sec, _eq_zero(eq), d, correct=_eq_str(d, _mtilde(p)),
+        out.append(compare(k, sec, eq_zero(eq), d, correct=eq_str(d, mtilde(p)),
                             note="matrix entry (i,j) of dL/dt - (wL - Lw) = m~, RigidBody.euler_equations()"))
     # order / number of equations
-    eqs = _body5().euler_equations()
+    eqs = body5().euler_equations()
     order = max(d.derivative_count for e in eqs for d in e.lhs.atoms(sp.Derivative))
     cl = ps.CLAIMS["Sec. 2.1 (order)"]
-    out.append(_claim("Sec. 2.1 (order of the equations)", sec, order == cl["order"] and len(eqs) == cl["count"],
+    out.append(claim("Sec. 2.1 (order of the equations)", sec, order == cl["order"] and len(eqs) == cl["count"],
                       "", f"the {len(eqs)} Euler equations are of order {order} in the angular velocities "
                           f"(first-order ODEs), not {cl['order']}", cl["quote"]))
     n3 = len(list(combinations(range(1, 6), 3)))
-    three_d = all(len(_body5().lock(tuple(a for a in range(1, 6) if a not in keep)).planes) == 3
+    three_d = all(len(body5().lock(tuple(a for a in range(1, 6) if a not in keep)).planes) == 3
                   for keep in combinations(range(1, 6), 3))
     cl = ps.CLAIMS["Sec. 2.1 (3D cases)"]
-    out.append(_claim("Sec. 2.1 (number of 3D cases)", sec, n3 == cl["count"] and three_d, "",
+    out.append(claim("Sec. 2.1 (number of 3D cases)", sec, n3 == cl["count"] and three_d, "",
                       f"5D has C(5,3) = {n3} three-dimensional coordinate subspaces (each reduction RigidBody.lock gives "
                       f"3 Euler equations), not {cl['count']}", cl["quote"]))
     out += _eq38(sec)
@@ -146,7 +148,7 @@ def _eq38(sec: str) -> list:
     k3 = dpows.get(3, 0)
     k1 = dpows.get(1, 0)
     # package Casimirs: det(lam - L) = lam^5 + c2 lam^3 + c4 lam
-    c2, c4 = _body5().casimirs(list(Ls), of="L")
+    c2, c4 = body5().casimirs(list(Ls), of="L")
     pk = sp.expand(k3 + c2) == 0 and sp.expand(k1 + c4) == 0
     missing = sorted(set(dpows) - ppows)
     extra = sorted(ppows - set(dpows))
@@ -156,7 +158,7 @@ def _eq38(sec: str) -> list:
         out.append(Verdict(
             "38", "typo",
             f"the characteristic polynomial has the powers lambda^{sorted(dpows)}; the print omits "
-            + ", ".join(_fmt(dpows[k] * lam**k) for k in missing)
+            + ", ".join(fmt_expr(dpows[k] * lam**k) for k in missing)
             + f". Correct: |L - lambda E| = -lambda^5 + k3 lambda^3 + k1 lambda with k3 = -sum L_ij^2 and k1 = -(sum of the "
               f"squared Pfaffians of the five 4x4 principal minors)" + (" (= -RigidBody.casimirs)" if pk else " [casimirs disagree]"),
             "|L - lambda E| = k1 lambda + k3 lambda^3", "-lambda^5 + k3 lambda^3 + k1 lambda", sec))
@@ -165,7 +167,7 @@ def _eq38(sec: str) -> list:
     Is = plane_symbols("I", 5, positive=True)
     H = sum(La**2 / (2 * Ia) for La, Ia in zip(Ls, Is))
     H_cas = all(lie_poisson_bracket(H, La, Ls) == 0 for La in Ls)
-    out.append(_claim("38 (k1, k3 conserved)", sec, cas,
+    out.append(claim("38 (k1, k3 conserved)", sec, cas,
                       "k1 and k3 Poisson-commute with every L_ij (Casimirs of so(5)), so they are conserved for every inertia; "
                       "so are all coefficients of the characteristic polynomial (Sec. 1.3)",
                       "a coefficient is not a Casimir", "k1 and k3 ... are the constants of motion"))
@@ -176,7 +178,7 @@ def _eq38(sec: str) -> list:
     # the claim: k1 is the (squared) momentum, k3 the energy; the energy depends on the moments, k3 does not
     claim_ok = (deg1 == 2) and bool(k3.free_symbols & set(Is)) and not H_cas
     cl = ps.CLAIMS["38 (meaning of k1, k3)"]
-    out.append(_claim(
+    out.append(claim(
         "38 (k1 momentum, k3 energy)", sec, claim_ok, "",
         f"k3 = -sum L_ij^2 (degree {deg3}{', minus the squared momentum' if k3_is_norm else ''}) is the momentum "
         f"invariant, and k1 is a quartic (degree {deg1}) Casimir, not the momentum. The energy "
@@ -191,7 +193,7 @@ def _eq38(sec: str) -> list:
     rank = G.rank()
     dH = sp.simplify(lie_poisson_bracket(H, H, Ls))
     cl = ps.CLAIMS["Sec. 6 (integrals)"]
-    out.append(_claim("Sec. 6 (two integrals)", sec, rank <= cl["count"], "",
+    out.append(claim("Sec. 6 (two integrals)", sec, rank <= cl["count"], "",
                       f"k1, k3 and the energy H (dH/dt = {{H, H}} = {dH}) are {rank} functionally independent integrals "
                       f"(gradient rank {rank} at a random point); for physical moments I_ij = m_i + m_j the flow has even more "
                       f"(Manakov's integrals, RigidBody.manakov_integrals)", cl["quote"]))

@@ -2,7 +2,7 @@ r"""The entry-by-entry check of a printed product :math:`\omega L - L\omega` (eq
 
 Eq. (25) prints the ten entries of the product of the checkerboard matrices
 (21)-(22) of :math:`\omega` and :math:`L`; eq. (144) repeats the pattern with
-the quantum operators. ``_product_verdicts`` compares each printed entry with
+the quantum operators. ``product_verdicts`` compares each printed entry with
 the derived matrix entry (and with the component form :math:`[W, L]_{ij}`),
 trying the notation slip of reading reversed indices without the sign of
 eq. (1) (``_forward_indices``). Used by :mod:`hyperrotor.paper.sections.euler`
@@ -16,7 +16,9 @@ import sympy as sp
 
 from hyperrotor.conventions import lie_bracket, planes, to_matrix
 from hyperrotor.paper import printed_solutions as ps
-from hyperrotor.paper.verdicts import Verdict, _antisym, _compare, _S
+from hyperrotor.paper.verdicts import Verdict, antisym, compare, psym
+
+__all__: list[str] = []  # helpers shared by the section checkers (package-internal)
 
 
 def _entry_product(Lsyms, Wsyms) -> dict:
@@ -28,19 +30,19 @@ def _entry_product(Lsyms, Wsyms) -> dict:
 
 
 def _printed_product(lines: dict, Lname: str, Wname: str) -> dict:
-    return {p: sp.Add(*[s * _S(f"{Lname}_{a}") * _S(f"{Wname}_{b}") for s, a, b in terms]) for p, terms in lines.items()}
+    return {p: sp.Add(*[s * psym(f"{Lname}_{a}") * psym(f"{Wname}_{b}") for s, a, b in terms]) for p, terms in lines.items()}
 
 
-def _product_verdicts(key: str, sec: str, Lname: str, Wname: str) -> list:
-    Ls = [_S(f"{Lname}_{i}{j}") for i, j in planes(5)]
-    Ws = [_S(f"{Wname}_{i}{j}") for i, j in planes(5)]
+def product_verdicts(key: str, sec: str, Lname: str, Wname: str) -> list:
+    Ls = [psym(f"{Lname}_{i}{j}") for i, j in planes(5)]
+    Ws = [psym(f"{Wname}_{i}{j}") for i, j in planes(5)]
     derived = _entry_product(Ls, Ws)
     comp = dict(zip(planes(5), lie_bracket(Ws, Ls)))
     printed = _printed_product(ps.printed(key), Lname, Wname)
     out = []
     for p in planes(5):
-        pr = _antisym(printed[p])
-        v = _compare(f"{key} [{p[0]}{p[1]}]", sec, printed[p], derived[p],
+        pr = antisym(printed[p])
+        v = compare(f"{key} [{p[0]}{p[1]}]", sec, printed[p], derived[p],
                      note="entry (i,j) of wL - Lw with the checkerboard matrices (21)-(22)",
                      corrections=(("reversed indices (w^31, L^21, ...) are read as w^13, L^12 without the sign of eq. (1)",
                                    _forward_indices),))
@@ -56,5 +58,5 @@ def _forward_indices(expr):
     for s in expr.free_symbols:
         m = re.fullmatch(r"(\w+)_(\d)(\d)", s.name)
         if m and int(m.group(2)) > int(m.group(3)):
-            reps[s] = _S(f"{m.group(1)}_{m.group(3)}{m.group(2)}")
+            reps[s] = psym(f"{m.group(1)}_{m.group(3)}{m.group(2)}")
     return expr.xreplace(reps)

@@ -1,6 +1,6 @@
 r"""Sec. 5 of the preprint: quantum angular momentum (141)-(147).
 
-``_sec_quantum`` checks the differential operators (142) against
+``sec_quantum`` checks the differential operators (142) against
 :func:`hyperrotor.quantum.operators.angular_momentum_operators` and their
 closure under commutation with the :math:`\mathfrak{so}(5)` structure
 constants; the operator matrices (141), (143) against
@@ -18,13 +18,15 @@ import sympy as sp
 
 from hyperrotor.conventions import planes, structure_constants
 from hyperrotor.paper import printed_solutions as ps
-from hyperrotor.paper.sections.euler import _sec_euler
-from hyperrotor.paper.sections.products import _product_verdicts
+from hyperrotor.paper.sections.euler import sec_euler
+from hyperrotor.paper.sections.products import product_verdicts
 from hyperrotor.paper.verdicts import Verdict
+
+__all__: list[str] = []  # the checker of this section is package-internal (sections.SECTIONS)
 
 
 @lru_cache(maxsize=None)
-def _sec_quantum() -> tuple:
+def sec_quantum() -> tuple:
     from hyperrotor.quantum.operator_products import contraction_identity
     from hyperrotor.quantum.operators import (
         DifferentialOperator,
@@ -84,9 +86,9 @@ def _sec_quantum() -> tuple:
         if k == "141":
             out.append(v142)
     # (144): same pattern as (25)
-    vs = _product_verdicts("144", sec, "LOp", "OmegaOp")
+    vs = product_verdicts("144", sec, "LOp", "OmegaOp")
     bad_lines = [v.equation.split("[")[1].rstrip("]") for v in vs if v.status != "holds"]
-    v25 = {v.equation.split("[")[1].rstrip("]"): v.detail for v in _sec_euler() if v.equation.startswith("25 [")}
+    v25 = {v.equation.split("[")[1].rstrip("]"): v.detail for v in sec_euler() if v.equation.startswith("25 [")}
     same = all(v.detail.replace("LOp", "L").replace("OmegaOp", "w") == v25.get(v.equation.split("[")[1].rstrip("]"))
                for v in vs if v.status != "holds")
     first = next((v for v in vs if v.status != "holds"), None)

@@ -1,6 +1,6 @@
 """Sec. 2.2-2.5 of the preprint: reductions (42)-(81), headings and locked sets.
 
-``_sec_reductions`` checks every printed equation of the lower-dimensional
+``sec_reductions`` checks every printed equation of the lower-dimensional
 reductions against the Euler equations of the body with the same axes locked
 (:meth:`hyperrotor.RigidBody.lock`), naming equations copied unreduced from the
 4D sextet (42)-(71); per section it checks that the heading, the text, the
@@ -16,15 +16,17 @@ import sympy as sp
 
 from hyperrotor.conventions import planes
 from hyperrotor.paper import printed_solutions as ps
-from hyperrotor.paper.sections.derived import _body5, _euler_entry_forms
-from hyperrotor.paper.verdicts import Verdict, _claim, _compare, _eq_str, _eq_zero, _grouped, _mtilde, _S, _terms
+from hyperrotor.paper.sections.derived import body5, euler_entry_forms
+from hyperrotor.paper.verdicts import Verdict, claim, compare, eq_str, eq_zero, grouped, mtilde, psym, expr_terms
+
+__all__: list[str] = []  # the checker of this section is package-internal (sections.SECTIONS)
 
 
 _SET_LABELS = {"2.2.1": "S_4", "2.2.2": "S_4", "2.2.3": "S_4", "2.2.4": "S_4", "2.2.5": "S_5", "2.3": "S_3"}
 
 
 @lru_cache(maxsize=None)
-def _sec_reductions() -> tuple:
+def sec_reductions() -> tuple:
     from hyperrotor.paper import printed as pr
 
     sec = "reductions"
@@ -32,26 +34,26 @@ def _sec_reductions() -> tuple:
     eq_of_plane = {p: str(28 + k) for k, p in enumerate(planes(5))}
     for rs in pr.REDUCTION_SECTIONS:
         locked = rs.locked_axes
-        ref = _euler_entry_forms(tuple(locked))
-        lockset = {_S(f"omega_{i}{j}"): 0 for i, j in planes(5) if i in locked or j in locked}
+        ref = euler_entry_forms(tuple(locked))
+        lockset = {psym(f"omega_{i}{j}"): 0 for i, j in planes(5) if i in locked or j in locked}
         for k in rs.equations:
             eq = pr.PRINTED_EQUATIONS[k]
             p = pr.equation_plane(eq)
-            pz = _eq_zero(eq)
+            pz = eq_zero(eq)
             if p not in ref:
                 out.append(Verdict(k, "typo", f"the equation is for the plane {p}, which is locked in Sec. {rs.section}",
-                                   _eq_str(pz, _mtilde(p)), None, sec))
+                                   eq_str(pz, mtilde(p)), None, sec))
                 continue
             d = ref[p]
-            v = _compare(k, sec, pz, d, correct=_eq_str(d, _mtilde(p)),
+            v = compare(k, sec, pz, d, correct=eq_str(d, mtilde(p)),
                          note=f"body with axes {locked} locked, RigidBody.lock")
             if v.status == "typo" and sp.expand(pz.xreplace(lockset) - d) == 0:
-                stale_terms = [c * t for t, c in _terms(pz).items() if (c * t).xreplace(lockset) == 0]
+                stale_terms = [c * t for t, c in expr_terms(pz).items() if (c * t).xreplace(lockset) == 0]
                 v = Verdict(k, "typo",
-                            f"not reduced: keeps {_grouped(sp.Add(*stale_terms))}, which vanishes"
+                            f"not reduced: keeps {grouped(sp.Add(*stale_terms))}, which vanishes"
                             f" because axes {locked} are locked (the equation is copied from eq. "
-                            f"{_source_equation(pz, k)}). Correct: {_eq_str(d, _mtilde(p))}",
-                            _eq_str(pz, _mtilde(p)), _eq_str(d, _mtilde(p)), sec)
+                            f"{_source_equation(pz, k)}). Correct: {eq_str(d, mtilde(p))}",
+                            eq_str(pz, mtilde(p)), eq_str(d, mtilde(p)), sec)
             out.append(v)
         # section-level claims
         problems = []
@@ -98,13 +100,13 @@ def _sec_reductions() -> tuple:
     # (72): the five 4D subspaces
     sets = ps.CLAIMS["72"]["sets"]
     allsets = {frozenset(c) for c in combinations(range(1, 6), 4)}
-    out.append(_claim("72", sec, {frozenset(s) for s in sets} == allsets and len(sets) == len(allsets),
+    out.append(claim("72", sec, {frozenset(s) for s in sets} == allsets and len(sets) == len(allsets),
                       f"the five sets are exactly the C(5,4) = {len(allsets)} four-axis subsets",
                       "the listed sets are not the four-axis subsets", ps.CLAIMS["72"]["quote"]))
     cl = ps.CLAIMS["Sec. 2.5 (closing)"]
-    n4 = len(_body5().lock(5).planes)
-    n3 = len(_body5().lock((4, 5)).planes)
-    out.append(_claim("Sec. 2.5 (closing statement)", sec, n4 == cl["per_4d"] and n3 == cl["per_3d"], "",
+    n4 = len(body5().lock(5).planes)
+    n3 = len(body5().lock((4, 5)).planes)
+    out.append(claim("Sec. 2.5 (closing statement)", sec, n4 == cl["per_4d"] and n3 == cl["per_3d"], "",
                       f"each 4D subspace carries {n4} Euler equations (not {cl['per_4d']}); each 3D one {n3}", cl["quote"]))
     return tuple(out)
 
@@ -114,6 +116,6 @@ def _source_equation(pz, key) -> str:
     from hyperrotor.paper import printed as pr
 
     for k in range(42, 72):
-        if sp.expand(_eq_zero(pr.PRINTED_EQUATIONS[str(k)]) - pz) == 0:
+        if sp.expand(eq_zero(pr.PRINTED_EQUATIONS[str(k)]) - pz) == 0:
             return f"({k})"
     return "?"

@@ -1,6 +1,6 @@
 r"""Sec. 1 of the preprint: inertia tensor, angular momentum and energy (eqs. 3-6, 26-27).
 
-``_sec_tensor`` checks the printed inertia tensor :math:`I^{ijkl}` (eq. 3) for
+``sec_tensor`` checks the printed inertia tensor :math:`I^{ijkl}` (eq. 3) for
 its printed symmetries on a general second-moment matrix and against
 :meth:`hyperrotor.Inertia.tensor` in principal axes; the angular momentum
 (eqs. 4-5) against :math:`\int x \wedge v\,dm = MW + WM`; the kinetic energy
@@ -19,11 +19,13 @@ from hyperrotor.classical.inertia import Inertia
 from hyperrotor.classical.rigid_body import RigidBody
 from hyperrotor.conventions import plane_symbols, planes, to_matrix
 from hyperrotor.paper import printed_solutions as ps
-from hyperrotor.paper.verdicts import Verdict, _fmt, _S
+from hyperrotor.paper.verdicts import Verdict, fmt_expr, psym
+
+__all__: list[str] = []  # the checker of this section is package-internal (sections.SECTIONS)
 
 
 @lru_cache(maxsize=None)
-def _sec_tensor() -> tuple:
+def sec_tensor() -> tuple:
     sec = "tensor"
     out = []
     N = 5
@@ -65,7 +67,7 @@ def _sec_tensor() -> tuple:
                        ("with full summation, I^{ijkl} w_kl equals the physical angular momentum "
                         "int (x_i v_j - x_j v_i) dm = (M W + W M)_ij for a general M; in principal axes "
                         "L^ij = 2 I^{ijij} w_ij = (m_i + m_j) w_ij = I_ij w_ij")
-                       if ok4 else f"differs from int x^v dm: {_fmt(sp.expand(L4 - L_phys)[0, 1])}",
+                       if ok4 else f"differs from int x^v dm: {fmt_expr(sp.expand(L4 - L_phys)[0, 1])}",
                        "L^ij = I^{ijkl} w_kl", "L = M W + W M", sec))
     ok5 = sp.expand(L4 + L4.T) == sp.zeros(N, N)
     out.append(Verdict("5", "holds" if ok5 else "typo",
@@ -84,19 +86,19 @@ def _sec_tensor() -> tuple:
     else:
         out.append(Verdict(
             "6", "typo",
-            f"with the full summation the printed W equals {_fmt(ratio)} x the kinetic energy 1/2 int |v|^2 dm "
+            f"with the full summation the printed W equals {fmt_expr(ratio)} x the kinetic energy 1/2 int |v|^2 dm "
             f"(computed for a general M; the double sum counts every plane twice). Correct: W = 1/4 w_ij I^{{ijkl}} w_kl "
             f"= 1/2 sum_(i<j) I_ij w_ij^2" + (" (= RigidBody.energy)" if pkg_ok else " [RigidBody.energy disagrees!]"),
             "W = 1/2 w_ij I^{ijkl} w_kl", "W = 1/4 w_ij I^{ijkl} w_kl = 1/2 sum_(i<j) I_ij w_ij^2", sec))
     # eqs. (26)-(27): matrix of L with entries I^{ijij} w_ij (paper checkerboard)
-    half = {_S(f"I_{i}{j}"): (m[i - 1] + m[j - 1]) / 2 for i, j in planes(N)}  # I^{ijij} of eq. (3)
+    half = {psym(f"I_{i}{j}"): (m[i - 1] + m[j - 1]) / 2 for i, j in planes(N)}  # I^{ijij} of eq. (3)
     Lcomp = [sp.expand(L4[i - 1, j - 1].subs({M[a, b]: Md[a, b] for a in range(N) for b in range(N)})) for i, j in planes(N)]
     L_paper = to_matrix(Lcomp, convention="paper")
     for key, dot in (("26", False), ("27", True)):
         P = ps.printed(key).xreplace(half)
         if dot:
-            P = P.xreplace({_S(f"omegadot_{i}{j}"): _S(f"omega_{i}{j}") for i, j in planes(N)})
-        P = P.xreplace({_S(f"omega_{i}{j}"): w for (i, j), w in zip(planes(N), wsym)})
+            P = P.xreplace({psym(f"omegadot_{i}{j}"): psym(f"omega_{i}{j}") for i, j in planes(N)})
+        P = P.xreplace({psym(f"omega_{i}{j}"): w for (i, j), w in zip(planes(N), wsym)})
         cells = [(r, c) for r in range(N) for c in range(N) if sp.expand(P[r, c] - L_paper[r, c]) != 0]
         factors = {sp.simplify(L_paper[r, c] / P[r, c]) for r, c in cells}
         if not cells:
