@@ -16,7 +16,7 @@ def _S(N):
 
 
 def _random_body(rng, N, convention="paper"):
-    return RigidBody(Inertia.from_planes(rng.uniform(0.5, 2.0, hr.n_planes(N))), convention)
+    return RigidBody(Inertia.from_planes(rng.uniform(0.5, 2.0, hr.n_planes(N))), convention=convention)
 
 
 def _dt(F, body):
@@ -51,8 +51,8 @@ def test_rhs_components_identical_in_both_conventions(rng):
     I = Inertia.from_planes(rng.uniform(0.5, 2.0, 10))
     w = rng.standard_normal((7, 10))
     m = rng.standard_normal(10)
-    a = RigidBody(I, "paper").rhs(w, m)
-    b = RigidBody(I, "standard").rhs(w, m)
+    a = RigidBody(I, convention="paper").rhs(w, m)
+    b = RigidBody(I, convention="standard").rhs(w, m)
     np.testing.assert_array_equal(a, b)
 
 
@@ -62,13 +62,13 @@ def test_paper_matrix_is_sign_conjugate_of_standard(rng, N):
     S = _S(N)
     np.testing.assert_array_equal(hr.to_matrix(L, convention="paper"), S @ hr.to_matrix(L, convention="standard") @ S)
     body_p = _random_body(rng, N, "paper")
-    body_s = RigidBody(body_p.inertia, "standard")
+    body_s = RigidBody(body_p.inertia, convention="standard")
     np.testing.assert_array_equal(body_p.matrix(L), S @ body_s.matrix(L) @ S)
     np.testing.assert_array_equal(body_p.matrix(L), hr.to_matrix(L, convention="paper"))
 
 
 def test_component_example_from_brief():
-    body = RigidBody(Inertia.symbolic(5), "standard")
+    body = RigidBody(Inertia.symbolic(5), convention="standard")
     I = dict(zip(hr.planes(5), body.inertia.symbolic_moments))
     w = dict(zip(hr.planes(5), body.omega_symbols()))
     expected = ((I[1, 3] - I[2, 3]) * w[1, 3] * w[2, 3] + (I[1, 4] - I[2, 4]) * w[1, 4] * w[2, 4]
@@ -112,7 +112,7 @@ def test_constructor_inputs():
     assert RigidBody([1.0, 2.0, 3.0]).N == 3
     assert RigidBody({(1, 2): 1.0}).N == 2
     with pytest.raises(ValueError, match="unknown convention"):
-        RigidBody(Inertia.equal(3), "checkerboard")
+        RigidBody(Inertia.equal(3), convention="checkerboard")
     with pytest.raises(TypeError, match="Inertia"):
         RigidBody(3.0)
 
@@ -131,7 +131,7 @@ def test_euler_equations_paper_form_signs():
 
 
 def test_euler_equations_standard_form_and_torques():
-    body = RigidBody(Inertia.symbolic(3), "standard")
+    body = RigidBody(Inertia.symbolic(3), convention="standard")
     m = sp.symbols("a b c")
     eqs = body.euler_equations(torque=m)
     rhs = body.symbolic_rhs(omega=body.omega_symbols(function_of=TIME))
@@ -245,7 +245,7 @@ def test_manakov_numeric_matches_symbolic(rng):
     np.testing.assert_allclose(num, [float(s) for s in sym], rtol=1e-10)
     assert num.shape == (4,)
     # same in the standard convention
-    np.testing.assert_allclose(RigidBody(body.inertia, "standard").manakov_integrals(w, 0.3), num, rtol=1e-14)
+    np.testing.assert_allclose(RigidBody(body.inertia, convention="standard").manakov_integrals(w, 0.3), num, rtol=1e-14)
 
 
 def test_energy_and_momentum_numeric(rng):
@@ -332,12 +332,12 @@ def _textbook_check(body3):
 
 @pytest.mark.parametrize("convention", ["paper", "standard"])
 def test_3d_body_is_textbook(convention):
-    _textbook_check(RigidBody(Inertia.symbolic(3), convention))
+    _textbook_check(RigidBody(Inertia.symbolic(3), convention=convention))
 
 
 def test_standard_3d_equations_textbook_explicit():
     """Standard convention, N = 3: the Eq objects themselves are I1 dW1/dt = (I2 - I3) W2 W3 (and cyclic)."""
-    body = RigidBody(Inertia.symbolic(3), "standard")
+    body = RigidBody(Inertia.symbolic(3), convention="standard")
     e12, e13, e23 = body.euler_equations(0)
     I12, I13, I23 = body.inertia.symbolic_moments
     w12, w13, w23 = body.omega_symbols(function_of=TIME)

@@ -76,7 +76,7 @@ def test_locked_axes():
 def test_quartet_closed_form_route():
     inertia = hyperrotor.Inertia.quartet(0.5, axis=3, N=5)
     w0 = RNG.normal(size=10)
-    a = _compare(Scene(inertia, w0, T, ("omega", "energy", "L"), planes=[(1, 3), (4, 5)]), 1e-8)
+    a = _compare(Scene(inertia, w0, T, observables=("omega", "energy", "L"), planes=[(1, 3), (4, 5)]), 1e-8)
     assert a.path == "closed-form:quartet"
     assert a.omega.shape == (T.size, 2) and a.planes == ((1, 3), (4, 5))
 
@@ -85,7 +85,7 @@ def test_invariants_route_does_not_integrate(monkeypatch):
     calls = []
     real = _integrate.simulate
     monkeypatch.setattr(_integrate, "simulate", lambda *a, **k: calls.append(k) or real(*a, **k))
-    scene = Scene(GENERIC, RNG.normal(size=10), T, ("energy", "casimirs"))
+    scene = Scene(GENERIC, RNG.normal(size=10), T, observables=("energy", "casimirs"))
     a = scene.evaluate()
     assert a.path == "invariants" and calls == []
     b = evaluate_scene(scene, minimal=False)
@@ -97,14 +97,14 @@ def test_no_attitude_unless_asked(monkeypatch):
     calls = []
     real = _integrate.simulate
     monkeypatch.setattr(_integrate, "simulate", lambda *a, **k: calls.append(k) or real(*a, **k))
-    a = Scene(GENERIC, RNG.normal(size=10), T, ("omega",)).evaluate()
+    a = Scene(GENERIC, RNG.normal(size=10), T, observables=("omega",)).evaluate()
     assert a.path == "integrate" and a.attitude is None
     assert len(calls) == 1 and calls[0]["attitude"] is False
 
 
 def test_reduced_to_euler_poinsot():
     w0 = _on_planes(RNG.normal(size=3), [(2, 3), (2, 5), (3, 5)])  # axes 1, 4 locked
-    a = _compare(Scene(GENERIC, w0, T, ("omega", "L", "energy")), 1e-8)
+    a = _compare(Scene(GENERIC, w0, T, observables=("omega", "L", "energy")), 1e-8)
     assert a.path == "reduced:axes(2,3,5)+closed-form:euler-poinsot"
     off = [plane_index(p, 5) for p in planes(5) if 1 in p or 4 in p]
     assert np.all(a.omega[:, off] == 0.0)
@@ -112,11 +112,11 @@ def test_reduced_to_euler_poinsot():
 
 @pytest.mark.parametrize("convention", ["paper", "standard"])
 def test_reduced_integration_with_attitude_and_projection(convention):
-    body = hyperrotor.RigidBody(GENERIC, convention)
+    body = hyperrotor.RigidBody(GENERIC, convention=convention)
     w0 = RNG.normal(size=10)
     w0[[plane_index(p, 5) for p in planes(5) if 5 in p]] = 0.0  # axis 5 locked
     Q, _ = np.linalg.qr(np.random.default_rng(1).normal(size=(5, 5)))
-    scene = Scene(body, w0, T, ("omega", "attitude", "projection", "casimirs"),
+    scene = Scene(body, w0, T, observables=("omega", "attitude", "projection", "casimirs"),
                   points=hypercube_vertices(5), axes=(1, 2, 5), attitude0=Q)
     a = _compare(scene, 1e-8)
     assert a.path == "reduced:axes(1,2,3,4)+integrate"
@@ -129,7 +129,7 @@ def test_reduced_integration_with_attitude_and_projection(convention):
 
 def test_equal_moments_closed_form_attitude():
     w0 = RNG.normal(size=10)
-    scene = Scene(np.full(10, 2.5), w0, T, ("omega", "attitude", "projection"), points=simplex_vertices(5))
+    scene = Scene(np.full(10, 2.5), w0, T, observables=("omega", "attitude", "projection"), points=simplex_vertices(5))
     a = _compare(scene, 1e-8)
     assert a.path == "closed-form:equal"
 
@@ -137,7 +137,7 @@ def test_equal_moments_closed_form_attitude():
 def test_steady_single_plane_rotation():
     """Only w_24 != 0: reduced to axes (2, 4), the attitude is an exact rotation in that plane."""
     w0 = _on_planes([0.7], [(2, 4)])
-    a = _compare(Scene(GENERIC, w0, T, ("omega", "attitude")), 1e-8)
+    a = _compare(Scene(GENERIC, w0, T, observables=("omega", "attitude")), 1e-8)
     assert a.path == "reduced:axes(2,4)+closed-form:equal"
     # paper convention: entry (2, 4) of W is (-1)^(2+4) w24 = w24; dT/dt = W T
     c, s = np.cos(0.7 * T), np.sin(0.7 * T)
@@ -149,42 +149,42 @@ def test_steady_single_plane_rotation():
 
 
 def test_generic_and_rest():
-    a = _compare(Scene(GENERIC, RNG.normal(size=10), T, ("omega", "projection"),
+    a = _compare(Scene(GENERIC, RNG.normal(size=10), T, observables=("omega", "projection"),
                        points=ellipsoid_points([1, 2, 3, 4, 5], 10)), 1e-12)
     assert a.path == "integrate"
-    a = _compare(Scene(GENERIC, np.zeros(10), T, ("omega", "attitude", "energy")), 0.0)
+    a = _compare(Scene(GENERIC, np.zeros(10), T, observables=("omega", "attitude", "energy")), 0.0)
     assert a.path == "closed-form:rest"
 
 
 def test_3d_body_uses_euler_poinsot():
     I3 = np.array([3.0, 2.0, 1.0])
-    a = _compare(Scene(I3, [0.3, -1.0, 0.8], T, ("omega",)), 1e-8)
+    a = _compare(Scene(I3, [0.3, -1.0, 0.8], T, observables=("omega",)), 1e-8)
     assert a.path == "closed-form:euler-poinsot"
 
 
 def test_bad_input():
     w0 = np.ones(10)
     with pytest.raises(ValueError, match="unknown observable"):
-        Scene(GENERIC, w0, T, ("spin",)).evaluate()
+        Scene(GENERIC, w0, T, observables=("spin",)).evaluate()
     with pytest.raises(ValueError, match="needs body points"):
-        Scene(GENERIC, w0, T, ("projection",)).evaluate()
+        Scene(GENERIC, w0, T, observables=("projection",)).evaluate()
     with pytest.raises(ValueError, match="projection axes"):
-        Scene(GENERIC, w0, T, ("projection",), points=hypercube_vertices(5), axes=(0, 1)).evaluate()
+        Scene(GENERIC, w0, T, observables=("projection",), points=hypercube_vertices(5), axes=(0, 1)).evaluate()
     with pytest.raises(ValueError, match="points must have shape"):
-        Scene(GENERIC, w0, T, ("projection",), points=hypercube_vertices(3)).evaluate()
+        Scene(GENERIC, w0, T, observables=("projection",), points=hypercube_vertices(3)).evaluate()
     with pytest.raises(ValueError, match="omega0 must have shape"):
         Scene(GENERIC, np.ones(6), T).evaluate()
     with pytest.raises(ValueError, match="strictly increasing"):
         Scene(GENERIC, w0, T[::-1]).evaluate()
     with pytest.raises(ValueError, match="orthogonal"):
-        Scene(GENERIC, w0, T, ("attitude",), attitude0=2 * np.eye(5)).evaluate()
+        Scene(GENERIC, w0, T, observables=("attitude",), attitude0=2 * np.eye(5)).evaluate()
     with pytest.raises(ValueError, match="unknown plane"):
         Scene(GENERIC, w0, T, planes=[(3, 1)]).evaluate()
 
 
 def test_quartet_projection_closed_form():
     inertia = hyperrotor.Inertia.quartet(2.0, axis=4, N=5)
-    scene = Scene(inertia, RNG.normal(size=10), T, ("omega", "projection", "attitude"),
+    scene = Scene(inertia, RNG.normal(size=10), T, observables=("omega", "projection", "attitude"),
                   points=hypercube_vertices(5), axes=(2, 3, 4))
     a = _compare(scene, 1e-8)
     assert a.path == "closed-form:quartet"
@@ -194,11 +194,11 @@ def test_progress_reaches_the_integration_and_changes_nothing(capsys):
     """Scene(progress=True): simulate's bar on stderr while an integrated (generic) motion is computed;
     the same numbers as without it. A non-boolean is refused by name."""
     w0 = RNG.normal(size=10)
-    quiet = Scene(GENERIC, w0, T, ("omega",)).evaluate()
+    quiet = Scene(GENERIC, w0, T, observables=("omega",)).evaluate()
     capsys.readouterr()
-    loud = Scene(GENERIC, w0, T, ("omega",), progress=True).evaluate()
+    loud = Scene(GENERIC, w0, T, observables=("omega",), progress=True).evaluate()
     err = capsys.readouterr().err
     assert "simulate" in err and "step" in err
     np.testing.assert_array_equal(loud.omega, quiet.omega)
     with pytest.raises(TypeError, match="progress must be True, False or None, got 'yes'"):
-        Scene(GENERIC, w0, T, ("omega",), progress="yes")
+        Scene(GENERIC, w0, T, observables=("omega",), progress="yes")

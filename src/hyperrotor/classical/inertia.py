@@ -45,6 +45,7 @@ import numpy as np
 from hyperrotor._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
 from hyperrotor import _parse, _validate
+from hyperrotor._options import options, register
 from hyperrotor.conventions import (
     check_dimension,
     dimension_from_count,
@@ -53,6 +54,19 @@ from hyperrotor.conventions import (
     plane_label,
     plane_symbols,
     planes,
+)
+
+register(
+    "inertia_symmetry_atol", 1e-12,
+    "check_tensor_symmetries: largest violation of the eq. (3) symmetries (antisymmetry in each index "
+    "pair, pair exchange, the cyclic identity) allowed, relative to max(1, max|I^ijkl|). A tensor built "
+    "from point masses in floats carries ~N^2 eps of round-off; 1e-12 leaves room up to N ~ 50 while a "
+    "tensor that lacks a symmetry misses by O(1).",
+)
+register(
+    "inertia_physical_atol", 1e-12,
+    "Inertia.is_physical: the mass-tensor entries J_i may be as negative as -this * max(I) and still count "
+    "as >= 0 (round-off of J_i = (I_ij + I_ik - I_jk) / 2 for a body with a massless axis is ~eps * max(I)).",
 )
 
 __all__ = [
@@ -210,7 +224,7 @@ def inertia_tensor(masses: Any, positions: Any, *, center: bool = True) -> np.nd
     return _tensor_from_second_moments(second_moment_matrix(masses, positions, center=center))
 
 
-def check_tensor_symmetries(tensor: Any, *, atol: float = 1e-12) -> None:
+def check_tensor_symmetries(tensor: Any, *, atol: float | None = None) -> None:
     r"""Raise ``ValueError`` unless ``tensor`` has the symmetries of eq. (3).
 
     :math:`I^{ijkl} = -I^{jikl} = -I^{ijlk} = I^{klij}` and the cyclic identity
@@ -220,6 +234,7 @@ def check_tensor_symmetries(tensor: Any, *, atol: float = 1e-12) -> None:
     t = _validate.finite_array("tensor", tensor)
     if t.ndim != 4 or len(set(t.shape)) != 1:
         raise ValueError(f"an inertia tensor has shape (N, N, N, N), got {t.shape}")
+    atol = options["inertia_symmetry_atol"] if atol is None else _validate.positive("atol", atol, allow_zero=True)
     tol = atol * max(1.0, float(np.max(np.abs(t), initial=0.0)))
     checks = {
         "I^ijkl = -I^jikl": t + t.transpose(1, 0, 2, 3),
@@ -609,7 +624,7 @@ class Inertia:
                 return None
         return tuple(sp.simplify(v) for v in J)
 
-    def is_physical(self, *, atol: float = 1e-12):
+    def is_physical(self, *, atol: float | None = None):
         r"""Whether the moments can belong to a real body.
 
         A real body has :math:`I_{ij} = J_i + J_j` with :math:`J_i \ge 0`;
@@ -622,12 +637,14 @@ class Inertia:
         Returns
         -------
         bool, or None for symbolic moments when the sign of some :math:`J_i`
-        cannot be decided. ``atol`` is relative to the largest moment.
+        cannot be decided. ``atol`` is relative to the largest moment (default
+        ``hr.options["inertia_physical_atol"]``, 1e-12).
         """
         J = self.mass_tensor
         if J is None:
             return False
         if isinstance(J, np.ndarray):
+            atol = options["inertia_physical_atol"] if atol is None else _validate.positive("atol", atol, allow_zero=True)
             return bool(np.all(J >= -atol * float(np.max(self._numeric))))
         signs = [_parse.to_sympy(v, "J").is_nonnegative for v in J]
         if any(s is False for s in signs):

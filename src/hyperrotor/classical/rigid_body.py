@@ -140,8 +140,8 @@ class RigidBody:
     def __init__(
         self,
         inertia: Any,
-        convention: str = "paper",
         *,
+        convention: str = "paper",
         axes: Sequence[int] | None = None,
         ambient_dimension: int | None = None,
         _locked: tuple = (),
@@ -533,7 +533,7 @@ class RigidBody:
         inertia = Inertia._from_values(vals, len(remaining), J)
         return RigidBody(
             inertia,
-            self.convention,
+            convention=self.convention,
             axes=remaining,
             ambient_dimension=self.ambient_dimension,
             _locked=tuple(sorted(self.locked_axes + locked)),

@@ -40,7 +40,7 @@ observable computed from the trajectory) for comparison and benchmarks
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 from typing import Any, Sequence
 
 import numpy as np
@@ -254,6 +254,7 @@ class Scene:
     body: Any
     omega0: Any
     t: Any
+    _: KW_ONLY
     observables: Sequence[str] = ("omega",)
     planes: Sequence | None = None
     points: Any = None
@@ -441,7 +442,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
                 U = _cf._quartet_attitude_std(info["theta"], w_red, tau, info["axis"])
         steps.append("closed-form:" + info["kind"])
     else:
-        red_body = RigidBody(I_red, "standard")
+        red_body = RigidBody(I_red, convention="standard")
         traj = simulate(red_body, w_red, t, method=scene.method, rtol=_rtol(scene), attitude=need_att,
                         progress=scene.progress)
         om_red = traj.omega
