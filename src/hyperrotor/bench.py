@@ -25,7 +25,7 @@ import numpy as np
 from .plotting import plot_work_precision  # the figure of this module's points (drawn in plotting)
 
 __all__ = ["best_of", "WorkPrecisionPoint", "work_precision", "n_runs", "estimate_seconds", "speedup_at", "write_csv",
-           "plot_work_precision", "BENCH_PROBLEMS", "BENCH_SPANS"]
+           "plot_work_precision", "print_table", "BENCH_PROBLEMS", "BENCH_SPANS", "BENCH_METHODS"]
 
 #: Problems of :func:`work_precision`.
 BENCH_PROBLEMS = ("quartet", "euler-poinsot")
@@ -41,6 +41,9 @@ _SETTINGS = {  # method -> (keyword, values): hyperrotor's integrators by step, 
     "DOP853": ("rtol", (1e-6, 1e-8, 1e-10, 1e-12, 1e-13)),
     "RK45": ("rtol", (1e-4, 1e-6, 1e-8)),
 }
+
+#: Methods of :func:`work_precision` (the keys of its settings table).
+BENCH_METHODS = tuple(_SETTINGS)
 
 #: Seconds of one call of every setting of a method together (best of 2, measured with
 #: ``hyperrotor bench`` on the shared 2-core machine, 46 s wall in all); used by
@@ -187,9 +190,14 @@ def write_csv(rows: Sequence, path) -> str:
     return str(path)
 
 
-def _main_table(points: Sequence[WorkPrecisionPoint], out=None) -> None:
+def print_table(points: Sequence[WorkPrecisionPoint], out=None) -> None:
+    """Print the points as a table (problem, method, setting, error, time) to ``out`` (default stdout)."""
     out = sys.stdout if out is None else out  # looked up per call: sys.stdout may be replaced after import
     print(f"{'problem':<14} {'method':<11} {'setting':>14} {'error':>10} {'time [s]':>10}", file=out)
     for p in points:
         print(f"{p.problem:<14} {p.method:<11} {p.setting + '=' + format(p.value, 'g'):>14} "
               f"{p.error:>10.2e} {p.seconds:>10.4f}", file=out)
+
+
+#: the CLI's old import, removed once hyperrotor/cli/bench.py uses print_table (requests.md)
+_main_table = print_table

@@ -229,10 +229,12 @@ def save_motion_comparison(path, t: np.ndarray, exact: np.ndarray, runs: Mapping
         err = np.max(np.abs(omega - exact), axis=-1) / scale
         ax2.semilogy(t[1:], np.maximum(err[1:], floor), lw=1, label=name)
     ax2.set_xlabel("t")
-    ax2.set_ylabel("relative error\n$\\max_{ij}|\\omega - \\omega_{exact}|\\,/\\,\\max|\\omega_0|$", fontsize=8)
+    ax2.set_ylabel("relative error")
     ax2.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     ax2.grid(True, which="major", alpha=0.3)
-    ax2.set_title("relative error of each run", fontsize=9)
+    ax2.set_title(r"relative error of each run: $\max_{ij}|\omega_{ij} - \omega^\mathrm{exact}_{ij}|\,/\,"
+                  r"\max|\omega_0|$", fontsize=9)
+    fig.align_ylabels((ax1, ax2))
     fig.tight_layout()
     try:
         fig.savefig(path, dpi=110, format=format)
