@@ -169,6 +169,19 @@ def test_demo_motion_matches_closed_form_and_writes_png(capsys, tmp_path):
     assert png.stat().st_size > 10_000 and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_demo_can_run_twice_and_owns_only_its_default_png(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # the README's command, pasted twice: the demo replaces its own picture
+    for replaced in (False, True):
+        code, out, err = _run(capsys, ["demo", "--ascii", "--t-end", "2"])
+        assert code == 0, err
+        assert ("PNG of the motion written to hyperrotor-demo.png (replacing the earlier one)" in out) == replaced
+        assert _files(tmp_path) == ["hyperrotor-demo.png"]
+    (tmp_path / "hyperrotor-demo.png").write_text("not a demo picture")  # not its own: kept
+    code, out, err = _run(capsys, ["demo", "--ascii", "--t-end", "2"])
+    assert code == 2 and "'hyperrotor-demo.png' exists; pass --force" in err
+    assert (tmp_path / "hyperrotor-demo.png").read_text() == "not a demo picture"
+
+
 def test_demo_bad_t_end(capsys):
     code, _, err = _run(capsys, ["demo", "--no-png", "--t-end", "-1"])
     assert code == 2 and "--t-end" in err

@@ -71,6 +71,7 @@ class OutputFile:
     option: str
     force: bool
     tmp: Path
+    replaces: bool = False  #: a file exists at ``path`` (``force``): the commit replaces it
 
     def commit(self) -> Path:
         """Move the finished temporary file to :attr:`path` (atomic); returns the path."""
@@ -144,7 +145,8 @@ def output_file(text: str, *, option: str, suffixes: Sequence[str], force: bool)
             raise ValueError(f"{option} {text!r}: the folder {str(folder)!r} does not exist (create it first)")
         if not folder.is_dir():
             raise ValueError(f"{option} {text!r}: {str(folder)!r} is not a folder")
-        if path.exists() or path.is_symlink():
+        replaces = path.exists() or path.is_symlink()
+        if replaces:
             if not force:
                 raise ValueError(f"{option} {text!r} exists; pass --force to replace it, or choose another name")
             if not path.is_file():
@@ -156,7 +158,7 @@ def output_file(text: str, *, option: str, suffixes: Sequence[str], force: bool)
     except OSError as err:
         raise ValueError(f"{option} {_short(text)!r}: cannot write in the folder {_short(str(folder))!r} "
                          f"({err.strerror or err})") from None
-    out = OutputFile(path=path, option=option, force=force, tmp=Path(tmp))
+    out = OutputFile(path=path, option=option, force=force, tmp=Path(tmp), replaces=replaces)
     with _LOCK:
         _PENDING.append(out)
     os.close(fd)

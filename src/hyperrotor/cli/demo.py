@@ -1,31 +1,30 @@
 """``hyperrotor demo``: the 5D Euler equations (28)-(37) of the paper's quartet body (eqs. 84-85).
 
 Prints the equations, the invariants on a sample angular velocity, the closed
-form against two integrators, and writes a PNG of the motion.
+form against two integrators, and writes a PNG of the motion. The physics is
+the library's (:mod:`hyperrotor.demo`); this module reads the options, prints
+and writes the file.
 """
 from __future__ import annotations
 
 import argparse
 import sys
-import time
+from pathlib import Path
 
 import numpy as np
 
 from hyperrotor import _validate
 from hyperrotor.cli._common import (UsageError, add_common, check_budget, check_common, choice_of, have_matplotlib,
                                     integer, num, number, number_list, nums, usage)
+from hyperrotor.cli._files import OutputFile, Outputs, output_file
 from hyperrotor.conventions import CONVENTIONS
-from hyperrotor.cli._files import Outputs, output_file
+from hyperrotor.demo import DEMO_OMEGA, quartet_invariants, save_quartet_motion
 
-__all__ = ["configure", "run", "DEMO_OMEGA", "DEMO_PNG"]
+__all__ = ["configure", "run", "DEMO_PNG"]
 
 
-#: Sample angular velocity of ``hyperrotor demo`` (plane order 12, 13, ..., 45).
-DEMO_OMEGA = tuple(round(0.1 * k, 1) for k in range(1, 11))
 #: Default PNG of ``hyperrotor demo``.
 DEMO_PNG = "hyperrotor-demo.png"
-#: Wall time of the demo's two runs per unit of simulated time (measured, 2-core machine), for the budget.
-_DEMO_SECONDS_PER_TIME = 0.004
 
 
 def configure(p: argparse.ArgumentParser) -> None:
@@ -42,8 +41,9 @@ def configure(p: argparse.ArgumentParser) -> None:
     p.add_argument("--t-end", default=200.0,
                    help="length of the simulated motion, closed form vs numerical (default 200)")
     p.add_argument("--png", default=None, metavar="FILE.png",
-                   help=f"where to write the PNG of the motion (default ./{DEMO_PNG}; needs matplotlib; "
-                        "an existing file is kept unless --force)")
+                   help=f"where to write the PNG of the motion (needs matplotlib). Default ./{DEMO_PNG}, the "
+                        "demo's own file: an earlier demo picture there is replaced, so the command can be run "
+                        "again. A FILE given here that exists is kept unless --force")
     p.add_argument("--no-png", action="store_true", help="do not write the PNG")
     add_common(p, budget=True)
 
@@ -59,6 +59,8 @@ def _pretty_block(label: str, expr, use_unicode: bool) -> str:
 
 def run(args: argparse.Namespace) -> int:
     from hyperrotor import Inertia, RigidBody
+    from hyperrotor._options import options
+    from hyperrotor.demo import compare_quartet_motion, quartet_motion_seconds
 
     # --- checks, before any work -------------------------------------------------
     check_common(args)
@@ -67,35 +69,48 @@ def run(args: argparse.Namespace) -> int:
     args.axis = integer(args.axis, "--axis", minimum=1, maximum=5)
     t_end = usage(_validate.positive, "--t-end", number(args.t_end, "--t-end"))
     inertia = usage(Inertia.quartet, kappa, axis=args.axis, N=5)
-    # the integrators' work grows with t_end times the fastest rate of the motion, at most
-    # max|omega| * max(I) / min(I) (the Euler coefficients are moment differences over moments)
-    moments = np.asarray(inertia.moments, dtype=float)
-    rate = max(1.0, float(np.max(np.abs(omega))) * float(np.max(moments) / np.min(moments)))
-    check_budget(args, f"demo --t-end {num(t_end)} (fastest rate {num(rate, 3)})",
-                  1.0 + _DEMO_SECONDS_PER_TIME * t_end * rate, hint="choose a shorter --t-end or smaller --omega")
+    cost = quartet_motion_seconds(kappa, omega, t_end, axis=args.axis)
+    check_budget(args, f"demo --t-end {num(t_end)} (fastest rate {num(cost.rate, 3)})", cost.seconds,
+                 hint="choose a shorter --t-end or smaller --omega")
     with Outputs() as outs:
         png = None
         if not args.no_png:
             if have_matplotlib():
-                png = outs.add(usage(output_file, args.png or DEMO_PNG, option="--png", suffixes=(".png",),
-                                      force=args.force))
+                png = outs.add(_png_output(args))
             elif args.png is not None:
                 raise UsageError("--png needs matplotlib (pip install 'hyperrotor[viz]'), or pass --no-png")
         # --- work ------------------------------------------------------------------
-        body = RigidBody(inertia, args.convention)
+        body = RigidBody(inertia, convention=args.convention)
         out = _demo_text(args, body, inertia, kappa, omega)
-        motion = _demo_motion(body, float(kappa), args.axis, omega, t_end)
-        out.extend(motion["lines"])
+        with options(max_seconds=max(float(options["max_seconds"]), args.max_seconds or 0.0,
+                                     float(options["cli_max_seconds"]))):  # the CLI's budget was checked above
+            motion = compare_quartet_motion(kappa, omega, t_end, axis=args.axis)
+        out.extend(_motion_lines(motion))
         out.append("")
         if png is not None:
-            _demo_png(motion, png.tmp)
+            save_quartet_motion(motion, png.tmp)
             outs.commit()
-            out.append(f"PNG of the motion written to {png.path}")
+            out.append(f"PNG of the motion written to {png.path}"
+                       + (" (replacing the earlier one)" if png.replaces else ""))
         elif not args.no_png:
             out.append("PNG skipped: matplotlib is not installed (pip install 'hyperrotor[viz]').")
     out.extend(_demo_summary(args, body, omega, t_end, png.path if png is not None else None))
     print("\n".join(out))
     return 0
+
+
+def _png_output(args: argparse.Namespace) -> OutputFile:
+    """``--png``: a named file keeps the no-clobber rule; the default file is the demo's own and is replaced.
+
+    The default ``hyperrotor-demo.png`` is replaced only when it is a regular
+    PNG file (an earlier demo picture), so the README command works when
+    pasted twice; anything else at that name is kept (use ``--force``).
+    """
+    if args.png is not None:
+        return usage(output_file, args.png, option="--png", suffixes=(".png",), force=args.force)
+    path = Path(DEMO_PNG)
+    own = path.is_file() and not path.is_symlink() and path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    return usage(output_file, DEMO_PNG, option="--png", suffixes=(".png",), force=args.force or own)
 
 
 def _demo_text(args, body, inertia, kappa, omega) -> list[str]:
@@ -125,19 +140,17 @@ def _demo_text(args, body, inertia, kappa, omega) -> list[str]:
         label = f"({28 + k})" if args.convention == "paper" else f"[{i}{j}]"
         out.append(_pretty_block(label, eq, use_unicode))
         out.append("")
-    L = body.angular_momentum(omega)
-    cas = body.casimirs(omega)
-    man = body.manakov_integrals(omega, 1.0)
+    inv = quartet_invariants(body, omega)
     out.append("sample angular velocity (plane order " + " ".join(f"{i}{j}" for i, j in planes(5)) + "):")
     out.append("  omega = " + nums(omega))
     out.append("invariants at omega (torque-free motion conserves all of them):")
-    out.append(f"  energy E = 1/2 sum I_ij w_ij^2 = {num(body.energy(omega))}")
-    out.append(f"  Casimir c_2 = sum (L^ij)^2 = {num(cas[0])}")
-    out.append(f"  Casimir c_4 (lambda^1 coefficient of det(lambda - L)) = {num(cas[1])}")
-    for k, v in enumerate(man, start=2):
+    out.append(f"  energy E = 1/2 sum I_ij w_ij^2 = {num(inv.energy)}")
+    out.append(f"  Casimir c_2 = sum (L^ij)^2 = {num(inv.casimirs[0])}")
+    out.append(f"  Casimir c_4 (lambda^1 coefficient of det(lambda - L)) = {num(inv.casimirs[1])}")
+    for k, v in enumerate(inv.manakov, start=2):
         out.append(f"  Manakov tr((L + J^2)^{k}) = {num(v)}")
-    out.append("  L = " + nums(L))
-    out.append("  d omega/dt = " + nums(body.rhs(omega)))
+    out.append("  L = " + nums(inv.L))
+    out.append("  d omega/dt = " + nums(inv.rhs))
     out.append("")
     return out
 
@@ -157,47 +170,16 @@ def _demo_summary(args, body, omega, t_end, png) -> list[str]:
     ]
 
 
-def _demo_motion(body, kappa: float, axis: int, omega, t_end: float) -> dict:
-    """Closed form vs numerical motion of the quartet body; returns data and report lines."""
-    from hyperrotor import simulate
-    from hyperrotor.classical.closed_form import quartet_frequencies, quartet_solution
-
-    t = np.linspace(0.0, t_end, 2001)
-    exact = quartet_solution(kappa, omega, t, axis=axis)
-    scale = float(np.max(np.abs(omega)))
-    lines = [f"motion over t in [0, {num(t_end, 6)}] (2001 output times), reference: closed form (eqs. 96-110):"]
-    freqs = quartet_frequencies(kappa, omega, axis=axis)
-    lines.append("  frequencies Omega_1, Omega_2 (after eq. 118) = " + nums(freqs))
-    runs = {}
-    start = time.perf_counter()
-    simulate(body, omega, t[:2], method="splitting8", dt=t[1])  # numba: compile, or load from the disk cache
-    lines.append(f"  (first splitting call, compiling or loading the numba kernel: {time.perf_counter() - start:.2f} s; "
-                 "the wall times below exclude it)")
-    for name, kw in (("splitting8", {"rtol": 1e-12}), ("DOP853", {"rtol": 1e-10})):
-        start = time.perf_counter()
-        traj = simulate(body, omega, t, method=name, **kw)
-        wall = time.perf_counter() - start
-        err = float(np.max(np.abs(traj.omega - exact))) / scale
-        E = body.energy(traj.omega)
-        c2 = np.sum(traj.L**2, axis=-1)
-        runs[name] = traj.omega
-        lines.append(f"  {name:<10} rtol={kw['rtol']:.0e}: max relative error vs closed form = {err:.3e}, "
-                     f"energy drift = {float(np.max(np.abs(E / E[0] - 1))):.2e}, "
-                     f"Casimir c_2 drift = {float(np.max(np.abs(c2 / c2[0] - 1))):.2e}, wall time {wall:.3f} s")
+def _motion_lines(motion) -> list[str]:
+    """The report of :func:`hyperrotor.demo.compare_quartet_motion`."""
+    lines = [f"motion over t in [0, {num(motion.t[-1], 6)}] ({len(motion.t)} output times), reference: closed form "
+             "(eqs. 96-110):",
+             "  frequencies Omega_1, Omega_2 (after eq. 118) = " + nums(motion.frequencies),
+             f"  (first splitting call, compiling or loading the numba kernel: {motion.warmup_time:.2f} s; "
+             "the wall times below exclude it)"]
+    for run in motion.runs.values():
+        lines.append(f"  {run.method:<10} rtol={run.rtol:.0e}: max relative error vs closed form = {run.error:.3e}, "
+                     f"energy drift = {run.energy_drift:.2e}, Casimir c_2 drift = {run.casimir_drift:.2e}, "
+                     f"wall time {run.wall_time:.3f} s")
     lines.append("  (relative error: max over times and planes of |omega - omega_exact| / max|omega_0|)")
-    return {"t": t, "exact": exact, "runs": runs, "lines": lines, "axis": axis, "kappa": kappa, "scale": scale}
-
-
-def _demo_png(motion: dict, path) -> None:
-    """The oscillating components (closed form, splitting8 dots) and the relative error of both runs."""
-    from hyperrotor import planes
-    from hyperrotor.plotting import save_motion_comparison
-
-    axis = motion["axis"]
-    osc = [k for k, p in enumerate(planes(5)) if axis in p]
-    labels = [f"$\\omega_{{{i}{j}}}$" for i, j in (planes(5)[k] for k in osc)]
-    save_motion_comparison(
-        path, motion["t"], motion["exact"], motion["runs"], components=osc, labels=labels, scale=motion["scale"],
-        marked="splitting8",
-        title=f"5D quartet body (kappa = {num(motion['kappa'], 6)}, axis {axis}): the four planes with axis "
-              f"{axis} oscillate", format="png")
+    return lines

@@ -1,0 +1,213 @@
+r"""The quartet demo: the paper's 5D quartet body, its invariants, closed form against two integrators.
+
+What ``hyperrotor demo`` shows, as library functions (the command line only
+reads its options, prints and writes the files):
+
+* :func:`quartet_invariants`: the conserved quantities of a body at an angular
+  velocity (energy, the Casimirs of eq. 38, Manakov's traces) with
+  :math:`L` and :math:`\dot\omega` (eqs. 28-37);
+* :func:`compare_quartet_motion`: the closed form of the quartet body (eqs.
+  84-85, solution eqs. 96-110 with corrected signs, frequencies after eq. 118)
+  against the Lie-Poisson splitting of order 8 and scipy's DOP853: the motion,
+  the relative error of each run, its energy and Casimir drift, wall times;
+  priced before it runs (:func:`quartet_motion_seconds`, budget
+  ``hr.options["max_seconds"]``);
+* :func:`save_quartet_motion`: the picture of a comparison (PNG).
+
+The relative error of a run is
+:math:`\max_{t,\,ij}|\omega_{ij}(t) - \omega^{exact}_{ij}(t)| / \max_{ij}|\omega_{ij}(0)|`.
+"""
+from __future__ import annotations
+
+import time
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from . import _pricing
+from . import _validate as _v
+
+__all__ = ["DEMO_OMEGA", "DEMO_RUNS", "QuartetInvariants", "quartet_invariants", "MotionRun", "QuartetMotion",
+           "compare_quartet_motion", "MotionCost", "quartet_motion_seconds", "save_quartet_motion"]
+
+#: Sample angular velocity of the demo (plane order 12, 13, ..., 45).
+DEMO_OMEGA = tuple(round(0.1 * k, 1) for k in range(1, 11))
+#: The integrators compared with the closed form, with their tolerance.
+DEMO_RUNS = (("splitting8", 1e-12), ("DOP853", 1e-10))
+#: Wall seconds of the two runs per unit of simulated time and of the fastest rate (measured on the
+#: shared 2-core machine: t_end = 200 at rate 1.6 took 1.3 s warm), for :func:`quartet_motion_seconds`.
+_SECONDS_PER_TIME = 0.004
+
+
+class QuartetInvariants(NamedTuple):
+    """Conserved quantities of a free body at one angular velocity (plus ``L`` and ``d omega/dt``)."""
+
+    energy: float           #: :math:`E = \tfrac12 \sum I_{ij}\omega_{ij}^2`
+    casimirs: np.ndarray    #: :math:`c_2 = \sum (L^{ij})^2`, :math:`c_4` (eq. 38)
+    manakov: np.ndarray     #: :math:`\operatorname{tr}((L + J^2)^k)`, k = 2, 3, ... (mass-tensor bodies)
+    L: np.ndarray           #: angular momentum components :math:`L^{ij} = I_{ij}\omega_{ij}`
+    rhs: np.ndarray         #: :math:`\dot\omega` of the Euler equations (28)-(37)
+
+
+def quartet_invariants(body: Any, omega0: Any) -> QuartetInvariants:
+    """Energy, Casimirs, Manakov traces, ``L`` and ``d omega/dt`` of ``body`` at ``omega0``.
+
+    ``body``: a :class:`~hyperrotor.RigidBody` with a mass tensor (Manakov's
+    traces need one, e.g. ``Inertia.quartet``); ``omega0``: its plane components.
+    """
+    from .classical.rigid_body import RigidBody
+
+    if not isinstance(body, RigidBody):
+        raise TypeError(f"body must be a hyperrotor.RigidBody, got {_v.fmt(body)} of type {type(body).__name__}")
+    omega0 = _v.components("omega0", omega0, len(body.planes))
+    return QuartetInvariants(float(body.energy(omega0)), np.asarray(body.casimirs(omega0), dtype=float),
+                             np.asarray(body.manakov_integrals(omega0, 1.0), dtype=float),
+                             np.asarray(body.angular_momentum(omega0), dtype=float),
+                             np.asarray(body.rhs(omega0), dtype=float))
+
+
+class MotionRun(NamedTuple):
+    """One integrator's run against the closed form."""
+
+    method: str
+    rtol: float
+    omega: np.ndarray         #: (n_times, 10)
+    error: float              #: max relative error against the closed form (module docstring)
+    energy_drift: float       #: :math:`\max_t |E(t)/E(0) - 1|`
+    casimir_drift: float      #: :math:`\max_t |c_2(t)/c_2(0) - 1|`
+    wall_time: float          #: seconds, warm (the compile is excluded: ``QuartetMotion.warmup_time``)
+
+
+class QuartetMotion(NamedTuple):
+    """Closed form against :data:`DEMO_RUNS` for the quartet body (:func:`compare_quartet_motion`)."""
+
+    kappa: float
+    axis: int
+    t: np.ndarray
+    exact: np.ndarray         #: closed form (n_times, 10), eqs. 96-110
+    frequencies: np.ndarray   #: :math:`\Omega_1, \Omega_2` (after eq. 118)
+    scale: float              #: :math:`\max|\omega_0|`, the normalisation of the errors
+    runs: dict                #: method -> :class:`MotionRun`
+    warmup_time: float        #: seconds of the first splitting call (compiling or loading the kernel)
+
+
+def _body(kappa: Any, axis: Any):
+    from .classical.inertia import Inertia
+    from .classical.rigid_body import RigidBody
+
+    axis = _v.integer("axis", axis, minimum=1, maximum=5)
+    return RigidBody(Inertia.quartet(kappa, axis=axis, N=5)), axis
+
+
+def _fastest_rate(body, omega0: np.ndarray) -> float:
+    # the integrators' work grows with t_end times the fastest rate of the motion, at most
+    # max|omega| * max(I) / min(I) (the Euler coefficients are moment differences over moments)
+    moments = np.asarray(body.inertia.moments, dtype=float)
+    return max(1.0, float(np.max(np.abs(omega0))) * float(np.max(moments) / np.min(moments)))
+
+
+@_pricing.model("compare_quartet_motion", "a shorter t_end or a smaller omega0")
+def _motion_cost(t_end: float, rate: float) -> tuple:
+    """Cost model of :func:`compare_quartet_motion`: seconds of the two runs (:func:`quartet_motion_seconds`)."""
+    return (_pricing.Cost(f"the quartet motion over t_end = {t_end:.6g} (fastest rate {rate:.3g})",
+                          1.0 + _SECONDS_PER_TIME * float(t_end) * float(rate), "max_seconds", "seconds"),)
+
+
+class MotionCost(NamedTuple):
+    """Estimate of :func:`compare_quartet_motion` (:func:`quartet_motion_seconds`)."""
+
+    seconds: float  #: wall seconds of the runs, warm kernels
+    rate: float     #: bound on the fastest rate of the motion, :math:`\max|\omega_0| \max I / \min I` (>= 1)
+
+
+def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 200.0, *,
+                           axis: int = 5) -> MotionCost:
+    """Estimated wall seconds of :func:`compare_quartet_motion` (warm kernels), without running it.
+
+    ``1 + c * t_end * rate``: the rate is the fastest of the motion, bounded by
+    :math:`\\max|\\omega_0| \\max I / \\min I`; ``c`` measured on the 2-core reference machine.
+    """
+    body, axis = _body(kappa, axis)
+    omega0 = _v.components("omega0", omega0, 10)
+    t_end = _v.positive("t_end", t_end)
+    rate = _fastest_rate(body, omega0)
+    (cost,) = _pricing.estimate("compare_quartet_motion", t_end=t_end, rate=rate)
+    return MotionCost(cost.amount, rate)
+
+
+def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 200.0, *, axis: int = 5,
+                           n_times: int = 2001, progress: bool | None = False) -> QuartetMotion:
+    r"""The quartet body's closed form against the integrators of :data:`DEMO_RUNS`.
+
+    Parameters
+    ----------
+    kappa : number or SymPy rational
+        The quartet body (eqs. 84-85): :math:`I_{ij} = 1 + \kappa^2` on the planes with the
+        distinguished ``axis``, 2 on the others.
+    omega0 : array_like (10,)
+        Initial angular velocity, plane order 12, 13, ..., 45 (default :data:`DEMO_OMEGA`).
+    t_end : float
+        The motion is compared on ``n_times`` equally spaced times in ``[0, t_end]``.
+    axis : int
+        The distinguished axis, 1..5.
+    progress : bool or None
+        Progress bars of the runs (:func:`hyperrotor.simulate`).
+
+    Returns
+    -------
+    QuartetMotion
+        The closed form, each run with its relative error, drifts and warm wall time.
+
+    Raises
+    ------
+    hyperrotor.BudgetError
+        When the estimate (:func:`quartet_motion_seconds`) exceeds ``hr.options["max_seconds"]``.
+    """
+    from .classical.closed_form import quartet_frequencies, quartet_solution
+    from .classical.simulate import simulate
+
+    body, axis = _body(kappa, axis)
+    omega0 = _v.components("omega0", omega0, 10)
+    t_end = _v.positive("t_end", t_end)
+    n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
+    _pricing.check("compare_quartet_motion", t_end=t_end, rate=_fastest_rate(body, omega0))
+    kappa = float(kappa)
+    t = np.linspace(0.0, t_end, n_times)
+    exact = quartet_solution(kappa, omega0, t, axis=axis)
+    scale = float(np.max(np.abs(omega0)))
+    start = time.perf_counter()
+    simulate(body, omega0, t[:2], method="splitting8", dt=t[1])  # numba: compile, or load from the disk cache
+    warmup = time.perf_counter() - start
+    runs = {}
+    for method, rtol in DEMO_RUNS:
+        start = time.perf_counter()
+        traj = simulate(body, omega0, t, method=method, rtol=rtol, progress=progress)
+        wall = time.perf_counter() - start
+        E = body.energy(traj.omega)
+        c2 = np.sum(traj.L**2, axis=-1)
+        runs[method] = MotionRun(method, rtol, traj.omega, float(np.max(np.abs(traj.omega - exact))) / scale,
+                                 float(np.max(np.abs(E / E[0] - 1))), float(np.max(np.abs(c2 / c2[0] - 1))), wall)
+    return QuartetMotion(kappa, axis, t, exact, np.asarray(quartet_frequencies(kappa, omega0, axis=axis), dtype=float),
+                         scale, runs, warmup)
+
+
+def save_quartet_motion(motion: QuartetMotion, path: Any, *, format: str | None = "png") -> str:
+    """Picture of :func:`compare_quartet_motion`: the four oscillating planes and each run's relative error.
+
+    Top: the components :math:`\\omega_{ij}` of the planes with the distinguished axis (the
+    others are constant), closed form as lines, the order-8 splitting as dots; bottom: the
+    relative error of each run (module docstring). Needs matplotlib; returns the path.
+    """
+    from .conventions import planes
+    from .plotting import save_motion_comparison
+
+    if not isinstance(motion, QuartetMotion):
+        raise TypeError(f"motion must be a QuartetMotion (compare_quartet_motion), got {type(motion).__name__}")
+    axis = motion.axis
+    osc = [k for k, p in enumerate(planes(5)) if axis in p]
+    labels = [f"$\\omega_{{{i}{j}}}$" for i, j in (planes(5)[k] for k in osc)]
+    return save_motion_comparison(
+        path, motion.t, motion.exact, {name: run.omega for name, run in motion.runs.items()}, components=osc,
+        labels=labels, scale=motion.scale, marked=DEMO_RUNS[0][0],
+        title=f"5D quartet body (kappa = {motion.kappa:.6g}, axis {axis}): the four planes with axis "
+              f"{axis} oscillate", format=format)
