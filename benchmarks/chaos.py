@@ -93,7 +93,7 @@ def main(argv=None):
 
     # --- 1. ensemble throughput -------------------------------------------------------
     def run(client=None):
-        return hr.lyapunov(moments, W0, T, rng=1, client=client, progress=False)
+        return hr.lyapunov(moments, W0, T, rng=1, client=client, progress=False).exponents
 
     def cpu_of(client=None):
         """CPU seconds of one run: this process, plus the dask workers' when a client is given."""
@@ -132,7 +132,7 @@ def main(argv=None):
 
     # --- 2. one exponent vs naive scipy -----------------------------------------------------
     w1 = W0[0]
-    t_ours, lam_ours = best_of(lambda: hr.lyapunov(moments, w1, T, rng=1, progress=False), repeat, warmup=True)
+    t_ours, lam_ours = best_of(lambda: float(hr.lyapunov(moments, w1, T, rng=1, progress=False)), repeat, warmup=True)
     start = time.perf_counter()
     lam_scipy, nfev = scipy_exponent(moments, w1, T)
     t_scipy = time.perf_counter() - start

@@ -159,7 +159,8 @@ def _integrable_cases():
 def test_integrable_exponents_decay_like_log_t_over_t(case):
     body, w0 = _integrable_cases()[case]
     T = 400.0
-    t, lam = lyapunov(body, w0, T, history=True, rng=case)
+    res = lyapunov(body, w0, T, history=True, rng=case)
+    t, lam = res.t, res.history
     assert lam.shape == (w0.shape[0], t.size)
     assert np.all(lam[:, -1] < 0.03)
     # linear growth of tangent vectors, |dL(t)| ~ a t: lambda(t) t = log t + c(t) with c bounded
@@ -173,7 +174,8 @@ def test_integrable_exponents_decay_like_log_t_over_t(case):
 
 def test_generic_body_is_not_log_t_over_t():
     moments, w0 = generic_5d(1, 8)
-    t, lam = lyapunov(moments, w0, 200.0, history=True, rng=0)
+    res = lyapunov(moments, w0, 200.0, history=True, rng=0)
+    t, lam = res.t, res.history
     late = t >= 25.0
     drift = lam[:, late] * t[late] - np.log(t[late])
     assert np.median(np.ptp(drift, axis=1)) > 20.0
@@ -186,7 +188,7 @@ def test_generic_body_is_not_log_t_over_t():
 def test_generic_mean_agrees_with_scipy_variational():
     moments, w0 = generic_5d(3, 32)
     T = 100.0
-    ours = lyapunov(moments, w0, T, rng=4)
+    ours = lyapunov(moments, w0, T, rng=4).exponents
     ref = scipy_benettin(moments, w0, T, seed=5)
     assert np.mean(ours) > 0.2 and np.mean(ref) > 0.2
     # the two estimates of each orbit's finite-time exponent differ by the choice of tangent
@@ -204,7 +206,7 @@ def test_generic_mean_agrees_with_scipy_variational():
 def test_spectrum_pairs_and_zeros():
     moments, w0 = generic_5d(7, 3)
     T = 400.0
-    spec = lyapunov(moments, w0, T, spectrum=True, rng=8)
+    spec = lyapunov(moments, w0, T, spectrum=True, rng=8).exponents
     assert spec.shape == (3, n5)
     # volume preservation: the exponents sum to zero up to round-off of the log-sums
     assert np.all(np.abs(spec.sum(axis=1)) < 1e3 * EPS * n5 * np.abs(spec).max())
@@ -218,8 +220,8 @@ def test_spectrum_pairs_and_zeros():
 
 def test_spectrum_k_leading_matches_full_spectrum_start():
     moments, w0 = generic_5d(9, 2)
-    full = lyapunov(moments, w0, 50.0, spectrum=True, rng=1)
-    three = lyapunov(moments, w0, 50.0, spectrum=3, rng=1)
+    full = lyapunov(moments, w0, 50.0, spectrum=True, rng=1).exponents
+    three = lyapunov(moments, w0, 50.0, spectrum=3, rng=1).exponents
     assert three.shape == (2, 3)
     # Gram-Schmidt: the first vectors do not see the later ones; same random start only in
     # distribution, so compare the leading exponent loosely and the shapes exactly
@@ -232,22 +234,27 @@ def test_spectrum_k_leading_matches_full_spectrum_start():
 def test_shapes_and_seeded_reproducibility():
     moments, w0 = generic_5d(2, 4)
     one = lyapunov(moments, w0[0], 20.0, rng=3)
-    assert isinstance(one, float)
-    many = lyapunov(moments, w0.reshape(2, 2, n5), 20.0, rng=3)
+    assert isinstance(one, chaos.LyapunovResult) and one.exponents.shape == () and one.history is None
+    assert float(one) == one.exponents and one.t.tolist() == [20.0] and one.k == 1
+    # reproducible by default: the documented default seed 0, rng= varies the tangent vectors
+    assert np.array_equal(lyapunov(moments, w0, 20.0).exponents, lyapunov(moments, w0, 20.0, rng=0).exponents)
+    assert not np.array_equal(lyapunov(moments, w0, 20.0).exponents, lyapunov(moments, w0, 20.0, rng=1).exponents)
+    many = lyapunov(moments, w0.reshape(2, 2, n5), 20.0, rng=3).exponents
     assert many.shape == (2, 2)
-    again = lyapunov(moments, w0.reshape(2, 2, n5), 20.0, rng=3)
+    again = lyapunov(moments, w0.reshape(2, 2, n5), 20.0, rng=3).exponents
     assert np.array_equal(many, again)
-    t, hist = lyapunov(moments, w0, 20.0, history=True, renorm_interval=2.0, rng=3)
+    res = lyapunov(moments, w0, 20.0, history=True, renorm_interval=2.0, rng=3)
+    t, hist = res.t, res.history
     assert np.allclose(t, np.arange(2.0, 21.0, 2.0)) and hist.shape == (4, 10)
 
 
 @pytest.mark.parametrize("workers,chunk_size", [(1, None), (2, 1), (2, 3), (None, 7)])
 def test_chunking_is_bit_identical(monkeypatch, workers, chunk_size):
     moments, w0 = generic_5d(4, 12)
-    ref = lyapunov(moments, w0, 40.0, rng=6, chunk_size=12)
+    ref = lyapunov(moments, w0, 40.0, rng=6, chunk_size=12).exponents
     if workers is not None:
         monkeypatch.setattr(chaos._parallel, "default_workers", lambda: workers)
-    out = lyapunov(moments, w0, 40.0, rng=6, chunk_size=chunk_size)
+    out = lyapunov(moments, w0, 40.0, rng=6, chunk_size=chunk_size).exponents
     assert np.array_equal(out, ref)
 
 
@@ -255,12 +262,12 @@ def test_sweep_rows_equal_single_body_calls():
     g = np.random.default_rng(12)
     bodies = np.exp(g.uniform(math.log(0.3), math.log(3.0), (3, n5)))
     _, w0 = generic_5d(13, 4)
-    sweep = lyapunov_sweep(bodies, w0, 10.0, rng=2)
+    sweep = lyapunov_sweep(bodies, w0, 10.0, rng=2).exponents
     assert sweep.shape == (3, 4)
     # the first body's orbits draw the first tangent vectors of the same generator
-    first = lyapunov(bodies[0], w0, 10.0, rng=2)
+    first = lyapunov(bodies[0], w0, 10.0, rng=2).exponents
     assert np.allclose(sweep[0], first, rtol=1e-9, atol=0)
-    per_body = lyapunov_sweep([hr.Inertia(b) for b in bodies], np.stack([w0] * 3), 10.0, rng=2)
+    per_body = lyapunov_sweep([hr.Inertia(b) for b in bodies], np.stack([w0] * 3), 10.0, rng=2).exponents
     assert np.array_equal(per_body, sweep)
 
 
@@ -289,8 +296,8 @@ def test_scale_invariance_is_exact_for_powers_of_two(k):
     underflow even for |omega| ~ 1e270 or 1e-180."""
     moments, w0 = generic_5d(19, 3)
     s = 2.0 ** k
-    ref = lyapunov(moments, w0, 20.0, rng=5)
-    scaled = lyapunov(moments, s * w0, 20.0 / s, renorm_interval=1.0 / s, rng=5)
+    ref = lyapunov(moments, w0, 20.0, rng=5).exponents
+    scaled = lyapunov(moments, s * w0, 20.0 / s, renorm_interval=1.0 / s, rng=5).exponents
     assert np.array_equal(scaled, s * ref)
 
 
@@ -321,11 +328,11 @@ def test_client_equals_in_process(dask_client):
     client = dask_client
     moments, w0 = generic_5d(21, 10)
     T = 30.0
-    local = lyapunov(moments, w0, T, rng=9)
-    remote = lyapunov(moments, w0, T, rng=9, client=client, chunk_size=3)
+    local = lyapunov(moments, w0, T, rng=9).exponents
+    remote = lyapunov(moments, w0, T, rng=9, client=client, chunk_size=3).exponents
     assert np.array_equal(remote, local)
-    spec_local = lyapunov(moments, w0[:3], T, spectrum=True, rng=9)
-    spec_remote = lyapunov(moments, w0[:3], T, spectrum=True, rng=9, client=client)
+    spec_local = lyapunov(moments, w0[:3], T, spectrum=True, rng=9).exponents
+    spec_remote = lyapunov(moments, w0[:3], T, spectrum=True, rng=9, client=client).exponents
     assert np.array_equal(spec_remote, spec_local)
 
 
@@ -334,7 +341,7 @@ def test_sweep_on_client_equals_in_process(dask_client):
     g = np.random.default_rng(22)
     bodies = np.exp(g.uniform(math.log(0.3), math.log(3.0), (2, n5)))
     _, w0 = generic_5d(23, 5)
-    local = lyapunov_sweep(bodies, w0, 20.0, rng=1)
-    remote = lyapunov_sweep(bodies, w0, 20.0, rng=1, client=client)
+    local = lyapunov_sweep(bodies, w0, 20.0, rng=1).exponents
+    remote = lyapunov_sweep(bodies, w0, 20.0, rng=1, client=client).exponents
     assert remote.shape == (2, 5)
     assert np.array_equal(remote, local)

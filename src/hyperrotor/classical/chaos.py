@@ -63,7 +63,7 @@ from .solvers._tangent_kernels import tangent_run, tangent_run_lanes
 from .simulate import simulate
 from .solvers.splitting import casimir_shift, rotation_tables, splitting_word
 
-__all__ = ["lyapunov", "lyapunov_sweep", "LYAPUNOV_METHODS", "poincare_section", "PoincareSection"]
+__all__ = ["lyapunov", "lyapunov_sweep", "LyapunovResult", "LYAPUNOV_METHODS", "poincare_section", "PoincareSection"]
 
 #: ``method=`` names of :func:`lyapunov` (the splittings of :func:`hyperrotor.simulate`).
 LYAPUNOV_METHODS = ("splitting2", "splitting4", "splitting6", "splitting8")
@@ -209,17 +209,58 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     return t, sums / t[None, :, None]
 
 
-def _shape_result(t, lam, batch, spectrum, history):
-    """(B, K, k) -> the documented shapes (float for one orbit's maximal exponent)."""
+@dataclass(frozen=True)
+class LyapunovResult:
+    r"""Lyapunov exponents from :func:`lyapunov` or :func:`lyapunov_sweep` (always this object).
+
+    Attributes
+    ----------
+    exponents : ndarray
+        The estimates at ``T``: shape batch (the orbits' leading axes; ``()`` for one orbit)
+        for the maximal exponent, batch + ``(k,)`` for a spectrum (in the order of the
+        Gram-Schmidt vectors, i.e. decreasing for long runs).
+    t : ndarray (K,)
+        Times of the running estimates: every renormalisation with ``history=True``,
+        else only ``T`` (``K = 1``).
+    history : ndarray or None
+        Running estimates :math:`\lambda(t)`, batch + ``(K,)`` (+ ``(k,)``), with
+        ``history=True``; ``None`` otherwise.
+    k : int
+        Number of exponents per orbit (1 for the maximal exponent only).
+    method : str
+        The splitting whose tangent map was used.
+    rng : Any
+        The ``rng`` argument of the call (the default seed 0 unless one was given).
+
+    ``float(result)`` is the exponent of a single orbit's maximal exponent, and
+    ``np.asarray(result)`` is :attr:`exponents`.
+    """
+
+    exponents: np.ndarray
+    t: np.ndarray
+    history: np.ndarray | None
+    k: int
+    method: str
+    rng: Any = 0
+
+    def __float__(self) -> float:
+        if self.exponents.size != 1:
+            raise TypeError(f"float() needs one exponent, this result holds {self.exponents.shape}: "
+                            f"use result.exponents")
+        return float(self.exponents.reshape(()))
+
+    def __array__(self, dtype=None, copy=None):
+        return np.asarray(self.exponents, dtype=dtype)
+
+
+def _result(t, lam, batch, spectrum, history, k, method, rng) -> LyapunovResult:
+    """(B, K, k) -> a LyapunovResult with the documented shapes."""
     lam = lam.reshape(batch + lam.shape[1:])
     if not spectrum:
         lam = lam[..., 0]
-    if history:
-        return t, lam
-    lam = lam[..., -1, :] if spectrum else lam[..., -1]
-    if not batch and not spectrum:
-        return float(lam)
-    return lam
+    final = lam[..., -1, :] if spectrum else lam[..., -1]
+    return LyapunovResult(exponents=np.asarray(final), t=np.asarray(t), history=lam if history else None, k=k,
+                          method=method, rng=rng)
 
 
 # ----------------------------------------------------------------------------
@@ -235,11 +276,11 @@ def lyapunov(
     dt: float | None = None,
     renorm_interval: float = 1.0,
     history: bool = False,
-    rng: Any = None,
+    rng: Any = 0,
     client: Any = None,
     chunk_size: int | None = None,
     progress: bool | None = None,
-):
+) -> LyapunovResult:
     r"""Lyapunov exponents of the free body's Euler equations (Benettin, structure-preserving tangent map).
 
     Parameters
@@ -263,9 +304,12 @@ def lyapunov(
     renorm_interval : float
         time between re-orthonormalisations (rounded so that they divide ``T``).
     history : bool
-        also return the running estimates :math:`\lambda(t)` at every renormalisation.
-    rng : None, int, SeedSequence or Generator
-        source of the random initial tangent vectors (seed it for reproducible numbers).
+        also keep the running estimates :math:`\lambda(t)` at every renormalisation
+        (:attr:`LyapunovResult.history`).
+    rng : int, SeedSequence, Generator or None
+        source of the random initial tangent vectors. The default is the fixed seed ``0``:
+        the same call gives the same numbers; pass another seed (or a Generator) to vary
+        the tangent vectors, ``None`` for fresh entropy.
     client : dask.distributed.Client, optional
         run the ensemble on its cluster (same numbers as in-process); ``None`` uses all
         local cores (threads).
@@ -277,11 +321,11 @@ def lyapunov(
 
     Returns
     -------
-    float or ndarray
-        one orbit, maximal exponent: a float; otherwise an array batch (+ ``(k,)`` for a
-        spectrum, exponents in the order of the Gram-Schmidt vectors, i.e. decreasing
-        for long runs). With ``history``: ``(t, values)``, ``t (K,)`` the renormalisation
-        times and ``values`` batch + ``(K,)`` (+ ``(k,)``).
+    LyapunovResult
+        ``exponents``: shape batch (``()`` for one orbit) for the maximal exponent, batch +
+        ``(k,)`` for a spectrum (exponents in the order of the Gram-Schmidt vectors, i.e.
+        decreasing for long runs); ``t`` and ``history`` (batch + ``(K,)`` (+ ``(k,)``))
+        with ``history=True``. ``float(result)`` gives a single exponent.
 
     Raises
     ------
@@ -295,8 +339,8 @@ def lyapunov(
     --------
     >>> import hyperrotor as hr
     >>> top = hr.Inertia([1.0, 2.0, 3.0])
-    >>> lam = hr.lyapunov(top, [0.3, 1.0, 0.2], T=200.0, rng=1)
-    >>> 0.0 < lam < 0.05   # regular: decays like log T / T
+    >>> res = hr.lyapunov(top, [0.3, 1.0, 0.2], T=200.0)   # reproducible: default rng=0
+    >>> 0.0 < float(res) < 0.05   # regular: decays like log T / T
     True
     """
     moments = _validate.moments(body, name="body")
@@ -308,7 +352,7 @@ def lyapunov(
     L0 = np.ascontiguousarray(w0.reshape(B, n) * moments)
     t, lam = _benettin(np.broadcast_to(moments, (B, n)), L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov")
-    return _shape_result(t, lam, batch, as_spectrum, history)
+    return _result(t, lam, batch, as_spectrum, history, k, method, rng)
 
 
 def lyapunov_sweep(
@@ -321,11 +365,11 @@ def lyapunov_sweep(
     dt: float | None = None,
     renorm_interval: float = 1.0,
     history: bool = False,
-    rng: Any = None,
+    rng: Any = 0,
     client: Any = None,
     chunk_size: int | None = None,
     progress: bool | None = None,
-):
+) -> LyapunovResult:
     r"""Lyapunov exponents over a grid of bodies x initial conditions, in one (distributed) call.
 
     Every body is combined with every initial condition; the ``P * M`` orbits form one
@@ -345,8 +389,9 @@ def lyapunov_sweep(
 
     Returns
     -------
-    ndarray (P, M) (+ ``(k,)`` for a spectrum)
-        exponents; with ``history``: ``(t, values (P, M, K[, k]))``.
+    LyapunovResult
+        ``exponents`` of shape ``(P, M)`` (+ ``(k,)`` for a spectrum); with ``history``,
+        ``history`` of shape ``(P, M, K[, k])``.
     """
     if isinstance(bodies, np.ndarray) and bodies.ndim == 2:
         rows = [_validate.moments(b, name=f"bodies[{p}]") for p, b in enumerate(bodies)]
@@ -381,7 +426,7 @@ def lyapunov_sweep(
     L0 = np.ascontiguousarray(Wrows * Mrows)
     t, lam = _benettin(np.ascontiguousarray(Mrows), L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov sweep")
-    return _shape_result(t, lam, (P, M), as_spectrum, history)
+    return _result(t, lam, (P, M), as_spectrum, history, k, method, rng)
 
 
 # ----------------------------------------------------------------------------
