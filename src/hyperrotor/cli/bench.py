@@ -17,12 +17,12 @@ BENCH_STEM = "hyperrotor-bench"
 
 
 def configure(p: argparse.ArgumentParser) -> None:
-    from hyperrotor.bench import _SETTINGS, BENCH_PROBLEMS
+    from hyperrotor.bench import BENCH_METHODS, BENCH_PROBLEMS
 
     p.add_argument("--problem", action="append", choices=BENCH_PROBLEMS, type=choice_of(BENCH_PROBLEMS),
                    help="problem with an exact solution (repeatable; default: all)")
-    p.add_argument("--method", action="append", default=None, choices=list(_SETTINGS), type=choice_of(_SETTINGS),
-                   metavar="METHOD", help=f"{', '.join(_SETTINGS)} (any case; repeatable; default: all)")
+    p.add_argument("--method", action="append", default=None, choices=BENCH_METHODS, type=choice_of(BENCH_METHODS),
+                   metavar="METHOD", help=f"{', '.join(BENCH_METHODS)} (any case; repeatable; default: all)")
     p.add_argument("--repeats", default=2, help="timed repeats per run, best kept (default 2)")
     p.add_argument("--error", default=1e-10,
                    help="relative error level (0 < error < 1) at which the speed-up over DOP853 is reported "
@@ -47,7 +47,7 @@ def bench_paths(stem: str) -> tuple[Path, Path]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from hyperrotor.bench import (_main_table, estimate_seconds, n_runs, plot_work_precision, speedup_at,
+    from hyperrotor.bench import (estimate_seconds, n_runs, plot_work_precision, print_table, speedup_at,
                                   work_precision, write_csv)
 
     check_common(args)
@@ -79,7 +79,7 @@ def run(args: argparse.Namespace) -> int:
         if png_out is not None:
             plot_work_precision(points, png_out.tmp, format="png")
         outs.commit()
-    _main_table(points)
+    print_table(points)
     for prob in problems:
         sp = speedup_at([p for p in points if p.problem == prob], error)
         if sp is None:
