@@ -10,6 +10,10 @@ Two parts (issue #16):
   one sector after the other. Both timed in the same run (best of ``--repeats``),
   the spectra compared (max |difference| / max |E|). Writes
   ``benchmarks/results/sectors.csv`` and ``sectors.png``.
+* ``--classes``: the irrep classes that #24 changed (so(5) spinor: real gauge; so(4) (44, 0)
+  and so(6) (5, 2, 0): reflection parity; so(6) (5, 3, 1): complex type, real gauge), dense vs
+  sectors in one run; the script also runs on the tree before #24 (the same calls), for the
+  before/after table.
 * ``--scale``: the 52,976-dimensional irrep (20, 10) (or ``--highest-weight 29,14``,
   dim 212,280, the stretch target of #24: < 30 min, < 6 GB), every level, once; wall time
   of each stage, peak resident memory (``resource.getrusage``), and the checks
@@ -22,6 +26,7 @@ the comparison runs both paths on ONE BLAS thread (``--blas-threads``): with two
 threads on this loaded 2-core machine a dense eigvalsh ran ~4x slower than with one.
 
 Usage: python benchmarks/sectors.py [--quick] [--repeats R] [--blas-threads T]
+       python benchmarks/sectors.py --classes [--output NAME.csv]
        python benchmarks/sectors.py --scale [--highest-weight M1,M2] [--workers W]
 """
 from __future__ import annotations
@@ -34,9 +39,8 @@ import time
 import numpy as np
 
 from hyperrotor.bench import best_of, write_csv
-from hyperrotor.quantum import irrep
+from hyperrotor.quantum import irrep, rotor_hamiltonian
 from hyperrotor.quantum.sectors import sector_spectra, symmetry_sectors
-from hyperrotor.quantum.sectors.spectra import rotor_csr
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
 #: ten independent plane moments (planes 12, 13, ..., 45): a generic, non-Manakov body
@@ -49,6 +53,11 @@ def _load() -> float:
     return round(os.getloadavg()[0], 2)
 
 
+def _hamiltonian(rep, moments):
+    """The rotor Hamiltonian as CSR (the same call on the trees before and after #24)."""
+    return rotor_hamiltonian(rep, moments).data.as_scipy().tocsr()
+
+
 def _peak_rss_gb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20  # kB -> GB (Linux)
 
@@ -57,7 +66,7 @@ def compare(irreps, repeats: int) -> list[dict]:
     rows = []
     for hw in irreps:
         rep = irrep(5, hw)
-        H = rotor_csr(rep, MOMENTS, 1.0)
+        H = _hamiltonian(rep, MOMENTS)
         t_dense, E_dense = best_of(lambda: np.linalg.eigvalsh(H.toarray()), repeats)
         t_sec, spec = best_of(lambda: sector_spectra(rep, MOMENTS), repeats)
         E_sec = spec.eigenvalues()
@@ -73,6 +82,43 @@ def compare(irreps, repeats: int) -> list[dict]:
     return rows
 
 
+#: irreps of the classes that #24 changed: spinor (real gauge: complex -> real blocks), even N with a
+#: highest weight ending in 0 (reflection parity: twice as many sectors), so(6) complex type (real gauge)
+CLASSES = [(5, ("15/2", "9/2")), (4, ("44", "0")), (6, ("5", "2", "0")), (6, ("5", "3", "1"))]
+
+
+def _moments(N: int) -> np.ndarray:
+    """N(N-1)/2 generic plane moments (MOMENTS for so(5))."""
+    k = np.arange(N * (N - 1) // 2)
+    return MOMENTS[k] if N == 5 else 1.0 + (0.618034 * (k + 1)) % 1.0
+
+
+def compare_classes(repeats: int) -> list[dict]:
+    """Dense eigvalsh of the whole H vs sector_spectra for the classes of #24 (run it on old and new trees)."""
+    from fractions import Fraction
+
+    rows = []
+    for N, hw in CLASSES:
+        rep = irrep(N, tuple(Fraction(x) for x in hw))
+        moments = _moments(N)
+        H = _hamiltonian(rep, moments)
+        t_dense, E_dense = best_of(lambda: np.linalg.eigvalsh(H.toarray()), repeats)
+        t_sec, spec = best_of(lambda: sector_spectra(rep, moments), repeats)
+        secs = symmetry_sectors(rep)
+        E_sec = spec.eigenvalues()
+        err = float(np.abs(E_sec - E_dense).max() / np.abs(E_dense).max())
+        row = {
+            "N": N, "highest_weight": "(" + ", ".join(hw) + ")", "dim": rep.dim, "sectors": len(spec),
+            "real_sectors": sum(bool(getattr(s, "real", False)) for s in secs),
+            "largest_sector": max(len(v) for v in spec.values()),
+            "dense_s": round(t_dense, 3), "sectors_s": round(t_sec, 3), "speedup": round(t_dense / t_sec, 1),
+            "max_rel_diff": f"{err:.1e}", "load": _load(),
+        }
+        rows.append(row)
+        print(row, flush=True)
+    return rows
+
+
 def scale(hw: tuple, workers: int) -> dict:
     t0 = time.perf_counter()
     rep = irrep(5, hw, max_dim=10**6)
@@ -81,7 +127,7 @@ def scale(hw: tuple, workers: int) -> dict:
     t2 = time.perf_counter()
     spec = sector_spectra(rep, MOMENTS, workers=workers, progress=True)
     t3 = time.perf_counter()
-    H = rotor_csr(rep, MOMENTS, 1.0)
+    H = _hamiltonian(rep, MOMENTS)
     E = spec.eigenvalues()
     tr = float(H.diagonal().real.sum())
     fro2 = float((abs(H).power(2)).sum())
@@ -131,6 +177,9 @@ def main():
                     help="--scale: so(5) highest weight m1,m2 (the #24 stretch: 29,14, dim 212,280)")
     ap.add_argument("--workers", type=int, default=1, help="--scale: sectors on this many threads")
     ap.add_argument("--blas-threads", type=int, default=1, help="comparison: BLAS threads of both paths")
+    ap.add_argument("--classes", action="store_true",
+                    help="the irrep classes of #24 (spinor, reflection, complex type) instead of so(5) tensor irreps")
+    ap.add_argument("--output", default=None, help="--classes: csv name in benchmarks/results")
     args = ap.parse_args()
     os.makedirs(RESULTS, exist_ok=True)
     if args.scale:
@@ -141,6 +190,11 @@ def main():
         return
     from threadpoolctl import threadpool_limits
 
+    if args.classes:
+        with threadpool_limits(limits=args.blas_threads, user_api="blas"):
+            rows = compare_classes(args.repeats)
+        print("wrote", write_csv(rows, os.path.join(RESULTS, args.output or "sectors_classes.csv")))
+        return
     with threadpool_limits(limits=args.blas_threads, user_api="blas"):
         rows = compare(QUICK if args.quick else IRREPS, args.repeats)
     for r in rows:

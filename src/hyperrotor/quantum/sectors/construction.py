@@ -64,15 +64,27 @@ def _orbit_representatives(ops: list[Monomial], dim: int) -> np.ndarray:
     return np.sort(first)
 
 
-def _project_monomial(ops: list[Monomial], eigs: tuple, reps_idx: np.ndarray, dim: int) -> sps.csc_matrix:
-    """Orthonormal basis of the joint eigenspace D_k = eigs[k] (sparse columns, one per orbit)."""
-    V = sps.csc_matrix((np.ones(len(reps_idx), dtype=complex), (reps_idx, np.arange(len(reps_idx)))),
-                       shape=(dim, len(reps_idx)))
-    for D, lam in zip(ops, eigs):
-        V = (V + np.conj(lam) * (D.matrix() @ V)) * 0.5
-        V = sps.csc_matrix(V)
-        V.data[np.abs(V.data) < 1e-12] = 0
-        V.eliminate_zeros()
+def _group_elements(ops: list[Monomial], dim: int) -> list[tuple[np.ndarray, np.ndarray, tuple]]:
+    """Every product D_S of a subset S of the commuting monomials: ``(perm, phase, S)``."""
+    elems = [(np.arange(dim), np.ones(dim, dtype=complex), ())]
+    for i, D in enumerate(ops):
+        elems += [(D.perm[perm], phase * D.phase[perm], S + (i,)) for perm, phase, S in elems]
+    return elems
+
+
+def _project_monomial(elems: list, eigs: tuple, reps_idx: np.ndarray, dim: int) -> sps.csc_matrix:
+    r"""Orthonormal basis of the joint eigenspace D_k = eigs[k] (sparse columns, one per orbit).
+
+    :math:`\prod_k (1 + \bar\lambda_k D_k)/2 = 2^{-m} \sum_S \prod_{k \in S} \bar\lambda_k\, D_S`
+    applied to one GT vector per orbit, all orbits at once.
+    """
+    n, m = len(reps_idx), len(eigs)
+    coef = [np.prod([np.conj(eigs[k]) for k in S]) / 2**m for _, _, S in elems]
+    rows = np.concatenate([perm[reps_idx] for perm, _, _ in elems])
+    data = np.concatenate([c * phase[reps_idx] for c, (_, phase, _) in zip(coef, elems)])
+    V = sps.csc_matrix((data, (rows, np.tile(np.arange(n), len(elems)))), shape=(dim, n))
+    V.data[np.abs(V.data) < 1e-12] = 0
+    V.eliminate_zeros()
     norms = np.sqrt(np.asarray(abs(V).power(2).sum(axis=0)).ravel())
     keep = norms > 1e-8
     V = V[:, np.nonzero(keep)[0]] @ sps.diags(1.0 / norms[keep])
@@ -88,7 +100,7 @@ def _project_dense(Ds: list[np.ndarray], eigs: tuple, dim: int) -> np.ndarray:
     return V[:, w > 0.5]
 
 
-def make_real(B: sps.csc_matrix, V: Monomial) -> sps.csc_matrix:
+def make_real(B: sps.csc_matrix, V: sps.csr_matrix) -> sps.csc_matrix:
     r"""Columns fixed by :math:`A = VK` spanning the same space as ``B`` (A preserves the span).
 
     The columns of ``B`` have disjoint supports (one orbit of the monomial group
@@ -99,7 +111,7 @@ def make_real(B: sps.csc_matrix, V: Monomial) -> sps.csc_matrix:
     n = B.shape[1]
     if n == 0:
         return B
-    AB = sps.csc_matrix(V.matrix() @ B.conj())
+    AB = sps.csc_matrix(V @ B.conj())
     G = sps.csc_matrix(B.conj().T @ AB)
     tau = np.asarray(abs(G).argmax(axis=0)).ravel()
     theta = np.asarray(G[tau, np.arange(n)]).ravel()
@@ -175,10 +187,12 @@ def sectors_of(rep, complete: bool) -> list[Sector]:
     N, dim = rep.N, rep.dim
     if g.monomial:
         reps_idx = _orbit_representatives(g.ops, dim)
+        elems = _group_elements(g.ops, dim)
+        V = None if g.antiunitary is None else g.antiunitary.matrix()
 
         def project(eigs):
-            B = _project_monomial(g.ops, eigs, reps_idx, dim)
-            return B if g.antiunitary is None else make_real(B, g.antiunitary)
+            B = _project_monomial(elems, eigs, reps_idx, dim)
+            return B if V is None else make_real(B, V)
     else:
         def project(eigs):
             return _project_dense(g.ops, eigs, dim)
