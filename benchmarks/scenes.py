@@ -14,7 +14,12 @@ the full integration).
 Times are the best of ``--repeat`` runs after one warm-up run (numba caches
 compiled kernels on disk; the warm-up removes compile and import costs).
 
-Writes benchmarks/results/scenes.csv and scenes.png.
+A second table prices the interactive page (``Scene.to_html``, plotly) against the GIF of
+the same frames (``hyperrotor.plotting.save_projection_animation``, the peer): wall time
+and file size, and the page size estimated before any work (``scene_html_bytes``, the
+figure the budget ``scene_html_max_bytes`` is checked against) next to the measured one.
+
+Writes benchmarks/results/scenes.csv, scenes_html.csv and scenes.png.
 
 Usage: python benchmarks/scenes.py [--quick] [--repeat R]
 """
@@ -47,17 +52,18 @@ def _scenes(t):
     w4[[plane_index(p, 5) for p in planes(5) if 5 in p]] = 0.0
     N8 = 8
     return [
-        ("5D quartet (axis 3), omega", Scene(hyperrotor.Inertia.quartet(0.5, axis=3, N=5), w, t, ("omega",))),
+        ("5D quartet (axis 3), omega", Scene(hyperrotor.Inertia.quartet(0.5, axis=3, N=5), w, t, observables=("omega",))),
         ("8D one-axis body, omega + energy", Scene(hyperrotor.Inertia.quartet(0.5, axis=8, N=N8),
-                                                   rng.normal(size=N8 * (N8 - 1) // 2), t, ("omega", "energy"))),
-        ("5D generic, energy + casimirs", Scene(gen5, w, t, ("energy", "casimirs"))),
-        ("5D generic, omega in locked 3D subspace", Scene(gen5, w3, t, ("omega",))),
-        ("5D generic, omega only", Scene(gen5, w, t, ("omega",))),
-        ("5D generic, axis 5 locked, 5-cube -> (1,2,3)", Scene(gen5, w4, t, ("projection",),
+                                                   rng.normal(size=N8 * (N8 - 1) // 2), t, observables=("omega", "energy"))),
+        ("5D generic, energy + casimirs", Scene(gen5, w, t, observables=("energy", "casimirs"))),
+        ("5D generic, omega in locked 3D subspace", Scene(gen5, w3, t, observables=("omega",))),
+        ("5D generic, omega only", Scene(gen5, w, t, observables=("omega",))),
+        ("5D generic, axis 5 locked, 5-cube -> (1,2,3)", Scene(gen5, w4, t, observables=("projection",),
                                                                points=hypercube_vertices(5), axes=(1, 2, 3))),
         ("5D quartet (axis 5), 5-cube -> (1,2,3)", Scene(hyperrotor.Inertia.quartet(0.5, axis=5, N=5), w, t,
-                                                         ("projection",), points=hypercube_vertices(5), axes=(1, 2, 3))),
-        ("5D equal moments, 5-simplex -> (1,2,3)", Scene(np.full(10, 2.0), w, t, ("projection",),
+                                                         observables=("projection",), points=hypercube_vertices(5),
+                                                         axes=(1, 2, 3))),
+        ("5D equal moments, 5-simplex -> (1,2,3)", Scene(np.full(10, 2.0), w, t, observables=("projection",),
                                                          points=simplex_vertices(5), axes=(1, 2, 3))),
     ]
 
@@ -115,7 +121,47 @@ def main(argv=None):
         fig.savefig(os.path.join(RESULTS, "scenes.png"), dpi=120)
     except ImportError:  # pragma: no cover
         print("matplotlib not available: no PNG")
-    print(f"wrote {path_csv} and scenes.png")
+    html_rows = _html_table(args.quick)
+    write_csv(html_rows, os.path.join(RESULTS, "scenes_html.csv"))
+    print(f"wrote {path_csv}, scenes_html.csv and scenes.png")
+    return rows
+
+
+def _html_table(quick):
+    """Interactive page vs GIF of the same frames: wall time, bytes, estimated bytes."""
+    import tempfile
+
+    from hyperrotor.classical.scene_html import scene_html_bytes
+    from hyperrotor.plotting import body_edges, save_projection_animation
+
+    K = 30 if quick else 60
+    print(f"\ninteractive page (Scene.to_html, plotly) vs GIF of the same {K} frames (one run each)")
+    head = f"{'body':30s} {'html [s]':>9s} {'gif [s]':>8s} {'x gif':>6s} {'html MB':>8s} {'est. MB':>8s} {'est/meas':>9s} {'gif MB':>7s}"
+    print(head)
+    print("-" * len(head))
+    rows = []
+    for N in (4, 6, 8):
+        body = hyperrotor.Inertia.quartet(0.5, axis=N, N=N)
+        pts = hypercube_vertices(N)
+        sc = Scene(body, 0.1 * np.arange(1, N * (N - 1) // 2 + 1), np.linspace(0.0, 20.0, K), points=pts,
+                   axes=(1, 2, 3, 4), observables=("projection",))
+        edges = body_edges(pts, "cube")
+        with tempfile.TemporaryDirectory() as tmp:
+            t0 = time.perf_counter()
+            sc.to_html(os.path.join(tmp, "s.html"))
+            t_html = time.perf_counter() - t0
+            size_html = os.path.getsize(os.path.join(tmp, "s.html"))
+            t0 = time.perf_counter()
+            res = sc.evaluate()
+            save_projection_animation(os.path.join(tmp, "s.gif"), res.t, res.projection, edges, colour_axis=4)
+            t_gif = time.perf_counter() - t0
+            size_gif = os.path.getsize(os.path.join(tmp, "s.gif"))
+        est = scene_html_bytes(K, len(pts), len(edges), colour=True)
+        rows.append(dict(body=f"{N}-cube", frames=K, points=len(pts), edges=len(edges), t_html=t_html, t_gif=t_gif,
+                         html_bytes=size_html, html_estimate=est, gif_bytes=size_gif))
+        print(f"{N}-cube ({len(pts)} pts, {len(edges)} edges)".ljust(30)
+              + f" {t_html:9.2f} {t_gif:8.2f} {t_gif / t_html:6.1f} {size_html / 1e6:8.2f} {est / 1e6:8.2f}"
+              f" {est / size_html:9.2f} {size_gif / 1e6:7.2f}")
     return rows
 
 
