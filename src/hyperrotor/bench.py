@@ -22,6 +22,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
+from . import _validate
 from .plotting import plot_work_precision  # the figure of this module's points (drawn in plotting)
 
 __all__ = ["best_of", "WorkPrecisionPoint", "work_precision", "n_runs", "estimate_seconds", "speedup_at", "write_csv",
@@ -135,13 +136,9 @@ def work_precision(problem: str = "quartet", methods: Sequence[str] | None = Non
     """
     from hyperrotor import simulate
 
-    methods = list(_SETTINGS) if methods is None else list(methods)
-    bad = [m for m in methods if m not in _SETTINGS]
-    if bad:
-        raise ValueError(f"unknown method(s) {', '.join(map(repr, bad))}; allowed: {', '.join(_SETTINGS)}")
-    if int(repeats) < 1:
-        raise ValueError(f"repeats must be >= 1, got {repeats}")
-    body, w0, t, exact = _problem(problem)
+    methods = list(_SETTINGS) if methods is None else [_validate.choice("methods", m, BENCH_METHODS) for m in methods]
+    repeats = _validate.integer("repeats", repeats, minimum=1)
+    body, w0, t, exact = _problem(_validate.choice("problem", problem, BENCH_PROBLEMS))
     scale = float(np.max(np.abs(w0)))
     points = []
     for method in methods:
