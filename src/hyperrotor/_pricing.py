@@ -169,6 +169,8 @@ _TABLE_S = 2.0e-8
 _DENSE_S = 3.6e-9
 #: seconds per dim^2 of real_form (measured: dominated by dim^2 work up to dim ~1000)
 _REAL_FORM_S = 2.2e-5
+#: seconds per dim^2 * monomials of the exact harmonic basis (measured for N = 3, l = 20..80)
+_HARMONIC_S = 3.1e-7
 #: seconds per pure-Python integer tuple operation (Freudenthal's recursion)
 _PY_S = 1.0e-6
 #: seconds per dim^2 of the Lanczos highest-weight search
@@ -197,10 +199,11 @@ def _linearization(N: Any) -> tuple[Cost, ...]:
                      n * n * _PAIR_S + n ** 3 * _TABLE_S))
 
 
+@model("casimir_shift", "use a body with fewer planes")
 @model("simulate", "use a body with fewer planes")
-def _simulate(N: Any, members: Any = 1) -> tuple[Cost, ...]:
+def _simulate(N: Any = None, n: Any = None) -> tuple[Cost, ...]:
     # the Casimir shift rule compares every rate with every candidate value (n x n floats, twice)
-    n = _n_planes(N)
+    n = _n_planes(N) if n is None else _f(n)
     return (_memory(f"the Casimir shift of {n:.0f} planes (n x n rate differences)", 16.0 * n * n),)
 
 
@@ -299,12 +302,50 @@ def _lyapunov_sweep(bodies: Any, orbits: Any, n: Any, k: Any = 1) -> tuple[Cost,
                     rows * 8.0 * _f(n) * (15.0 + 8.0 * _f(k))),)
 
 
+@model("closed_form_output", "ask for fewer output times (t)")
+def _closed_form_output(n_times: Any, width: Any) -> tuple[Cost, ...]:
+    # the returned (K, width) float array and one temporary of the same size
+    return (Cost(f"{n_times} output times x {width} values", 16.0 * _mul(n_times, width), "max_output_bytes", "bytes"),)
+
+
+@model("ellipsoid_points", "ask for fewer points")
+def _ellipsoid_points(n: Any, N: Any) -> tuple[Cost, ...]:
+    return (Cost(f"{n} points in {N} dimensions", 24.0 * _mul(n, N), "max_output_bytes", "bytes"),)
+
+
+@model("inertia_tensor", "use second_moment_matrix (N x N) instead of the rank-4 tensor")
+def _inertia_tensor(N: Any, points: Any = 1) -> tuple[Cost, ...]:
+    return (_memory(f"the rank-4 inertia tensor of dimension {N} ({N}^4 entries)", 24.0 * _f(N) ** 4),
+            _seconds(f"the rank-4 inertia tensor of dimension {N} ({points} points)",
+                     _f(N) ** 4 * (1.0 + _f(points)) * 2e-9))
+
+
+@model("body_edges", "draw fewer points")
+def _body_edges(pairs: Any) -> tuple[Cost, ...]:
+    # a Python loop over the candidate pairs, each kept as a tuple in a list
+    return (_memory(f"{_f(pairs):.6g} candidate edges", 120.0 * _f(pairs)),
+            _seconds(f"{_f(pairs):.6g} candidate edges", 3e-7 * _f(pairs)))
+
+
+@model("dense_matrix", "use format='csr'")
+def _dense_matrix(dim: Any, count: Any = 1) -> tuple[Cost, ...]:
+    d = _f(dim)
+    return (_memory(f"{count} dense {dim} x {dim} complex matrices", 16.0 * _f(count) * d * d),)
+
+
 # --- SymPy and exact-arithmetic constructions ------------------------------------------------
 @model("casimir_operator")
 def _casimir_operator(N: Any) -> tuple[Cost, ...]:
-    # sum over n planes of L_a^2, each a product of two first-order operators with 2 terms: ~ n * N terms
+    # sum over n planes of L_a^2 (each 2-term operator squared), merged into a total of O(N^2) terms:
+    # measured ~ n * N (N = 16..96)
     n = _n_planes(N)
-    return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", 12.0 * n * _SYMPY_S),)
+    return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", n * _f(N) * 0.35 * _SYMPY_S),)
+
+
+@model("angular_momentum_operators")
+def _angular_momentum_operators(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_seconds(f"the {n:.0f} symbolic generators of so({N})", n * 8.0 * _SYMPY_S),)
 
 
 @model("harmonic_polynomial_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
@@ -312,7 +353,7 @@ def _harmonic_polynomial_basis(N: Any, l: Any) -> tuple[Cost, ...]:
     monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
     dim = _harmonic_dim(N, l)
     return (_harmonic_space(N, l, dim), _seconds(f"{dim:.6g} harmonic polynomials of degree {l} in {N} variables ({monomials:.6g} monomials)",
-                     dim * monomials * _SYMPY_S),)
+                     dim * dim * monomials * _HARMONIC_S),)
 
 
 @model("orthogonal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
@@ -321,7 +362,7 @@ def _orthonormal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
     monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
     dim = _harmonic_dim(N, l)
     return (_harmonic_space(N, l, dim), _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
-                     f"({monomials:.6g} monomials)", dim * dim * monomials * _SYMPY_S),)
+                     f"({monomials:.6g} monomials)", dim * dim * monomials * 0.5 * _SYMPY_S),)
 
 
 @model("bivector_product_table")

@@ -1,0 +1,186 @@
+"""Estimate vs measured cost of every priced entry point (hyperrotor._pricing, issue #21).
+
+For each entry point with a cost model, a few sizes below the budgets are run: the wall
+time (perf_counter, one run, no tracing) and the peak traced memory (tracemalloc, a second
+run; only for entries whose model prices memory) are printed next to the model's estimate,
+with their ratio (estimate / measured; the models aim at a factor ~3 either way). A plot
+of estimate against measured is written to benchmarks/results/pricing.png.
+
+    python benchmarks/pricing.py            # the table (~2 min on the 2-core machine)
+    python benchmarks/pricing.py --quick    # the smallest size of each entry only
+
+Estimates of memory are bytes of working memory; estimates of time are single-core seconds
+on the reference machine. Tiny measurements (below 20 ms or 1 MB) are dominated by fixed
+overheads and are not part of the verdict.
+"""
+from __future__ import annotations
+
+import argparse
+import gc
+import os
+import sys
+import time
+import tracemalloc
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+import hyperrotor as hr  # noqa: E402
+import hyperrotor.quantum as hq  # noqa: E402
+from hyperrotor import _pricing  # noqa: E402
+from hyperrotor.classical.solvers.splitting import _shift_candidates  # noqa: E402
+from hyperrotor.conventions import _structure_constants  # noqa: E402
+
+
+def _moments(N):
+    n = N * (N - 1) // 2
+    return 1.0 + np.arange(n) / n
+
+
+def _herm(d):
+    rng = np.random.default_rng(0)
+    A = rng.standard_normal((d, d)) + 1j * rng.standard_normal((d, d))
+    return A + A.conj().T
+
+
+def _nnz(rep):
+    return sum(g.nnz for g in rep.generators().values())
+
+
+def cases():
+    """(entry, label, sizes for the model, setup -> argument, run(argument))."""
+    out = []
+    for N in (20, 30, 40):
+        out.append(("structure_constants", f"N={N}", dict(N=N), lambda N=N: _structure_constants.cache_clear(),
+                    lambda _, N=N: hr.structure_constants(N)))
+    for N in (15, 25, 35):
+        out.append(("linearization", f"N={N}", dict(N=N),
+                    lambda N=N: (_structure_constants.cache_clear(), _moments(N))[1],
+                    lambda m: hr.linearization(m, (1, 2), 1.0)))
+    for N in (40, 60, 100):
+        out.append(("simulate", f"N={N}", dict(N=N), lambda N=N: (_shift_candidates.cache_clear(), _moments(N))[1],
+                    lambda m: hr.simulate(m, 1e-3 * np.ones(m.size), [0.0, 1e-3], method="splitting4")))
+    for d in (500, 1000, 2000):
+        out.append(("dense_diagonalization", f"dim={d}", dict(dim=d), lambda d=d: _herm(d), hq.spectrum))
+    for l in (100, 200, 400):
+        out.append(("real_form", f"l={l}", dict(dim=2 * l + 1), lambda l=l: hq.irrep(3, (l,)), hq.real_form))
+        out.append(("dense_representation", f"intertwiner l={l}", dict(dim=2 * l + 1),
+                    lambda l=l: hq.irrep(3, (l,)), lambda a: hq.intertwiner(a, a)))
+    for N in (10, 14, 18):
+        out.append(("spinor_rep", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hq.spinor_rep(N)))
+    for l in (50, 100, 200):
+        a = hq.irrep(3, (l,))
+        out.append(("tensor", f"l={l} x l={l}", dict(dim_a=a.dim, dim_b=a.dim, nnz_a=_nnz(a), nnz_b=_nnz(a)),
+                    lambda a=a: a, lambda a: hq.tensor(a, a)))
+    for K in (10**3, 10**4, 10**5):
+        out.append(("evolve", f"{K} times, dim 5", dict(dim=5, n_times=K),
+                    lambda: hq.rotor_hamiltonian(hq.irrep(3, (2,)), [1.0, 2.0, 3.0]),
+                    lambda H, K=K: hq.evolve(H, np.ones(5) / 5**0.5, np.linspace(0.0, 1.0, K))))
+    for P in (10**3, 10**4, 10**5):
+        out.append(("lyapunov_sweep", f"{P} bodies", dict(bodies=P, orbits=1, n=3),
+                    lambda P=P: 1.0 + np.random.default_rng(0).random((P, 3)),
+                    lambda b: hr.lyapunov_sweep(b, np.ones((1, 3)), 1e-3)))
+    for l in (1000, 3000, 6000):
+        out.append(("highest_weight_state", f"dim={2 * l + 1}", dict(dim=2 * l + 1),
+                    lambda l=l: hq.irrep(3, (l,)), hq.highest_weight_state))
+    for N in (8, 16, 24):
+        out.append(("casimir_operator", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hq.casimir_operator(N)))
+    for N, l in ((3, 20), (3, 40), (4, 12)):
+        out.append(("harmonic_polynomial_basis", f"N={N} l={l}", dict(N=N, l=l), lambda: None,
+                    lambda _, N=N, l=l: hq.harmonic_polynomial_basis(N, l)))
+    for N, l in ((3, 6), (3, 10), (4, 5)):
+        out.append(("orthonormal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), lambda: None,
+                    lambda _, N=N, l=l: hq.orthonormal_harmonic_basis(N, l)))
+    for N in (6, 10, 14):
+        out.append(("bivector_product_table", f"N={N}", dict(N=N), lambda: None,
+                    lambda _, N=N: hr.bivector_product_table(N)))
+    for N in (6, 10, 14):
+        out.append(("euler_equations", f"N={N}", dict(N=N), lambda N=N: hr.RigidBody(hr.Inertia.symbolic(N)),
+                    lambda b: b.euler_equations()))
+    for N, hw in ((3, (500,)), (3, (1500,)), (4, (20, 10)), (5, (6, 3))):
+        sizes = dict(rank=len(hw), n_roots=len(hq.positive_roots(N)), dim=hq.weyl_dimension(N, hw), bound=2 * hw[0])
+        out.append(("weight_multiplicities", f"N={N} {hw}", sizes, lambda: None,
+                    lambda _, N=N, hw=hw: hq.weight_multiplicities(N, hw)))
+    return out
+
+
+def measure(setup, run, memory):
+    arg = setup()
+    gc.collect()
+    t0 = time.perf_counter()
+    run(arg)
+    wall = time.perf_counter() - t0
+    peak = None
+    if memory:
+        arg = setup()
+        gc.collect()
+        tracemalloc.start()
+        run(arg)
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+    return wall, peak
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="the smallest size of each entry only")
+    ap.add_argument("--plot", default=os.path.join(os.path.dirname(__file__), "results", "pricing.png"))
+    args = ap.parse_args(argv)
+    rows, seen = [], set()
+    print(f"load: {os.getloadavg()[0]:.2f}   (estimate / measured; time: single-core s, memory: peak traced bytes)")
+    print(f"| entry | size | est. s | meas. s | ratio | est. MiB | meas. MiB | ratio |")
+    print(f"| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    with hr.options(max_seconds=1e300, max_memory_bytes=2**62, max_output_bytes=2**62):
+        for entry, label, sizes, setup, run in cases():
+            if args.quick and entry in seen:
+                continue
+            seen.add(entry)
+            costs = _pricing.estimate(entry, **sizes)
+            est_s = sum(c.amount for c in costs if c.unit == "seconds") or None
+            est_b = sum(c.amount for c in costs if c.key in ("max_memory_bytes", "max_output_bytes")) or None
+            wall, peak = measure(setup, run, est_b is not None)
+            r_s = est_s / wall if est_s and wall > 0.02 else None
+            r_b = est_b / peak if est_b and peak and peak > 2**20 else None
+            rows.append((entry, label, est_s, wall, r_s, est_b, peak, r_b))
+            f = lambda x, fmt: "" if x is None else format(x, fmt)  # noqa: E731
+            print(f"| {entry} | {label} | {f(est_s, '.3g')} | {wall:.3g} | {f(r_s, '.2f')} | "
+                  f"{f(est_b and est_b / 2**20, '.3g')} | {f(peak and peak / 2**20, '.3g')} | {f(r_b, '.2f')} |",
+                  flush=True)
+    ratios = [r for row in rows for r in (row[4], row[7]) if r is not None]
+    if ratios:
+        print(f"\n{len(ratios)} ratios: min {min(ratios):.2f}, max {max(ratios):.2f}, "
+              f"within a factor 3: {sum(1 / 3 <= r <= 3 for r in ratios)}/{len(ratios)}")
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig, axs = plt.subplots(1, 2, figsize=(10, 4.5))
+        for ax, (ie, im, unit) in zip(axs, ((2, 3, "s"), (5, 6, "bytes"))):
+            pts = [(row[im], row[ie], row[0]) for row in rows if row[ie] and row[im]]
+            for m, e, name in pts:
+                ax.loglog(m, e, "o", label=name)
+            if pts:
+                lo = min(min(p[0], p[1]) for p in pts) / 2
+                hi = max(max(p[0], p[1]) for p in pts) * 2
+                for k in (1 / 3, 1, 3):
+                    ax.loglog([lo, hi], [k * lo, k * hi], "k" + ("-" if k == 1 else ":"), lw=0.8)
+            ax.set_xlabel(f"measured ({unit})")
+            ax.set_ylabel(f"estimated ({unit})")
+        handles, labels = axs[0].get_legend_handles_labels()
+        uniq = dict(zip(labels, handles))
+        fig.legend(uniq.values(), uniq.keys(), fontsize=7, loc="lower center", ncol=4)
+        fig.tight_layout(rect=(0, 0.15, 1, 1))
+        os.makedirs(os.path.dirname(args.plot), exist_ok=True)
+        fig.savefig(args.plot, dpi=110)
+        print(f"plot: {args.plot}")
+    except ImportError:  # matplotlib is optional for the table
+        pass
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,265 @@
+"""No text is ever run as code (issue #21 §1): hostile strings through every public callable and CLI option.
+
+The corpus ``PAYLOADS`` (calls to ``os.system``, ``exec``, ``eval``, a lambda, the class hierarchy,
+``__builtins__``, huge powers and literals, very long text) is sent
+
+* through every argument of every public callable that the fuzz table of
+  ``tests/property/test_fuzz_entry_points.py`` lists (one good call per public name; each marked
+  argument replaced by the payload, and, for array arguments, by a list holding a SymPy symbol and
+  the payload: the route on which SymPy used to evaluate strings), and through the methods named in
+  issue #21 §1 (``EXTRA``);
+* through every option of the command line that takes a value (the parser of
+  ``hyperrotor.cli.build_parser()``), with ``main(argv)``.
+
+Each call runs in a fresh temporary directory. Contract: no file appears (the payloads that would
+run code create one), the answer comes within ``TIME_LIMIT`` seconds, and it is a ``TypeError`` or a
+``ValueError`` (``hyperrotor.ParseError`` is one) from Python, or exit status 2 from the CLI. The
+only accepted completions are the arguments listed in ``FREE_TEXT`` (a name or a title is text by
+design and is never parsed).
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib.util
+import io
+import os
+import signal
+import sys
+import threading
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import hyperrotor
+
+TIME_LIMIT = 1.0  # seconds of CPU per payload
+HANG_LIMIT = 10.0  # wall seconds after which a call is interrupted (the machine is shared)
+
+#: (id, text). Every payload that would run code creates a file in the working directory.
+PAYLOADS = [
+    ("os_system", "__import__('os').system('touch PWNED_system')"),
+    ("exec", "exec(\"open('PWNED_exec', 'w').close()\")"),
+    ("eval", "eval(\"open('PWNED_eval', 'w').close()\")"),
+    ("open", "open('PWNED_open', 'w')"),
+    ("lambda", "(lambda: open('PWNED_lambda', 'w'))()"),
+    ("mro", "().__class__.__mro__[1].__subclasses__()"),
+    ("builtins", "__builtins__"),
+    ("dunder_attr", "x.__class__"),
+    ("subscript", "x[0]"),
+    ("huge_power", "9**9**9**9"),
+    ("huge_float", "1e999999"),
+    ("long_int", "1" * 100_000),
+    ("long_name", "x" * 100_000),
+    ("deep_parens", "(" * 5000 + "1" + ")" * 5000),
+    ("symbol_range", "x:1000000000"),
+]
+
+#: (label, argument) of the fuzz table that take free text by design (never parsed): completion allowed.
+FREE_TEXT = {
+    ("q.as_csr", 1): "name: the label of the matrix in error messages, never parsed",
+    ("Inertia.symbolic", 1): "name: the stem of the symbol names (an identifier; other text is refused)",
+    ("plane_symbols", 0): "name: the stem of the symbol names (an identifier; other text is refused)",
+}
+
+
+def _load_fuzz():
+    path = Path(__file__).resolve().parents[1] / "property" / "test_fuzz_entry_points.py"
+    spec = importlib.util.spec_from_file_location("_fuzz_entry_points", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+FUZZ = _load_fuzz()
+
+
+class _Hang(BaseException):
+    pass
+
+
+@contextlib.contextmanager
+def _limit(seconds):
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def _raise(signum, frame):
+        raise _Hang(f"no answer within {seconds} s")
+
+    old = signal.signal(signal.SIGALRM, _raise)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+def _with_symbol(good, text):
+    """A list like the good array argument, holding a SymPy symbol and the payload."""
+    flat = list(np.asarray(good, dtype=object).ravel())
+    if len(flat) < 2:
+        return [sp.Symbol("a"), text]
+    flat[0], flat[1] = sp.Symbol("a"), text
+    return np.array(flat, dtype=object).reshape(np.shape(good)).tolist()
+
+
+def _python_cases():
+    for label, path, args, kwargs, kinds in FUZZ.ENTRIES:
+        for where, kind in kinds.items():
+            yield pytest.param(label, path, args, kwargs, where, False, id=f"{label}-{where}")
+            if kind.startswith(("arr", "map", "vec", "pts")):
+                yield pytest.param(label, path, args, kwargs, where, True, id=f"{label}-{where}-in_list")
+
+
+def _inertia():
+    return hyperrotor.Inertia.symbolic(3)
+
+
+def _rep():
+    return hyperrotor.quantum.irrep(3, (1,))
+
+
+#: The methods of issue #21 §1 that are not in the fuzz table: (label, call taking the payload).
+EXTRA = {
+    "Inertia.subs": lambda text: _inertia().subs(text, 1),
+    "Inertia.subs/value": lambda text: _inertia().subs(_inertia().symbolic_moments[0], text),
+    "RigidBody.matrix": lambda text: hyperrotor.RigidBody(_inertia()).matrix([sp.Symbol("a"), text, 0]),
+    "RigidBody.euler_equations/torque": lambda text: hyperrotor.RigidBody(_inertia()).euler_equations(
+        torque=[sp.Symbol("a"), text, 0]),
+    "Representation.generator/hbar": lambda text: _rep().generator((1, 2), exact=True, form="hermitian", hbar=text),
+    "Representation.generators/hbar": lambda text: _rep().generators(exact=True, form="hermitian", hbar=text),
+    "WeylElement.from_sympy": lambda text: hyperrotor.quantum.WeylElement.from_sympy(
+        text, hyperrotor.quantum.coordinate_symbols(3)),
+    "angular_momentum_operators/hbar": lambda text: hyperrotor.quantum.angular_momentum_operators(
+        3, form="hermitian", hbar=text),
+    "DifferentialOperator/division": lambda text: hyperrotor.quantum.angular_momentum_operators(3)[(1, 2)] / text,
+}
+
+
+def _check(call, where_text, tmp_path):
+    """The outcome of ``call()`` in the empty directory ``tmp_path`` (the cwd), or a failure text."""
+    c0 = time.process_time()
+    outcome = "completed"
+    try:
+        with _limit(HANG_LIMIT), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            call()
+    except (TypeError, ValueError) as exc:  # hyperrotor.ParseError is a ValueError
+        outcome = "TypeError" if isinstance(exc, TypeError) else "ValueError"
+        if not str(exc):
+            return f"{where_text}: {outcome} without a message"
+    except _Hang:
+        return f"{where_text}: no answer within {HANG_LIMIT} s"
+    except Exception as exc:  # noqa: BLE001 (RecursionError, MemoryError, anything else: a failure)
+        return f"{where_text}: {type(exc).__name__}: {str(exc)[:200]}"
+    cpu = time.process_time() - c0
+    created = sorted(os.listdir(tmp_path))
+    for name in created:
+        os.remove(tmp_path / name)
+    if created:
+        return f"{where_text}: files appeared: {created} (the text was run as code)"
+    if cpu > TIME_LIMIT:
+        return f"{where_text}: {cpu:.2f} s of CPU ({outcome})"
+    return outcome
+
+
+@pytest.mark.parametrize("label, path, args, kwargs, where, in_list", list(_python_cases()))
+def test_payloads_through_public_callable(label, path, args, kwargs, where, in_list, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    failures = []
+    for pid, text in (PAYLOADS[:5] if in_list else PAYLOADS):
+        fn, a, kw, shift = FUZZ._call(path, args, kwargs)
+        if isinstance(where, int):
+            a[where - shift] = _with_symbol(a[where - shift], text) if in_list else text
+        else:
+            kw[where] = _with_symbol(kw[where], text) if in_list else text
+        outcome = _check(lambda: fn(*a, **kw), f"{label}({where}={pid})", tmp_path)
+        if outcome == "completed" and (label, where) not in FREE_TEXT:
+            outcome = f"{label}({where}={pid}) accepted hostile text"
+        if outcome not in ("TypeError", "ValueError", "completed"):
+            failures.append(outcome)
+    assert not failures, "\n".join(failures)
+
+
+@pytest.mark.parametrize("label", sorted(EXTRA))
+def test_payloads_through_issue_methods(label, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    failures = []
+    for pid, text in PAYLOADS:
+        outcome = _check(lambda: EXTRA[label](text), f"{label}({pid})", tmp_path)
+        if outcome == "completed":
+            outcome = f"{label}({pid}) accepted hostile text"
+        if outcome not in ("TypeError", "ValueError"):
+            failures.append(outcome)
+    assert not failures, "\n".join(failures)
+
+
+# --------------------------------------------------------------------------- the command line
+#: options whose value is a file name (text by design, written through the CLI's file path): not parsed
+CLI_FILE_OPTIONS = {"output", "png"}
+
+
+def _cli_options():
+    from hyperrotor.cli import build_parser
+
+    out = []
+
+    def walk(parser, command):
+        for action in parser._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for name, sub in action.choices.items():
+                    walk(sub, command + [name])
+            elif action.option_strings and action.nargs != 0 and action.dest not in CLI_FILE_OPTIONS:
+                out.append((tuple(command), action.option_strings[-1], action.dest))
+    walk(build_parser(), [])
+    return out
+
+
+CLI_OPTIONS = _cli_options()
+
+
+def test_the_cli_walk_finds_the_text_options():
+    dests = {d for _, _, d in CLI_OPTIONS}
+    assert {"kappa", "omega", "t_end", "max_seconds"} <= dests, dests
+
+
+@pytest.mark.parametrize("command, option, dest", CLI_OPTIONS, ids=[f"{' '.join(c)}{o}" for c, o, _ in CLI_OPTIONS])
+def test_payloads_through_cli_option(command, option, dest, tmp_path, monkeypatch):
+    from hyperrotor.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    failures = []
+    for pid, text in PAYLOADS:
+        argv = [*command, f"{option}={text}"]
+        c0 = time.process_time()
+        err = io.StringIO()
+        status = None
+        try:
+            with _limit(HANG_LIMIT), contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+                status = main(argv)
+        except SystemExit as exc:
+            status = exc.code
+        except _Hang:
+            failures.append(f"{option}={pid}: no answer within {HANG_LIMIT} s")
+            continue
+        cpu = time.process_time() - c0
+        created = sorted(os.listdir(tmp_path))
+        for name in created:
+            os.remove(tmp_path / name)
+        if created:
+            failures.append(f"{option}={pid}: files appeared: {created}")
+        elif status != 2:
+            failures.append(f"{option}={pid}: exit status {status}: {err.getvalue()[-200:]}")
+        elif cpu > TIME_LIMIT:
+            failures.append(f"{option}={pid}: {cpu:.2f} s of CPU")
+    assert not failures, f"hyperrotor {' '.join(command)}:\n" + "\n".join(failures)
+
+
+if __name__ == "__main__":
+    sys.exit(pytest.main([__file__, "-q"]))
