@@ -96,3 +96,20 @@ def test_dask_tasks_see_the_block_that_started_them(dask_client):
     with hr.options(max_steps=778):
         out = _parallel.map_rows(_read_option, rows, client=dask_client, chunk_size=2)
     assert out.tolist() == [778] * 8
+
+
+def _read_option_named(rows, key):
+    return np.full(rows.shape[0], hr.options[key], dtype=np.float64)
+
+
+def test_dask_workers_import_the_module_that_registers_a_changed_option(dask_client):
+    """An option registered by a module that a fresh worker has not imported (hyperrotor.quantum
+    loads lazily) still reaches the worker with the caller's value."""
+    import hyperrotor.quantum.coherent  # noqa: F401 - quantum modules register their options on import
+
+    owners = hr.options._owners
+    key = next(k for k in sorted(owners) if owners[k].startswith("hyperrotor.quantum"))
+    value = hr.options[key] * 2 + 1
+    with hr.options(**{key: value}):
+        out = _parallel.map_rows(_read_option_named, np.arange(4.0), args=(key,), client=dask_client, chunk_size=2)
+    assert out.tolist() == [value] * 4

@@ -30,7 +30,9 @@ value, seen by every thread that has no block of its own for ``key``.
 """
 from __future__ import annotations
 
+import importlib
 import math
+import sys
 import threading
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -99,6 +101,7 @@ class Options:
         self._defaults: dict[str, Any] = {}
         self._docs: dict[str, str] = {}
         self._checks: dict[str, Callable[[str, Any], Any]] = {}
+        self._owners: dict[str, str] = {}  # key -> module that registered it (imported again on workers)
         self._lock = threading.Lock()
         self._local: ContextVar[Mapping[str, Any]] = ContextVar("hyperrotor_options", default=MappingProxyType({}))
 
@@ -113,7 +116,9 @@ class Options:
             raise ValueError(f"option {key!r} is registered twice with different defaults")
         check = check or _default_check(default)
         default = check(key, default)
+        owner = sys._getframe(1).f_globals.get("__name__", __name__)
         with self._lock:
+            self._owners.setdefault(key, owner)
             self._defaults[key] = default
             self._session.setdefault(key, default)
             self._docs[key] = doc
@@ -158,6 +163,20 @@ class Options:
         """The values in force in the current context, for every key (what a worker must see)."""
         local = self._local.get()
         return {k: local.get(k, self._session[k]) for k in self._defaults}
+
+    def portable(self) -> dict[str, tuple[Any, str]]:
+        """The values in force here that differ from their defaults, each with the module that
+        registered it: what a worker process needs to see the same options (:meth:`apply_portable`)."""
+        here = self.snapshot()
+        return {k: (v, self._owners[k]) for k, v in here.items() if v != self._defaults[k]}
+
+    def apply_portable(self, values: Mapping[str, tuple[Any, str]]):
+        """A ``with`` block setting :meth:`portable` values, importing first the modules that
+        register keys not known in this process (a fresh dask worker has imported fewer modules)."""
+        for key, (_, owner) in values.items():
+            if key not in self._defaults:
+                importlib.import_module(owner)
+        return self(**{k: v for k, (v, _) in values.items()})
 
     @contextmanager
     def __call__(self, **changes: Any) -> Iterator["Options"]:

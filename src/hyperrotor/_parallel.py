@@ -186,10 +186,10 @@ class _WithOptions:
 
     def __init__(self, func: Callable, values: dict) -> None:
         self.func = func
-        self.values = values
+        self.values = values  # options.portable(): changed values and the modules registering them
 
     def __call__(self, *a: Any) -> Any:
-        with options(**self.values):
+        with options.apply_portable(self.values):
             return self.func(*a)
 
 
@@ -261,7 +261,7 @@ def map_rows(
     bounds = [(s, min(B, s + chunk_size)) for s in range(0, B, chunk_size)]
     chunks = [tuple(a[s:e] for a in arrs) for s, e in bounds]
     bar = progress_bar(progress, B, desc)
-    func = _WithOptions(func, options.snapshot())
+    func = _WithOptions(func, options.portable())
     try:
         if client is not None:
             parts = _run_dask(client, func, chunks, args, bar)
