@@ -59,9 +59,10 @@ def test_write_csv_dicts_and_dataclasses_round_trip(tmp_path):
     with open(path, encoding="utf-8") as fh:
         back = list(csv.DictReader(fh))
     assert [(int(r["N"]), float(r["seconds"])) for r in back] == [(3, 0.5), (4, 1.25)]
-    pt = WorkPrecisionPoint("p", "m", "dt", 0.1, 1e-9, 0.25)
+    pt = WorkPrecisionPoint("p", "m", "dt", 0.1, 1e-9, 0.25, 5, 200.0)
     with open(write_csv([pt], tmp_path / "p.csv"), encoding="utf-8") as fh:
         (row,) = csv.DictReader(fh)
-    assert row == {"problem": "p", "method": "m", "setting": "dt", "value": "0.1", "error": "1e-09", "seconds": "0.25"}
+    assert row == {"problem": "p", "method": "m", "setting": "dt", "value": "0.1", "error": "1e-09", "seconds": "0.25",
+                   "N": "5", "t_end": "200.0"}
     with pytest.raises(ValueError, match="at least one row"):
         write_csv([], tmp_path / "e.csv")

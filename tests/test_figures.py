@@ -139,7 +139,8 @@ def test_poincare(saved, tmp_path):
 
 
 def test_work_precision(saved, tmp_path):
-    pts = [WorkPrecisionPoint(p, m, "dt", v, e, s) for p in ("quartet", "euler-poinsot")
+    spans = {"quartet": (5, 200.0), "euler-poinsot": (3, 100.0)}
+    pts = [WorkPrecisionPoint(p, m, "dt", v, e, s, *spans[p]) for p in ("quartet", "euler-poinsot")
            for m, v, e, s in (("splitting8", 0.3, 1e-6, 0.03), ("splitting8", 0.1, 1e-10, 0.1),
                               ("DOP853", 1e-8, 1e-7, 0.5), ("DOP853", 1e-10, 1e-9, 0.9))]
     plotting.plot_work_precision(pts, tmp_path / "w.png")

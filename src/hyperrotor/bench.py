@@ -59,7 +59,10 @@ _TYPICAL_SECONDS = {
 
 @dataclass(frozen=True)
 class WorkPrecisionPoint:
-    """One run: ``method`` with ``setting`` (``dt`` or ``rtol`` = ``value``) took ``seconds`` for ``error``."""
+    """One run: ``method`` with ``setting`` (``dt`` or ``rtol`` = ``value``) took ``seconds`` for ``error``.
+
+    ``N`` and ``t_end``: the problem's dimension and final time (the figure's titles name them).
+    """
 
     problem: str
     method: str
@@ -67,6 +70,8 @@ class WorkPrecisionPoint:
     value: float
     error: float
     seconds: float
+    N: int | None = None
+    t_end: float | None = None
 
 
 def best_of(fn: Callable, repeats: int, *, warmup: bool = False):
@@ -147,7 +152,7 @@ def work_precision(problem: str = "quartet", methods: Sequence[str] | None = Non
             best, traj = best_of(lambda: simulate(body, w0, t, method=method, **{key: value}), repeats,
                                  warmup=True)  # warm-up: JIT compile on the first splitting call
             err = float(np.max(np.abs(traj.omega - exact))) / scale
-            points.append(WorkPrecisionPoint(problem, method, key, float(value), err, best))
+            points.append(WorkPrecisionPoint(problem, method, key, float(value), err, best, body.N, float(t[-1])))
             if progress:
                 progress(f"{problem}: {method} {key}={value:g}")
     return points
@@ -194,7 +199,3 @@ def print_table(points: Sequence[WorkPrecisionPoint], out=None) -> None:
     for p in points:
         print(f"{p.problem:<14} {p.method:<11} {p.setting + '=' + format(p.value, 'g'):>14} "
               f"{p.error:>10.2e} {p.seconds:>10.4f}", file=out)
-
-
-#: the CLI's old import, removed once hyperrotor/cli/bench.py uses print_table (requests.md)
-_main_table = print_table

@@ -315,12 +315,10 @@ def plot_work_precision(points: Sequence, path, *, format: str | None = "png") -
     \lVert\omega_0\rVert_\infty` of :mod:`hyperrotor.bench` (the printed table's
     ``error`` column). It is reversed, so that accuracy grows to the right (the usual
     work-precision layout): the x label says so. Each panel's title names the problem,
-    its dimension N and final time :math:`t_\text{end}`. The legend sits below the
+    its dimension N and final time :math:`t_\text{end}` (the points' ``N``, ``t_end``). The legend sits below the
     panels, off the data. ``format`` is passed to ``savefig`` (``path`` may be a
     temporary name).
     """
-    from .bench import BENCH_SPANS
-
     plt = _pyplot()
     problems = list(dict.fromkeys(p.problem for p in points))
     if not problems:
@@ -335,8 +333,9 @@ def plot_work_precision(points: Sequence, path, *, format: str | None = "png") -
             line, = ax.loglog([max(p.error, 1e-17) for p in sel], [p.seconds for p in sel], "o-", ms=3,
                               color=f"C{k}", label=method)
             handles.setdefault(method, line)
-        N, t_end = BENCH_SPANS.get(prob, (None, None))
-        span = f" (N = {N}, $t_\\mathrm{{end}}$ = {t_end:g})" if N is not None else ""
+        first = next(p for p in points if p.problem == prob)
+        N, t_end = first.N, first.t_end
+        span = f" (N = {N}, $t_\\mathrm{{end}}$ = {t_end:g})" if N is not None and t_end is not None else ""
         ax.set_xlabel("relative error $\\max_t\\,\\|\\omega - \\omega_\\mathrm{exact}\\|_\\infty"
                       " / \\|\\omega_0\\|_\\infty$\n(axis reversed: more accurate to the right $\\rightarrow$)")
         ax.set_ylabel("wall time $t_\\mathrm{wall}$ [s] (best of repeats)")

@@ -7,7 +7,7 @@ import pytest
 pytest.importorskip("plotly")
 
 import hyperrotor as hr  # noqa: E402
-from hyperrotor.classical.scene_html import scene_html_bytes  # noqa: E402
+from hyperrotor.classical.scene_html import projection_figure, scene_html_bytes, write_html  # noqa: E402
 from hyperrotor.classical.scenes import Scene, body_edges, hypercube_vertices, simplex_vertices  # noqa: E402
 
 
@@ -95,3 +95,11 @@ def test_bad_inputs(tmp_path):
         _scene().to_html(tmp_path / "s.html", auto_play="yes")
     with pytest.raises(ValueError, match="n_points"):
         scene_html_bytes(3, -1, 0)
+    # the plain-data layer checks its own inputs
+    with pytest.raises(ValueError, match="projection must have shape"):
+        projection_figure([0.0, 1.0], np.zeros((3, 4, 3)))
+    with pytest.raises(ValueError, match="axes must name"):
+        projection_figure([0.0], np.zeros((1, 4, 3)), axes=(1, 2, 3, 4))
+    with pytest.raises(TypeError, match="plotly Figure"):
+        write_html("not a figure", tmp_path / "x.html")
+    assert not list(tmp_path.iterdir())

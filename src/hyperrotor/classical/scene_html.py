@@ -1,30 +1,31 @@
-r"""Interactive scenes: an N-D body projected to 3D, as a plotly figure or a self-contained HTML page.
+r"""Interactive scenes: a body's points projected to 3D, as a plotly figure or a self-contained HTML page.
 
-:func:`scene_figure` (also :meth:`Scene.to_plotly`) turns a :class:`~hyperrotor.classical.scenes.Scene`
-into a :class:`plotly.graph_objects.Figure`: the body's points and edges carried to space,
-:math:`x_\text{space}(t) = T(t)^{\mathsf T} x_\text{body}` (see :mod:`hyperrotor.conventions`,
-"Attitude"), restricted to the scene's first three ``axes`` (a fourth axis colours the points),
-one plotly *frame* per output time. The 3D view is rotatable and zoomable; Play / Pause buttons
-and a time slider run the motion; a panel beside the view shows the time and the invariants of the
-torque-free flow, the kinetic energy :math:`E = \tfrac12\sum I_{ij}\omega_{ij}^2` and the Casimirs
-:math:`c_2, c_4, \dots` (coefficients of :math:`\det(\lambda - L)`, eq. 38), each with its drift
-from :math:`t_0` (they are evaluated from :math:`\omega(t)` at every frame, so the panel shows
-conservation, not a copy of the initial values). In a notebook the figure renders inline.
-
-:func:`write_scene_html` (also :meth:`Scene.to_html`) writes that figure as one HTML file with the
-whole plotly.js library inside (``include_plotlyjs=True``): the page needs no network, and starts
+:func:`projection_figure` turns a projected motion (times, ``(K, P, 3 or 4)`` space coordinates
+of body points, edges, and optionally the energy and Casimirs along the motion) into a
+:class:`plotly.graph_objects.Figure`, one plotly *frame* per time. The 3D view is rotatable and
+zoomable; Play / Pause buttons and a time slider run the motion; a panel beside the view shows the
+time and the invariants of the torque-free flow, the kinetic energy
+:math:`E = \tfrac12\sum I_{ij}\omega_{ij}^2` and the Casimirs :math:`c_2, c_4, \dots`
+(coefficients of :math:`\det(\lambda - L)`, eq. 38), each with its drift from :math:`t_0` (given
+along the motion, so the panel shows conservation, not a copy of the initial values). In a
+notebook the figure renders inline. :func:`write_html` writes it as one HTML file with the whole
+plotly.js library inside (``include_plotlyjs=True``): the page needs no network, and starts
 playing when it is opened.
 
-Size: a page holds every frame's coordinates, about :func:`scene_html_bytes` bytes. The page is
-priced from the number of times, points and edges *before* anything is computed, and refused over
+The usual entry points are :meth:`Scene.to_plotly <hyperrotor.classical.scenes.Scene.to_plotly>`
+and :meth:`Scene.to_html <hyperrotor.classical.scenes.Scene.to_html>`, which evaluate the scene
+(:math:`x_\text{space}(t) = T(t)^{\mathsf T} x_\text{body}`, see :mod:`hyperrotor.conventions`,
+"Attitude") and call these functions; this module knows nothing of scenes (plain data in).
+
+Size: a page holds every frame's coordinates, about :func:`scene_html_bytes` bytes. A scene's page
+is priced from the number of times, points and edges *before* anything is computed (cost model
+``"Scene.to_html"`` of :mod:`hyperrotor._pricing`), and refused over
 ``hr.options["scene_html_max_bytes"]`` (as the GIF path is priced from frames and vertices).
 
-plotly is the ``viz`` extra (``pip install 'hyperrotor[viz]'``), imported only here.
+plotly is the ``viz`` extra (``pip install 'hyperrotor[viz]'``), imported only when a figure is made.
 """
 from __future__ import annotations
 
-import dataclasses
-import html
 import os
 from typing import Any, Sequence
 
@@ -34,7 +35,7 @@ from .. import _pricing
 from .. import _validate as _v
 from .._options import register
 
-__all__ = ["scene_figure", "write_scene_html", "scene_html_bytes"]
+__all__ = ["projection_figure", "write_html", "scene_html_bytes"]
 
 register(
     "scene_html_max_bytes", 256 * 2**20,
@@ -86,45 +87,6 @@ def _plotly():
     return go
 
 
-def _edges_for(points: np.ndarray, edges: Any) -> list[tuple[int, int]]:
-    from .scenes import body_edges
-
-    if isinstance(edges, str):
-        return body_edges(points, edges)
-    P = len(points)
-    e = np.asarray(edges, dtype=int).reshape(-1, 2) if len(edges) else np.zeros((0, 2), dtype=int)
-    if e.size and (e.min() < 0 or e.max() >= P):
-        raise ValueError(f"edges must be 'auto', 'cube', 'simplex', 'points' or pairs of point indices in "
-                         f"0..{P - 1}, got {_v.fmt(edges)}")
-    return [tuple(map(int, p)) for p in e]
-
-
-def _price(scene, edges: Any):
-    """Body, points and edges; the page is priced and refused over the budget before any motion is computed."""
-    if scene.points is None:
-        raise ValueError("an interactive scene needs body points (points=..., e.g. hypercube_vertices(N))")
-    body = scene.rigid_body
-    points = _v.finite_array("points", scene.points, ndim=2)
-    P, N = points.shape
-    if N != body.N:
-        raise ValueError(f"points must have shape (P, {body.N}), got {points.shape}")
-    n_axes = len(tuple(scene.axes))
-    if n_axes not in (3, 4):
-        raise ValueError(f"an interactive scene draws 3 space axes (a 4th colours the points), got "
-                         f"axes={tuple(scene.axes)!r}")
-    # count before listing: a cube has N 2^(N-1) edges, a simplex (N+1) N / 2
-    if isinstance(edges, str):
-        kind = _v.choice("edges", edges, ("auto", "cube", "simplex", "points"))
-        if kind == "auto":
-            kind = "simplex" if P == N + 1 else ("cube" if P == 2**N else "points")
-        n_edges = {"cube": N * P // 2, "simplex": P * (P - 1) // 2, "points": 0}[kind]
-        edges = kind
-    else:
-        n_edges = len(edges)
-    _pricing.check("Scene.to_html", n_times=int(np.size(scene.t)), n_points=P, n_edges=n_edges, colour=n_axes == 4)
-    return body, points, _edges_for(points, edges)
-
-
 def _segments(frame: np.ndarray, e: np.ndarray) -> np.ndarray:
     """Edge end points with a NaN gap after each edge (one plotly line trace), shape ``(3 E, 3)``."""
     seg = np.full((len(e), 3, 3), np.nan)
@@ -139,69 +101,70 @@ def _coords(a: np.ndarray, digits: int) -> list:
     return [None if np.isnan(x) else float(x) for x in r]
 
 
-def _panel(t: float, energy: float, e0: float, cas: np.ndarray, cas0: np.ndarray) -> str:
-    rows = [f"<b>t = {t:.4g}</b>", "", "<b>invariants</b>",
-            f"E = {energy:.10g}", f"  drift {abs(energy - e0) / max(abs(e0), 1e-300):.1e}"]
-    for k, (c, c0) in enumerate(zip(cas, cas0), start=1):
-        rows += [f"c<sub>{2 * k}</sub> = {c:.10g}", f"  drift {abs(c - c0) / max(abs(c0), 1e-300):.1e}"]
-    rows += ["", "drift: |X(t) - X(t<sub>0</sub>)| / |X(t<sub>0</sub>)|"]
-    return "<br>".join(html.escape(r, quote=False).replace("&lt;", "<").replace("&gt;", ">") for r in rows)
+def _panel(t: float, energy, cas, k: int) -> str:
+    rows = [f"<b>t = {t:.4g}</b>"]
+    if energy is not None or cas is not None:
+        rows += ["", "<b>invariants</b>"]
+    if energy is not None:
+        rows += [f"E = {energy[k]:.10g}", f"  drift {_drift(energy[k], energy[0])}"]
+    if cas is not None:
+        for j in range(cas.shape[1]):
+            rows += [f"c<sub>{2 * (j + 1)}</sub> = {cas[k, j]:.10g}", f"  drift {_drift(cas[k, j], cas[0, j])}"]
+        rows += ["", "drift: |X(t) - X(t<sub>0</sub>)| / |X(t<sub>0</sub>)|"]
+    return "<br>".join(rows)
 
 
-def scene_figure(scene, *, edges: Any = "auto", title: str | None = None, result=None):
-    r"""A plotly figure of the scene's motion: rotatable 3D view, Play / Pause, time slider, invariants.
+def _drift(x: float, x0: float) -> str:
+    return f"{abs(x - x0) / max(abs(x0), 1e-300):.1e}"
+
+
+def projection_figure(t: Any, projection: Any, *, edges: Any = (), axes: Sequence[int] = (1, 2, 3),
+                      energy: Any = None, casimirs: Any = None, title: str = ""):
+    r"""A plotly figure of a projected motion: rotatable 3D view, Play / Pause, time slider, invariants.
+
+    Plain data in (what :meth:`Scene.to_plotly <hyperrotor.classical.scenes.Scene.to_plotly>`
+    passes from the evaluated scene).
 
     Parameters
     ----------
-    scene : Scene
-        Its ``points`` (body frame, ``(P, N)``), ``axes`` (3 drawn space axes, an optional 4th
-        colouring the points), ``t`` (one frame per time), body and ``omega0``. Its
-        ``observables`` are ignored: the figure asks for ``("projection", "omega")``.
-    edges : "auto", "cube", "simplex", "points" or sequence of (a, b)
-        Lines between body points: ``"auto"`` draws a hypercube's edges when there are
-        ``2**N`` points, all pairs when there are ``N + 1`` (a simplex), none otherwise
-        (see :func:`~hyperrotor.classical.scenes.body_edges`); or explicit index pairs.
-    title : str, optional
-        Default: the body's dimension, the drawn axes and the route of the computation.
-    result : SceneResult, optional
-        A result of ``evaluate_scene`` with ``projection`` and ``omega`` for this scene (no
-        recomputation).
+    t : array_like (K,)
+        Times, one plotly frame each.
+    projection : array_like (K, P, 3 or 4)
+        Space coordinates of the P body points on the drawn axes (a 4th column colours them).
+    edges : sequence of (a, b)
+        Point pairs joined by a line.
+    axes : sequence of int
+        The space axes of the columns of ``projection`` (axis titles ``x<k>``).
+    energy : array_like (K,), optional
+        :math:`E(t)`; ``casimirs`` ``(K, N // 2)`` likewise: shown in the side panel with
+        their drift :math:`|X(t) - X(t_0)| / |X(t_0)|`.
+    title : str
 
     Returns
     -------
     plotly.graph_objects.Figure
         One frame per time; the axes ranges are fixed (the body does not jump in scale).
-
-    Raises
-    ------
-    hyperrotor.BudgetError
-        Over the ``scene_html_max_bytes`` budget (priced before the motion is computed).
-    ValueError
-        Without points, or with other than 3 or 4 axes.
+        Coordinates are rounded to ~5 significant digits at the body's scale (display only).
     """
-    from .scenes import Scene, evaluate_scene
-
-    if not isinstance(scene, Scene):
-        raise TypeError(f"scene must be a hyperrotor.Scene, got {_v.fmt(scene)} of type {type(scene).__name__}")
     go = _plotly()
-    body, points, edge_list = _price(scene, edges)
-    axes = tuple(int(a) for a in scene.axes)
-    if result is None:
-        result = evaluate_scene(dataclasses.replace(scene, observables=("projection", "omega"), planes=None))
-    if result.projection is None or result.omega is None or result.omega.shape[-1] != len(body.planes):
-        raise ValueError("result must come from this scene with observables including 'projection' and "
-                         "'omega' (all planes)")
-    t = result.t
-    proj = result.projection
+    t = _v.finite_array("t", t, ndim=1)
+    proj = _v.finite_array("projection", projection, ndim=3)
+    if proj.shape[0] != t.size or proj.shape[2] not in (3, 4):
+        raise ValueError(f"projection must have shape ({t.size}, P, 3 or 4), got {proj.shape}")
+    axes = tuple(_v.integer("axes", a, minimum=1) for a in axes)
+    if len(axes) != proj.shape[2]:
+        raise ValueError(f"axes must name the {proj.shape[2]} columns of projection, got {axes!r}")
+    e = np.asarray(edges, dtype=int).reshape(-1, 2) if len(edges) else np.zeros((0, 2), dtype=int)
+    if e.size and (e.min() < 0 or e.max() >= proj.shape[1]):
+        raise ValueError(f"edges must be pairs of point indices in 0..{proj.shape[1] - 1}")
     xyz = proj[..., :3]
     colour = proj[..., 3] if proj.shape[-1] == 4 else None
-    energy = np.asarray(body.energy(result.omega))
-    cas = np.asarray(body.casimirs(result.omega))
+    energy = None if energy is None else _v.finite_array("energy", energy, ndim=1)
+    cas = None if casimirs is None else _v.finite_array("casimirs", casimirs, ndim=2)
     lim = float(np.max(np.abs(xyz))) * 1.05 or 1.0
     digits = max(0, 4 - int(np.floor(np.log10(lim))))  # ~5 significant digits at the scale of the body
-    e = np.asarray(edge_list, dtype=int).reshape(-1, 2)
-    ctop = float(np.max(np.abs(colour))) or 1.0 if colour is not None else 1.0
-    small = len(points) <= 64
+    ctop = (float(np.max(np.abs(colour))) or 1.0) if colour is not None else 1.0
+    small = proj.shape[1] <= 64
 
     def traces(k: int):
         seg = _segments(xyz[k], e)
@@ -218,19 +181,16 @@ def scene_figure(scene, *, edges: Any = "auto", title: str | None = None, result
                              hovertemplate="x%s = %%{x}<br>x%s = %%{y}<br>x%s = %%{z}<extra></extra>" % axes[:3])]
 
     def panel(k: int):
-        return dict(text=_panel(float(t[k]), float(energy[k]), float(energy[0]), cas[k], cas[0]),
+        return dict(text=_panel(float(t[k]), energy, cas, k),
                     x=0.74, y=0.95, xref="paper", yref="paper", xanchor="left", yanchor="top", showarrow=False,
                     align="left", font=dict(family="monospace", size=13))
 
     names = [str(k) for k in range(t.size)]  # unique frame names; the slider shows the times
     frames = [go.Frame(data=traces(k), traces=[0, 1], name=names[k], layout=dict(annotations=[panel(k)]))
               for k in range(t.size)]
-    if title is None:
-        title = (f"{points.shape[1]}-D body, {len(points)} points, space axes {', '.join(map(str, axes[:3]))} drawn"
-                 + (f", colour = x{axes[3]}" if colour is not None else "") + f" (route {result.path})")
     anim = dict(mode="immediate", frame=dict(duration=60, redraw=True), transition=dict(duration=0))
     rng = [-lim, lim]
-    fig = go.Figure(
+    return go.Figure(
         data=traces(0), frames=frames,
         layout=go.Layout(
             title=dict(text=title, x=0.02, font=dict(size=15)),
@@ -253,7 +213,6 @@ def scene_figure(scene, *, edges: Any = "auto", title: str | None = None, result
                                  for n, x in zip(names, t)])],
         ),
     )
-    return fig
 
 
 #: Autoplay of the page: one frame every 80 ms from a timer (plotly's own player is driven by
@@ -280,25 +239,25 @@ _AUTOPLAY = """
 """
 
 
-def write_scene_html(scene, path, *, edges: Any = "auto", title: str | None = None, result=None,
-                     auto_play: bool = True) -> str:
-    """Write the scene as one self-contained HTML page (plotly.js inside, no network); returns the path.
+def write_html(figure, path, *, auto_play: bool = True) -> str:
+    """Write a :func:`projection_figure` as one self-contained HTML page (plotly.js inside, no network).
 
-    The figure is :func:`scene_figure` (same ``edges``, ``title``, ``result``); the page
-    starts playing when opened (``auto_play``). The file is HTML whatever its name (use
-    ``.html``); it is written to ``path + ".part"`` and renamed at the end, so an
+    The page starts playing when opened (``auto_play``). The file is HTML whatever its name
+    (use ``.html``); it is written to ``path + ".part"`` and renamed at the end, so an
     interrupted run leaves no partial page; an existing file at ``path`` is replaced.
+    Returns the path.
     """
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError(f"path must be a file name (str or os.PathLike), got {_v.fmt(path)}")
     path = os.fsdecode(path)
     _v.flag("auto_play", auto_play)
-    fig = scene_figure(scene, edges=edges, title=title, result=result)
+    if not callable(getattr(figure, "write_html", None)):
+        raise TypeError(f"figure must be a plotly Figure, got {_v.fmt(figure)} of type {type(figure).__name__}")
     tmp = path + ".part"
     try:
-        fig.write_html(tmp, include_plotlyjs=True, full_html=True, auto_play=False,
-                       post_script=_AUTOPLAY if auto_play else None,
-                       config=dict(displaylogo=False, responsive=True))
+        figure.write_html(tmp, include_plotlyjs=True, full_html=True, auto_play=False,
+                          post_script=_AUTOPLAY if auto_play else None,
+                          config=dict(displaylogo=False, responsive=True))
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

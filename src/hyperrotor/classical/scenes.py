@@ -39,13 +39,15 @@ observable computed from the trajectory) for comparison and benchmarks
 """
 from __future__ import annotations
 
+import dataclasses
+import os
 import time
 from dataclasses import KW_ONLY, dataclass, field
 from typing import Any, Sequence
 
 import numpy as np
 
-from .. import _validate as _v
+from .. import _pricing, _validate as _v
 from .._options import options, register
 from .._validate import axis_signs
 from ..conventions import dimension_from_count, plane_index, planes
@@ -281,23 +283,79 @@ class Scene:
     def to_plotly(self, *, edges: Any = "auto", title: str | None = None, result: SceneResult | None = None):
         """The motion as an interactive :class:`plotly.graph_objects.Figure` (inline in notebooks).
 
-        Rotatable, zoomable 3D view of ``points`` projected on ``axes``, Play / Pause and
-        a time slider, the time and the invariants beside it; priced before any work.
-        See :func:`hyperrotor.classical.scene_html.scene_figure`.
-        """
-        from .scene_html import scene_figure
+        Rotatable, zoomable 3D view of ``points`` carried to space and kept on the first three
+        ``axes`` (a fourth colours the points), one frame per time of ``t``, Play / Pause and a
+        time slider, and beside it the time, the energy and the Casimirs along the motion with
+        their drift (:func:`hyperrotor.classical.scene_html.projection_figure`).
 
-        return scene_figure(self, edges=edges, title=title, result=result)
+        Parameters
+        ----------
+        edges : "auto", "cube", "simplex", "points" or sequence of (a, b)
+            Lines between body points (:func:`body_edges`); ``"auto"``: a hypercube's edges for
+            ``2**N`` points, all pairs for ``N + 1`` (a simplex), none otherwise.
+        title : str, optional
+            Default: the dimension, the points, the drawn axes and the route of the computation.
+        result : SceneResult, optional
+            This scene evaluated with ``observables=("projection", "omega")`` (no recomputation).
+
+        Raises
+        ------
+        hyperrotor.BudgetError
+            A page over ``hr.options["scene_html_max_bytes"]``, priced before any work.
+        """
+        return _interactive(self, edges, title, result)
 
     def to_html(self, path, *, edges: Any = "auto", title: str | None = None, result: SceneResult | None = None,
                 auto_play: bool = True) -> str:
-        """Write :meth:`to_plotly` as one self-contained HTML page (no network); returns the path.
+        """Write :meth:`to_plotly` as one self-contained HTML page (plotly.js inside, no network).
 
-        See :func:`hyperrotor.classical.scene_html.write_scene_html`.
+        The page starts playing when opened (``auto_play``); it is written to ``path + ".part"``
+        and renamed when complete (:func:`hyperrotor.classical.scene_html.write_html`).
+        Returns the path.
         """
-        from .scene_html import write_scene_html
+        from .scene_html import write_html
 
-        return write_scene_html(self, path, edges=edges, title=title, result=result, auto_play=auto_play)
+        _v.flag("auto_play", auto_play)
+        if not isinstance(path, (str, os.PathLike)):
+            raise TypeError(f"path must be a file name (str or os.PathLike), got {_v.fmt(path)}")
+        return write_html(self.to_plotly(edges=edges, title=title, result=result), path, auto_play=auto_play)
+
+
+def _interactive(scene: Scene, edges: Any, title: str | None, result: SceneResult | None):
+    """:meth:`Scene.to_plotly`: checks, the page priced, the scene evaluated, the figure built."""
+    from .scene_html import projection_figure
+
+    if scene.points is None:
+        raise ValueError("an interactive scene needs body points (points=..., e.g. hypercube_vertices(N))")
+    body = scene.rigid_body
+    points = _v.finite_array("points", scene.points, ndim=2)
+    P, N = points.shape
+    if N != body.N:
+        raise ValueError(f"points must have shape (P, {body.N}), got {points.shape}")
+    axes = tuple(scene.axes)
+    if len(axes) not in (3, 4):
+        raise ValueError(f"an interactive scene draws 3 space axes (a 4th colours the points), got axes={axes!r}")
+    # count the edges before listing them: a cube has N 2^(N-1), a simplex (N+1) N / 2
+    if isinstance(edges, str):
+        kind = _v.choice("edges", edges, ("auto", "cube", "simplex", "points"))
+        if kind == "auto":
+            kind = "simplex" if P == N + 1 else ("cube" if P == 2**N else "points")
+        n_edges = {"cube": N * P // 2, "simplex": P * (P - 1) // 2, "points": 0}[kind]
+    else:
+        n_edges = len(edges)
+    _pricing.check("Scene.to_html", n_times=int(np.size(scene.t)), n_points=P, n_edges=n_edges,
+                   colour=len(axes) == 4)
+    edge_list = body_edges(points, kind) if isinstance(edges, str) else edges
+    if result is None:
+        result = evaluate_scene(dataclasses.replace(scene, observables=("projection", "omega"), planes=None))
+    if result.projection is None or result.omega is None or result.omega.shape[-1] != len(body.planes):
+        raise ValueError("result must come from this scene with observables including 'projection' and "
+                         "'omega' (all planes)")
+    if title is None:
+        title = (f"{N}-D body, {P} points, space axes {', '.join(map(str, axes[:3]))} drawn"
+                 + (f", colour = x{axes[3]}" if len(axes) == 4 else "") + f" (route {result.path})")
+    return projection_figure(result.t, result.projection, edges=edge_list, axes=axes,
+                             energy=body.energy(result.omega), casimirs=body.casimirs(result.omega), title=title)
 
 
 def _check_inputs(body: Any, omega0: Any, t: Any):
