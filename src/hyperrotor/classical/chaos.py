@@ -213,6 +213,9 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
 class LyapunovResult:
     r"""Lyapunov exponents from :func:`lyapunov` or :func:`lyapunov_sweep` (always this object).
 
+    ``float(result)`` is a single orbit's maximal exponent, and ``np.asarray(result)`` is
+    :attr:`exponents`.
+
     Attributes
     ----------
     exponents : ndarray
@@ -231,9 +234,6 @@ class LyapunovResult:
         The splitting whose tangent map was used.
     rng : Any
         The ``rng`` argument of the call (the default seed 0 unless one was given).
-
-    ``float(result)`` is the exponent of a single orbit's maximal exponent, and
-    ``np.asarray(result)`` is :attr:`exponents`.
     """
 
     exponents: np.ndarray
