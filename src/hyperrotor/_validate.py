@@ -41,7 +41,6 @@ __all__ = [
     "ket",
     "form",
     "form_hbar",
-    "old_keywords",
     "unknown_option",
     "numeric_input",
     "plane_table",
@@ -238,8 +237,6 @@ def form_hbar(form_value: Any, hbar_value: Any, *, exact: bool = False) -> tuple
     refusing values known not to be positive; the exact 1 stays ``Integer(1)``.
     """
     f = form(form_value)
-    if hbar_value is None:  # TODO(lead): refuse once every signature defaults to hbar=1
-        hbar_value = 1
     if f == "antihermitian":
         if isinstance(hbar_value, (str, bool)) or not _equals_one(hbar_value):
             raise ValueError(
@@ -295,20 +292,6 @@ def unknown_option(where: str, key: Any, allowed: Sequence[str]) -> None:
     from ._options import UnknownOptionError
 
     raise UnknownOptionError(f"{where}: unknown option {fmt(key)}; allowed: {', '.join(map(repr, sorted(allowed)))}")
-
-
-def old_keywords(where: str, given: dict, renamed: dict) -> None:
-    """Refuse keywords a function no longer takes, naming their new spelling.
-
-    ``given`` are the extra keyword arguments a function collected (``**old``);
-    ``renamed`` maps each old spelling to the text of its replacement. Raises
-    ``TypeError`` for the first old keyword (naming the new one), or for an
-    unknown keyword (as Python would).
-    """
-    for key in given:
-        if key in renamed:
-            raise TypeError(f"{where}() no longer takes {key}=; use {renamed[key]} (docs/conventions.md)")
-        raise TypeError(f"{where}() got an unexpected keyword argument {key!r}")
 
 
 # ----------------------------------------------------------------------------
