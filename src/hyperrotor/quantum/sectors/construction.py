@@ -113,8 +113,12 @@ def make_real(B: sps.csc_matrix, V: sps.csr_matrix) -> sps.csc_matrix:
         return B
     AB = sps.csc_matrix(V @ B.conj())
     G = sps.csc_matrix(B.conj().T @ AB)
-    tau = np.asarray(abs(G).argmax(axis=0)).ravel()
-    theta = np.asarray(G[tau, np.arange(n)]).ravel()
+    G.data[np.abs(G.data) < 1e-9] = 0
+    G.eliminate_zeros()
+    G.sort_indices()
+    if np.any(np.diff(G.indptr) != 1):  # one overlap per column: A b_j = theta_j b_tau(j)
+        raise ArithmeticError("the antiunitary symmetry does not map sector columns to sector columns (internal error)")
+    tau, theta = G.indices, G.data
     if np.abs(np.abs(theta) - 1).max() > 1e-9 or abs(AB - B @ G).max() > 1e-9 or np.any(tau[tau] != np.arange(n)):
         raise ArithmeticError("the antiunitary symmetry does not preserve the sector (internal error)")
     fixed = tau == np.arange(n)
