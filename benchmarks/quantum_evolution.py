@@ -1,35 +1,30 @@
-"""Benchmark: quantum rigid-rotor evolution, hyperrotor.evolve vs QuTiP sesolve.
+"""Benchmark: quantum rigid-rotor evolution in symmetry sectors, beside QuTiP, and the Ehrenfest ladder.
 
-Problem: so(5) irreps (l, 0) in the Gelfand-Tsetlin basis (dimension ~140 to
-~20,500), rotor Hamiltonian of a generic body (10 random moments in [1, 2],
-fixed seed) and of the quartet body (eqs. 84-85, kappa = 0.7, axis 5),
-hbar = 1, initial state a coherent state along a random simple bivector,
-51 output times on [0, T] (T = 1, about l/1.5 radians of classical rotation),
-every state stored by every method.
+Three parts (issue #24 §2-§3), each a table on stdout and a CSV in benchmarks/results/:
 
-Methods timed side by side in one run:
-  * hyperrotor ``krylov`` (Lanczos, atol 1e-12 per restart), with the invariant
-    blocks of the sparsity graph (``blocks=auto``) and without (``blocks=False``);
-  * hyperrotor ``expm_multiply`` (scipy, Al-Mohy & Higham) and ``eigen``
-    (per-block dense eigh, up to dim 5000);
-  * hyperrotor ``auto`` (what a user gets by default);
-  * QuTiP ``sesolve`` with default tolerances and "tuned": atol = rtol swept
-    over 1e-10, 1e-12, 1e-14 (nsteps unlimited), reporting every run; the tuned
-    time is that of the loosest tolerance reaching error <= 1e-8.
-Error: max over the output times of the 2-norm distance to the reference
-state (dense exact diagonalization of the whole matrix up to dim 2000,
-otherwise Krylov with atol 1e-15 and a 40-dimensional Krylov space, which is
-also compared with the exact reference at the small sizes: column ``ref_err``).
-Memory: peak of Python-traced allocations (tracemalloc, includes numpy and
-scipy buffers) in a separate run of each method at the largest size.
+``--target-a`` (default part)
+    so(5) irrep (9, 3), dimension 2,401, generic body (10 moments uniform in [1, 2], seed
+    2026), hbar = 1, the coherent state along a bivector of normal form (9, 3) (body frame),
+    51 output times on [0, 5]. Reference: dense ``eigh`` of the whole H. Timed in one run:
+    ``hq.evolve`` (first call: sectors, blocks, eigendecompositions; a second call of the same
+    H reuses the cached sector bases), a :class:`SectorPropagator` built once and applied
+    (``states``), and ``qutip.sesolve`` with default tolerances and tuned (atol = rtol =
+    1e-10, 1e-12, 1e-13, 1e-14 until the error is <= 1e-8). Speed-up = tuned sesolve / ours.
+``--target-b``
+    so(5) irrep (20, 10), dimension 52,976, same body and state recipe, 201 output times on
+    [0, 10], every state stored. Run in a child process (peak resident memory = its
+    ``ru_maxrss``); reports the wall time of the coherent state and of ``evolve``, the norm
+    drift max |1 - |psi(t)|| and the energy drift max |E(t) - E(0)| / |E(0)|. ``--before
+    PATH`` also runs it with the package found under PATH/src (e.g. an export of the commit
+    before this work: ``git archive 7a61697 | tar -x -C PATH``), in the same run.
+``--ladder``
+    For the two orbits of notebook 10 (Manakov and generic 5D body, the same L0), the
+    largest irrep (l, 0) whose :func:`hq.ehrenfest_time` run (81 output times on [0, 4])
+    completes within a 10-minute budget per orbit, climbing l = 8, 16, 24, ...
 
-All BLAS work runs on one thread (``OPENBLAS_NUM_THREADS=1``, set below before
-numpy is imported): this is a shared 2-core machine, where threaded BLAS made
-every method slower and noisier.
-
-Writes benchmarks/results/quantum_evolution.csv and quantum_evolution.png.
-
-Usage: python benchmarks/quantum_evolution.py [--quick] [--replot]
+All BLAS work runs on one thread (``OPENBLAS_NUM_THREADS=1``, set before numpy is imported):
+this is a shared 2-core machine. Usage:
+``python benchmarks/quantum_evolution.py [--target-a] [--target-b [--before PATH]] [--ladder]``
 """
 from __future__ import annotations
 
@@ -39,203 +34,193 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
-import csv  # noqa: E402
+import json  # noqa: E402
+import resource  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
 import time  # noqa: E402
-import tracemalloc  # noqa: E402
 
 import numpy as np  # noqa: E402
-import scipy.sparse as sps  # noqa: E402
-
-from hyperrotor.bench import write_csv  # noqa: E402
-from hyperrotor.conventions import planes  # noqa: E402
-from hyperrotor.quantum import irrep  # noqa: E402
-from hyperrotor.quantum.coherent import coherent_state  # noqa: E402
-from hyperrotor.quantum import evolve, rotor_hamiltonian  # noqa: E402
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")
 TARGET = 1e-8
+
+
+def _problem(hw):
+    """Irrep hw of so(5), generic body (seed 2026), coherent state along Q diag-blocks(hw) Q^T (seed 11)."""
+    from hyperrotor.conventions import planes
+    from hyperrotor.quantum import coherent_state, irrep, rotor_hamiltonian
+
+    rep = irrep(5, hw)
+    H = rotor_hamiltonian(rep, np.random.default_rng(2026).uniform(1.0, 2.0, size=10))
+    Q, _ = np.linalg.qr(np.random.default_rng(11).normal(size=(5, 5)))
+    if np.linalg.det(Q) < 0:
+        Q[:, 0] *= -1
+    B = np.zeros((5, 5))
+    B[0, 1], B[2, 3] = hw[0], hw[1]
+    A = Q @ (B - B.T) @ Q.T
+    L = np.array([A[i - 1, j - 1] for i, j in planes(5)])
+    t0 = time.perf_counter()
+    psi = coherent_state(rep, L, frame="body")
+    return rep, H, psi, time.perf_counter() - t0
 
 
 def _states(res):
     return np.array([s.full().ravel() for s in res.states])
 
 
-def _run(H, psi, times, method, options):
-    opts = {"store_states": True, **options}
-    t0 = time.perf_counter()
-    res = evolve(H, psi, times, method=method, options=opts)
-    return time.perf_counter() - t0, _states(res), res.stats
-
-
-def _memory(H, psi, times, method, options):
-    tracemalloc.start()
-    evolve(H, psi, times, method=method, options={"store_states": True, **options})
-    peak = tracemalloc.get_traced_memory()[1]
-    tracemalloc.stop()
-    return peak / 2**20
-
-
 def _err(S, R):
     return float(np.max(np.linalg.norm(S - R, axis=1)))
 
 
-def _problem(l, body):
-    rep = irrep(5, (l, 0))
-    rng = np.random.default_rng(2026)
-    if body == "generic":
-        moments = rng.uniform(1.0, 2.0, size=10)
-    else:
-        kappa = 0.7
-        moments = np.array([1 + kappa**2 if 5 in p else 2.0 for p in planes(5)])
-    H = rotor_hamiltonian(rep, moments)
-    Q, _ = np.linalg.qr(np.random.default_rng(11).normal(size=(5, 5)))
-    L = Q[:, 0:1] @ Q[:, 1:2].T
-    L = L - L.T
-    comps = np.array([L[i - 1, j - 1] for i, j in planes(5)])
-    psi = coherent_state(rep, comps, frame="body")
-    return rep, H, psi
+def target_a():
+    from hyperrotor.quantum import SectorPropagator, evolve
+
+    rep, H, psi, _ = _problem((9, 3))
+    t = np.linspace(0.0, 5.0, 51)
+    E, V = np.linalg.eigh(H.full())
+    c = V.conj().T @ psi.full().ravel()
+    R = (V @ (np.exp(-1j * np.outer(E, t)) * c[:, None])).T
+    rows = []
+
+    def timed(name, fn):
+        t0 = time.perf_counter()
+        S = fn()
+        rows.append({"method": name, "time_s": time.perf_counter() - t0, "error": _err(S, R), "build_s": float("nan")})
+
+    timed("hyperrotor evolve (first call)", lambda: _states(evolve(H, psi, t)))
+    timed("hyperrotor evolve (second call)", lambda: _states(evolve(H, psi, t)))
+    t0 = time.perf_counter()
+    U = SectorPropagator(H)
+    build = time.perf_counter() - t0
+    U.states(psi, t)  # first application: blocks and their eigendecompositions
+    timed("SectorPropagator.states (built once)", lambda: U.states(psi, t))
+    rows[-1]["build_s"] = build
+    timed("qutip sesolve default", lambda: _states(evolve(H, psi, t, method="sesolve")))
+    tuned = None
+    for tol in (1e-10, 1e-12, 1e-13, 1e-14):
+        timed(f"qutip sesolve atol=rtol={tol:.0e}",
+              lambda: _states(evolve(H, psi, t, method="sesolve", options={"atol": tol, "rtol": tol, "nsteps": 10**9})))
+        if rows[-1]["error"] <= TARGET:
+            tuned = rows[-1]["time_s"]
+            break
+    print(f"so(5) (9, 3), dim {rep.dim}, generic body, coherent state, 51 output times on [0, 5]")
+    print(f"{'method':40s} {'time [s]':>9s} {'error':>9s} {'speed-up vs tuned sesolve':>26s}")
+    for r in rows:
+        r["speedup"] = tuned / r["time_s"] if tuned else float("nan")
+        print(f"{r['method']:40s} {r['time_s']:9.4f} {r['error']:9.2e} {r['speedup']:26.1f}")
+    print(f"(SectorPropagator built in {build:.3f} s; its first application included the eigendecompositions)")
+    return rows
+
+
+def _target_b_child():
+    import hyperrotor.quantum as hq
+
+    rep, H, psi, t_coh = _problem((20, 10))
+    t = np.linspace(0.0, 10.0, 201)
+    t0 = time.perf_counter()
+    res = hq.evolve(H, psi, t, options={"store_states": True})
+    t_ev = time.perf_counter() - t0
+    Hs = H.data.as_scipy()
+    norms, energies = [], []
+    for s in res.states:
+        v = s.full().ravel()
+        norms.append(np.linalg.norm(v))
+        energies.append(np.vdot(v, Hs @ v).real)
+    energies = np.array(energies)
+    out = {"dim": rep.dim, "coherent_s": t_coh, "evolve_s": t_ev, "stats": {k: v for k, v in res.stats.items()
+                                                                              if isinstance(v, (int, float, str))},
+           "norm_drift": float(np.max(np.abs(np.array(norms) - 1))),
+           "energy_drift": float(np.max(np.abs(energies - energies[0])) / abs(energies[0])),
+           "peak_rss_MiB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
+    print(json.dumps(out))
+
+
+def target_b(before=None):
+    rows = []
+    runs = [("after", os.environ.get("PYTHONPATH", ""))]
+    if before:
+        runs.append(("before", os.path.join(os.path.abspath(before), "src")))
+    for label, path in runs:
+        env = dict(os.environ, PYTHONPATH=path) if label == "before" else dict(os.environ)
+        proc = subprocess.run([sys.executable, os.path.abspath(__file__), "--_b-child"], env=env,
+                              capture_output=True, text=True, check=True)
+        r = json.loads(proc.stdout.strip().splitlines()[-1])
+        r["code"] = label
+        rows.append(r)
+    print("\nso(5) (20, 10), dim 52,976, generic body, coherent state, 201 output times on [0, 10], states stored")
+    print(f"{'code':8s} {'coherent [s]':>12s} {'evolve [s]':>10s} {'peak RSS [MiB]':>15s} {'norm drift':>11s} "
+          f"{'energy drift':>13s}")
+    for r in rows:
+        print(f"{r['code']:8s} {r['coherent_s']:12.1f} {r['evolve_s']:10.1f} {r['peak_rss_MiB']:15.0f} "
+              f"{r['norm_drift']:11.1e} {r['energy_drift']:13.1e}")
+    return rows
+
+
+def ladder(budget=600.0):
+    import hyperrotor as hr
+    import hyperrotor.quantum as hq
+    from hyperrotor.conventions import planes
+
+    manakov = hr.Inertia.from_mass_tensor([0.3, 0.5, 0.8, 1.2, 1.7]).moments
+    generic = np.exp(np.random.default_rng(5).uniform(np.log(0.3), np.log(3.0), 10))
+    u, v = np.random.default_rng(3).standard_normal((2, 5))  # the L0 of notebook 10
+    A = np.outer(u, v) - np.outer(v, u)
+    L0 = np.array([A[i - 1, j - 1] for i, j in planes(5)])
+    L0 *= 3.0 / np.linalg.norm(L0)
+    t = np.linspace(0.0, 4.0, 81)
+    rows = []
+    print(f"\nEhrenfest ladder: irreps (l, 0), 81 output times on [0, 4], budget {budget:.0f} s per orbit")
+    print(f"{'orbit':8s} {'l':>4s} {'dim':>7s} {'time [s]':>9s} {'t_E':>7s}  total [s]")
+    for name, body in (("Manakov", manakov), ("generic", generic)):
+        spent, l = 0.0, 8
+        while True:
+            t0 = time.perf_counter()
+            try:
+                r = hq.ehrenfest_time(body, L0, [l], t)
+            except (hr.BudgetError, MemoryError) as exc:
+                print(f"{name:8s} {l:4d}  refused: {exc}")
+                break
+            dt = time.perf_counter() - t0
+            spent += dt
+            rows.append({"orbit": name, "l": l, "dim": int(r.dims[0]), "time_s": dt, "t_E": float(r.t_E[0]),
+                         "total_s": spent})
+            print(f"{name:8s} {l:4d} {int(r.dims[0]):7d} {dt:9.1f} {r.t_E[0]:7.3f}  {spent:8.1f}", flush=True)
+            # next rung only if its estimated time (work ~ dim^1.5 here) fits in what is left
+            nxt = l + 8
+            ratio = ((2 * nxt + 3) * (nxt + 1) * (nxt + 2)) / ((2 * l + 3) * (l + 1) * (l + 2))
+            if spent + dt * ratio**1.5 > budget:
+                break
+            l = nxt
+        best = max((r for r in rows if r["orbit"] == name), key=lambda r: r["l"], default=None)
+        if best:
+            print(f"{name:8s}: largest l within {budget:.0f} s: {best['l']} (dim {best['dim']})")
+    return rows
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="small sizes only (< 1 min)")
-    ap.add_argument("--replot", action="store_true", help="only redraw the PNG from the existing CSV")
+    ap.add_argument("--target-a", action="store_true")
+    ap.add_argument("--target-b", action="store_true")
+    ap.add_argument("--before", help="a tree of an older hyperrotor (PATH/src) for the 'before' run of target B")
+    ap.add_argument("--ladder", action="store_true")
+    ap.add_argument("--_b-child", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
-    if args.replot:
-        with open(os.path.join(RESULTS, "quantum_evolution.csv")) as fh:
-            rows = list(csv.DictReader(fh))
-        for r in rows:
-            for k in ("l", "dim"):
-                r[k] = int(r[k])
-            for k in ("time_s", "error"):
-                r[k] = float(r[k])
-            r["sesolve_tuned_time_s"] = float(r["sesolve_tuned_time_s"]) if r["sesolve_tuned_time_s"] not in ("", "None") else None
-        _plot(rows)
+    if args._b_child:
+        _target_b_child()
         return
-    ls = [6, 10, 16, 22] if args.quick else [6, 10, 16, 22, 27, 38]
-    times = np.linspace(0.0, 1.0, 51)
-    rows = []
-    header = f"{'body':8s} {'l':>3s} {'dim':>6s} {'method':28s} {'time [s]':>9s} {'error':>9s} {'speedup*':>9s}"
-    print("so(5) irreps (l, 0), T = 1, 51 output times; speedup* = tuned sesolve time / time")
-    print(header)
-    print("-" * len(header))
-    for body in ("generic", "quartet"):
-        for l in ls:
-            rep, H, psi = _problem(l, body)
-            dim = rep.dim
-            exact = dim <= 2000
-            if exact:
-                t_ref, R, _ = _run(H, psi, times, "eigen", {"blocks": False})
-                ref_name = "eigen (full dense)"
-            else:
-                t_ref, R, _ = _run(H, psi, times, "krylov", {"blocks": False, "atol": 1e-15, "krylov_dim": 40})
-                ref_name = "krylov atol 1e-15"
-            ref_err = np.nan
-            if exact:
-                _, K, _ = _run(H, psi, times, "krylov", {"blocks": False, "atol": 1e-15, "krylov_dim": 40})
-                ref_err = _err(K, R)
-            runs = []
-            cases = [
-                ("hyperrotor auto", "auto", {}),
-                ("hyperrotor krylov (blocks)", "krylov", {}),
-                ("hyperrotor krylov (no blocks)", "krylov", {"blocks": False}),
-                ("hyperrotor expm_multiply", "expm_multiply", {}),
-            ]
-            if dim <= 5000:
-                cases.append(("hyperrotor eigen (blocks)", "eigen", {}))
-            for name, method, opts in cases:
-                t, S, st = _run(H, psi, times, method, opts)
-                runs.append((name, t, _err(S, R), st.get("blocks", 1)))
-            t, S, _ = _run(H, psi, times, "sesolve", {})
-            runs.append(("qutip sesolve default", t, _err(S, R), 1))
-            tuned = None
-            for tol in (1e-12, 1e-13, 1e-14):
-                t, S, _ = _run(H, psi, times, "sesolve", {"atol": tol, "rtol": tol, "nsteps": 10**9})
-                e = _err(S, R)
-                runs.append((f"qutip sesolve atol=rtol={tol:.0e}", t, e, 1))
-                if e <= TARGET:
-                    tuned = t
-                    break
-            for name, t, e, nb in runs:
-                speed = tuned / t if tuned else np.nan
-                print(f"{body:8s} {l:3d} {dim:6d} {name:28s} {t:9.3f} {e:9.2e} {speed:9.1f}")
-                rows.append(dict(body=body, l=l, dim=dim, method=name, time_s=t, error=e,
-                                 speedup_vs_tuned_sesolve=speed, sesolve_tuned_time_s=tuned,
-                                 reference=ref_name, reference_time_s=t_ref, ref_err=ref_err, blocks=nb, mem_MiB=np.nan))
-            Hs = H.data.as_scipy()
-            offdiag = float(np.max(np.abs((Hs - sps.diags(Hs.diagonal())).data), initial=0.0))
-            print(f"{'':8s} {'':3s} {'':6s} reference: {ref_name} ({t_ref:.2f} s)"
-                  + (f", tight-Krylov vs exact {ref_err:.1e}" if exact else "")
-                  + (f"; max|offdiag H| = {offdiag:.1e}" if body == "quartet" else ""))
-    # long window for the quartet body: the symmetry-adapted path costs the same for any T
-    lmax = ls[-1]
-    rep, H, psi = _problem(lmax, "quartet")
-    t_long = np.linspace(0.0, 10.0, 51)
-    _, R, _ = _run(H, psi, t_long, "krylov", {"blocks": False, "atol": 1e-15, "krylov_dim": 40})
-    print(f"\nquartet, l = {lmax} (dim {rep.dim}), long window T = 10 (reference: krylov atol 1e-15, no blocks)")
-    for name, method, opts in [("hyperrotor auto", "auto", {}), ("hyperrotor krylov (no blocks)", "krylov", {"blocks": False})]:
-        t, S, st = _run(H, psi, t_long, method, opts)
-        e = _err(S, R)
-        print(f"  {name:30s} {t:9.3f} s  error {e:9.2e}  blocks {st.get('blocks', 1)}")
-        rows.append(dict(body="quartet T=10", l=lmax, dim=rep.dim, method=name, time_s=t, error=e,
-                         speedup_vs_tuned_sesolve=np.nan, sesolve_tuned_time_s=None, reference="krylov atol 1e-15",
-                         reference_time_s=np.nan, ref_err=np.nan, blocks=st.get("blocks", 1), mem_MiB=np.nan))
-    # memory at the largest size
-    print(f"\npeak traced memory at l = {lmax}:")
-    for body in ("generic", "quartet"):
-        rep, H, psi = _problem(lmax, body)
-        for name, method, opts in [("hyperrotor auto", "auto", {}), ("hyperrotor krylov (no blocks)", "krylov", {"blocks": False}),
-                                   ("qutip sesolve default", "sesolve", {})]:
-            mem = _memory(H, psi, times, method, opts)
-            print(f"  {body:8s} {name:30s} {mem:8.1f} MiB (states alone: {51 * rep.dim * 16 / 2**20:.1f} MiB)")
-            for r in rows:
-                if r["body"] == body and r["l"] == lmax and r["method"] == name:
-                    r["mem_MiB"] = mem
+    from hyperrotor.bench import write_csv
+
+    if not (args.target_a or args.target_b or args.ladder):
+        args.target_a = True
     os.makedirs(RESULTS, exist_ok=True)
-    write_csv(rows, os.path.join(RESULTS, "quantum_evolution.csv"))
-    _plot(rows)
-    print(f"\nwrote {RESULTS}/quantum_evolution.csv and .png")
-
-
-def _plot(rows):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 3, figsize=(16, 4.8))
-    for ax, body in zip(axes[:2], ("generic", "quartet")):
-        names = []
-        for r in rows:
-            if r["body"] == body and r["method"] not in names and not r["method"].startswith("qutip sesolve atol"):
-                names.append(r["method"])
-        names.append("qutip sesolve tuned (<= 1e-8)")
-        for name in names:
-            if name.startswith("qutip sesolve tuned"):
-                pts = sorted({(r["dim"], r["sesolve_tuned_time_s"]) for r in rows if r["body"] == body and r["sesolve_tuned_time_s"]})
-            else:
-                pts = [(r["dim"], r["time_s"]) for r in rows if r["body"] == body and r["method"] == name]
-            if pts:
-                x, y = zip(*pts)
-                ax.loglog(x, y, "o-", label=name)
-        ax.set_xlabel("dimension of the so(5) irrep (l, 0)")
-        ax.set_ylabel("run time [s] (51 output times, T = 1)")
-        ax.set_title(f"{body} inertia")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-    ax = axes[2]
-    dmax = max(r["dim"] for r in rows)
-    for r in rows:
-        if r["dim"] == dmax and r["body"] in ("generic", "quartet"):
-            ax.loglog(max(r["error"], 1e-16), r["time_s"], "o" if r["body"] == "generic" else "s")
-            ax.annotate(f"{r['body'][0]}: {r['method']}", (max(r["error"], 1e-16), r["time_s"]), fontsize=6)
-    ax.axvline(TARGET, color="k", lw=0.8, ls="--")
-    ax.set_xlabel("max state error")
-    ax.set_ylabel("run time [s]")
-    ax.set_title(f"time vs error at dim {dmax} (g = generic, q = quartet)")
-    ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(RESULTS, "quantum_evolution.png"), dpi=120)
+    print(f"load: {os.getloadavg()}")
+    if args.target_a:
+        write_csv(target_a(), os.path.join(RESULTS, "quantum_evolution.csv"))
+    if args.target_b:
+        write_csv(target_b(args.before), os.path.join(RESULTS, "quantum_evolution_large.csv"))
+    if args.ladder:
+        write_csv(ladder(), os.path.join(RESULTS, "quantum_evolution_ladder.csv"))
 
 
 if __name__ == "__main__":

@@ -419,22 +419,23 @@ class SectorPropagator:
         X = X.astype(complex)
         out = np.zeros(X.shape, dtype=complex)
         stats: dict = {}
-        for b in self._blocks:
-            C = b.coords(X)
-            if not np.any(C):
-                continue
-            if b.engine is None:
-                phase = np.exp((-1j * tau / self.hbar) * b.diag)
-                C = phase[:, None] * C if C.ndim == 2 else phase * C
-            else:
-                if b.eig is None:
-                    _pricing.check("dense_diagonalization", dim=b.n, complex=b.matrix.dtype.kind == "c")
-                    b.diagonalize(stats)
-                E, V = b.eig
-                phase = np.exp((-1j * tau / self.hbar) * E)
-                D = V.conj().T @ C
-                C = V @ (phase[:, None] * D if D.ndim == 2 else phase * D)
-            b.embed(out, C)
+        with single_thread_blas():  # small products: threads only oversubscribe a loaded machine
+            for b in self._blocks:
+                C = b.coords(X)
+                if not np.any(C):
+                    continue
+                if b.engine is None:
+                    phase = np.exp((-1j * tau / self.hbar) * b.diag)
+                    C = phase[:, None] * C if C.ndim == 2 else phase * C
+                else:
+                    if b.eig is None:
+                        _pricing.check("dense_diagonalization", dim=b.n, complex=b.matrix.dtype.kind == "c")
+                        b.diagonalize(stats)
+                    E, V = b.eig
+                    phase = np.exp((-1j * tau / self.hbar) * E)
+                    D = V.conj().T @ C
+                    C = V @ (phase[:, None] * D if D.ndim == 2 else phase * D)
+                b.embed(out, C)
         return out
 
     def evolve(self, psi0: Any, t: Any, *, e_ops: Any = None, store_states: bool | None = None,
