@@ -378,6 +378,18 @@ def _euler_equations(N: Any) -> tuple[Cost, ...]:
     return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", n * n * 3.0 * _SYMPY_S),)
 
 
+@model("weyl_dimension", "use a smaller N")
+def _weyl_dimension(N: Any) -> tuple[Cost, ...]:
+    # exact Fraction products over the N^2/4 positive roots, with numbers that grow with N: ~ N^3
+    return (_seconds(f"the Weyl dimension formula of so({N}) in exact fractions", _f(N) ** 3 * 6.6e-7),)
+
+
+@model("plane_symbols")
+def _plane_symbols(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_seconds(f"{n:.0f} SymPy symbols", n * 1.5e-5),)
+
+
 @model("weight_multiplicities", "use weyl_dimension for the dimension only")
 def _weight_multiplicities(rank: Any, n_roots: Any, dim: Any, bound: Any) -> tuple[Cost, ...]:
     # Freudenthal: every distinct weight (at most min(dim, (2 bound + 1)^rank)) sums over the

@@ -184,6 +184,7 @@ def plane_symbols(name: str, N: int, *, function_of: sp.Symbol | None = None, **
     """
     if not isinstance(name, str) or not name.isidentifier():
         raise TypeError(f"name must be a non-empty identifier string such as 'w' or 'L', got {_validate.fmt(name)}")
+    _pricing.check("plane_symbols", N=check_dimension(N))
     out = []
     for p in planes(N):
         label = f"{name}_{plane_label(p, N)}"

@@ -191,6 +191,12 @@ def _H_array():
     return np.asarray(_H().full().real)  # the same rotor Hamiltonian as a real ndarray
 
 
+def _W3():
+    import qutip
+
+    return qutip.Qobj(np.diag([1.0, 0.0, -1.0]))
+
+
 def _sector():
     return next(s for s in hyperrotor.quantum.symmetry_sectors(_rep()) if s.dim)
 
@@ -223,15 +229,18 @@ ENTRIES = [
     ("dimension_from_count", "dimension_from_count", lambda: (6,), dict, {0: "int"}),
     ("plane_index", "plane_index", lambda: ((1, 2), 4), dict, {0: "plane", 1: "int"}),
     ("plane_label", "plane_label", lambda: ((1, 2), 4), dict, {0: "plane", 1: "int"}),
-    ("plane_signs", "plane_signs", lambda: (4, "paper"), dict, {0: "int", 1: "str"}),
-    ("basis_matrix", "basis_matrix", lambda: ((1, 2), 4, "paper"), dict, {0: "plane", 1: "int", 2: "str"}),
-    ("to_matrix", "to_matrix", lambda: (W6, "paper"), dict, {0: "map", 1: "str"}),
-    ("to_components", "to_components", lambda: (np.zeros((4, 4)), "paper"), dict, {0: "map", 1: "str"}),
+    ("plane_signs", "plane_signs", lambda: (4,), lambda: {"convention": "paper"}, {0: "int", "convention": "str"}),
+    ("basis_matrix", "basis_matrix", lambda: ((1, 2), 4), lambda: {"convention": "paper"},
+     {0: "plane", 1: "int", "convention": "str"}),
+    ("to_matrix", "to_matrix", lambda: (W6,), lambda: {"convention": "paper"}, {0: "map", "convention": "str"}),
+    ("to_components", "to_components", lambda: (np.zeros((4, 4)),), lambda: {"convention": "paper"},
+     {0: "map", "convention": "str"}),
     ("structure_constants", "structure_constants", lambda: (4,), dict, {0: "int"}),
     ("lie_bracket", "lie_bracket", lambda: (W6, W6), dict, {0: "map", 1: "map"}),
     ("lie_poisson_bracket", "lie_poisson_bracket",
      lambda: (*hyperrotor.plane_symbols("L", 3)[:2], hyperrotor.plane_symbols("L", 3)), dict, {2: "obj"}),
-    ("bivector_product_table", "bivector_product_table", lambda: (3, "paper"), dict, {0: "int", 1: "str"}),
+    ("bivector_product_table", "bivector_product_table", lambda: (3,), lambda: {"convention": "paper"},
+     {0: "int", "convention": "str"}),
     ("plane_symbols", "plane_symbols", lambda: ("w", 3), dict, {0: "name", 1: "int"}),
     # inertia
     ("Inertia", "Inertia", lambda: (W6,), dict, {0: "arr:pos"}),
@@ -251,7 +260,7 @@ ENTRIES = [
     ("check_tensor_symmetries", "check_tensor_symmetries",
      lambda: (hyperrotor.inertia_tensor([1.0, 2.0], [[0.0, 1.0], [1.0, 0.0]]),), dict, {0: "arr"}),
     # rigid body
-    ("RigidBody", "RigidBody", lambda: (W6, "paper"), dict, {0: "arr:pos", 1: "str"}),
+    ("RigidBody", "RigidBody", lambda: (W6,), lambda: {"convention": "paper"}, {0: "arr:pos", "convention": "str"}),
     ("RigidBody.energy", None, lambda: (_body().energy, W6), dict, {1: "arr"}),
     ("RigidBody.angular_momentum", None, lambda: (_body().angular_momentum, W6), dict, {1: "arr"}),
     ("RigidBody.casimirs", None, lambda: (_body().casimirs, W6), dict, {1: "arr"}),
@@ -310,7 +319,7 @@ ENTRIES = [
      {0: "obj:array", 1: "arr", 2: "pos", "plane": "plane", "value": "real", "direction": "int:signed,0",
       "method": "str", "dt": "pos", "progress": "flag"}),
     ("poincare_section/auto-dt", "poincare_section", lambda: (_body(), W6, 1.0), dict, {1: "arr", 2: "pos"}),
-    ("plot_poincare", "plot_poincare", lambda: (_section(), (1, 3), (2, 4)), lambda: {"ax": _axes(), "labels": ["orbit"]},
+    ("plot_poincare", "plotting.plot_poincare", lambda: (_section(), (1, 3), (2, 4)), lambda: {"ax": _axes(), "labels": ["orbit"]},
      {0: "obj", 1: "plane", 2: "plane", "ax": "obj", "labels": "obj"}),
     ("PoincareSection.coordinates", None, lambda: (_section().coordinates, (1, 3), (2, 4)), dict,
      {1: "plane", 2: "plane"}),
@@ -326,8 +335,10 @@ ENTRIES = [
     ("q.laplacian_operator", "quantum.laplacian_operator", lambda: (3,), dict, {0: "int"}),
     ("q.multiplication_operator", "quantum.multiplication_operator", lambda: (1, 3), dict, {1: "int"}),
     ("q.casimir_operator", "quantum.casimir_operator", lambda: (3,), dict, {0: "int"}),
-    ("q.operator_matrix", "quantum.operator_matrix", lambda: (3, "paper"), dict, {0: "int", 1: "str"}),
-    ("q.contraction_identity", "quantum.contraction_identity", lambda: (3, "paper"), dict, {0: "int", 1: "str"}),
+    ("q.operator_matrix", "quantum.operator_matrix", lambda: (3,), lambda: {"convention": "paper"},
+     {0: "int", "convention": "str"}),
+    ("q.contraction_identity", "quantum.contraction_identity", lambda: (3,), lambda: {"convention": "paper"},
+     {0: "int", "convention": "str"}),
     ("q.harmonic_dimension", "quantum.harmonic_dimension", lambda: (3, 2), dict, {0: "int", 1: "int:0"}),
     ("q.harmonic_polynomial_basis", "quantum.harmonic_polynomial_basis", lambda: (3, 2), dict,
      {0: "int", 1: "int:0"}),
@@ -396,16 +407,21 @@ ENTRIES = [
     ("q.sector_blocks", "quantum.sector_blocks", lambda: (_H(), _rep()), lambda: {"complete": False},
      {0: "obj", 1: "obj", "complete": "flag"}),
     ("q.sector_blocks/array", "quantum.sector_blocks", lambda: (_H_array(), _rep()), dict, {0: "arr"}),
-    ("q.sector_hamiltonian", "quantum.sector_hamiltonian", lambda: (_H(), _sector()), lambda: {"dense": True},
-     {0: "obj", 1: "obj", "dense": "flag"}),
+    ("q.sector_hamiltonian", "quantum.sector_hamiltonian", lambda: (_H(), _sector()), lambda: {"format": "dense"},
+     {0: "obj", 1: "obj", "format": "str"}),
     ("q.sector_hamiltonian/array", "quantum.sector_hamiltonian", lambda: (_H_array(), _sector()), dict, {0: "arr"}),
     ("q.evolution_blocks", "quantum.evolution_blocks", lambda: (_H(), _rep(), PSI3), dict,
      {0: "obj", 1: "obj", 2: "arr:cplx"}),
     ("q.evolution_blocks/array", "quantum.evolution_blocks", lambda: (_H_array(), _rep(), PSI3), dict, {0: "arr"}),
     ("q.sector_spectra", "quantum.sector_spectra", lambda: (_rep(), [1.0, 2.0, 3.0]),
-     lambda: {"hbar": 1.0, "parallel": True, "workers": 1, "client": None, "progress": False},
-     {0: "obj", 1: "arr:pos", "hbar": "pos", "parallel": "flag", "workers": "int", "client": "obj",
-      "progress": "flag"}),
+     lambda: {"hbar": 1.0, "workers": 1, "client": None, "progress": False},
+     {0: "obj", 1: "arr:pos", "hbar": "pos", "workers": "int", "client": "obj", "progress": "flag"}),
+    ("q.SectorPropagator", "quantum.SectorPropagator", lambda: (_H(),), lambda: {"rep": _rep(), "method": "auto"},
+     {0: "obj", "rep": "obj", "method": "str"}),
+    ("q.otoc", "quantum.otoc", lambda: (_H(), _W3(), _W3(), T5), lambda: {"samples": 2, "rng": 0},
+     {0: "obj", 1: "obj", 2: "obj", 3: "vec", "samples": "int"}),
+    ("q.ehrenfest_time", "quantum.ehrenfest_time", lambda: ([1.0, 2.0, 3.0], [0.3, 0.2, 1.0], [1, 2], T5), dict,
+     {0: "arr:pos", 1: "arr", 3: "vec"}),
     # quantum: level statistics
     ("q.spacing_ratios", "quantum.spacing_ratios", lambda: (LEVELS,), dict, {0: "vec"}),
     ("q.spacing_ratio", "quantum.spacing_ratio", lambda: (LEVELS,), lambda: {"return_error": False},
@@ -449,7 +465,14 @@ NOT_FUZZED = {
     "apply_to_polynomial": "takes SymPy operators and polynomials",
     "sphere_inner_product": "takes SymPy polynomials",
     "textbook_so3": "hbar and coordinates only (as angular_momentum_operators)",
-    "StepBudgetError": "an exception class", "PoincareSection": "a result record", "Solver": "a base class",
+    "StepBudgetError": "an exception class", "BudgetError": "an exception class",
+    "UnknownOptionError": "an exception class", "ParseError": "an exception class",
+    "LyapunovResult": "a result record", "Spectrum": "a result record (NamedTuple)",
+    "EhrenfestResult": "a result record", "OTOCResult": "a result record",
+    "body_edges": "points and a kind; its size is priced in tests/safety/test_too_big.py",
+    "scene_html_bytes": "a formula on three counts",
+    "projection_figure": "plotly figure of arrays the caller built (being renamed by classical; fuzz when stable)",
+    "write_html": "writes a figure the caller built (the file path is the CLI's business)", "PoincareSection": "a result record", "Solver": "a base class",
     "SOLVERS": "a registry", "PROPAGATORS": "a registry", "Propagator": "a base class",
     "RESULT_OPTIONS": "a constant", "JMAT_PLANES": "a constant", "ENSEMBLES": "a constant",
     "R_MEAN": "a constant", "R_SURMISE_MEAN": "a constant", "Sector": "a result record",

@@ -32,6 +32,12 @@ def _trajectory(method, **kw):
     return lambda: hr.simulate(BODY3, W3, T5, method=method, **kw)
 
 
+def _qobj_diag():
+    import qutip
+
+    return qutip.Qobj(np.diag([1.0, 0.0, -1.0]))
+
+
 def _sectors():
     return hq.symmetry_sectors(hq.irrep(3, (2,)))
 
@@ -44,7 +50,7 @@ EXAMPLES = {
     "Trajectory/splitting4+attitude": _trajectory("splitting4", attitude=True),
     "Trajectory/moser-veselov": _trajectory("moser-veselov"),
     "Trajectory/DOP853": _trajectory("DOP853"),
-    "Trajectory/RK45+dense": _trajectory("RK45", dense_output=True),
+    "Trajectory/RK45": _trajectory("RK45"),
     "Trajectory/auto (closed form)": _trajectory("auto"),
     "Trajectory/ensemble": lambda: hr.simulate(BODY3, np.stack([W3, 2 * W3]), T5, method="splitting8"),
     "Solver": lambda: hr.SOLVERS["splitting8"](),
@@ -53,9 +59,9 @@ EXAMPLES = {
     "CoupledPair": lambda: hr.linear_stability(BODY4, (1, 2), 1.0).pairs[0],
     "Scene": lambda: hr.Scene(BODY3, W3, T5, observables=("omega", "attitude")),
     "SceneResult": lambda: hr.Scene(BODY3, W3, T5, observables=("omega", "energy", "attitude")).evaluate(),
-    "lyapunov": lambda: hr.lyapunov(BODY3, W3, 2.0),
-    "lyapunov/spectrum+history": lambda: hr.lyapunov(BODY3, W3, 2.0, spectrum=True, history=True),
-    "lyapunov_sweep": lambda: hr.lyapunov_sweep([BODY3, [1.0, 2.0, 4.0]], W3[None, :], 2.0),
+    "LyapunovResult": lambda: hr.lyapunov(BODY3, W3, 2.0),
+    "LyapunovResult/spectrum+history": lambda: hr.lyapunov(BODY3, W3, 2.0, spectrum=True, history=True),
+    "LyapunovResult/sweep": lambda: hr.lyapunov_sweep([BODY3, [1.0, 2.0, 4.0]], W3[None, :], 2.0),
     "StepBudgetError": lambda: hr.StepBudgetError("over budget"),
     "BudgetError": lambda: hr.BudgetError("over budget"),
     "UnknownOptionError": lambda: hr.UnknownOptionError("unknown option 'x'"),
@@ -80,6 +86,8 @@ EXAMPLES = {
     "evolve result": lambda: hq.evolve(hq.rotor_hamiltonian(hq.irrep(3, (1,)), BODY3), np.ones(3) / 3**0.5, T5),
     "SectorPropagator": lambda: hq.SectorPropagator(hq.rotor_hamiltonian(hq.irrep(3, (2,)), BODY3)),
     "Propagator": lambda: hq.PROPAGATORS["krylov"](),
+    "OTOCResult": lambda: hq.otoc(hq.rotor_hamiltonian(hq.irrep(3, (1,)), BODY3), _qobj_diag(), _qobj_diag(), T5),
+    "EhrenfestResult": lambda: hq.ehrenfest_time(BODY3, [0.3, 0.2, 1.0], [1, 2], T5),
     "coherent_state": lambda: hq.coherent_state(hq.irrep(3, (2,)), [0.0, 0.0, 1.0]),
     # quantum: symbolic
     "DifferentialOperator": lambda: hq.angular_momentum_operators(3)[(1, 2)],
@@ -139,7 +147,7 @@ def _equal(a, b, path="x", seen=None):
         same = a == b or (isinstance(a, float) and a != a and b != b)
         return None if same else f"{path}: {a!r} != {b!r}"
     module = type(a).__module__ or ""
-    if module.startswith(("sympy", "fractions", "qutip")):
+    if module.startswith(("sympy", "fractions")) or type(a).__name__ == "Qobj":
         return None if a == b else f"{path}: {a!r} != {b!r}"
     if callable(a) and not hasattr(a, "__dict__"):
         return None

@@ -100,6 +100,9 @@ SIZELESS = {
     "SectorSpectra": "result record",
     "SpacingDistribution": "result record",
     "Spectrum": "result record",
+    "LyapunovResult": "result record",
+    "OTOCResult": "result record",
+    "EhrenfestResult": "result record",
     "ContractionIdentity": "result record",
     "Verdict": "result record",
     "render": "formats verdicts it is given (linear in them)",
@@ -130,6 +133,8 @@ SIZELESS = {
     "ratio_density": "elementwise on the array given",
     "spacing_density": "elementwise on the array given",
     "scene_html_bytes": "a formula",
+    "plot_poincare": "plots the sections the caller computed (linear in them)",
+    "write_html": "writes a figure the caller built (priced when built: projection_figure)",
 }
 
 
@@ -191,9 +196,8 @@ def _cases():
         "hypercube_vertices": lambda: hr.hypercube_vertices(1000),
         "simplex_vertices": lambda: hr.simplex_vertices(10**6),
         "ellipsoid_points": lambda: hr.ellipsoid_points([1.0, 2.0, 3.0], 10**12),
-        "scene_figure": lambda: hr.scene_figure(hr.Scene([1.0, 2.0, 3.0], [1.0, 0.5, 0.2], np.linspace(0, 1, 10**6))),
-        "write_scene_html": lambda: hr.write_scene_html(
-            hr.Scene([1.0, 2.0, 3.0], [1.0, 0.5, 0.2], np.linspace(0, 1, 10**6)), os.devnull),
+        "projection_figure": lambda: hr.projection_figure(*_memo("proj", lambda: (np.linspace(0, 1, 10**6),
+                                                                                  np.zeros((10**6, 8, 3))))),
         # --- quantum: operators and polynomials
         "coordinate_symbols": lambda: hq.coordinate_symbols(10**6),
         "angular_momentum_operators": lambda: hq.angular_momentum_operators(1000),
@@ -262,6 +266,10 @@ def _cases():
             _memo("Hbig", lambda: hq.rotor_hamiltonian(irr(), [1.0, 2.0, 3.0])), irr(),
             np.ones(irr().dim) / irr().dim**0.5),
         "sector_spectra": lambda: hq.sector_spectra(irr(), [1.0, 2.0, 3.0]),
+        "otoc": lambda: hq.otoc(_memo("H5", lambda: hq.rotor_hamiltonian(small(), [1.0, 2.0, 3.0])),
+                                *(_memo("W5", lambda: __import__("qutip").Qobj(np.diag([2.0, 1.0, 0.0, -1.0, -2.0]))),) * 2,
+                                np.linspace(0.0, 1.0, 5), samples=10**9),
+        "ehrenfest_time": lambda: hq.ehrenfest_time([1.0, 2.0, 3.0], [0.3, 0.2, 1.0], [10**7], np.linspace(0.0, 1.0, 5)),
         "spacing_distribution": lambda: hq.spacing_distribution(np.arange(100.0), bins=10**12),
         "sample_spectrum": lambda: hq.sample_spectrum("poisson", 10**12),
     }
@@ -330,6 +338,7 @@ _SETUPS = {  # name -> builder of its shared inputs (untimed), run before the ca
     "evolve": lambda: _memo("H5", lambda: _modules()[1].rotor_hamiltonian(small_irrep(), [1.0, 2.0, 3.0])),
     "spectrum": lambda: _memo("H40001", lambda: _modules()[1].rotor_hamiltonian(_modules()[1].irrep(3, (20000,)),
                                                                                  [1.0, 2.0, 3.0])),
+    "projection_figure": lambda: _memo("proj", lambda: (np.linspace(0, 1, 10**6), np.zeros((10**6, 8, 3)))),
     "tensor": lambda: _memo("t6001", lambda: (_modules()[1].irrep(3, (3000,)),) * 2),
     "lyapunov_sweep": lambda: _memo("bodies", lambda: 1.0 + np.random.default_rng(0).random((10**6, 3))),
     "RigidBody.euler_equations": lambda: _memo("i40", lambda: _modules()[0].Inertia.symbolic(40)),

@@ -71,7 +71,7 @@ from typing import Any
 import numpy as np
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, planes
-from .. import _validate
+from .. import _pricing, _validate
 from .._lazy import LazyModule
 from .._options import options, register
 from .inertia import Inertia
@@ -151,6 +151,7 @@ def equal_moments_solution(omega0: Any, t: Any) -> np.ndarray:
     """
     w = _omega0(omega0)
     tt = _times(t)
+    _pricing.check("closed_form_output", n_times=tt.size, width=w.size)
     return np.broadcast_to(w[..., None, :], w.shape[:-1] + (tt.size, w.shape[-1])).copy()
 
 
@@ -176,11 +177,20 @@ def quartet_theta(kappa: float) -> float:
     return (k2 - 1.0) / (k2 + 1.0)
 
 
+def _plane_axes(N: int) -> tuple[np.ndarray, np.ndarray]:
+    """1-based axes ``(i, j)`` of every plane, in plane order (1, 2), (1, 3), ..., (2, 3), ..."""
+    i, j = np.triu_indices(N, 1)
+    return i + 1, j + 1
+
+
 def _axis_layout(N: int, axis: int):
-    """Indices of the planes (i, a) (in order of i != a), their signs s_i, and the other planes."""
-    idx = np.array([plane_index((min(i, axis), max(i, axis)), N) for i in range(1, N + 1) if i != axis], dtype=int)
-    signs = np.array([1.0 if i < axis else -1.0 for i in range(1, N + 1) if i != axis])
-    rest = np.array([k for k, p in enumerate(planes(N)) if axis not in p], dtype=int)
+    """Indices of the planes (i, a) (in order of i != a), their signs s_i, and the other planes (O(n))."""
+    others = np.array([i for i in range(1, N + 1) if i != axis], dtype=int)
+    p, q = np.minimum(others, axis), np.maximum(others, axis)
+    idx = (p - 1) * N - (p - 1) * p // 2 + (q - p - 1)  # plane_index of (p, q), vectorised
+    signs = np.where(others < axis, 1.0, -1.0)
+    i, j = _plane_axes(N)
+    rest = np.flatnonzero((i != axis) & (j != axis))
     return idx, signs, rest
 
 
@@ -268,7 +278,9 @@ def quartet_solution(kappa: float, omega0: Any, t: Any, axis: int = 5, N: int | 
     if N is not None and check_dimension(N) != Nw:
         raise ValueError(f"omega0 has {w.shape[-1]} components, i.e. N = {Nw}, but N = {N} was given")
     axis = _check_axis(axis, Nw)
-    return _quartet_flow(quartet_theta(kappa), w, _times(t), axis)
+    tt = _times(t)
+    _pricing.check("closed_form_output", n_times=tt.size, width=w.size)
+    return _quartet_flow(quartet_theta(kappa), w, tt, axis)
 
 
 def quartet_polynomial_coefficients(kappa: float, omega0: Any, axis: int = 5) -> tuple[float, float]:
@@ -379,6 +391,7 @@ def quartet_attitude(kappa: float, omega0: Any, t: Any, axis: int = 5, *, attitu
     N = dimension_from_count(w.size)
     axis = _check_axis(axis, N)
     tt = _times(t)
+    _pricing.check("closed_form_output", n_times=tt.size, width=N * N)
     T = _quartet_attitude_std(quartet_theta(kappa), w, tt, axis)
     Sg = np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
     if attitude0 is not None:
@@ -535,6 +548,7 @@ def euler_poinsot(body: Any, omega0: Any, t: Any) -> np.ndarray:
     tt = _times(t)
     P = _ep_setup(body, omega0)
     w = P["w"]
+    _pricing.check("closed_form_output", n_times=tt.size, width=np.size(w))
     if _is_steady(P):  # steady rotation about a principal axis (or rest)
         return np.broadcast_to(w, (tt.size, 3)).copy()
     A, B, C, nu, m = P["A"], P["B"], P["C"], P["nu"], P["m"]
@@ -584,7 +598,14 @@ def detect_closed_form(body: Any, *, rtol: float | None = None) -> dict | None:
         return {"kind": "equal"}
     if N == 3:
         return {"kind": "euler-poinsot"}
-    for a in range(N, 0, -1):
+    # candidate axes first, in O(n): the moments of the planes through a must agree (per-axis range)
+    i, j = _plane_axes(N)
+    lo, hi = np.full(N + 1, np.inf), np.full(N + 1, -np.inf)
+    for ends in (i, j):
+        np.minimum.at(lo, ends, I)
+        np.maximum.at(hi, ends, I)
+    candidates = [a for a in range(N, 0, -1) if hi[a] - lo[a] <= rtol * scale]
+    for a in candidates:
         idx, _, rest = _axis_layout(N, a)
         if same(I[idx]) and same(I[rest]):
             alpha, beta = float(np.mean(I[idx])), float(np.mean(I[rest]))
@@ -611,6 +632,7 @@ def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float | None =
         raise ValueError("this inertia admits no closed form (not equal, not one-distinguished-axis, not 3D)")
     w = _omega0(omega0, I.size)
     tt = _times(t)
+    _pricing.check("closed_form_output", n_times=tt.size, width=w.size)
     kind = info["kind"]
     if kind == "equal":
         return equal_moments_solution(w, tt), kind

@@ -116,6 +116,7 @@ def ellipsoid_points(semi_axes: Sequence[float], n: int, *, rng: Any = None) -> 
     if a.size < 2 or np.any(a <= 0):
         raise ValueError(f"semi_axes must be >= 2 finite positive numbers, got {_v.fmt(semi_axes)}")
     n = _v.integer("n", n, minimum=1)
+    _pricing.check("ellipsoid_points", n=n, N=a.size)
     gen = _v.rng(0 if rng is None else rng)
     d = gen.normal(size=(int(n), a.size))
     d /= np.linalg.norm(d, axis=1, keepdims=True)
@@ -135,6 +136,7 @@ def body_edges(points: np.ndarray, kind: str) -> list[tuple[int, int]]:
     if kind == "points":
         return []
     n = len(pts)
+    _pricing.check("body_edges", pairs=n * (n - 1) // 2 if kind == "simplex" else n * pts.shape[1])
     if kind == "simplex":
         return [(a, b) for a in range(n) for b in range(a + 1, n)]
     if kind == "cube":

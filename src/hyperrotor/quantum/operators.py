@@ -539,6 +539,7 @@ def angular_momentum_operators(N: int, *, form: str = "antihermitian", hbar: Any
     -2*x*y + x
     """
     N = check_dimension(N)
+    _pricing.check("angular_momentum_operators", N=N)
     coords = coordinate_symbols(N, coordinates)
     out = {}
     for i, j in planes(N):

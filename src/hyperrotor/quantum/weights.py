@@ -307,6 +307,7 @@ def weyl_dim(N: int, m: Sequence[Fraction]) -> int:
     """
     if N == 2:
         return 1
+    _pricing.check("weyl_dimension", N=N)
     rho = _rho(N)
     num = Fraction(1)
     den = Fraction(1)
