@@ -453,7 +453,7 @@ def test_quartet_attitude_against_simulate(convention, axis, N):
     w0 = rng.normal(size=n)
     Q, _ = np.linalg.qr(rng.normal(size=(N, N)))
     t = np.linspace(0.0, 10.0, 21)
-    body = hyperrotor.RigidBody(quartet_moments(0.5, axis, N), convention)
+    body = hyperrotor.RigidBody(quartet_moments(0.5, axis, N), convention=convention)
     ref = hyperrotor.simulate(body, w0, t, method="DOP853", rtol=1e-12, attitude=Q).attitude
     T = quartet_attitude(0.5, w0, t, axis, attitude0=Q, convention=convention)
     np.testing.assert_allclose(T, ref, atol=1e-10)

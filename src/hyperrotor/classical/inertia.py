@@ -44,7 +44,7 @@ import numpy as np
 
 from hyperrotor._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
-from hyperrotor import _parse, _validate
+from hyperrotor import _parse, _pricing, _validate
 from hyperrotor._options import options, register
 from hyperrotor.conventions import (
     check_dimension,
@@ -112,6 +112,39 @@ def _as_value(v: Any, what: str, *, allow_zero: bool = False) -> sp.Expr:
             return sp.Integer(int(v))
         return sp.Float(x)
     raise TypeError(f"{what} must be a real number or a SymPy expression, got {_validate.fmt(v)} of type {type(v).__name__}")
+
+
+@_pricing.model("Inertia", "use a body of fewer dimensions")
+def _inertia_cost(n: Any) -> tuple:
+    """One SymPy number per plane (~20 microseconds each for plain numbers, ~100 for other input)."""
+    n = float(n)
+    return (_pricing.Cost(f"the moments of {n:.0f} planes as SymPy numbers", 2e-5 * n, "max_seconds", "seconds"),)
+
+
+def _numeric_moments(moments: Any, N: int) -> tuple[tuple, np.ndarray] | None:
+    """Plain real moments (a real ndarray, or a list of Python/NumPy ints and floats) checked at once:
+    ``(SymPy values, float64 array)``, or ``None`` for anything else (the per-value path)."""
+    if isinstance(moments, np.ndarray):
+        if moments.ndim != 1 or moments.dtype.kind not in "iuf":
+            return None
+        raw = moments
+    elif isinstance(moments, (list, tuple)) and all(
+            isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+            for v in moments):
+        raw = moments
+    else:
+        return None
+    x = np.asarray(raw, dtype=np.float64)
+    bad = np.flatnonzero(~np.isfinite(x) | (x <= 0))
+    if bad.size:  # the per-value path names the first bad plane in its own words
+        return None
+    if isinstance(raw, np.ndarray):
+        exact = [raw.dtype.kind in "iu"] * x.size
+    else:
+        exact = [isinstance(v, (int, np.integer)) for v in raw]
+    values = tuple(sp.Integer(int(v)) if e else sp.Float(float(v)) for v, e in zip(raw, exact))
+    x.setflags(write=False)
+    return values, x
 
 
 def _is_free(expr: sp.Expr) -> bool:
@@ -221,7 +254,9 @@ def inertia_tensor(masses: Any, positions: Any, *, center: bool = True) -> np.nd
     -------
     numpy.ndarray, shape (N, N, N, N)
     """
-    return _tensor_from_second_moments(second_moment_matrix(masses, positions, center=center))
+    S = second_moment_matrix(masses, positions, center=center)
+    _pricing.check("inertia_tensor", N=S.shape[0])
+    return _tensor_from_second_moments(S)
 
 
 def check_tensor_symmetries(tensor: Any, *, atol: float | None = None) -> None:
@@ -330,15 +365,21 @@ class Inertia:
                 raise ValueError(
                     f"{len(seq)} moments are for N = {N_}, but N = {N} was given (it needs {n_planes(N)})"
                 )
+            _pricing.check("Inertia", n=len(seq))
+            fast = _numeric_moments(moments, N_)
+            if fast is not None:  # plain real numbers: checked at once, SymPy objects made in one pass
+                values, numeric = fast
+                self._init(values, N_, numeric=numeric)
+                return
             values = [
                 _as_value(v, f"moment I_{plane_label(p, N_)}") for v, p in zip(seq, planes(N_))
             ]
         self._init(tuple(values), N_)
 
-    def _init(self, values: tuple, N: int, J: tuple | None = None, principal_axes=None) -> None:
+    def _init(self, values: tuple, N: int, J: tuple | None = None, principal_axes=None, numeric=None) -> None:
         self._N = N
         self._values = values
-        self._numeric = _to_float_array(values)
+        self._numeric = _to_float_array(values) if numeric is None else numeric
         if self._numeric is not None:
             self._numeric.setflags(write=False)
         self._J = J
