@@ -59,6 +59,10 @@ __all__ = [
     "sample_spectrum",
 ]
 
+#: A spacing at most this times max|E| is zero: far above the round-off splitting of a degenerate level by
+#: eigh (~1e-15 * dim * max|E|), far below a physical spacing (a Poisson spectrum of 10^6 levels has one
+#: this small with probability ~1e-6)
+_ZERO_SPACING_RTOL = 1e-12
 #: Names of the reference ensembles.
 ENSEMBLES = ("poisson", "goe", "gue")
 #: Mean spacing ratio :math:`\langle\tilde r\rangle` of large matrices (Atas et al. 2013, Table I).
@@ -129,9 +133,9 @@ def spacing_ratio(levels: Any, *, return_error: bool = False):
     Raises
     ------
     ValueError
-        When a quarter or more of the spacings vanish (within
-        ``options["quantum_level_rtol"] * max|E|``, the rule by which
-        :func:`~hyperrotor.quantum.spectrum` merges levels): forced degeneracies
+        When a quarter or more of the spacings vanish (at most ``1e-12 * max|E|``:
+        exact repeats, or the round-off splitting of a degenerate level by ``eigh``,
+        ~``1e-15 * dim * max|E|``): forced degeneracies
         (e.g. the multiplets of a spinor irrep, or several sectors' levels merged)
         would pull the mean towards 0. Fewer vanishing spacings give a
         ``RuntimeWarning`` (accidental degeneracies: each makes a ratio 0).
@@ -156,12 +160,12 @@ def spacing_ratio(levels: Any, *, return_error: bool = False):
 def _check_degeneracies(levels: Any) -> None:
     """Refuse (a quarter or more) or warn about vanishing spacings (see :func:`spacing_ratio`)."""
     E = _levels(levels, 3)
-    tol = options["quantum_level_rtol"] * float(np.abs(E).max())
+    tol = _ZERO_SPACING_RTOL * float(np.abs(E).max())
     zero = int(np.count_nonzero(np.diff(E) <= tol))
     n = E.size - 1
-    if not zero or zero == n:  # none, or all (refused with its own message below)
+    if not zero or zero == n:  # none, or all (refused by spacing_ratio with its own message)
         return
-    text = (f"{zero} of the {n} spacings of levels vanish (<= options['quantum_level_rtol'] * max|E| = {tol:.2e}), "
+    text = (f"{zero} of the {n} spacings of levels vanish (<= 1e-12 * max|E| = {tol:.2e}), "
             f"and each gives a spacing ratio of 0")
     if 4 * zero >= n:
         raise ValueError(f"{text}: forced degeneracies? Pass the levels of one symmetry sector "

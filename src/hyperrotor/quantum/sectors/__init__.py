@@ -55,7 +55,7 @@ tensor irreps of real type; for spinor irreps (quaternionic, :math:`T^2 = -1`) a
 sign rotation reversing every Cartan plane, :math:`(D(g)T)^2 = D(g)^2 T^2 = +1`; for
 complex-type irreps (so(4k+2), :math:`m_n \ne 0`) a reflection, which maps the
 irrep to its conjugate. The search tries the sign vectors in turn and keeps the
-first that passes (:func:`~hyperrotor.quantum.sectors.construction.real_structure`);
+first that passes (:func:`~hyperrotor.quantum.sectors.group.real_structure`);
 the basis columns are then gauged to be fixed by A, so every block
 :math:`B^\dagger \hat H B` is real symmetric (GOE class, ~4x cheaper ``eigh``).
 
@@ -73,9 +73,10 @@ even ``k``; for odd ``k`` the matrix is diagonal. The phases follow from the
 intertwining relation along the nonzeros of the chain generators,
 :math:`\varphi_a/\varphi_b = s_k s_{k+1} X_{\pi(a)\pi(b)}/X_{ab}`, propagated over
 a breadth-first spanning tree of the (connected) generator graph; Schur's lemma
-leaves one overall constant, read off from one column of the dense exponential
-of the small block of :math:`X_{(k,k+1)}` containing the first basis vector
-(:math:`X_{(k,k+1)}` only changes row :math:`M_k`, so its blocks are small).
+leaves one overall constant: for tensor irreps from the trace
+(:math:`g_{(k,k+1)}` is conjugate to :math:`g_{(1,2)}`, whose matrix is diagonal),
+otherwise from one column of the dense exponential of the small block of
+:math:`X_{(k,k+1)}` containing the first basis vector (priced).
 Every relation is then checked on all nonzeros (an :math:`O(\mathrm{nnz})`
 residual). Sector bases are projections
 :math:`\prod_k (1 + \bar\lambda_k D_k)/2` (with :math:`U_r` where it acts) of one
@@ -87,13 +88,13 @@ Other representations (vector, spinor, harmonic, tensor products, direct sums)
 use a dense fallback (matrix exponentials and projectors, :math:`O(\dim^3)`),
 limited to ``options["sectors_dense_max_dim"]`` (no reflection parity, complex blocks).
 
-Modules: :mod:`.group` (labels, characters, the reflection), :mod:`.construction`
-(monomial projections, real gauge, dense fallback), :mod:`.spectra` (blocks and
-spectra). Public in the package for :mod:`~hyperrotor.quantum.spectrum` and
+Modules: :mod:`.group` (the group of a representation: monomial rotations, the
+reflection, the antiunitary, labels and characters; or dense exponentials),
+:mod:`.construction` (projections, real gauge), :mod:`.spectra` (blocks and spectra). Public in the package for :mod:`~hyperrotor.quantum.spectrum` and
 :mod:`~hyperrotor.quantum.evolve` (trusted inputs, not in ``__all__``):
 :func:`restrict`, :func:`nonempty_blocks`.
 """
-from .construction import pi_rotation, sectors_of, symmetry_sectors
+from .construction import pi_rotation, symmetry_sectors
 from .group import Sector
 from .spectra import (
     SectorSpectra,
