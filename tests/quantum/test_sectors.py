@@ -28,7 +28,6 @@ from hyperrotor.quantum import (
     tensor,
     vector_rep,
 )
-from hyperrotor.quantum._gt_monomials import gt_patterns_of
 from hyperrotor.quantum.sectors import (
     pi_rotation,
     sector_blocks,
@@ -36,7 +35,7 @@ from hyperrotor.quantum.sectors import (
     sector_spectra,
     symmetry_sectors,
 )
-from hyperrotor.quantum.sectors.group import gt_reflection
+from hyperrotor.quantum.sectors.group import group_of
 from tolerance import norm, scaled_tol
 
 H_ = F(1, 2)
@@ -244,8 +243,9 @@ def test_reflection_is_a_signed_permutation_implementing_r(N, hw):
     """U X_ij U^-1 = -X_ij when exactly one of i, j is 1 (r = diag(-1, 1, ..., 1)), U^2 = 1, U commutes with
     the sign rotations, and every sector is an eigenspace of U with the parity of its character."""
     rep = irrep(N, hw)
-    chain = {q: rep.generator((q, q + 1), format="csr") for q in range(1, N)}
-    U = gt_reflection(rep, gt_patterns_of(rep), chain).matrix()
+    group = group_of(rep)
+    assert group.reflection
+    U = group.ops[-1].matrix()  # U_r joins the sign rotations as the last generator
     assert U.nnz == rep.dim and set(np.unique(np.abs(U.data))) == {1.0}
     np.testing.assert_array_equal((U @ U).toarray(), np.eye(rep.dim))
     for (i, j), X in rep.generators().items():
