@@ -147,6 +147,7 @@ def body_edges(points: np.ndarray, kind: str) -> list[tuple[int, int]]:
             rest = np.delete(keys, d, axis=1)
             for idx, key in enumerate(map(tuple, rest)):
                 groups.setdefault(key, []).append(idx)
+            _pricing.check("body_edges", pairs=sum(len(m) * (len(m) - 1) // 2 for m in groups.values()))
             for members in groups.values():
                 for x, a in enumerate(members):
                     for b in members[x + 1:]:
