@@ -333,6 +333,64 @@ def _dense_matrix(dim: Any, count: Any = 1) -> tuple[Cost, ...]:
     return (_memory(f"{count} dense {dim} x {dim} complex matrices", 16.0 * _f(count) * d * d),)
 
 
+# --- the command line ----------------------------------------------------------------------
+#: Cost constants of ``hyperrotor scene`` (seconds, measured by the cli helper on the shared 2-core
+#: machine: --N 12 cube PNG 15.8 s wall against 13.7 s estimated; pages (.html) cube N = 5, 8, 10:
+#: 4.1, 9.1, 46 s against 6.4, 15.6, 55 s, 0.26, 0.32, 0.56 GB peak against 0.30, 0.35, 0.44 GB):
+#: start-up (imports), per drawn frame, per drawn edge and point of a frame, per frame-plane of the
+#: motion, per cube vertex and axis^2 (finding the edges), and ~14 copies of a page's text.
+SCENE_COST = {"start": 5.0, "frame_png": 0.35, "frame_gif": 0.1, "frame_html": 0.01, "edge": 3.5e-5,
+              "point": 1e-5, "html_edge": 1.5e-4, "html_point": 5e-5, "html_copies": 14,
+              "motion": 2e-7, "cube_edges": 2e-6}
+#: Pillow keeps every RGBA frame of a GIF until the file is written
+GIF_FRAME_BYTES = 540 * 480 * 4
+#: points of the ellipsoid body of ``hyperrotor scene --shape ellipsoid``
+SCENE_ELLIPSOID_POINTS = 400
+
+
+def scene_size(shape: str, N: int) -> tuple[float, float]:
+    """Number of body points and of drawn edges of ``hyperrotor scene`` (floats: 2^N may be huge)."""
+    if shape == "cube":
+        n = min(N, 200)  # past 2^200 nothing fits anyway; keeps every estimate a finite float
+        return 2.0**n, n * 2.0 ** (n - 1)
+    if shape == "simplex":
+        return N + 1.0, (N + 1.0) * N / 2
+    return float(SCENE_ELLIPSOID_POINTS), 0.0
+
+
+@model("scene", "use a smaller --N, --shape simplex or fewer --frames")
+def _scene(shape: str, N: int, frames: Any, format: str = ".png", integrate: bool = False,
+           colour: bool = True) -> tuple[Cost, ...]:
+    """Memory (bytes, budget ``cli_max_memory``) and wall time (s, ``cli_max_seconds``) of ``hyperrotor scene``.
+
+    Memory: body points ``P x N``, the edge list (about 120 bytes per edge as Python tuples, plus
+    the cube's grouping ``P x (60 + 40 N)``), the attitudes ``K x N^2`` (4 copies) and projections
+    ``K x P x 4`` (2 copies), the drawn segments of one frame, for a GIF every rendered frame, for a
+    page copies of its text (:func:`hyperrotor.classical.scene_html.scene_html_bytes`). Time:
+    :data:`SCENE_COST` (an integrated motion is priced by ``simulate``'s own estimate).
+    """
+    P, E = scene_size(shape, N)
+    K = _f(frames)
+    c = SCENE_COST
+    memory = (P * N * 8 + E * 120 + (P * (60 + 40 * N) if shape == "cube" else 0)
+              + 4 * K * N * N * 8 + 2 * K * P * 4 * 8)
+    seconds = (c["start"] + K * N * N * c["motion"] * (50 if integrate else 1)
+               + (P * N * N * c["cube_edges"] if shape == "cube" else 0))
+    if format == ".html":
+        from hyperrotor.classical.scene_html import scene_html_bytes
+
+        page = scene_html_bytes(int(min(K, 2**62)), int(min(P, 2**62)), int(min(E, 2**62)), colour=colour)
+        memory += c["html_copies"] * page
+        seconds += K * (c["frame_html"] + E * c["html_edge"] + P * c["html_point"])
+    else:
+        gif = format == ".gif"
+        drawn = K if gif else min(6.0, K)
+        memory += E * 500 + (K * GIF_FRAME_BYTES if gif else 0)
+        seconds += drawn * (c["frame_gif" if gif else "frame_png"] + E * c["edge"] + P * c["point"])
+    what = f"scene --N {N} --shape {shape} ({frames} frames)"
+    return (Cost(what, memory, "cli_max_memory", "bytes"), Cost(what, seconds, "cli_max_seconds", "seconds"))
+
+
 # --- SymPy and exact-arithmetic constructions ------------------------------------------------
 @model("casimir_operator")
 def _casimir_operator(N: Any) -> tuple[Cost, ...]:

@@ -24,9 +24,7 @@ import contextlib
 import importlib.util
 import io
 import os
-import signal
 import sys
-import threading
 import time
 import warnings
 from pathlib import Path
@@ -78,26 +76,8 @@ def _load_fuzz():
 FUZZ = _load_fuzz()
 
 
-class _Hang(BaseException):
-    pass
-
-
-@contextlib.contextmanager
-def _limit(seconds):
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def _raise(signum, frame):
-        raise _Hang(f"no answer within {seconds} s")
-
-    old = signal.signal(signal.SIGALRM, _raise)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
+_Hang = FUZZ._Hang  # raised by the alarm (a BaseException: ``except Exception`` in library code cannot swallow it)
+_limit = FUZZ._time_limit
 
 
 def _with_symbol(good, text):
