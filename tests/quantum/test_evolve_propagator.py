@@ -107,3 +107,14 @@ def test_keyword_only_after_t_and_progress_refuses_non_flags():
         evolve(H, np.ones(2), [0.0, 1.0], None)  # e_ops is keyword-only
     with pytest.raises((TypeError, ValueError), match="progress"):
         evolve(H, np.ones(2) / np.sqrt(2), [0.0, 1.0], progress="yes")
+
+
+def test_threads_give_the_same_states_as_one_thread(rng):
+    """The blocks are independent tasks (map_rows): 2 threads == 1 thread, bit for bit."""
+    rep, H = _generic(rng)
+    psi = _state(rng, rep.dim)
+    t = [0.0, 0.3, 0.9]
+    with hr.options(quantum_eigen_max_block=20):
+        one = SectorPropagator(H, method="krylov", workers=1).states(psi, t)
+        two = SectorPropagator(H, method="krylov", workers=2).states(psi, t)
+    np.testing.assert_array_equal(one, two)

@@ -47,6 +47,7 @@ from .._options import options as _options
 from ._krylov import single_thread_blas
 from .hamiltonian import blocks_of, hermitian_matrix
 from .propagators import EVOLVE_METHODS, PROPAGATORS, Eigen, Krylov, propagator_class  # noqa: F401 (EVOLVE_METHODS: quantum.rotor re-exports it)
+from .sectors import nonempty_blocks, restrict
 
 __all__ = ["SectorPropagator", "evolve"]
 
@@ -105,12 +106,10 @@ def _sector_bases(rep: Any) -> list | None:
     Kept while ``rep`` lives (a weak reference): every propagator of the same
     representation (several bodies, :func:`~hyperrotor.quantum.ehrenfest_time`) reuses them.
     """
-    from . import sectors
-
     hit = _SECTOR_CACHE.get(id(rep))
     if hit is not None and hit[0]() is rep:
         return hit[1]
-    parts = sectors.nonempty_blocks(rep, True)
+    parts = nonempty_blocks(rep, True)
     bases = None if parts is None else [B for B, _, _ in parts]
     try:
         ref = weakref.ref(rep, lambda _, key=id(rep): _SECTOR_CACHE.pop(key, None))
@@ -126,9 +125,7 @@ _SECTOR_CACHE: dict[int, tuple[Any, list | None]] = {}
 
 def _sector_block(M: sps.csr_matrix, B: Any) -> sps.csr_matrix:
     """The sparse block ``B^H M B`` (real when its imaginary part is round-off, as in the real sectors)."""
-    from . import sectors
-
-    blk = sps.csr_matrix(sectors.restrict(M, B, dense=False))
+    blk = sps.csr_matrix(restrict(M, B, dense=False))
     if blk.dtype.kind == "c" and blk.nnz:
         if float(np.abs(blk.data.imag).max()) <= 1e-13 * float(np.abs(blk.data).max()):
             blk = blk.real.tocsr()
