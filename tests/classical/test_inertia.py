@@ -346,3 +346,19 @@ def test_subs_reads_text_safely(tmp_path, monkeypatch):
     assert inertia.subs([(a, 5)]).symbolic_moments[0] == 5
     with pytest.raises(TypeError, match="subs takes"):
         inertia.subs("a")
+
+
+def test_numeric_moments_fast_path_and_price():
+    """Plain numbers are checked at once with the same results (exact ints, Floats) and messages;
+    a huge body is refused by its price (model 'Inertia') before any SymPy number is made."""
+    I = hr.Inertia(np.array([1, 2, 3]))
+    assert I.symbolic_moments == (1, 2, 3) and all(isinstance(v, sp.Integer) for v in I.symbolic_moments)
+    J = hr.Inertia([1.5, 2, np.float64(3.25)])
+    assert J.symbolic_moments == (sp.Float(1.5), 2, sp.Float(3.25)) and J.moments.tolist() == [1.5, 2.0, 3.25]
+    with pytest.raises(ValueError, match="moment I_13 must be > 0, got -2"):
+        hr.Inertia([1, -2, 3])
+    with pytest.raises(ValueError, match="moment I_23 must be finite"):
+        hr.Inertia(np.array([1.0, 2.0, np.inf]))
+    with hr.options(max_seconds=1.0):
+        with pytest.raises(hr.BudgetError, match="Inertia"):
+            hr.Inertia(np.ones(hr.n_planes(1000)))

@@ -436,3 +436,26 @@ def test_text_is_never_evaluated(tmp_path, monkeypatch, where):
     # numbers and SymPy expressions still work, exactly
     eqs = body.euler_equations(torque=[1, 0, sp.Rational(1, 2)])
     assert eqs[2].rhs == -sp.Rational(1, 2)
+
+
+@pytest.mark.parametrize("N", [3, 4, 5, 7])
+def test_euler_tables_are_the_structure_constants(N):
+    """The tables built from plane pairs hold exactly the nonzero C[b, c, a], b < c, of every plane a."""
+    from hyperrotor.classical.rigid_body import _rhs_tables
+
+    C = hr.structure_constants(N)
+    left, right, sign = _rhs_tables(N)
+    for a in range(hr.n_planes(N)):
+        expected = [(b, c, int(C[b, c, a])) for b in range(C.shape[0]) for c in range(b + 1, C.shape[0]) if C[b, c, a]]
+        assert list(zip(left[a].tolist(), right[a].tolist(), sign[a].tolist())) == expected
+
+
+def test_large_bodies_are_priced():
+    """so(60) is built without the n^3 table; so(400)'s tables (3.2e7 entries, ~2.9 GB with temporaries)
+    are refused under a 1 GiB budget before any work."""
+    N = 60
+    body = RigidBody(np.linspace(1.0, 2.0, hr.n_planes(N)))
+    assert body.rhs_tables[0].shape == (hr.n_planes(N), N - 2)
+    with hr.options(max_memory_bytes=2**30):
+        with pytest.raises(hr.BudgetError, match="RigidBody"):
+            RigidBody(hr.Inertia(np.ones(hr.n_planes(400))))
