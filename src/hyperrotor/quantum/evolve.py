@@ -212,10 +212,15 @@ class _Block:
         if self.engine is None:
             stats["populated_dim"] = int(np.count_nonzero(np.abs(c0) > 1e-15 * float(np.abs(c0).max())))
             return np.exp((-1j / hbar) * np.outer(self.diag, tau)) * c0[:, None], stats, "diagonal"
-        if self.eig is None and (isinstance(self.engine, Eigen) or (
-                adaptive and self.n <= int(_options["quantum_max_dense_dim"])
-                and self.work + self._krylov_flops(float(tau[-1]), hbar) > self._eigh_flops(t.size))):
+        if self.eig is None and isinstance(self.engine, Eigen):
+            _pricing.check("dense_diagonalization", dim=self.n, complex=self.matrix.dtype.kind == "c")
             self.diagonalize(stats)
+        elif self.eig is None and adaptive and self.work + self._krylov_flops(float(tau[-1]), hbar) > self._eigh_flops(t.size):
+            try:  # buy only what the budgets allow (quantum_max_dense_dim, max_memory_bytes, max_seconds)
+                _pricing.check("dense_diagonalization", dim=self.n, complex=self.matrix.dtype.kind == "c")
+                self.diagonalize(stats)
+            except _pricing.BudgetError:
+                pass
         if self.eig is not None:
             E, V = self.eig
             c = V.conj().T @ c0
