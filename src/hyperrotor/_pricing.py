@@ -294,6 +294,16 @@ def _evolve(dim: Any, n_times: Any, states: bool = True) -> tuple[Cost, ...]:
     )
 
 
+@model("otoc", "use fewer times (t) or fewer samples")
+def _otoc(n_times: Any, columns: Any, dim: Any = 1) -> tuple[Cost, ...]:
+    # four propagations of `columns` state columns to every time (the evolve model, states not kept)
+    runs = 4.0 * _mul(n_times, columns)
+    return (_seconds(f"{n_times} times (t) x {columns} state columns (samples or the exact trace) x 4 propagations",
+                     runs * _EVOLVE_S),
+            Cost(f"{n_times} times (t) x {columns} state columns (samples or the exact trace)",
+                 runs * (16.0 * _f(dim) + _QOBJ_BYTES) / 4.0, "max_output_bytes", "bytes"))
+
+
 @model("lyapunov_sweep", "sweep fewer bodies per call")
 def _lyapunov_sweep(bodies: Any, orbits: Any, n: Any, k: Any = 1) -> tuple[Cost, ...]:
     # per orbit: moments, rates, L0 (n each) and k orthonormal tangent vectors (n x k), a few copies
