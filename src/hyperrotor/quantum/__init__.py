@@ -10,7 +10,6 @@ imports this one. The vocabulary (``form=``, keyword-only ``hbar``, ``t``,
 from . import (coherent, combine, equivalence, evolve as _evolve_module, gelfand_tsetlin, hamiltonian, harmonic,
                normal_form, operator_products, operators, representation, sectors, spectrum as _spectrum_module,
                standard_reps, statistics, weights)
-from . import rotor  # noqa: F401  (old module name, re-exports; goes when tests/quantum/test_correspondence.py moved)
 from .coherent import *  # noqa: F401,F403
 from .combine import *  # noqa: F401,F403
 from .correspondence import *  # noqa: F401,F403
