@@ -345,3 +345,12 @@ def test_sweep_on_client_equals_in_process(dask_client):
     remote = lyapunov_sweep(bodies, w0, 20.0, rng=1, client=client).exponents
     assert remote.shape == (2, 5)
     assert np.array_equal(remote, local)
+
+
+def test_methods_come_from_the_solver_registry():
+    """LYAPUNOV_METHODS is derived from hr.SOLVERS (the Lie-Poisson splittings), with their orders."""
+    from hyperrotor.classical.solvers.splitting import Splitting
+
+    expected = tuple(name for name, cls in hr.SOLVERS.items() if issubclass(cls, Splitting))
+    assert chaos.LYAPUNOV_METHODS == expected == ("splitting2", "splitting4", "splitting6", "splitting8")
+    assert lyapunov(*generic_5d(0, 1), 1.0, method="SPLITTING4").method == "splitting4"  # any case

@@ -61,13 +61,16 @@ from hyperrotor.conventions import dimension_from_count, plane_index
 
 from .solvers._tangent_kernels import tangent_run, tangent_run_lanes
 from .simulate import simulate
-from .solvers.splitting import casimir_shift, rotation_tables, splitting_word
+from .solvers import SOLVERS
+from .solvers.splitting import Splitting, casimir_shift, rotation_tables, splitting_word
 
 __all__ = ["lyapunov", "lyapunov_sweep", "LyapunovResult", "LYAPUNOV_METHODS", "poincare_section", "PoincareSection"]
 
-#: ``method=`` names of :func:`lyapunov` (the splittings of :func:`hyperrotor.simulate`).
-LYAPUNOV_METHODS = ("splitting2", "splitting4", "splitting6", "splitting8")
-_ORDER = {"splitting2": 2, "splitting4": 4, "splitting6": 6, "splitting8": 8}
+#: ``method=`` names of :func:`lyapunov`: the Lie-Poisson splittings of the solver registry
+#: :data:`hyperrotor.SOLVERS` (their steps are products of plane rotations, whose tangent maps
+#: :mod:`~hyperrotor.classical.solvers._tangent_kernels` composes), in the registry's order.
+_ORDER = {name: cls.order for name, cls in SOLVERS.items() if issubclass(cls, Splitting)}
+LYAPUNOV_METHODS = tuple(_ORDER)
 #: measured throughput of the tangent kernel (flow-vectors per second and thread, 5D: 2e8 for the
 #: maximal exponent, 9e7 for the full spectrum); used for budgets and chunk sizes
 _WORK_RATE = 1.5e8
