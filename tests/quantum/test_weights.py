@@ -178,3 +178,22 @@ def test_dominance_order():
     assert not dominates(5, (1, 0), (H, H))  # different lattices
     assert dominates(6, (1, 1, 1), (1, 1, -1)) is False  # differ by 2 e_3, not in the root lattice span with >= 0
     assert dominates(6, (1, 1, 0), (0, 0, 0))
+
+
+def test_weyl_dimension_of_a_large_algebra_is_priced_and_exact():
+    """Exact integer products (balanced tree); refused before any list is built when over max_seconds (#21 §2)."""
+    import hyperrotor as hr
+
+    m = tuple(range(50, 0, -1))  # so(100), 2450 positive roots
+    # the hook-length-like closed form for so(2n) with m_i = n + 1 - i: product over roots, checked with Fractions
+    from fractions import Fraction as F
+    n = 50
+    rho = [F(100 - 2 * i, 2) for i in range(1, n + 1)]
+    exact = F(1)
+    for i in range(n):
+        for j in range(i + 1, n):
+            for s in (-1, 1):
+                exact *= ((m[i] + rho[i]) + s * (m[j] + rho[j])) / (rho[i] + s * rho[j])
+    assert weyl_dimension(100, m) == int(exact)
+    with hr.options(max_seconds=1), pytest.raises(hr.BudgetError, match="weyl_product"):
+        weyl_dimension(1000, tuple(range(500, 0, -1)))

@@ -173,7 +173,7 @@ def real_form(rep: Representation, *, rtol: float | None = None) -> Representati
         raise TypeError(f"real_form takes a Representation, got {type(rep).__name__}")
     if rep.is_real:
         return rep
-    _pricing.check("dense_representation", dim=rep.dim)
+    _pricing.check("real_form", dim=rep.dim)
     gens_in = rep.generators(format="csr")
     conj = Representation(rep.N, {p: M.conj() for p, M in gens_in.items()}, name=f"conjugate of {rep.name}")
     try:

@@ -160,6 +160,24 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
             f"got {type(rep).__name__}"
         )
     moments = _validate.moments(body, N, name="body")  # refuses complex moments too
+    H = rotor_matrix(gens, moments, hbar)
+    Hq = _lazy.qutip.Qobj(H, dims=[[dim], [dim]])
+    if isinstance(rep, Representation):
+        # for the symmetry sectors of spectrum/evolve (arithmetic on Hq gives new Qobjs without it)
+        Hq._hyperrotor_rep = rep
+    return Hq
+
+
+def rotor_matrix(gens: Mapping, moments: np.ndarray, hbar: float) -> sps.csr_matrix:
+    r""":math:`-\hbar^2 \sum_a X_a^2/(2 I_a)` as CSR: the matrix of :func:`rotor_hamiltonian`, without the Qobj.
+
+    Trusted core (package-internal): ``gens`` are the CSR generators of a checked
+    representation keyed by plane, ``moments`` the checked moments in
+    :func:`hyperrotor.planes` order, ``hbar`` a checked float. Refuses an overflow
+    (``ValueError``); a complex result is made exactly Hermitian.
+    """
+    dim = next(iter(gens.values())).shape[0]
+    N = _validate.dimension_from_count(len(gens), name="generators", what="planes")
     H = sps.csr_matrix((dim, dim), dtype=float)
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below, with its cause
         for (i, j), m in zip(planes(N), moments):
@@ -169,7 +187,7 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
     if H.nnz and not np.all(np.isfinite(H.data)):
         raise ValueError(
             f"the Hamiltonian overflows the float range: hbar = {_validate.fmt(hbar)} and moments down to "
-            f"{_validate.fmt(float(moments.min()))} give hbar^2 X^2 / (2 I) beyond 1.8e308; choose units with "
+            f"{_validate.fmt(float(np.min(moments)))} give hbar^2 X^2 / (2 I) beyond 1.8e308; choose units with "
             f"hbar^2 / I of order one"
         )
     if H.dtype.kind == "c":
@@ -181,11 +199,7 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
     H = sps.csr_matrix(H)
     H.sum_duplicates()
     H.eliminate_zeros()
-    Hq = _lazy.qutip.Qobj(H, dims=[[dim], [dim]])
-    if isinstance(rep, Representation):
-        # for the symmetry sectors of spectrum/evolve (arithmetic on Hq gives new Qobjs without it)
-        Hq._hyperrotor_rep = rep
-    return Hq
+    return H
 
 
 # ----------------------------------------------------------------------------
