@@ -110,3 +110,23 @@ def test_signal_while_drawing_a_gif_keeps_the_old_file(tmp_path, sig):
     assert WORD[sig] in _last_line(err) and out == ""
     assert old.read_bytes() == b"old animation"
     assert os.listdir(work) == ["x.gif"]  # no temporary file left
+
+
+def test_ctrl_c_while_a_scene_integrates(tmp_path):
+    # #22: Ctrl-C took 8-22 s on `scene --inertia box` (inside the step selection and the run)
+    work = tmp_path / "work"
+    work.mkdir()
+    err_file = tmp_path / "stderr.txt"
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONWARNINGS="ignore")
+    with open(err_file, "w") as err_fh:
+        p = subprocess.Popen([sys.executable, "-m", "hyperrotor.cli", "scene", "--inertia", "box", "--t-end", "1e5",
+                              "--max-seconds", "3600", "--output", "x.png", "--progress"], cwd=work, env=env,
+                             stdout=subprocess.PIPE, stderr=err_fh, text=True)
+        _wait_for(p, lambda: "simulate" in err_file.read_text(), "the integration's progress bar is shown")
+        time.sleep(0.5)
+        latency, out, _ = _stop(p, signal.SIGINT)
+    err = err_file.read_text()
+    assert p.returncode == 130, err
+    assert latency < LATENCY_BOUND
+    assert WORD[signal.SIGINT] in _last_line(err) and out == ""
+    assert os.listdir(work) == []

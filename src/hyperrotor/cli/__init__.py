@@ -174,7 +174,11 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     See the module docstring for the exit statuses and the one-line errors.
     ``--help`` and ``--version`` exit through ``SystemExit(0)`` (argparse).
+    Called as the program (``argv`` None) and stopped by a signal, the process
+    ends right after the one-line report (``os._exit``), within the second the
+    signals promise; called with ``argv`` it returns the status like any function.
     """
+    as_program = argv is None  # the console script and python -m hyperrotor.cli pass no argv
     argv = list(sys.argv[1:] if argv is None else argv)
     prog = "hyperrotor"
     if argv and argv[0] in SUBCOMMANDS:
@@ -182,13 +186,27 @@ def main(argv: Sequence[str] | None = None) -> int:
     _files.forget_written()
     installed = _signals.install(prog)
     try:
-        return _run(argv, prog)
+        code = _run(argv, prog)
     except _signals.Stop as stop:  # a signal in the last moments, after _run's own handlers
-        return _stopped(prog, stop)
+        code = _stopped(prog, stop)
     finally:
         _files.discard_all()
         if installed:
             _signals.restore()
+    if as_program and installed and code in _signals.STATUSES:
+        _exit_now(code)
+    return code
+
+
+def _exit_now(code: int) -> None:
+    """End the program at once after a signal: the interpreter's own exit (tearing down numba, SymPy,
+    matplotlib) can take over a second on a loaded machine, and the promise is a second."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
 
 
 def _written_note() -> str:

@@ -13,11 +13,12 @@ The handler records the signal (a flag) and acts on it at a safe point:
   raises :class:`Stop` at the next safe point.
 
 Either way a watchdog thread, started by the first signal, ends the process
-:data:`GRACE` seconds later if the command has not ended by then (the flag
-was set where no checkpoint comes soon, e.g. during a long compile): it
-removes every unfinished output file (under the lock that serialises commits,
-so a file is complete at its target or absent), reports the signal on stderr
-in one line and exits with the signal's status.
+:data:`GRACE` seconds later if it is still alive (the flag was set where no
+safe point comes soon, e.g. during a long compile; or the interpreter's exit
+waits for worker threads to finish a compiled chunk): it removes every
+unfinished output file (under the lock that serialises commits, so a file is
+complete at its target or absent), reports the signal on stderr in one line
+unless the command already did, and exits with the signal's status.
 """
 from __future__ import annotations
 
@@ -27,7 +28,7 @@ import threading
 
 from hyperrotor.cli import _files
 
-__all__ = ["Stop", "SIGNALS", "GRACE", "install", "restore", "checkpoint", "claim", "message",
+__all__ = ["Stop", "SIGNALS", "STATUSES", "GRACE", "install", "restore", "checkpoint", "claim", "message",
            "bar_shown"]
 
 #: signal -> (exit status, how it is reported).
@@ -37,6 +38,9 @@ SIGNALS = {
 }
 if hasattr(signal, "SIGHUP"):  # POSIX only
     SIGNALS[signal.SIGHUP] = (129, "hung up (SIGHUP)")
+
+#: The exit statuses of the signals.
+STATUSES = frozenset(status for status, _ in SIGNALS.values())
 
 #: Seconds between a signal and the watchdog's exit when the command has not ended by itself.
 GRACE = 0.7
@@ -59,10 +63,11 @@ class Stop(BaseException):
 
 class _State:
     prog = "hyperrotor"
-    signum: int | None = None
-    ended = threading.Event()      # the command has ended (or is reporting): later signals are ignored
+    signum: int | None = None      # the first signal received during the command
+    done = threading.Event()       # the command ended without a signal: the watchdog has nothing to do
+    stopping = False               # a signal is being acted on: later signals are ignored
     bar_shown = False              # a progress bar is on stderr: the watchdog starts a new line
-    reporter = threading.Lock()    # taken by whoever reports the end: the command or the watchdog
+    reporter = threading.Lock()    # taken by whoever reports the signal: the command or the watchdog
     previous: dict = {}
 
 
@@ -85,26 +90,30 @@ def _deferred(frame) -> bool:
 
 
 def _watchdog() -> None:
-    if _State.ended.wait(GRACE) or not _State.reporter.acquire(blocking=False):
+    if _State.done.wait(GRACE):
         return
-    _State.ended.set()
+    # GRACE seconds after the signal the process is still alive: the signal was not acted on (deferred
+    # with no safe point since), or the interpreter's exit waits (worker threads finishing a chunk)
+    _State.stopping = True
     _files.discard_all()
     signum = _State.signum
-    try:
-        line = ("\n" if _State.bar_shown else "") + f"{_State.prog}: {message(signum)}\n"
-        os.write(2, line.encode())
-    except OSError:
-        pass
+    if _State.reporter.acquire(blocking=False):  # the command has not reported it yet
+        try:
+            line = ("\n" if _State.bar_shown else "") + f"{_State.prog}: {message(signum)}\n"
+            os.write(2, line.encode())
+        except OSError:
+            pass
     os._exit(SIGNALS[signum][0])
 
 
 def _handler(signum, frame) -> None:
-    if _State.ended.is_set():
+    if _State.stopping:
         return
     if _State.signum is None:
         _State.signum = signum
         threading.Thread(target=_watchdog, name="hyperrotor-signal-watchdog", daemon=True).start()
     if not _deferred(frame):
+        _State.stopping = True
         raise Stop(_State.signum)
 
 
@@ -112,19 +121,27 @@ def install(prog: str) -> bool:
     """Install the handlers (main thread only; returns False elsewhere, where Python's defaults stay)."""
     if threading.current_thread() is not threading.main_thread():
         return False
-    _State.prog, _State.signum = prog, None
-    _State.ended = threading.Event()
+    _State.prog, _State.signum, _State.stopping = prog, None, False
+    _State.done = threading.Event()
     _State.reporter = threading.Lock()
     _State.previous = {s: signal.signal(s, _handler) for s in SIGNALS}
     return True
 
 
 def restore() -> None:
-    """The command has ended: stop the watchdog (see :func:`claim`) and put the previous handlers back."""
-    claim()
-    for s, old in _State.previous.items():
-        signal.signal(s, old)
-    _State.previous = {}
+    """The command has ended: put the previous handlers back, or, after a signal, keep ignoring signals.
+
+    After a signal the watchdog stays armed: if the interpreter's exit takes
+    longer than :data:`GRACE` (a worker thread finishing its chunk), it ends
+    the process with the signal's status.
+    """
+    if _State.signum is None:
+        _State.done.set()
+        for s, old in _State.previous.items():
+            signal.signal(s, old)
+        _State.previous = {}
+    else:
+        _State.stopping = True
 
 
 def bar_shown(shown: bool) -> None:
@@ -139,8 +156,7 @@ def checkpoint() -> None:
 
 
 def claim() -> bool:
-    """End the signal handling: True for the first caller (it reports), False if the watchdog already does."""
-    got = _State.reporter.acquire(blocking=False)
-    _State.ended.set()
-    return got
+    """The command acts on the signal: True if it reports it, False if the watchdog already does."""
+    _State.stopping = True
+    return _State.reporter.acquire(blocking=False)
 
