@@ -103,6 +103,16 @@ CHECKS: dict[str, dict[str, tuple[str, object]]] = {
         "locked_components_max": ("==", 0.0),
         "sweep_matches_lyapunov": ("==", True),
     },
+    "10_correspondence_in_time": {
+        "lambda_manakov": ("<=", 0.1),
+        "lambda_generic": (">=", 0.5),
+        "manakov_tE_increasing": ("==", True),
+        "generic_tE_increasing": ("==", True),
+        "tE_all_found": ("==", True),
+        "ehrenfest_vs_expm": ("<=", 1e-8),
+        "otoc_vs_expm_rel": ("<=", 1e-9),
+        "otoc_generic_rate": (">=", 1.0),
+    },
 }
 
 
