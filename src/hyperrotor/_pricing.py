@@ -446,12 +446,6 @@ def _euler_equations(N: Any) -> tuple[Cost, ...]:
     return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", n * n * 3.0 * _SYMPY_S),)
 
 
-@model("weyl_dimension", "use a smaller N")
-def _weyl_dimension(N: Any) -> tuple[Cost, ...]:
-    # exact Fraction products over the N^2/4 positive roots, with numbers that grow with N: ~ N^3
-    return (_seconds(f"the Weyl dimension formula of so({N}) in exact fractions", _f(N) ** 3 * 6.6e-7),)
-
-
 @model("plane_symbols")
 def _plane_symbols(N: Any) -> tuple[Cost, ...]:
     n = _n_planes(N)
