@@ -475,3 +475,22 @@ def test_detect_closed_form_tolerance_is_an_option():
     with hr.options(closed_form_rtol=1e-11):
         assert detect_closed_form(I)["kind"] == "quartet"
     assert detect_closed_form(I, rtol=1e-11)["kind"] == "quartet"
+
+
+def test_quartet_frequencies_priced_and_quartet_matrix_vectorised():
+    """quartet_matrix (vectorised) equals its definition A_rc = s_r s_c w_(others[r], others[c]);
+    quartet_frequencies is priced as (N-1)-dimensional eigenproblems (model 'quartet_frequencies')."""
+    import hyperrotor as hr
+
+    N, axis = 7, 3
+    w = np.random.default_rng(3).normal(size=(2, N * (N - 1) // 2))
+    A = quartet_matrix(w, axis)
+    others = [i for i in range(1, N + 1) if i != axis]
+    for r, i in enumerate(others):
+        for c, j in enumerate(others):
+            expected = (1 if i < axis else -1) * (1 if j < axis else -1) * (
+                w[:, plane_index((min(i, j), max(i, j)), N)] * (1 if i < j else -1)) if i != j else 0.0
+            np.testing.assert_array_equal(A[:, r, c], expected)
+    with hr.options(max_seconds=1e-8):  # 2 eigenproblems of dimension 6: ~2e-7 s estimated
+        with pytest.raises(hr.BudgetError, match="quartet_frequencies"):
+            quartet_frequencies(0.5, w, axis)

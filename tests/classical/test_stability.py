@@ -246,3 +246,14 @@ def test_locked_body_keeps_labels():
     assert "I_23 - I_24" in r.condition
     with pytest.raises(ValueError, match="unknown plane"):
         linear_stability(red, (1, 2), 1.0)
+
+
+def test_condition_at_large_n_is_priced_and_uses_only_the_planes_it_needs():
+    """stability_condition builds the 2N - 3 symbols through the plane (named as plane_symbols names them)
+    and is priced (model 'stability_condition'): N = 1000 is refused under a 1 s budget in milliseconds."""
+    cond = stability_condition((1, 3), 4)
+    I = dict(zip(planes(4), hyperrotor.plane_symbols("I", 4)))
+    assert cond == sp.And((I[1, 3] - I[1, 2]) * (I[1, 3] - I[2, 3]) > 0, (I[1, 3] - I[1, 4]) * (I[1, 3] - I[3, 4]) > 0)
+    with hyperrotor.options(max_seconds=1.0):
+        with pytest.raises(hyperrotor.BudgetError, match="stability_condition"):
+            stability_condition((1, 2), 1000)

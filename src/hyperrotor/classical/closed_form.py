@@ -70,7 +70,7 @@ from typing import Any
 
 import numpy as np
 
-from ..conventions import check_dimension, dimension_from_count, plane_index, planes
+from ..conventions import check_dimension, dimension_from_count
 from .. import _pricing, _validate
 from .._lazy import LazyModule
 from .._options import options, register
@@ -177,6 +177,16 @@ def quartet_theta(kappa: float) -> float:
     return (k2 - 1.0) / (k2 + 1.0)
 
 
+@_pricing.model("quartet_frequencies", "use fewer dimensions or fewer initial conditions")
+def _quartet_frequencies_cost(N: Any, batch: Any = 1) -> tuple:
+    """Complex Hermitian eigenvalues of ``batch`` matrices of dimension N - 1 (16 bytes per entry, three
+    copies; ~4 (4/3) d^3 flops at ~1e-10 s each, as the dense diagonalization model of _pricing)."""
+    d, b = float(N) - 1.0, float(batch)
+    return (_pricing.Cost(f"{batch} matrices of dimension {d:.0f}", 48.0 * b * d * d, "max_memory_bytes", "bytes"),
+            _pricing.Cost(f"{batch} eigenvalue problems of dimension {d:.0f}", 1e-10 * 16.0 / 3.0 * b * d**3,
+                          "max_seconds", "seconds"))
+
+
 def _plane_axes(N: int) -> tuple[np.ndarray, np.ndarray]:
     """1-based axes ``(i, j)`` of every plane, in plane order (1, 2), (1, 3), ..., (2, 3), ..."""
     i, j = np.triu_indices(N, 1)
@@ -218,15 +228,15 @@ def quartet_matrix(omega0: Any, axis: int = 5) -> np.ndarray:
     w = _omega0(omega0)
     N = dimension_from_count(w.shape[-1])
     axis = _check_axis(axis, N)
-    others = [i for i in range(1, N + 1) if i != axis]
-    s = np.array([1.0 if i < axis else -1.0 for i in others])
+    others = np.array([i for i in range(1, N + 1) if i != axis])
+    s = np.where(others < axis, 1.0, -1.0)
+    r, c = np.triu_indices(N - 1, 1)  # others is increasing: (r, c) with r < c is the plane (others[r], others[c])
+    p, q = others[r], others[c]
+    planes_rc = (p - 1) * N - (p - 1) * p // 2 + (q - p - 1)  # plane_index, vectorised
+    v = s[r] * s[c] * w[..., planes_rc]
     A = np.zeros(w.shape[:-1] + (N - 1, N - 1))
-    for r, i in enumerate(others):
-        for c, j in enumerate(others):
-            if i < j:
-                v = s[r] * s[c] * w[..., plane_index((i, j), N)]
-                A[..., r, c] = v
-                A[..., c, r] = -v
+    A[..., r, c] = v
+    A[..., c, r] = -v
     return A
 
 
@@ -327,6 +337,7 @@ def quartet_frequencies(kappa: float, omega0: Any, axis: int = 5) -> np.ndarray:
         big = 0.5 * abs(th) * (np.sqrt(p) + np.sqrt(m))
         small = 0.5 * abs(th) * np.abs(np.sqrt(p) - np.sqrt(m))
         return np.stack([big, small], axis=-1)
+    _pricing.check("quartet_frequencies", N=N, batch=int(np.prod(w.shape[:-1])))
     A = quartet_matrix(w, axis)
     lam = np.linalg.eigvalsh(1j * A)  # real, symmetric about 0
     k = (N - 1) // 2
