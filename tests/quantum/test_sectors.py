@@ -383,6 +383,11 @@ def test_errors():
             sector_spectra(irrep(5, (3, 1)), np.ones(10))
     with pytest.raises(ValueError, match="hbar"):
         sector_spectra(irrep(3, (1,)), [1, 2, 3], hbar=0.0)
+    with pytest.raises(ValueError, match="body"):
+        sector_spectra(irrep(3, (1,)), 3.0)
+    with hr.options(max_seconds=1e-3):  # the sparse construction is priced too (model "gt_sectors")
+        with pytest.raises(hr.BudgetError, match="gt_sectors"):
+            symmetry_sectors(irrep(5, (3, 1)))
     with pytest.raises(ValueError, match="so\\(3\\) needs 3"):
         sector_spectra(irrep(3, (1,)), [1, 2, 3, 4, 5, 6])
     with pytest.raises(ValueError, match="workers"):

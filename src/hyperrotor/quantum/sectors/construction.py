@@ -10,7 +10,7 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 from scipy.sparse.csgraph import connected_components
 
-from ... import _validate
+from ... import _pricing, _validate
 from .._gt_monomials import Monomial, gt_rotations
 from .group import Sector, check_dense_dim, group_of
 
@@ -64,9 +64,22 @@ def _orbit_representatives(ops: list[Monomial], dim: int) -> np.ndarray:
     return np.sort(first)
 
 
-def _group_elements(ops: list[Monomial], dim: int) -> list[tuple[np.ndarray, np.ndarray, tuple]]:
-    """Every product D_S of a subset S of the commuting monomials: ``(perm, phase, S)``."""
-    elems = [(np.arange(dim), np.ones(dim, dtype=complex), ())]
+@_pricing.model("gt_sectors", "use a smaller irrep")
+def _gt_sectors_cost(dim, N) -> tuple:
+    """Building the sectors of a GT irrep: ~2^(N-2) sparse passes over the basis and ~2^N characters
+    (measured on the 2-core test machine at load ~10, CPU: so(3) (99999,) 0.65 s, so(5) (20, 10) 0.5 s,
+    so(6) (5, 2, 0) ~0.5 s, so(7) (3, 2, 1) 0.25 s; the model is within a factor 3 of each)."""
+    d, n = float(dim), 2.0 ** (float(N) - 2)
+    return (_pricing.Cost(f"building the symmetry sectors of a dimension-{dim} irrep of so({N})",
+                          3e-6 * d * n + 0.02 * n, "max_seconds", "seconds"),
+            _pricing.Cost(f"the sector bases and monomial group of a dimension-{dim} irrep", 64.0 * d * (n + 4),
+                          "max_memory_bytes", "bytes"))
+
+
+def _group_elements(ops: list[Monomial], reps_idx: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, tuple]]:
+    """Every product D_S of a subset S of the commuting monomials on the orbit representatives:
+    ``(perm, phase, S)`` with ``D_S e_a = phase[j] e_perm[j]`` for ``a = reps_idx[j]``."""
+    elems = [(reps_idx, np.ones(len(reps_idx), dtype=complex), ())]
     for i, D in enumerate(ops):
         elems += [(D.perm[perm], phase * D.phase[perm], S + (i,)) for perm, phase, S in elems]
     return elems
@@ -80,8 +93,8 @@ def _project_monomial(elems: list, eigs: tuple, reps_idx: np.ndarray, dim: int) 
     """
     n, m = len(reps_idx), len(eigs)
     coef = [np.prod([np.conj(eigs[k]) for k in S]) / 2**m for _, _, S in elems]
-    rows = np.concatenate([perm[reps_idx] for perm, _, _ in elems])
-    data = np.concatenate([c * phase[reps_idx] for c, (_, phase, _) in zip(coef, elems)])
+    rows = np.concatenate([perm for perm, _, _ in elems])
+    data = np.concatenate([c * phase for c, (_, phase, _) in zip(coef, elems)])
     V = sps.csc_matrix((data, (rows, np.tile(np.arange(n), len(elems)))), shape=(dim, n))
     V.data[np.abs(V.data) < 1e-12] = 0
     V.eliminate_zeros()
@@ -182,16 +195,17 @@ def symmetry_sectors(rep, *, complete: bool = False) -> list[Sector]:
     """
     rep = _validate.representation("rep", rep)
     complete = _validate.flag("complete", complete)
+    _pricing.check("gt_sectors", dim=rep.dim, N=rep.N)
     return sectors_of(rep, complete)
 
 
 def sectors_of(rep, complete: bool) -> list[Sector]:
-    """:func:`symmetry_sectors` of a checked ``rep`` (trusted core)."""
+    """:func:`symmetry_sectors` of a checked and priced (``"gt_sectors"``) ``rep`` (trusted core)."""
     g = group_of(rep)
     N, dim = rep.N, rep.dim
     if g.monomial:
         reps_idx = _orbit_representatives(g.ops, dim)
-        elems = _group_elements(g.ops, dim)
+        elems = _group_elements(g.ops, reps_idx)
         V = None if g.antiunitary is None else g.antiunitary.matrix()
 
         def project(eigs):

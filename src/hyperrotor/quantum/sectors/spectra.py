@@ -211,7 +211,12 @@ def sector_blocks(H, rep, *, complete: bool = False):
 
 
 def nonempty_blocks(rep, complete: bool):
-    """:func:`sector_blocks` of a checked ``rep`` (trusted: no check of H, for spectrum and evolve)."""
+    """:func:`sector_blocks` of a checked ``rep`` (trusted: no check of H, for spectrum and evolve).
+
+    Over the budget of the construction (``"gt_sectors"``): BudgetError. No usable
+    sectors (mixed tensor/spinor, or over the dense-fallback limit): ``None``.
+    """
+    _pricing.check("gt_sectors", dim=rep.dim, N=rep.N)
     try:
         secs = sectors_of(rep, complete)
     except ValueError:
@@ -362,9 +367,10 @@ def sector_spectra(
     """
     rep = _validate.representation("rep", rep)
     hbar = _validate.hbar(hbar)
-    moments = _validate.moments(body, rep.N)
+    moments = _validate.moments(body, rep.N, name="body")
     workers = 1 if workers is None else _validate.integer("workers", workers, minimum=1)
     progress = _validate.flag("progress", progress, allow_none=True)
+    _pricing.check("gt_sectors", dim=rep.dim, N=rep.N)
     secs = sectors_of(rep, False)
     big = max((s.dim for s in secs), default=0)
     _pricing.check("sector_spectra", dim=big, real=all(s.real for s in secs))
