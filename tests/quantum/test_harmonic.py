@@ -162,3 +162,22 @@ def test_bad_input():
     with pytest.raises(ValueError, match="not a polynomial"):
         sphere_inner_product(1 / xs[0], 1, 3)
     assert Fraction(1, 3) == sphere_monomial_integral((2, 0, 0), normalized=True)
+
+
+def test_sphere_integrals_are_priced_before_any_big_integer_work():
+    """#21 §2: huge exponents / expansions are refused at once; small ones keep their exact values."""
+    import time
+
+    import hyperrotor as hr
+    from hyperrotor.quantum import sphere_inner_product, sphere_monomial_integral
+
+    x, y, z = sp.symbols("x1:4")
+    assert sphere_inner_product((x + y + z) ** 2, x * y, 3, normalized=True) == sp.Rational(2, 15)
+    with hr.options(max_seconds=1):
+        for call in (lambda: sphere_monomial_integral((10**9,) * 3),
+                     lambda: sphere_inner_product(x**10**6, y**10**6, 3),
+                     lambda: sphere_inner_product((x + y + z) ** 10**4, 1, 3)):
+            t0 = time.process_time()
+            with pytest.raises(hr.BudgetError, match="sphere_integral"):
+                call()
+            assert time.process_time() - t0 < 1.0

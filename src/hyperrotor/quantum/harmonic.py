@@ -24,6 +24,7 @@ Polynomials are handled as exact coefficient dicts ``{exponent tuple: c}``
 """
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from functools import lru_cache
 from math import comb, gcd, lcm
@@ -214,9 +215,54 @@ def sphere_monomial_integral(exponents: Any, *, normalized: bool = False):
     a = tuple(_validate.integer("exponents entry", e, minimum=0) for e in exponents)
     if not a or min(a) < 0:
         raise ValueError(f"exponents must be a non-empty sequence of integers >= 0, got {exponents!r}")
+    if len(a) > 1:
+        check_dimension(len(a), name="the number of exponents (N)")
+    _pricing.check("sphere_integral", degree=sum(a))
     mean = _sphere_mean(a, len(a))
     r = sp.Rational(mean.numerator, mean.denominator)
     return r if normalized else sp.simplify(r * _sphere_area(len(a)))
+
+
+@_pricing.model("sphere_integral", "polynomials of lower degree")
+def _sphere_integral_cost(degree: int, terms: int = 1, dense: bool = False) -> tuple:
+    """Seconds of exact sphere means: ~3e-10 * degree^2 per pair of monomials (double factorials of big ints);
+    ``dense=True``: of reading SymPy polynomials first (~5e-6 s per degree, SymPy's dense form, and ~2e-5 s
+    per monomial of the expansion)."""
+    if dense:
+        return (_pricing.Cost(f"reading SymPy polynomials of total degree up to {degree} ({float(terms):.3g} monomials)",
+                              5e-6 * float(degree) + 2e-5 * float(terms), "max_seconds", "seconds"),)
+    return (_pricing.Cost(f"{terms} exact sphere integral(s) of total degree {degree}",
+                          3e-10 * float(terms) * float(degree) ** 2, "max_seconds", "seconds"),)
+
+
+def _size_bound(p: Any, coords: tuple) -> tuple[int, float]:
+    """Upper bounds ``(total degree, number of monomials)`` of ``p`` in the coordinates, from its expression
+    tree (no expansion): sums add, products multiply, powers of sums count like products."""
+    if isinstance(p, Mapping):
+        return max((sum(m) for m in p), default=0), float(len(p))
+    if not isinstance(p, sp.Basic):
+        return 0, 1.0
+    names = {str(x) for x in coords}
+    n = len(coords)
+
+    def cap(d: int, t: float) -> tuple[int, float]:
+        return d, min(t, float(comb(d + n - 1, n - 1)) if d < 10**6 else math.inf)
+
+    def walk(e) -> tuple[int, float]:
+        if isinstance(e, sp.Symbol):
+            return (1, 1.0) if str(e) in names else (0, 1.0)
+        if isinstance(e, sp.Pow) and e.exp.is_Integer and e.exp >= 0:
+            d, t = walk(e.base)
+            k = int(e.exp)
+            return cap(k * d, math.inf if t > 1 and k * math.log2(t) > 1000 else (t ** k if t > 1 else 1.0))
+        parts = [walk(a) for a in e.args]
+        if isinstance(e, sp.Mul):
+            return cap(sum(d for d, _ in parts), min(math.prod(t for _, t in parts), math.inf))
+        if isinstance(e, sp.Add):
+            return cap(max((d for d, _ in parts), default=0), sum(t for _, t in parts))
+        return cap(max((d for d, _ in parts), default=0), max((t for _, t in parts), default=1.0))
+
+    return walk(p)
 
 
 def _as_dict(p: Any, coords: tuple) -> dict:
@@ -256,7 +302,12 @@ def sphere_inner_product(p: Any, q: Any, N: int, coordinates: Any = None, *, nor
     """
     N = check_dimension(N)
     coords = coordinate_symbols(N, coordinates)
-    total = _inner_dicts(_as_dict(p, coords), _as_dict(q, coords), N)
+    (dp, tp), (dq, tq) = _size_bound(p, coords), _size_bound(q, coords)
+    _pricing.check("sphere_integral", degree=dp + dq, terms=tp + tq, dense=True)
+    pd, qd = _as_dict(p, coords), _as_dict(q, coords)
+    _pricing.check("sphere_integral", degree=max(map(sum, pd), default=0) + max(map(sum, qd), default=0),
+                   terms=len(pd) * len(qd))
+    total = _inner_dicts(pd, qd, N)
     total = sp.nsimplify(total) if isinstance(total, float) else _parse.to_sympy(total, "the inner product", text=False)
     return sp.expand(total) if normalized else sp.simplify(total * _sphere_area(N))
 

@@ -58,7 +58,7 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 import scipy.sparse as sps
 
-from .. import _lazy, _validate
+from .. import _lazy, _pricing, _validate
 from .._options import options
 from ..conventions import check_dimension, plane_index, planes, structure_constants
 from .weights import casimir_eigenvalue, check_highest_weight, positive_roots
@@ -76,6 +76,7 @@ def _check_format(format: str) -> str:
 
 def _as_format(M, format: str):
     if format == "dense":
+        _pricing.check("dense_matrix", dim=M.shape[0])
         return M.toarray()
     return M.tocsr() if not sps.isspmatrix_csr(M) else M
 
@@ -348,10 +349,13 @@ class Representation:
         H = self.cartan_generators(form="hermitian", format="csr")
         n = self.rank
         diag = all((Hk - sps.diags(Hk.diagonal())).count_nonzero() == 0 for Hk in H)
-        if diag:
+        if diag:  # e.g. every Gelfand-Tsetlin irrep: no dense work unless the vectors are asked for
             w = np.stack([Hk.diagonal().real for Hk in H], axis=1) if n else np.zeros((self.dim, 0))
-            V = np.eye(self.dim, dtype=complex)
+            if return_vectors:
+                _pricing.check("dense_matrix", dim=self.dim)
+                V = np.eye(self.dim, dtype=complex)
         else:
+            _pricing.check("dense_diagonalization", dim=self.dim)
             bound = max(float(abs(Hk).sum(axis=1).max()) for Hk in H)
             R = 4 * (int(np.ceil(bound)) + 1) + 1
             Hc = sum((float(R) ** (-k)) * Hk.toarray() for k, Hk in enumerate(H))
@@ -360,7 +364,7 @@ class Representation:
         w2 = np.rint(2 * w) / 2
         if w.size and np.max(np.abs(w - w2)) > 1e-6:
             raise ArithmeticError(f"weights of {self.name} are not half-integers (max deviation {np.max(np.abs(w - w2)):.2e})")
-        return (w2, V) if return_vectors else w2
+        return (w2, V) if return_vectors else w2  # noqa: F821 (V exists whenever return_vectors)
 
     def weight_multiplicities(self) -> dict[tuple[Fraction, ...], int]:
         """``{weight: multiplicity}`` from :meth:`weights` (compare :func:`.weights.weight_multiplicities`)."""
