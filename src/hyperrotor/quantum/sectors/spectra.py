@@ -15,8 +15,7 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 
 from ... import _pricing, _validate
-from ..hamiltonian import hermitian_matrix, rotor_hamiltonian
-from ..representation import as_csr
+from ..hamiltonian import hermitian_matrix, rotor_matrix
 from .construction import sectors_of
 from .group import Sector
 
@@ -304,7 +303,7 @@ def _cached_problem(spec):
 
 def rotor_csr(rep, moments: np.ndarray, hbar) -> sps.csr_matrix:
     r""":math:`-\hbar^2 \sum X^2/(2I)` as CSR (the matrix of ``rotor_hamiltonian``; checked inputs)."""
-    return as_csr(rotor_hamiltonian(rep, moments, hbar=hbar), "H")
+    return rotor_matrix(rep.generators(format="csr"), moments, hbar)
 
 
 def sector_spectra(
