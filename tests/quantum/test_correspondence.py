@@ -30,6 +30,15 @@ from hyperrotor.quantum import evolve, rotor_hamiltonian
 from tolerance import norm, scaled_tol
 
 
+@pytest.fixture(autouse=True)
+def _one_blas_thread():
+    """Small dense products on one BLAS thread: threads only oversubscribe the shared test machine."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        yield
+
+
 def _reps():
     return [
         pytest.param(lambda: vector_rep(3), id="vector3"),

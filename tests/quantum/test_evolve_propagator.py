@@ -14,6 +14,15 @@ from hyperrotor.quantum import SectorPropagator, evolve, irrep, rotor_hamiltonia
 from tolerance import scaled_tol
 
 
+@pytest.fixture(autouse=True)
+def _one_blas_thread():
+    """The dense references on one BLAS thread: threads only oversubscribe the shared test machine."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        yield
+
+
 def _generic(rng, hw=(3, 1)):
     rep = irrep(5, hw)
     return rep, rotor_hamiltonian(rep, rng.uniform(1.0, 2.0, size=10))

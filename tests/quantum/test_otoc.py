@@ -13,6 +13,15 @@ import hyperrotor as hr
 from hyperrotor.quantum import irrep, otoc, rotor_hamiltonian
 
 
+@pytest.fixture(autouse=True)
+def _one_blas_thread():
+    """The dense references on one BLAS thread: threads only oversubscribe the shared test machine."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        yield
+
+
 @pytest.fixture(scope="module")
 def problem():
     rng = np.random.default_rng(7)
