@@ -4,6 +4,7 @@ from __future__ import annotations
 from typing import Any, NamedTuple
 
 import numpy as np
+import scipy.sparse as sps
 
 from .. import _pricing, _validate
 from .._options import options
@@ -91,9 +92,11 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
     parts = nonempty_blocks(rep, False)  # mat and rep are checked by spectrum
     if parts is None:
         return None
+    # priced once, by the largest sector, before any work (the sectors of GT irreps are real blocks)
+    _pricing.check("dense_diagonalization", dim=max((basis.shape[1] for basis, _, _ in parts), default=0),
+                   complex=not all(sps.issparse(basis) for basis, _, _ in parts))
     evs = []
     for basis, degeneracy, _ in parts:
-        _pricing.check("dense_diagonalization", dim=basis.shape[1])
         block = restrict(mat, basis)  # mat is checked; real symmetric for GT irreps (cheaper eigvalsh)
         e = np.linalg.eigvalsh(block)
         evs.append(np.repeat(e, int(degeneracy)))
