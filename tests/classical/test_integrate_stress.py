@@ -19,7 +19,7 @@ EPS = np.finfo(float).eps
 
 
 def invariants(L):
-    M = to_matrix(L, "standard")
+    M = to_matrix(L, convention="standard")
     M2 = M @ M
     return np.trace(M2, axis1=-2, axis2=-1), np.trace(M2 @ M2, axis1=-2, axis2=-1)
 

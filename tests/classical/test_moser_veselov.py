@@ -52,7 +52,7 @@ def test_the_moser_veselov_relations_hold_step_by_step(rng):
     body = RigidBody(Inertia.from_mass_tensor(J5), convention="standard")
     tr = simulate(body, w0, t, method="moser-veselov", dt=h, attitude=True)
     assert tr.stats["steps"] == 40
-    L = to_matrix(tr.L, "standard")
+    L = to_matrix(tr.L, convention="standard")
     T = tr.attitude
     scale = np.abs(L).max() * h
     for k in range(40):
@@ -66,7 +66,7 @@ def test_casimirs_orthogonality_and_energy_to_round_off(rng):
     w0 = rng.normal(size=10)
     t = np.linspace(0, 500, 501)
     tr = simulate(body, w0, t, method="moser-veselov", dt=0.02, attitude=True)  # 25,000 steps
-    M = to_matrix(tr.L, "standard")
+    M = to_matrix(tr.L, convention="standard")
     M2 = M @ M
     c2 = np.trace(M2, axis1=-2, axis2=-1)
     c4 = np.trace(M2 @ M2, axis1=-2, axis2=-1)

@@ -35,7 +35,7 @@ def cheap_kw(method, rtol=1e-8):
 
 
 def casimirs(L):
-    M = to_matrix(L, "standard")
+    M = to_matrix(L, convention="standard")
     M2 = M @ M
     return np.trace(M2, axis1=-2, axis2=-1), np.trace(M2 @ M2, axis1=-2, axis2=-1)
 
@@ -375,11 +375,6 @@ def test_scipy_progress_bar_follows_the_time_covered_and_changes_nothing(method,
 @pytest.mark.slow
 def test_ctrl_c_interrupts_a_long_run(tmp_path):
     """SIGINT to a process in a long compiled run raises KeyboardInterrupt there (chunks)."""
-    import os
-    import signal
-    import subprocess
-    import sys
-
     code = (
         "import numpy as np, sys, hyperrotor as hr\n"
         "body = hr.RigidBody(hr.Inertia.from_mass_tensor([0.3, 0.55, 0.9, 1.4, 2.1]))\n"
@@ -392,20 +387,31 @@ def test_ctrl_c_interrupts_a_long_run(tmp_path):
         "    sys.exit(3)\n"
         "print('finished', flush=True)\n"
     )
+    out = _interrupted(code, wait=1.0)
+    assert "interrupted" in out
+
+
+def _interrupted(code: str, wait: float) -> str:
+    """Run ``code`` in a child process, SIGINT it ``wait`` s after it prints 'running'; its stdout
+    (the child must exit with status 3 on KeyboardInterrupt)."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             env={**os.environ, "PYTHONUNBUFFERED": "1"})
     try:
         assert proc.stdout.readline().strip() == "running"
-        import time
-
-        time.sleep(1.0)
+        time.sleep(wait)
         proc.send_signal(signal.SIGINT)
         out, err = proc.communicate(timeout=60)  # a guard against a hang, not a timing assertion
     finally:
         if proc.poll() is None:
             proc.kill()
     assert proc.returncode == 3, (out, err)
-    assert "interrupted" in out
+    return out
 
 
 def test_a_slow_request_is_announced_before_it_runs():
@@ -458,3 +464,148 @@ def test_scipy_runs_projected_over_the_budget_are_refused_early(method):
     one = hr.simulate(MOM3, W3, [0.0, 200.0], method=method, rtol=1e-10).stats["nfev"]
     with pytest.raises(StepBudgetError, match="would need about"):
         hr.simulate(MOM3, np.tile(W3, (50, 1)), [0.0, 200.0], method=method, rtol=1e-10, max_steps=10 * one)
+
+
+# ----------------------------------------------------------------------------- step control inside the run (#22)
+def _random_generic5(seed):
+    """Ten independent plane moments, log-uniform in [0.3, 3] (no mass tensor behind them), max|omega0| = 1."""
+    r = np.random.default_rng(seed)
+    moments = np.exp(r.uniform(np.log(0.3), np.log(3.0), 10))
+    w0 = r.normal(size=10)
+    return moments, w0 / np.abs(w0).max()
+
+
+@pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-10])
+def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol):
+    """The whole-run bound over random generic 5D bodies, T = 20, against the same splitting at a
+    step 40x shorter, compensated (its own error is ~1e-13 relative, far below the rtols here)."""
+    t = np.linspace(0.0, 20.0, 41)
+    worst = 0.0
+    for seed in range(10):
+        moments, w0 = _random_generic5(1000 + seed)
+        Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, compensated=True).L
+        tr = hr.simulate(moments, w0, t, rtol=rtol)
+        worst = max(worst, np.abs(tr.L - Lref).max() / np.abs(Lref).max() / rtol)
+    assert worst <= 1.0, worst
+
+
+def test_every_step_of_the_call_counts_against_max_steps():
+    """Probes and the check are work: a budget that covers the run alone but not them is refused up front."""
+    moments, w0 = _random_generic5(4)
+    t = np.linspace(0.0, 20.0, 11)
+    tr = hr.simulate(moments, w0, t, method="splitting8", rtol=1e-9)
+    assert tr.stats["reruns"] == 0 and tr.stats["work"] > tr.stats["steps"]  # run + probes + check, one member
+    with pytest.raises(StepBudgetError, match="its check and the step control's probes") as info:
+        hr.simulate(moments, w0, t, method="splitting8", rtol=1e-9, max_steps=tr.stats["steps"])
+    assert info.value.option == "max_steps" and info.value.budget == tr.stats["steps"]
+    assert info.value.needed > tr.stats["steps"]
+    # the estimate before the run prices exactly this work (the probes are deterministic)
+    from hyperrotor.classical.simulate import estimate_cost
+
+    cost = estimate_cost(moments, w0, t, method="splitting8", rtol=1e-9)
+    assert (cost.steps, cost.method) == (tr.stats["work"], "splitting8")
+    assert cost.dt == pytest.approx(tr.stats["dt"], rel=1e-12) and cost.seconds > 0
+
+
+def test_a_failed_check_reruns_at_a_shorter_step(monkeypatch):
+    """A probe that guesses a step 8x too long: the check inside the run sees the error and the
+    call re-runs at a step that meets rtol (the numbers equal a fixed-step run at that step)."""
+    from hyperrotor.classical.solvers import step_control
+
+    moments, w0 = _random_generic5(3)
+    t = np.linspace(0.0, 20.0, 21)
+    first_step = step_control.ErrorTarget.first_step
+    monkeypatch.setattr(step_control.ErrorTarget, "first_step", lambda self, *a: 8.0 * first_step(self, *a))
+    tr = hr.simulate(moments, w0, t, method="splitting8", rtol=1e-9)
+    Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, compensated=True).L
+    assert np.abs(tr.L - Lref).max() <= 1e-9 * np.abs(Lref).max()
+    again = hr.simulate(moments, w0, t, method="splitting8", dt=tr.stats["dt"], compensated=tr.stats["compensated"])
+    np.testing.assert_array_equal(tr.L, again.L)
+
+
+def test_an_unreachable_rtol_on_a_chaotic_orbit_says_so():
+    """Chaotic 5D orbit, long run, tight rtol: the error grows like exp(lambda t); the call names the
+    growth and the reachable accuracy instead of grinding or missing the bound silently."""
+    moments, w0 = _random_generic5(2)
+    t = np.linspace(0.0, 100.0, 11)
+    with pytest.raises(StepBudgetError, match=r"grows like exp\(lambda t\) .* reachable accuracy about") as info:
+        hr.simulate(moments, w0, t, method="splitting8", rtol=1e-10, max_steps=10**5)
+    assert info.value.needed > info.value.budget == 10**5
+
+
+@pytest.mark.slow
+def test_ctrl_c_interrupts_the_step_selection(tmp_path):
+    """SIGINT while the step control probes (its window made long on purpose): KeyboardInterrupt from
+    the probe, promptly (the child measures the delay between the signal and the exception)."""
+    code = (
+        "import numpy as np, signal, sys, time, hyperrotor as hr\n"
+        "from hyperrotor.classical.solvers import step_control\n"
+        "m = np.exp(np.random.default_rng(1).uniform(np.log(0.3), np.log(3.0), 10))\n"
+        "hr.simulate(m, np.ones(10), [0.0, 0.1], method='splitting8', dt=0.01)  # JIT\n"
+        "step_control.PROBE_TURNS = 1.5e5  # a probe of ~1.5e5 steps of 8 members (seconds)\n"
+        "w = np.random.default_rng(2).normal(size=(8, 10))\n"
+        "got = []\n"
+        "signal.signal(signal.SIGINT, lambda *a: (got.append(time.perf_counter()), signal.default_int_handler(*a)))\n"
+        "print('running', flush=True)\n"
+        "try:\n"
+        "    hr.simulate(m, w, [0.0, 1e9], method='splitting8', rtol=1e-6, max_steps=10**15)\n"
+        "except KeyboardInterrupt as exc:\n"
+        "    import traceback\n"
+        "    where = ''.join(traceback.format_tb(exc.__traceback__))\n"
+        "    print('interrupted', 'first_step' in where, f'{time.perf_counter() - got[0]:.3f}', flush=True)\n"
+        "    sys.exit(3)\n"
+    )
+    word, in_probe, delay = _interrupted(code, wait=1.5).split()
+    assert word == "interrupted" and in_probe == "True"
+    # within about one chunk (options["chunk_seconds"] = 0.25 s); generous for a loaded machine
+    assert float(delay) < 2.0, delay
+
+
+def test_trajectories_pickle_and_deep_copy_with_dense_output_and_events(rng):
+    """Every method: a Trajectory (dense output, events, a callable torque for scipy) round-trips."""
+    import copy
+    import pickle
+
+    t = np.linspace(0.0, 6.0, 4)
+    for method in ALL:
+        kw = dict(cheap_kw(method, 1e-6), events=_middle_axis)
+        if SOLVERS[method].supports_torque == "any":
+            kw["torque"] = _damping
+        tr = hr.simulate(MOM3, W3, t, method=method, attitude=True, **kw)
+        for other in (pickle.loads(pickle.dumps(tr)), copy.deepcopy(tr)):
+            np.testing.assert_array_equal(other.L, tr.L)
+            np.testing.assert_array_equal(other.attitude, tr.attitude)
+            np.testing.assert_array_equal(other.t_events[0], tr.t_events[0])
+            np.testing.assert_array_equal(other.sol([1.3, 4.1]), tr.sol([1.3, 4.1]))
+            assert other.stats == tr.stats
+
+
+def _damping(tt, w):  # module level: a picklable torque
+    return -0.05 * w
+
+
+def _middle_axis(tt, L):  # module level: a picklable event function
+    return L[1]
+
+
+def test_scipy_atol_is_solve_ivps_atol():
+    """atol goes to solve_ivp as given (omega0 of order one: no rescaling); fixed-step methods refuse it."""
+    from scipy.integrate import solve_ivp
+
+    body = RigidBody(MOM3)
+    w0 = W3 / np.abs(W3).max()  # max|omega0| = 1: the scaled problem is the problem
+    t = np.linspace(0.0, 10.0, 6)
+    for atol in (1e-3, [1e-12, 1e-10, 1e-11]):
+        tr = hr.simulate(body, w0, t, method="RK45", rtol=1e-6, atol=atol)
+        ref = solve_ivp(lambda tt, y: body.rhs(y), (0.0, 10.0), w0, method="RK45", t_eval=t, rtol=1e-6,
+                        atol=np.broadcast_to(atol, (3,)), max_step=4.0)
+        np.testing.assert_allclose(tr.omega, ref.y.T, rtol=0, atol=scaled_tol(1.0, k=4, dim=3, steps=ref.nfev))
+    with pytest.raises(ValueError, match="atol is the absolute tolerance of the scipy methods"):
+        hr.simulate(body, w0, t, method="splitting4", atol=1e-3)
+    with pytest.raises(ValueError, match="atol must be a number >= 0 or 3 of them"):
+        hr.simulate(body, w0, t, method="RK45", atol=[1e-3, 1e-3])
+
+
+def test_simulate_takes_everything_after_t_by_keyword():
+    with pytest.raises(TypeError, match="positional"):
+        hr.simulate(MOM3, W3, [0.0, 1.0], "splitting4")

@@ -19,16 +19,17 @@ from __future__ import annotations
 
 import time
 from functools import lru_cache
-from typing import Any, Callable
+from typing import Any, Callable, NamedTuple
 
 import numpy as np
 
-from hyperrotor import _validate
-from hyperrotor._options import options
+from hyperrotor import _pricing, _validate
+from hyperrotor._options import options, register
 from hyperrotor.conventions import dimension_from_count
 
 from .solvers import SOLVERS, FixedStepSolver, Problem, ScipyIVP, Solver, solver_for
 from .solvers.base import power_of_two_scale
+from .solvers.chunks import Work, cost_key, seconds_per_flow
 from .solvers.step_control import ErrorTarget, FixedStep, StepBudgetError
 
 __all__ = ["simulate", "Trajectory", "SIMULATION_METHODS"]
@@ -42,11 +43,19 @@ MAX_SCALED_MOMENTUM = 1e150
 #: smallest time scale: scaled times t * s stay normal numbers even for |omega| in the subnormal range
 #: (below it the scaled momenta, not the times, carry the smallness)
 MIN_SCALE = 2.0 ** -960
-#: rtol when neither ``rtol`` nor ``dt`` is given
-DEFAULT_RTOL = 1e-9
-#: ``method="auto"``: the splitting order for rtol at least these values (order 8 below the last);
-#: from the work-precision benchmark (order 8 is the cheapest from ~1e-6 down)
-AUTO_ORDER = ((1e-2, "splitting2"), (1e-4, "splitting4"), (1e-7, "splitting6"))
+register(
+    "simulate_rtol", 1e-9,
+    "rtol of hyperrotor.simulate when neither rtol nor dt is given: a bound on the whole-run error of the "
+    "fixed-step methods (max_t |L - L_exact| <= rtol max_t |L|), scipy's local tolerance for the scipy "
+    "methods. 1e-9 costs splitting8 about 1.5x the steps of 1e-6 and stays well above round-off.",
+    check=lambda key, v: _validate.positive(key, v),
+)
+
+#: ``method="auto"``: ``(rtol at least, method)`` from the registry's ``auto_rtol`` (largest first): the
+#: first row whose bound ``rtol`` meets is chosen (from the work-precision benchmark: order 8 is the
+#: cheapest from ~1e-7 down, order 2 only above 1e-2)
+AUTO_ORDER = tuple(sorted(((cls.auto_rtol, name) for name, cls in SOLVERS.items() if cls.auto_rtol is not None),
+                          reverse=True))
 
 
 class Trajectory:
@@ -77,7 +86,9 @@ class Trajectory:
         ``method``, ``order``, ``steps`` (steps per trajectory of a fixed-step method,
         ``None`` for scipy), ``nfev`` (scipy, summed over the ensemble), ``dt`` (largest
         step used), ``rtol``, ``status`` (``"finished"`` or ``"terminated by event"``),
-        ``chunks`` (compiled calls of the run), ``wall_time`` (s); for the splittings also
+        ``chunks`` (compiled calls of the run), ``wall_time`` (s); for the fixed-step
+        methods also ``work`` (every step of the call times the members it advanced: run,
+        probes, check, re-runs) and ``reruns`` (re-runs after a failed check); for the splittings also
         ``flows_per_step`` (elementary plane flows in one step), ``casimir_shift`` and
         ``compensated`` (see :mod:`hyperrotor.classical.solvers.splitting`).
     """
@@ -181,6 +192,17 @@ def _signs(N: int, convention: str, axes: tuple | None) -> np.ndarray:
     return S
 
 
+class _ScaledTorque:
+    """A callable torque ``torque(t, omega)`` in scaled units (a plain object: it pickles with the run)."""
+
+    def __init__(self, torque: Callable, s: float):
+        self.torque, self.s = torque, s
+
+    def __call__(self, tt, w):
+        s = self.s
+        return np.asarray(self.torque(tt / s, w * s), dtype=float) / (s * s)
+
+
 def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Problem, np.ndarray]:
     """Check and normalise the inputs once (scaled units, see :mod:`.solvers.base`)."""
     moments = _validate.moments(body, name="body")
@@ -209,8 +231,7 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Probl
     tq = None
     if torque is not None:
         if callable(torque):
-            def tq(tt, w, _f=torque, _s=s):
-                return np.asarray(_f(tt / _s, w * _s), dtype=float) / (_s * _s)
+            tq = _ScaledTorque(torque, s)
         else:
             tq = _validate.finite_array("torque", torque)
             if tq.ndim == 0 or tq.shape[-1] != n:
@@ -252,36 +273,55 @@ def _choose_solver(method, rtol, dt, torque, solver_options) -> Solver:
         elif rtol is None and dt is not None:
             method = "splitting4"
         else:
-            r = DEFAULT_RTOL if rtol is None else rtol
-            method = next((name for bound, name in AUTO_ORDER if r >= bound), "splitting8")
+            r = options["simulate_rtol"] if rtol is None else rtol
+            method = next(name for bound, name in AUTO_ORDER if r >= bound)
     elif isinstance(method, str) and method.lower() not in _LOWER_NAMES:
         raise ValueError(f"unknown method {method!r}; allowed: {', '.join(map(repr, SIMULATION_METHODS))}")
     return solver_for(method, **solver_options)
 
 
-def _step_control(solver: Solver, rtol: float | None, dt: float | None) -> FixedStep | ErrorTarget:
-    """``dt`` (fixed-step methods only) or ``rtol`` (default :data:`DEFAULT_RTOL`), not both."""
+def _atol(atol: Any, problem: Problem) -> np.ndarray | None:
+    """``atol`` checked (finite, >= 0; scalar or one per plane) and in scaled units, or ``None``."""
+    if atol is None:
+        return None
+    a = _validate.finite_array("atol", atol)
+    if a.ndim > 1 or (a.ndim == 1 and a.size != problem.n) or np.any(a < 0):
+        raise ValueError(f"atol must be a number >= 0 or {problem.n} of them (one per plane), got {_validate.fmt(atol)}")
+    return np.broadcast_to(a, (problem.n,)) / problem.scale
+
+
+def _step_control(solver: Solver, rtol: float | None, dt: float | None, atol: Any = None) -> FixedStep | ErrorTarget:
+    """``dt`` (fixed-step methods only) or ``rtol`` (default ``options["simulate_rtol"]``), not both;
+    ``atol`` (checked, scaled) for scipy methods only."""
     if isinstance(solver, ScipyIVP):
         if dt is not None:
-            raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {solver.name!r} takes rtol only")
-    elif dt is not None and rtol is not None:
+            raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {solver.name!r} takes "
+                             f"rtol and atol")
+        control = ErrorTarget(options["simulate_rtol"] if rtol is None else rtol)
+        control.atol = atol
+        return control
+    if atol is not None:
+        raise ValueError(f"atol is the absolute tolerance of the scipy methods; {solver.name!r} takes rtol (a bound "
+                         f"on the whole-run error relative to max|L|) or dt")
+    if dt is not None and rtol is not None:
         raise ValueError(f"give either dt (fixed step) or rtol (step chosen from the accuracy) for "
                          f"{solver.name!r}, not both (got dt={_validate.fmt(dt)}, rtol={_validate.fmt(rtol)})")
     elif dt is not None:
         return FixedStep(dt)
-    return ErrorTarget(DEFAULT_RTOL if rtol is None else rtol)
+    return ErrorTarget(options["simulate_rtol"] if rtol is None else rtol)
 
 
 def simulate(
     body: Any,
     omega0: Any,
     t: Any,
+    *,
     method: str | Solver = "auto",
     rtol: float | None = None,
+    atol: Any = None,
     dt: float | None = None,
     attitude: bool | Any = False,
     torque: Callable | Any | None = None,
-    *,
     events: Callable | list | None = None,
     max_steps: int | None = None,
     progress: bool | None = None,
@@ -311,10 +351,22 @@ def simulate(
     rtol : float, optional
         requested accuracy. Fixed-step methods (splittings, Moser-Veselov): a bound on the
         whole-run error, :math:`\max_t\|L - L_\text{exact}\|_\infty \le \mathrm{rtol}\max_t\|L\|_\infty`
-        (and the same for :math:`\omega`), met by the step chosen once before the run
-        (:mod:`hyperrotor.classical.solvers.step_control`). scipy methods: scipy's *local*
-        tolerance (the global error is typically 10-1000 times larger over long runs).
-        Default ``1e-9`` when neither ``rtol`` nor ``dt`` is given.
+        (and the same for :math:`\omega`): a probe chooses the step, the run checks its own
+        error as it goes (Richardson's estimate against a companion run with longer steps) and
+        is re-run at a shorter step when the check fails
+        (:mod:`hyperrotor.classical.solvers.step_control`); an orbit whose error grows
+        exponentially (chaotic) so that ``rtol`` is out of reach within the budget is refused
+        with the estimated growth :math:`e^{\lambda T}` and the reachable accuracy. scipy
+        methods: scipy's *local* tolerance (the global error is typically 10-1000 times larger
+        over long runs). Default ``hyperrotor.options["simulate_rtol"]`` (1e-9) when neither
+        ``rtol`` nor ``dt`` is given.
+    atol : float or array_like (n_planes,), optional
+        scipy methods only: absolute tolerance of ``solve_ivp`` on the angular velocities
+        :math:`\omega_{ij}` (units of ``omega0``), as in :func:`scipy.integrate.solve_ivp`
+        (each step keeps its error estimate below ``atol + rtol * |omega|``); the attitude
+        entries keep ``rtol``. Default: ``rtol * min(max|omega0|, |L0| / I_ij)`` per
+        component (errors in :math:`\omega` below ``rtol max|omega0|`` and in ``L`` below
+        ``rtol |L0|``).
     dt : float, optional
         largest step of a fixed-step method; each output interval is split into
         ``ceil(|gap| / dt)`` equal steps, so output times are hit exactly. Not with
@@ -335,10 +387,11 @@ def simulate(
         momenta of the run without events, bit for bit), events must be non-terminal, and
         ``t_events[e][m]`` is the array of member ``m`` (flattened batch order).
     max_steps : int, optional
-        budget of the run (steps per trajectory times members; scipy: right-hand-side
+        budget of the call (every step taken times the members it advances: the run, and
+        with ``rtol`` the step control's probes and check; scipy: right-hand-side
         evaluations); default ``hyperrotor.options["max_steps"]``. A run estimated above it
         is refused before it starts (:class:`~hyperrotor.classical.solvers.StepBudgetError`,
-        naming the estimate). The output memory is bounded by
+        naming the estimate; :func:`estimate_cost` prices a call without running it). The output memory is bounded by
         ``hyperrotor.options["max_output_bytes"]``.
     progress : bool or None, optional
         show a tqdm progress bar (``None``: only on a terminal, for runs longer than ~1 s).
@@ -360,16 +413,19 @@ def simulate(
     ------
     ValueError
         unknown method, non-finite or mis-shaped inputs, ``t`` not strictly monotonic,
-        inconsistent batch axes, conflicting ``dt``/``rtol``, a torque the method cannot
-        integrate; :class:`~hyperrotor.classical.solvers.StepBudgetError` (a ValueError)
-        for a run over budget.
+        inconsistent batch axes, conflicting ``dt``/``rtol``, ``atol`` for a fixed-step
+        method, a torque the method cannot integrate;
+        :class:`~hyperrotor.classical.solvers.StepBudgetError` (a ValueError) for a run over
+        budget; :class:`~hyperrotor.classical.solvers.step_control.UnreachableAccuracyError`
+        when re-runs at shorter steps do not meet ``rtol`` (chaotic orbit, round-off).
     TypeError
         non-numeric input, an unknown option of the method.
     RuntimeError
         ``"moser-veselov"`` with a step too long for its implicit equation; a scipy method
         that fails. ``FloatingPointError``: the solution left double precision.
     KeyboardInterrupt
-        Ctrl-C, honoured within about ``options["chunk_seconds"]``.
+        Ctrl-C, honoured within about ``options["chunk_seconds"]`` in every phase (the step
+        control's probes and check run in chunks too).
 
     Examples
     --------
@@ -385,7 +441,8 @@ def simulate(
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, solver_options)
     problem, t_user = _problem(body, omega0, t, attitude, torque, options["max_output_bytes"])
-    control = _step_control(solver, rtol, dt)
+    _pricing.check("simulate", N=problem.N)
+    control = _step_control(solver, rtol, dt, _atol(atol, problem))
     if events is not None and problem.batch:
         if client is not None:
             raise ValueError("events= on an ensemble runs in this process, member by member: drop client= (or "
@@ -423,3 +480,72 @@ def _trajectory(solver, problem, control, res, t_user, wall) -> Trajectory:
     events = (res.t_events, res.L_events, res.T_events) if res.t_events is not None else None
     return Trajectory(t_user[:K], omega, L, att, problem.body, problem.moments, stats, dense=res.dense, scale=s,
                       signs=problem.signs, events=events)
+
+
+class RunCost(NamedTuple):
+    """What :func:`estimate_cost` expects a :func:`simulate` call to cost."""
+
+    #: integration steps of the whole call, summed over the members: the run, its check and the
+    #: step control's probes (``None`` for scipy methods, whose steps are not known in advance)
+    steps: int | None
+    #: estimated wall time (s) on this machine, from the measured cost per flow of the compiled
+    #: kernel (probes, earlier runs) or a default of 10 ns per flow before anything was timed
+    seconds: float | None
+    #: the step a fixed-step method will take (user time units), ``None`` for scipy methods
+    dt: float | None
+    #: the method ``method="auto"`` resolves to
+    method: str
+
+
+def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "auto", rtol: float | None = None,
+                  dt: float | None = None, attitude: bool | Any = False, torque: Any = None,
+                  max_steps: int | None = None, **solver_options: Any) -> RunCost:
+    """Price a :func:`simulate` call before running it (for budgets such as the CLI's ``--max-seconds``).
+
+    Same arguments as :func:`simulate`. With ``dt`` nothing is integrated; with ``rtol`` the
+    step control's probe runs (a short leading window, a small fraction of the run, chunked
+    and counted against ``max_steps``). The run's check (a companion run of up to
+    :data:`~.solvers.step_control.PROBE_MEMBERS` members at steps
+    :data:`~.solvers.step_control.COMPANION_RATIO` times longer) is included; re-runs after a
+    failed check are not (they are rare). scipy methods: ``steps``, ``seconds`` and ``dt`` are
+    ``None``.
+
+    Raises :class:`~.solvers.StepBudgetError` when the probe alone exceeds ``max_steps``
+    (default ``hyperrotor.options["max_steps"]``), and the errors of :func:`simulate` for bad
+    input.
+
+    Examples
+    --------
+    >>> cost = estimate_cost([2.0, 3.0, 4.0], [0.1, 1.0, 0.2], [0.0, 100.0], dt=0.01)
+    >>> cost.steps, cost.method
+    (10000, 'splitting4')
+    """
+    import warnings
+
+    max_steps = options["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
+    rtol = _validate.positive("rtol", rtol, allow_none=True)
+    dt = _validate.positive("dt", dt, allow_none=True)
+    solver = _choose_solver(method, rtol, dt, torque, solver_options)
+    problem, _ = _problem(body, omega0, t, attitude, torque, options["max_output_bytes"])
+    control = _step_control(solver, rtol, dt)
+    if not isinstance(solver, FixedStepSolver):
+        return RunCost(None, None, None, solver.name)
+    from .solvers.base import nsub_for
+
+    solver.check(problem)
+    solver.prepare(problem)
+    if problem.t.size < 2 or problem.B == 0:
+        return RunCost(0, 0.0, None, solver.name)
+    work = Work(max_steps)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # the slow-run warning: the caller prices the run itself
+        h = control.first_step(solver, problem, work)
+    nsub = nsub_for(problem.t, h)
+    run = float(nsub.sum()) * problem.B
+    if hasattr(solver, "set_accuracy"):  # the kernel variant the run will use (its cost per flow)
+        solver.set_accuracy(problem, control.rtol, int(nsub.sum()))
+    check = control.checker(solver, problem, nsub, work)
+    total = work.done + run + (check.planned_steps if check is not None else 0)
+    seconds = total * solver.flows_per_step(problem) * seconds_per_flow(cost_key(solver, problem))
+    return RunCost(int(total), float(seconds), float(np.abs(np.diff(problem.t) / nsub).max()) / problem.scale,
+                   solver.name)

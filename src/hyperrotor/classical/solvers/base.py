@@ -10,7 +10,10 @@ A run is split the way scipy's ``solve_ivp`` (``OdeSolver``) and diffrax
   ``preserves`` (invariants kept to round-off, and whether the map is symplectic /
   time-reversible), ``adaptive`` and its own options (``Solver.option_docs``;
   unknown options are an error naming the allowed ones);
-* a step control (:mod:`.step_control`): a fixed ``dt`` or an error target ``rtol``.
+* a step control (:mod:`.step_control`): a fixed ``dt`` or an error target ``rtol``;
+* the fixed-step methods share one run loop (:mod:`.driver`, :class:`~.driver.FixedStepSolver`).
+
+This module is a leaf of the package (it imports no other solver module).
 
 Scaled units
 ------------
@@ -33,7 +36,7 @@ import numpy as np
 from hyperrotor import _validate
 from hyperrotor._pricing import BudgetError
 
-__all__ = ["Problem", "Solver", "FixedStepSolver", "StepBudgetError"]
+__all__ = ["Problem", "Solver", "RunResult", "StepBudgetError", "nsub_for", "step_lengths", "power_of_two_scale"]
 
 
 @dataclass
@@ -122,6 +125,12 @@ class Solver:
         from ``dt`` or ``rtol``).
     supports_torque : {"none", "constant", "any"}
         which torques the method integrates.
+    tangent : bool
+        whether compiled tangent maps of the method exist (the Lyapunov exponents of
+        :func:`hyperrotor.lyapunov` use them).
+    auto_rtol : float or None
+        ``method="auto"`` picks the method with the largest ``auto_rtol`` that ``rtol`` is at
+        least (``None``: never picked automatically).
     """
 
     name: ClassVar[str] = ""
@@ -129,6 +138,8 @@ class Solver:
     preserves: ClassVar[frozenset] = frozenset()
     adaptive: ClassVar[bool] = False
     supports_torque: ClassVar[str] = "none"
+    tangent: ClassVar[bool] = False
+    auto_rtol: ClassVar[float | None] = None
     option_docs: ClassVar[dict[str, tuple[Any, str]]] = {}
 
     def __init__(self, **options: Any) -> None:
@@ -180,51 +191,26 @@ class RunResult:
     T_events: list | None = None
 
 
-class FixedStepSolver(Solver):
-    """A method with a fixed step (chosen once): splittings, Moser-Veselov.
+class StepBudgetError(BudgetError):
+    """A run whose estimated size exceeds a budget of :data:`hyperrotor.options` (``max_steps``, ...).
 
-    Subclasses implement :meth:`advance` (integrate members ``L (B, n)``, ``T`` over a
-    grid with ``nsub[k]`` equal steps per interval) and :meth:`step_cost` (seconds per
-    step per member, for chunking); the generic driver (:mod:`.driver`) does chunking,
-    interruption, progress, events and dense output for all of them.
+    Attributes ``needed`` (the estimate, in the budget's units), ``budget`` (its value) and
+    ``option`` (the name of the budget: ``"max_steps"``, ``"max_output_bytes"``) let a caller
+    such as the command line reword the advice for its own options.
     """
 
-    adaptive = False
-    #: what :meth:`advance` needs to continue its last call exactly (the low parts of a compensated
-    #: state, a Newton predictor), or ``None``; the driver hands it back as ``carry=`` for the next chunk
-    last_carry: Any = None
+    def __init__(self, message: str, *, needed: float | None = None, budget: float | None = None,
+                 option: str | None = None):
+        super().__init__(message)
+        self.needed, self.budget, self.option = needed, budget, option
 
-    def prepare(self, problem: Problem) -> None:
-        """Precompute what :meth:`advance` needs for ``problem`` (tables, words, shifts)."""
-
-    def advance(self, problem: Problem, L: np.ndarray, T: np.ndarray | None, t: np.ndarray, nsub: np.ndarray,
-                members: np.ndarray | None = None, h: np.ndarray | None = None,
-                carry: Any = None) -> tuple[np.ndarray, np.ndarray | None]:
-        """States ``(L (B, K, n), T (B, K, N, N) or None)`` on grid ``t`` from ``L``, ``T`` at ``t[0]``.
-
-        Interval ``k`` takes ``nsub[k]`` steps of length ``h[k]`` (default
-        :func:`step_lengths`; the driver passes the steps of the whole run's grid).
-        ``carry``: :attr:`last_carry` of the call this one continues (the exact state behind
-        the rounded ``L``), so that a run cut into chunks gives the same numbers as one call.
-        ``members`` selects the ensemble members the rows of ``L`` belong to (default: all).
-        May raise ``RuntimeError`` when a step is too long for the method (implicit methods).
-        """
-        raise NotImplementedError
-
-    def flows_per_step(self, problem: Problem) -> int:
-        """Rough cost unit per step and member (used for chunk sizes and budgets)."""
-        return 1
-
-    def kernel_variant(self) -> Any:
-        """Hashable label of the compiled code :meth:`advance` runs (the driver learns its speed per label)."""
-        return type(self)
-
-    def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None):
-        return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
+    def __reduce__(self):
+        return _budget_error, (type(self), str(self), self.needed, self.budget, self.option)
 
 
-class StepBudgetError(BudgetError):
-    """A run whose estimated size exceeds a budget of :data:`hyperrotor.options` (``max_steps``, ...)."""
+def _budget_error(cls, message, needed, budget, option):
+    """Unpickle a :class:`StepBudgetError` with its attributes."""
+    return cls(message, needed=needed, budget=budget, option=option)
 
 
 def nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
@@ -236,7 +222,8 @@ def nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
     if not total < 2.0**62:  # not even countable in int64 (e.g. dt = 1e-301): far beyond any budget
         raise StepBudgetError(
             f"this run needs about {total:.3g} integration steps (span {float(gaps.sum()):.3g}, step {dt:.3g} in "
-            f"units where omega is of order one), more than any budget max_steps allows"
+            f"units where omega is of order one), more than any budget max_steps allows",
+            needed=total, option="max_steps",
         )
     return n.astype(np.int64)
 
@@ -252,5 +239,3 @@ def power_of_two_scale(x: float) -> float:
         return 1.0
     return math.ldexp(1.0, math.frexp(x)[1] - 1)
 
-
-from .driver import run_fixed_step  # noqa: E402  (the driver builds on the classes above)

@@ -19,7 +19,8 @@ import dataclasses
 
 import numpy as np
 
-from .base import FixedStepSolver, Problem, RunResult, nsub_for
+from .base import Problem, RunResult, nsub_for
+from .driver import FixedStepSolver
 from .members import member_problem, member_setup
 
 __all__ = ["run_distributed"]
@@ -61,15 +62,27 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
                  status="finished", chunks=-(-B // chunk))
     dense = None
     if isinstance(solver, FixedStepSolver):
-        from .driver import _dense
+        from .driver import DenseOutput
 
-        nsub = nsub_for(problem.t, h)
-
-        def dense(tq_):
-            return _dense(solver, problem, problem.t, nsub, L, T, tq_, problem.t.size)
+        dense = DenseOutput(solver, problem, problem.t, nsub_for(problem.t, h), L, T, problem.t.size)
     else:  # scipy: the workers re-run their members with scipy's interpolants and evaluate them at tq
-        def dense(tq_):
-            out_ = map_rows(_rows, rows, args=(worker_solver, template, worker_control, max_steps, tq_),
-                            client=client, chunk_size=chunk, progress=progress, desc="dense output")
-            return out_ if isinstance(out_, tuple) else (out_, None)
+        dense = _WorkerDense(rows, (worker_solver, template, worker_control, max_steps), client, chunk, progress)
     return RunResult(L=L, T=T, t=problem.t, stats=stats, dense=dense)
+
+
+class _WorkerDense:
+    """Dense output of a scipy ensemble run on a cluster: the workers re-run their members with
+    scipy's interpolants. Pickles without the client (then the members re-run in this process)."""
+
+    def __init__(self, rows, args, client, chunk, progress):
+        self.rows, self.args, self.client, self.chunk, self.progress = rows, args, client, chunk, progress
+
+    def __getstate__(self):
+        return {**self.__dict__, "client": None}
+
+    def __call__(self, tq_):
+        from hyperrotor._parallel import map_rows
+
+        out_ = map_rows(_rows, self.rows, args=(*self.args, tq_), client=self.client, chunk_size=self.chunk,
+                        progress=self.progress, desc="dense output")
+        return out_ if isinstance(out_, tuple) else (out_, None)

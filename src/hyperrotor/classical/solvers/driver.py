@@ -33,24 +33,65 @@ Dense output
 from __future__ import annotations
 
 import math
-import sys
 import time
 from typing import Any
 
 import numpy as np
 
 from hyperrotor._options import options
+from hyperrotor._parallel import progress_bar
 
-from .base import FixedStepSolver, Problem, RunResult, nsub_for, step_lengths
-from .step_control import refuse_steps
+from .base import Problem, RunResult, Solver, nsub_for, step_lengths
+from .chunks import FIRST_CHUNK_FLOWS, SECONDS_PER_FLOW, Work, check_finite, cost_key, learn, step_times
+from .step_control import CheckFailed
 
-__all__ = ["run_fixed_step", "EventSpec", "event_specs"]
+__all__ = ["FixedStepSolver", "run_fixed_step", "EventSpec", "event_specs", "DenseOutput", "dense_states"]
 
-#: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
-#: are sized from its measured time to last ``options["chunk_seconds"]``
-FIRST_CHUNK_FLOWS = 2_000_000
 #: with events every step state is kept: at most this many steps per chunk (memory)
 EVENT_CHUNK_STEPS = 100_000
+
+
+class FixedStepSolver(Solver):
+    """A method with a fixed step (chosen once): splittings, Moser-Veselov.
+
+    Subclasses implement :meth:`advance` (integrate members ``L (B, n)``, ``T`` over a
+    grid with ``nsub[k]`` equal steps per interval) and :meth:`step_cost` (seconds per
+    step per member, for chunking); the generic driver (:mod:`.driver`) does chunking,
+    interruption, progress, events and dense output for all of them.
+    """
+
+    adaptive = False
+    #: what :meth:`advance` needs to continue its last call exactly (the low parts of a compensated
+    #: state, a Newton predictor), or ``None``; the driver hands it back as ``carry=`` for the next chunk
+    last_carry: Any = None
+
+    def prepare(self, problem: Problem) -> None:
+        """Precompute what :meth:`advance` needs for ``problem`` (tables, words, shifts)."""
+
+    def advance(self, problem: Problem, L: np.ndarray, T: np.ndarray | None, t: np.ndarray, nsub: np.ndarray,
+                members: np.ndarray | None = None, h: np.ndarray | None = None,
+                carry: Any = None) -> tuple[np.ndarray, np.ndarray | None]:
+        """States ``(L (B, K, n), T (B, K, N, N) or None)`` on grid ``t`` from ``L``, ``T`` at ``t[0]``.
+
+        Interval ``k`` takes ``nsub[k]`` steps of length ``h[k]`` (default
+        :func:`step_lengths`; the driver passes the steps of the whole run's grid).
+        ``carry``: :attr:`last_carry` of the call this one continues (the exact state behind
+        the rounded ``L``), so that a run cut into chunks gives the same numbers as one call.
+        ``members`` selects the ensemble members the rows of ``L`` belong to (default: all).
+        May raise ``RuntimeError`` when a step is too long for the method (implicit methods).
+        """
+        raise NotImplementedError
+
+    def flows_per_step(self, problem: Problem) -> int:
+        """Rough cost unit per step and member (used for chunk sizes and budgets)."""
+        return 1
+
+    def kernel_variant(self) -> Any:
+        """Hashable label of the compiled code :meth:`advance` runs (the driver learns its speed per label)."""
+        return type(self)
+
+    def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None):
+        return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
 
 
 class EventSpec:
@@ -83,62 +124,74 @@ def event_specs(events) -> list[EventSpec]:
     return [EventSpec(g, i) for i, g in enumerate(events)]
 
 
-def _progress_bar(progress, total):
-    if progress is False or (progress is None and not (hasattr(sys.stderr, "isatty") and sys.stderr.isatty())):
-        return None
-    try:
-        from tqdm.auto import tqdm
-    except ImportError:  # pragma: no cover - tqdm is a dependency
-        return None
-    return tqdm(total=total, unit="step", desc="simulate", leave=False, delay=0 if progress else 1.0)
-
-
-def _step_times(t, cs, nsub, s):
-    """Times of the global step indices ``s`` (output times exactly where a step ends an interval)."""
-    k = np.clip(np.searchsorted(cs, s, side="right") - 1, 0, nsub.size - 1)
-    out = t[k] + (t[k + 1] - t[k]) * ((s - cs[k]) / nsub[k])
-    return np.where(s == cs[k + 1], t[k + 1], out)
-
-
 def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, events=None, max_steps: int,
                    progress=None) -> RunResult:
+    """Run ``problem`` with ``solver`` at the step of ``control`` (see the module docstring)."""
     solver.check(problem)
     solver.prepare(problem)
     t = problem.t
     K = t.size
     B, n, N = problem.B, problem.n, problem.N
-    h = control.step(solver, problem, max_steps) if K > 1 and B > 0 else 1.0
-    nsub = nsub_for(t, h) if K > 1 else np.zeros(0, dtype=np.int64)
-    steps = int(nsub.sum())
-    refuse_steps(steps, B, max_steps, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
-    if hasattr(solver, "set_accuracy"):
-        solver.set_accuracy(problem, getattr(control, "rtol", None), steps)
+    work = Work(max_steps)
+    h = control.first_step(solver, problem, work) if K > 1 and B > 0 else 1.0
     specs = event_specs(events)
     fps = solver.flows_per_step(problem)
-    hs = step_lengths(t, nsub)  # the run's steps, (K - 1,)
-    stats = dict(steps=steps, nfev=None, dt=float(np.abs(hs).max()) if K > 1 else None, chunks=0)
-    t_events = [[] for _ in specs]
-    L_events = [[] for _ in specs]
-    T_events = [[] for _ in specs]
-    K_done = K
-    if B > 0 and steps > 0:
-        outL, outT, K_done = _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps,
-                                   progress, stats)
-    else:  # nothing to integrate: the initial states (or an empty ensemble)
-        outL = np.empty((B, K, n))
-        outL[:, 0] = problem.L0
-        outT = None
-        if problem.with_attitude:
-            outT = np.empty((B, K, N, N))
-            outT[:, 0] = problem.T0
+    bar = None
+    after = ""  # why the previous attempt was stopped (for a budget message)
+    try:
+        while True:
+            nsub = nsub_for(t, h) if K > 1 else np.zeros(0, dtype=np.int64)
+            steps = int(nsub.sum())
+            if hasattr(solver, "set_accuracy"):
+                solver.set_accuracy(problem, control.rtol, steps)
+            check = control.checker(solver, problem, nsub, work) if B > 0 and steps > 0 else None
+            planned = steps * B + (check.planned_steps if check is not None else 0)
+            work.refuse(planned, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member"
+                                         + (", its check and the step control's probes" if check is not None else "")
+                                         + after)
+            if check is not None and not check.control.retries:
+                control.announce(solver, problem, h)
+            hs = step_lengths(t, nsub)  # the run's steps, (K - 1,)
+            stats = dict(steps=steps, nfev=None, dt=float(np.abs(hs).max()) if K > 1 else None, chunks=0)
+            t_events = [[] for _ in specs]
+            L_events = [[] for _ in specs]
+            T_events = [[] for _ in specs]
+            K_done = K
+            if B == 0 or steps == 0:  # nothing to integrate: the initial states (or an empty ensemble)
+                outL = np.empty((B, K, n))
+                outL[:, 0] = problem.L0
+                outT = None
+                if problem.with_attitude:
+                    outT = np.empty((B, K, N, N))
+                    outT[:, 0] = problem.T0
+                break
+            if bar is None and (progress or planned * fps > FIRST_CHUNK_FLOWS):
+                bar = progress_bar(progress, planned + work.done, "simulate", unit="step", leave=False)
+            elif bar is not None:
+                bar.reset(total=planned + work.done)
+            if bar is not None:
+                bar.update(work.done)
+            if check is not None:
+                check.bar = bar
+            try:
+                outL, outT, K_done = _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps,
+                                           stats, bar, check)
+                work.add(steps * B)
+                break
+            except CheckFailed as failure:
+                work.add(int(check.marks[check.j - 1]) * B if check.j else 0)  # the run up to the failed sample
+                h = control.next_step(failure, solver, problem, work)
+                after = f"; re-run after the check found: {failure.why}"
+    finally:
+        if bar is not None:
+            bar.close()
     stats["status"] = "terminated by event" if K_done < K or (specs and stats.get("terminal")) else "finished"
-
-    def dense(tq):
-        return _dense(solver, problem, t, nsub, outL, outT, tq, K_done)
-
+    stats["work"] = int(work.done)  # every step taken, probes and check included (times members)
+    stats["reruns"] = int(getattr(control, "retries", 0))  # re-runs after a failed check
     res = RunResult(L=outL if K_done == K else outL[:, :K_done],
                     T=None if outT is None else (outT if K_done == K else outT[:, :K_done]),
-                    t=t if K_done == K else t[:K_done], stats=stats, dense=dense)
+                    t=t if K_done == K else t[:K_done], stats=stats,
+                    dense=DenseOutput(solver, problem, t, nsub, outL, outT, K_done))
     if specs:
         res.t_events = [np.array(x, dtype=float) for x in t_events]
         res.L_events = [np.array(x, dtype=float).reshape(-1, n) for x in L_events]
@@ -146,56 +199,34 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
     return res
 
 
-#: measured seconds per elementary flow and member of the last chunk, per kind of kernel call
-#: (solver class and variant, N, attitude, ensemble size to a factor 2): sizes the first chunk of
-#: the next run, so that a run expected to take less than ``options["chunk_seconds"]`` is one call
-_SECONDS_PER_FLOW: dict = {}
-#: chunks shorter than this (s) are not timed for the table above (call overhead dominates)
-_MIN_TIMED_CHUNK = 2e-3
-
-
-def _cost_key(solver, problem):
-    B = problem.B
-    return solver.kernel_variant(), problem.N, problem.with_attitude, 0 if B < 32 else B.bit_length()
-
-
-def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps, progress, stats):
+def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps, stats, bar, check):
     """The chunked run; returns ``(outL, outT, number of output times reached)``."""
     B = problem.B
     steps = int(nsub.sum())
     target = float(options["chunk_seconds"])
-    key = _cost_key(solver, problem)
+    key = cost_key(solver, problem)
     flows = max(1, B * fps)  # elementary flows per step, whole ensemble
-    rate = _SECONDS_PER_FLOW.get(key)
+    rate = SECONDS_PER_FLOW.get(key)
     first = FIRST_CHUNK_FLOWS if rate is None else max(FIRST_CHUNK_FLOWS, target / rate)
     if specs:
         cap = max(1, min(EVENT_CHUNK_STEPS, int(first // flows)))
     else:
         cap = steps if steps * flows <= first else max(1, int(first // flows))
-    bar = _progress_bar(progress, steps) if (progress or cap < steps) else None
-    try:
-        if not specs and cap >= steps:  # one call (most runs): no chunk grid, no copies
-            t_start = time.perf_counter()
-            Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
-            _learn(key, time.perf_counter() - t_start, steps * flows)
-            _check_finite(Ls, t, problem)
-            stats["chunks"] = 1
-            if bar is not None:
-                bar.update(steps)
-            return Ls, Ts, t.size
-        return _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key,
-                       bar, stats)
-    finally:
+    if not specs and cap >= steps and check is None:  # one call, no chunk grid, no copies
+        t_start = time.perf_counter()
+        Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
+        learn(key, time.perf_counter() - t_start, steps * flows)
+        check_finite(Ls, t, problem)
+        stats["chunks"] = 1
         if bar is not None:
-            bar.close()
+            bar.update(steps * B)
+        return Ls, Ts, t.size
+    return _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key,
+                   bar, stats, check)
 
 
-def _learn(key, elapsed, flows):
-    if elapsed >= _MIN_TIMED_CHUNK and flows > 0:
-        _SECONDS_PER_FLOW[key] = elapsed / flows
-
-
-def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key, bar, stats):
+def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key, bar, stats,
+            check):
     B, n, N = problem.B, problem.n, problem.N
     K = t.size
     outL = np.empty((B, K, n))
@@ -205,6 +236,7 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
         outT[:, 0] = problem.T0
     cs = np.concatenate([[0], np.cumsum(nsub)])
     steps = int(cs[-1])
+    samples = check.marks if check is not None else np.zeros(0, dtype=np.int64)
     Lc = problem.L0
     Tc = problem.T0
     carry = None  # the exact state behind Lc (compensated low parts), from the solver
@@ -215,29 +247,36 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
         t_start = time.perf_counter()
         s1 = min(steps, s0 + cap)
         outs = np.arange(np.searchsorted(cs, s0, side="right"), np.searchsorted(cs, s1, side="right"))
+        new = np.arange(np.searchsorted(samples, s0, side="right"), np.searchsorted(samples, s1, side="right"))
         if specs:  # every step point
             svals = np.arange(s0, s1 + 1)
-            grid = _step_times(t, cs, nsub, svals)
+            grid = step_times(t, cs, nsub, svals)
             ns = np.ones(grid.size - 1, dtype=np.int64)
             starts = svals[:-1]
             out_pos = {int(o): int(cs[o] - s0) for o in outs}
-        else:  # the chunk's start, the output times inside it, and its end (if inside an interval)
-            marks = cs[outs]
+            sample_pos = samples[new] - s0
+        else:  # the chunk's start, the output times and samples inside it, and its end
+            marks = np.union1d(cs[outs], samples[new])
             if marks.size == 0 or marks[-1] != s1:
                 marks = np.append(marks, s1)
             points = np.concatenate([[s0], marks])
-            grid = _step_times(t, cs, nsub, points)
+            grid = step_times(t, cs, nsub, points)
             ns = np.diff(points).astype(np.int64)
             starts = points[:-1]
-            out_pos = {int(o): i + 1 for i, o in enumerate(outs)}
+            out_pos = {int(o): int(np.searchsorted(points, cs[o])) for o in outs}
+            sample_pos = np.searchsorted(points, samples[new])
         Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=hs[np.searchsorted(cs, starts, side="right") - 1],
                                 carry=carry)
         carry = solver.last_carry
-        _check_finite(Ls, grid, problem)
+        check_finite(Ls, grid, problem)
         for o, i in out_pos.items():
             outL[:, o] = Ls[:, i]
             if outT is not None:
                 outT[:, o] = Ts[:, i]
+        if bar is not None:
+            bar.update((s1 - s0) * B)
+        if new.size:
+            check.update(int(new[-1]) + 1, Ls[check.members][:, sample_pos])
         if specs:
             stop = _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_events, L_events,
                                     T_events)
@@ -250,30 +289,16 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
                 return outL, outT, int(np.sum(sgn * (t - te) <= 0))
         Lc = Ls[:, -1]
         Tc = None if Ts is None else Ts[:, -1]
-        if bar is not None:
-            bar.update(s1 - s0)
         stats["chunks"] += 1
         elapsed = time.perf_counter() - t_start
         if not specs:
-            _learn(key, elapsed, (s1 - s0) * flows)
+            learn(key, elapsed, (s1 - s0) * flows)
         s0 = s1
         if s0 < steps:  # size the next chunk from this one's time (at most 8x growth)
             cap = int(min(8 * cap, max(1, cap * target / max(elapsed, 1e-6))))
             if specs:
                 cap = min(cap, EVENT_CHUNK_STEPS)
     return outL, outT, K
-
-
-def _check_finite(Ls, grid, problem):
-    """``FloatingPointError`` unless the chunk's last states are finite (a finite sum proves it)."""
-    last = Ls[:, -1]
-    if math.isfinite(float(last.sum())) or np.all(np.isfinite(last)):
-        return
-    bad = int(np.argmax(~np.all(np.isfinite(Ls), axis=(0, 2))))
-    raise FloatingPointError(
-        f"simulate: the solution became non-finite near t = {grid[bad] / problem.scale:.6g} "
-        f"(the inputs overflow double precision; max|L0| = {np.abs(problem.L0).max() * problem.scale:.3g})"
-    )
 
 
 def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_events, L_events, T_events):
@@ -333,7 +358,20 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
     return None, vals[-1]
 
 
-def _dense(solver, problem, t, nsub, outL, outT, tq, K_done):
+class DenseOutput:
+    """Dense output of a fixed-step run (module docstring): ``dense(tq)`` -> ``(L (B, M, n), T or None)``
+    at scaled times ``tq``, re-integrated from the stored output states. A plain object (no closure):
+    it pickles and deep-copies with its run."""
+
+    def __init__(self, solver, problem, t, nsub, outL, outT, K_done):
+        self.solver, self.problem, self.t, self.nsub = solver, problem, t, nsub
+        self.outL, self.outT, self.K_done = outL, outT, K_done
+
+    def __call__(self, tq):
+        return dense_states(self.solver, self.problem, self.t, self.nsub, self.outL, self.outT, tq, self.K_done)
+
+
+def dense_states(solver, problem, t, nsub, outL, outT, tq, K_done):
     """States at the scaled times ``tq`` (M,) by re-integration from stored output states."""
     tq = np.asarray(tq, dtype=float)
     B, n, N = problem.B, problem.n, problem.N

@@ -1,7 +1,8 @@
 r"""Ensembles run member by member with the ensemble's step: events on ensembles, dask chunks.
 
 A fixed-step method chooses its step once for the whole ensemble (the probes look at the
-fastest members, the budget counts every member). :func:`member_setup` does that once and
+fastest members, whose check then runs on its own before any member runs; the budget
+counts every member). :func:`member_setup` does that once and
 returns a solver and a step control that reproduce it on any subset of the members: the
 same step, the same automatic ``compensated`` choice, each member's own Casimir shift. A
 member run this way takes the steps of its row of the ensemble run: the same momenta bit
@@ -21,8 +22,9 @@ from typing import Any
 
 import numpy as np
 
-from .base import FixedStepSolver, Problem, RunResult, nsub_for
-from .step_control import refuse_steps
+from .base import Problem, RunResult, nsub_for
+from .driver import FixedStepSolver
+from .chunks import Work
 
 __all__ = ["member_setup", "member_problem", "run_members_with_events"]
 
@@ -34,8 +36,16 @@ class GivenStep:
         self.h = h
         self.rtol = rtol
 
-    def step(self, solver, problem, max_steps):
+    def first_step(self, solver, problem, work):
         return self.h
+
+    verified_step = first_step
+
+    def checker(self, solver, problem, nsub, work, bar=None):
+        return None
+
+    def announce(self, solver, problem, h):
+        """Nothing: the ensemble's call announced the run."""
 
     def __repr__(self) -> str:
         return f"GivenStep(h={self.h!r})"
@@ -51,11 +61,13 @@ def member_setup(solver, problem: Problem, control: Any, max_steps: int):
         return solver, control, None, None
     solver.check(problem)
     solver.prepare(problem)
-    h = control.step(solver, problem, max_steps)
+    work = Work(max_steps)
+    h = control.verified_step(solver, problem, work) if problem.t.size > 1 and problem.B > 0 else 1.0
     steps = int(nsub_for(problem.t, h).sum()) if problem.t.size > 1 else 0
-    refuse_steps(steps, problem.B, max_steps, f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
+    work.refuse(steps * problem.B, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
+    control.announce(solver, problem, h)
     if hasattr(solver, "set_accuracy"):
-        solver.set_accuracy(problem, getattr(control, "rtol", None), steps)
+        solver.set_accuracy(problem, control.rtol, steps)
     member_solver = copy.copy(solver)
     member_solver.options = dict(solver.options)
     if "compensated" in member_solver.options:
@@ -113,15 +125,24 @@ def run_members_with_events(solver, problem: Problem, control: Any, *, events, m
     if "chunks" in stats:
         stats["chunks"] = int(sum(r.stats.get("chunks", 0) for r in results))
 
-    def dense(tq):
-        parts = [r.dense(tq) for r in results]
-        return (np.concatenate([p[0] for p in parts]),
-                None if T is None else np.concatenate([p[1] for p in parts]))
 
     def per_event(attr):
         if getattr(results[0], attr) is None:
             return None
         return [[getattr(r, attr)[e] for r in results] for e in range(len(specs))]
 
-    return RunResult(L=L, T=T, t=problem.t, stats=stats, dense=dense, t_events=per_event("t_events"),
+    return RunResult(L=L, T=T, t=problem.t, stats=stats, dense=MembersDense(results, T is not None),
+                     t_events=per_event("t_events"),
                      L_events=per_event("L_events"), T_events=per_event("T_events"))
+
+
+class MembersDense:
+    """Dense output of an ensemble run member by member: the members' dense outputs, stacked."""
+
+    def __init__(self, results: list, with_attitude: bool):
+        self.results, self.with_attitude = results, with_attitude
+
+    def __call__(self, tq):
+        parts = [r.dense(tq) for r in self.results]
+        return (np.concatenate([p[0] for p in parts]),
+                np.concatenate([p[1] for p in parts]) if self.with_attitude else None)

@@ -49,7 +49,8 @@ import numpy as np
 from hyperrotor._jit import jit, prange
 
 from ._kernels import rotation_tables, start_attitude, store_attitude
-from .base import FixedStepSolver, Problem, step_lengths
+from .base import Problem, step_lengths
+from .driver import FixedStepSolver
 
 __all__ = ["MoserVeselov"]
 

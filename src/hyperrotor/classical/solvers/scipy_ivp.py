@@ -3,7 +3,8 @@ r"""scipy's adaptive integrators through :func:`scipy.integrate.solve_ivp` (``"D
 ``rtol`` here is scipy's *local* tolerance (per step), not a bound on the whole-run
 error: the global error of these methods grows with the run length, typically to
 10-1000 times ``rtol`` over a few dozen periods (the measured factor is in the table
-of ``benchmarks/work_precision_classical.py``). ``atol`` is set per component,
+of ``benchmarks/work_precision_classical.py``). ``atol`` is ``simulate(atol=...)``
+(units of omega, scalar or per plane) or by default set per component,
 ``atol_a = rtol * min(max|omega0|, |L0| / I_a)`` (error in :math:`\omega_a` below
 ``rtol max|omega0|`` and in :math:`L_a` below ``rtol |L0|``), and ``rtol`` for the attitude
 entries. One ``solve_ivp`` call per ensemble member; events and dense output are scipy's
@@ -37,10 +38,11 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _validate
+from hyperrotor._parallel import progress_bar
 from hyperrotor.conventions import structure_constants, to_matrix
 
 from .base import Problem, RunResult, Solver, power_of_two_scale
-from .driver import _progress_bar, event_specs
+from .driver import event_specs
 from .step_control import StepBudgetError
 
 __all__ = ["ScipyIVP", "DOP853", "RK45", "RK23", "LSODA", "Radau", "BDF"]
@@ -132,7 +134,7 @@ class _MemberRHS:
         if not self.with_att:
             return dw
         Tm = y[n:].reshape(self.N, self.N)
-        return np.concatenate([dw, (to_matrix(w, "standard") @ Tm).ravel()])
+        return np.concatenate([dw, (to_matrix(w, convention="standard") @ Tm).ravel()])
 
 
 class ScipyIVP(Solver):
@@ -157,8 +159,6 @@ class ScipyIVP(Solver):
             _validate.positive(k, self.options[k], allow_none=True)
 
     def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None) -> RunResult:
-        from scipy.integrate import solve_ivp
-
         self.check(problem)
         if getattr(control, "rtol", None) is None:
             raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {self.name!r} takes rtol only")
@@ -183,7 +183,7 @@ class ScipyIVP(Solver):
         t_events = L_events = T_events = None
         K_done = K
         rbs = []
-        bar = _progress_bar(progress, B)  # in members; fractions from the time covered
+        bar = progress_bar(progress, B, "simulate", unit="member", leave=False)  # in members; fractions from the time covered
         if bar is not None:  # fractional members: show the percentage and the times only
             bar.bar_format = "{desc}: {percentage:3.0f}%|{bar}| {elapsed}<{remaining} (scipy " + self.name + ")"
             if progress:  # shown from the start (else after tqdm's delay, already in this format)
@@ -201,7 +201,8 @@ class ScipyIVP(Solver):
                 y0 = w0 if not with_att else np.concatenate([w0, problem.T0[b].ravel()])
                 wscale = float(np.max(np.abs(w0))) or 1.0
                 Lscale = float(np.linalg.norm(problem.L0[b] / rb)) or wscale * float(moments.min())
-                atol = rtol * np.minimum(wscale, Lscale / moments)
+                user_atol = getattr(control, "atol", None)  # scaled units of omega (simulate's atol=)
+                atol = rtol * np.minimum(wscale, Lscale / moments) if user_atol is None else user_atol / rb
                 if with_att:
                     atol = np.concatenate([atol, np.full(N * N, rtol)])
                 Lout[b, 0] = problem.L0[b]
@@ -217,19 +218,12 @@ class ScipyIVP(Solver):
                     sols.append(None)
                     calls.append(None)
                     continue
-                ev = [_scaled_event(sp, s * rb, moments, n) for sp in specs] or None
+                ev = [_ScaledEvent(sp, s * rb, moments, n) for sp in specs] or None
                 kw = {k: v * s * rb for k, v in self.options.items() if v is not None}
                 kw.setdefault("max_step", MAX_STEP_RADIANS / wscale)
                 tb = t * rb
 
-                def call(dense, count, bar, b=b, rb=rb, tau_b=tau_b, y0=y0, atol=atol, ev=ev, kw=kw, tb=tb):
-                    f = _MemberRHS(self.name, rhs, problem, b, rb, tau_b, tb, count, budget, B - b - 1, bar)
-                    # a trial step may overflow: the right-hand side answers inf, scipy's error norm is
-                    # inf and the step is rejected (the accepted solution is checked for finiteness below)
-                    with np.errstate(over="ignore", invalid="ignore"):
-                        return solve_ivp(f, (tb[0], tb[-1]), y0, method=self.scipy_method, t_eval=tb, rtol=rtol,
-                                         atol=atol, events=ev, dense_output=dense, **kw)
-
+                call = _MemberCall(self, rhs, problem, b, rb, tau_b, y0, rtol, atol, ev, kw, tb, budget)
                 calls.append(call)
                 sol = call(bool(specs), nfev, bar)
                 if sol.status == -1:
@@ -250,33 +244,66 @@ class ScipyIVP(Solver):
             if bar is not None:
                 bar.close()
 
-        def dense(tq):
-            tq = np.asarray(tq, dtype=float)
-            lo, hi = sorted((t[0], t[K_done - 1]))
-            bad = np.flatnonzero((tq < lo) | (tq > hi))
-            if bad.size:
-                raise ValueError(f"dense output is defined on the run's time span [{lo / s:g}, {hi / s:g}] only; "
-                                 f"got t = {tq[bad[0]] / s:g}")
-            L = np.empty((B, tq.size, n))
-            T = np.empty((B, tq.size, N, N)) if with_att else None
-            for b in range(B):
-                if calls[b] is None:  # a single output time, or no motion: the initial state
-                    y0b = np.concatenate([problem.L0[b] / moments] + ([problem.T0[b].ravel()] if with_att else []))
-                    y = np.repeat(y0b[:, None], tq.size, axis=1)
-                else:
-                    if sols[b] is None:  # first dense request: re-run this member with scipy's interpolants
-                        sols[b] = calls[b](True, [0], None).sol
-                    y = sols[b](tq * rbs[b])
-                    y = np.concatenate([y[:n] * rbs[b], y[n:]])
-                L[b] = y[:n].T * moments
-                if with_att:
-                    T[b] = y[n:].T.reshape(tq.size, N, N)
-            return L, T
-
         stats = dict(steps=None, nfev=int(nfev[0]), dt=None, rtol_used=rtol,
                      status="terminated by event" if K_done < K else "finished")
         return RunResult(L=Lout[:, :K_done], T=None if Tout is None else Tout[:, :K_done], t=t[:K_done], stats=stats,
-                         dense=dense, t_events=t_events, L_events=L_events, T_events=T_events)
+                         dense=_ScipyDense(problem, K_done, calls, sols, rbs), t_events=t_events, L_events=L_events,
+                         T_events=T_events)
+
+
+class _MemberCall:
+    """One member's ``solve_ivp`` call, repeatable (the dense output re-runs it with interpolants);
+    a plain object, so that a :class:`~hyperrotor.Trajectory` pickles."""
+
+    def __init__(self, solver, rhs, problem, b, rb, tau_b, y0, rtol, atol, ev, kw, tb, budget):
+        self.name, self.scipy_method = solver.name, solver.scipy_method
+        self.rhs, self.problem, self.b, self.rb, self.tau_b = rhs, problem, b, rb, tau_b
+        self.y0, self.rtol, self.atol, self.ev, self.kw, self.tb, self.budget = y0, rtol, atol, ev, kw, tb, budget
+
+    def __call__(self, dense, count, bar):
+        from scipy.integrate import solve_ivp
+
+        tb = self.tb
+        f = _MemberRHS(self.name, self.rhs, self.problem, self.b, self.rb, self.tau_b, tb, count, self.budget,
+                       self.problem.B - self.b - 1, bar)
+        # a trial step may overflow: the right-hand side answers inf, scipy's error norm is
+        # inf and the step is rejected (the accepted solution is checked for finiteness by run)
+        with np.errstate(over="ignore", invalid="ignore"):
+            return solve_ivp(f, (tb[0], tb[-1]), self.y0, method=self.scipy_method, t_eval=tb, rtol=self.rtol,
+                             atol=self.atol, events=self.ev, dense_output=dense, **self.kw)
+
+
+class _ScipyDense:
+    """Dense output of a scipy run: the members' interpolants (built on the first request)."""
+
+    def __init__(self, problem, K_done, calls, sols, rbs):
+        self.problem, self.K_done, self.calls, self.sols, self.rbs = problem, K_done, calls, sols, rbs
+
+    def __call__(self, tq):
+        problem, K_done, calls, sols, rbs = self.problem, self.K_done, self.calls, self.sols, self.rbs
+        t, s, moments, n, N, B = problem.t, problem.scale, problem.moments, problem.n, problem.N, problem.B
+        with_att = problem.with_attitude
+        tq = np.asarray(tq, dtype=float)
+        lo, hi = sorted((t[0], t[K_done - 1]))
+        bad = np.flatnonzero((tq < lo) | (tq > hi))
+        if bad.size:
+            raise ValueError(f"dense output is defined on the run's time span [{lo / s:g}, {hi / s:g}] only; "
+                             f"got t = {tq[bad[0]] / s:g}")
+        L = np.empty((B, tq.size, n))
+        T = np.empty((B, tq.size, N, N)) if with_att else None
+        for b in range(B):
+            if calls[b] is None:  # a single output time, or no motion: the initial state
+                y0b = np.concatenate([problem.L0[b] / moments] + ([problem.T0[b].ravel()] if with_att else []))
+                y = np.repeat(y0b[:, None], tq.size, axis=1)
+            else:
+                if sols[b] is None:  # first dense request: re-run this member with scipy's interpolants
+                    sols[b] = calls[b](True, [0], None).sol
+                y = sols[b](tq * rbs[b])
+                y = np.concatenate([y[:n] * rbs[b], y[n:]])
+            L[b] = y[:n].T * moments
+            if with_att:
+                T[b] = y[n:].T.reshape(tq.size, N, N)
+        return L, T
 
 
 def _extrapolate(total: int, member: int, covered: float, span: float, members_left: int, budget: int,
@@ -297,13 +324,16 @@ def _extrapolate(total: int, member: int, covered: float, span: float, members_l
         )
 
 
-def _scaled_event(spec, s, moments, n):
-    def g(tt, y):
-        return float(spec.fn(tt / s, y[:n] * moments * s))
+class _ScaledEvent:
+    """An event function of ``simulate`` as solve_ivp calls it (one member's scaled state)."""
 
-    g.terminal = spec.max_count is not None and (spec.max_count if spec.max_count > 1 else True)
-    g.direction = spec.direction
-    return g
+    def __init__(self, spec, s, moments, n):
+        self.fn, self.s, self.moments, self.n = spec.fn, s, moments, n
+        self.terminal = spec.max_count is not None and (spec.max_count if spec.max_count > 1 else True)
+        self.direction = spec.direction
+
+    def __call__(self, tt, y):
+        return float(self.fn(tt / self.s, y[:self.n] * self.moments * self.s))
 
 
 class DOP853(ScipyIVP):

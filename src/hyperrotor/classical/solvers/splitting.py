@@ -56,11 +56,12 @@ from typing import Any
 
 import numpy as np
 
-from hyperrotor import _validate
+from hyperrotor import _pricing, _validate
 from hyperrotor.conventions import to_matrix
 
 from . import _kernels
-from .base import FixedStepSolver, Problem, step_lengths
+from .base import Problem, step_lengths
+from .driver import FixedStepSolver
 
 __all__ = ["Splitting", "Splitting2", "Splitting4", "Splitting6", "Splitting8", "splitting_coefficients",
            "casimir_shift"]
@@ -162,6 +163,7 @@ def casimir_shift(moments: Any, L: Any = None) -> float | np.ndarray:
         raise TypeError(f"moments must be real, got complex values {_validate.fmt(moments)}")
     moments = _validate.moments(moments, name="moments")
     n = moments.size
+    _pricing.check("casimir_shift", n=n)
     if L is None:
         Lb = np.zeros((1, n))
     else:
@@ -250,7 +252,7 @@ def unshift_attitude(att: np.ndarray, L0: np.ndarray, T0: np.ndarray, t: np.ndar
     eigen-decomposition of the Hermitian :math:`i\Lambda` per body (orthogonal to round-off);
     ``c`` has one entry per body.
     """
-    Lam = np.swapaxes(T0, -1, -2) @ to_matrix(L0, "standard") @ T0  # (B, N, N)
+    Lam = np.swapaxes(T0, -1, -2) @ to_matrix(L0, convention="standard") @ T0  # (B, N, N)
     lam, U = np.linalg.eigh(1j * Lam)  # Lam = U diag(-i lam) U^H
     phase = np.exp(-1j * c[:, None, None] * (t - t[0])[None, :, None] * lam[:, None, :])  # (B, K, N)
     E = np.einsum("brm,bkm,bsm->bkrs", U, phase, U.conj()).real
@@ -315,6 +317,7 @@ class Splitting(FixedStepSolver):
     order = 2
     preserves = frozenset({"casimirs", "orthogonality", "symplectic", "reversible"})
     supports_torque = "constant"
+    tangent = True
     option_docs = {"compensated": (None, "TwoSum storage of L: True, False or None (automatic)")}
 
     def _check_options(self) -> None:
@@ -388,6 +391,7 @@ class Splitting2(Splitting):
 
     name = "splitting2"
     order = 2
+    auto_rtol = 1e-2
 
 
 class Splitting4(Splitting):
@@ -395,6 +399,7 @@ class Splitting4(Splitting):
 
     name = "splitting4"
     order = 4
+    auto_rtol = 1e-4
 
 
 class Splitting6(Splitting):
@@ -402,6 +407,7 @@ class Splitting6(Splitting):
 
     name = "splitting6"
     order = 6
+    auto_rtol = 1e-7
 
 
 class Splitting8(Splitting):
@@ -409,3 +415,4 @@ class Splitting8(Splitting):
 
     name = "splitting8"
     order = 8
+    auto_rtol = 0.0

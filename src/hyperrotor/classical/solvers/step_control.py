@@ -1,7 +1,7 @@
 r"""Step control of the fixed-step methods: a given ``dt`` or an error target ``rtol``.
 
-:class:`FixedStep` takes the largest step ``dt``; :class:`ErrorTarget` chooses the step
-once, before the run, so that the whole-run error stays within ``rtol``:
+:class:`FixedStep` takes the largest step ``dt``; :class:`ErrorTarget` chooses the step so
+that the whole-run error stays within ``rtol``:
 
 .. math:: \max_t \|L(t) - L_\text{exact}(t)\|_\infty \le \mathrm{rtol}\,\max_t \|L(t)\|_\infty,
 
@@ -9,113 +9,144 @@ and the same for :math:`\omega` (they differ for stiff moment ratios, where the 
 planes have small rates but carry most of ``L``). Either way each output interval is
 split into ``ceil(gap / h)`` equal steps, so output times are hit exactly.
 
-How :class:`ErrorTarget` chooses the step
------------------------------------------
-1. *Rate bound.* :math:`\omega_\text{max} = \max_a \min(|L|, \sqrt{2EI_a})/I_a` bounds every
-   rate reachable on the orbit (from the Casimir :math:`|L|^2` and the energy ``E``), raised
-   to the linearised frequencies :math:`|\omega_c|\sqrt{|(I_c-I_a)(I_c-I_b)|/(I_aI_b)}` of every
-   coupled triple of planes (larger than the rates only for moments violating the triangle
-   inequalities, i.e. stiff problems) and, with a torque, to the rate it can build up.
-2. *Probe.* On :math:`P = \min(\text{run}, ` :data:`PROBE_TURNS` :math:`/\omega_\text{max})`,
-   for up to :data:`PROBE_MEMBERS` ensemble members (the fastest), Richardson's estimate
-   :math:`e(h) = \max|y_h - y_{h/2}| / (1 - 2^{-p})` from step :math:`h = 1/\omega_\text{max}`,
-   refined (x1/4) while not asymptotic (:math:`e > ` :data:`ASYMPTOTIC`) and enlarged (x4) while at
-   round-off. With the model :math:`e \propto (\text{run}/P)\,h^p` (linear growth of the phase
-   error) this gives a first step :math:`h^*` for the target ``SAFETY * rtol``.
-3. *Budget.* ``steps x members`` above ``max_steps`` is refused here, before any long work.
-4. *Whole-run check.* Richardson's estimate over the *whole* run (sampled at up to
-   :data:`CHECK_SAMPLES` times) at a step :math:`h_c \ge h^*` chosen so that the check costs at most
-   :data:`CHECK_FRACTION` of the run itself (or :data:`CHECK_STEPS_MIN` steps, if more), and
-   :math:`h^* \leftarrow 0.9\,h_c\,(\mathrm{SAFETY\cdot rtol}/e_c)^{1/p}` (or :math:`h_c` itself when
-   :math:`e_c` already meets the target; a check at :math:`h_c = h^*` that fails is repeated at the new step). This catches what the
-   probe cannot see (faster than linear error growth, e.g. an unstable rotation running away
-   after the probe interval; a resonance of the splitting). The check sees the actual motion
-   at the actual output times, so the bound holds as long as the error is asymptotic in
-   :math:`h` between :math:`h_c` and :math:`h^*` (chaotic motion over long runs is beyond any a-priori rule).
+How :class:`ErrorTarget` chooses and checks the step
+----------------------------------------------------
+The job is split as in scipy's ``solve_ivp`` (``select_initial_step`` guesses, the error
+estimate of every step decides) and diffrax (a controller proposes, the run's own error
+estimate accepts or rejects), but for the *global* error of a fixed-step run:
+
+1. *Rate bound* (:func:`rate_bound`). :math:`\omega_\text{max} = \max_a \min(|L|, \sqrt{2EI_a})/I_a`
+   bounds every rate reachable on the orbit (from the Casimir :math:`|L|^2` and the energy ``E``),
+   raised to the linearised frequencies :math:`|\omega_c|\sqrt{|(I_c-I_a)(I_c-I_b)|/(I_aI_b)}` of
+   every coupled triple of planes (larger than the rates only for moments violating the
+   triangle inequalities, i.e. stiff problems) and, with a torque, to the rate it can build up.
+2. *Probe on a leading window* (a guess, costing a small fraction of the run). On
+   :math:`P = \min(\text{run}, ` :data:`PROBE_TURNS` :math:`/\omega_\text{max})`, for up to
+   :data:`PROBE_MEMBERS` ensemble members (the fastest), Richardson's estimate
+   :math:`e(h) = \max|y_h - y_{2h}| / (2^p - 1)` (the same members at twice the step: 1.5x the
+   work of the steps :math:`h`) from step :math:`h = 1/\omega_\text{max}`,
+   refined (x1/4) while not asymptotic (:math:`e > ` :data:`ASYMPTOTIC`) and enlarged (x4) while
+   at round-off. With linear growth of the error in time (Hairer, Lubich & Wanner, *Geometric
+   Numerical Integration*, ch. X: the error of a symplectic method on a regular orbit grows
+   linearly in t) this gives the step :math:`h^*` for the target ``SAFETY * rtol``.
+3. *Budget.* All planned work (probes, run, check) above ``max_steps`` is refused here,
+   before the run starts (:class:`~.chunks.Work`).
+4. *Check inside the run* (:class:`RichardsonCheck`, costing :math:`1/c + 1/c^2` of the run for
+   up to :data:`PROBE_MEMBERS` members). Beside the run at :math:`h^*` two companion runs of the
+   same members advance with steps :math:`c` and :math:`c^2` times longer
+   (:math:`2 \le c \le` :data:`COMPANION_RATIO`, as large as keeps the companions asymptotic)
+   between :data:`CHECK_SAMPLES` sample points of the run. The three runs give the observed
+   order :math:`q \le p` (from :math:`|y_{ch} - y_{c^2h}| / |y_h - y_{ch}| \approx c^q`: stiff
+   problems, steps far outside the asymptotic regime show :math:`q < p`), and at every sample
+   :math:`e \approx |y_{h^*} - y_{ch^*}| / (c^q - 1)` estimates the run's own error (with
+   :math:`c` the smallest ratio of companion to run step over the samples, so the estimate errs
+   on the safe side; :math:`q < 1/2`: the difference itself). A run too short for longer
+   companion steps is checked against companions at half and quarter steps instead. The run
+   is accepted when the estimate stays within
+   ``ACCEPT * rtol``. It is stopped at the first sample where the estimate exceeds that, or
+   (from :data:`PROJECT_AFTER` of the run on) where its linear projection to the end exceeds it
+   :data:`PROJECT_MARGIN`-fold, and re-run at
+   :math:`h \leftarrow 0.9\,h\,(\mathrm{SAFETY\cdot rtol}/e_\text{end})^{1/p}`. The samples
+   also show how the error grows: linearly on regular orbits, like :math:`e^{\lambda t}` on
+   chaotic ones (GNI ch. X; the envelope of the estimates over the last two doublings of the
+   time done), which the messages below name.
+5. *Unreachable accuracy.* The re-run's step is priced first: above the budget the call
+   stops with :class:`~.base.StepBudgetError` naming the estimated error, its growth
+   :math:`e^{\lambda T}` when the samples grow exponentially (a chaotic orbit), and the
+   accuracy reachable within the budget; when :data:`MAX_RETRIES` re-runs do not meet ``rtol``
+   (round-off, or exponential growth that outruns the order of the method) the call stops with
+   :class:`UnreachableAccuracyError` naming the reachable accuracy, instead of grinding or
+   returning a result that misses the bound.
 
 The timed probes also give the cost per step: a run estimated to take longer than
-``options["slow_run_warning_seconds"]`` gives a ``UserWarning`` before it starts.
+``options["slow_run_warning_seconds"]`` gives a ``UserWarning`` before it starts
+(:func:`run_estimate` prices a call without running it).
 """
 from __future__ import annotations
 
 import math
-import time
 import warnings
 from functools import lru_cache
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
 from hyperrotor import _validate
 from hyperrotor._options import options
 
-from .base import FixedStepSolver, Problem, StepBudgetError, nsub_for
+from .base import Problem, StepBudgetError, nsub_for, step_lengths
+from .chunks import Work, advance_chunked, cost_key, seconds_per_flow, step_times
 
-__all__ = ["FixedStep", "ErrorTarget", "StepBudgetError"]
+__all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "RichardsonCheck", "CheckFailed",
+           "UnreachableAccuracyError", "rate_bound"]
 
 #: the error target used for the step: rtol times this (margin for the asymptotic model)
 SAFETY = 0.5
+#: the check accepts a run whose estimated error stays within rtol times this
+ACCEPT = 0.8
 #: Richardson estimates above this are outside the asymptotic regime (the step is refined)
 ASYMPTOTIC = 1e-2
+#: the companion's own error is kept below this (it chooses the ratio c of the check)
+COMPANION_ASYMPTOTIC = 1e-3
+#: largest ratio c of companion to run step (cost of the check: 1/c + 1/c^2 of the run for the checked members)
+COMPANION_RATIO = 4.0
 #: length of the probe interval in turns of the fastest rate (20 radians: a few periods)
 PROBE_TURNS = 20.0
-#: ensemble members probed (the fastest ones): the step is one for all members
+#: ensemble members probed and checked (the fastest ones): the step is one for all members
 PROBE_MEMBERS = 8
 #: no extrapolation beyond this factor of the probed step (the error model is asymptotic in h)
 MAX_STEP_GROWTH = 8.0
-#: the whole-run check costs at most this fraction of the run itself ...
-CHECK_FRACTION = 0.5
-#: ... or this many steps (per probed member), if more: short runs are always checked in full
-CHECK_STEPS_MIN = 20_000
-#: a checked error below this fraction of the target lets the step grow (checked again)
-GROW_BELOW = 0.1
-#: sample times of the whole-run check (the error can peak between output times)
+#: sample points of the check (the error can peak between output times)
 CHECK_SAMPLES = 64
+#: the check projects the error to the end of the run once this fraction of it is done ...
+PROJECT_AFTER = 0.125
+#: ... and stops the run when the projection exceeds the accepted error this many times
+PROJECT_MARGIN = 4.0
+#: an error envelope growing this much over the second half of the samples seen is faster than linear
+GROWTH_RATIO = 8.0
+#: re-runs at a shorter step before the call gives up with UnreachableAccuracyError
+MAX_RETRIES = 3
 
 
-def refuse_steps(steps: float, B: int, max_steps: int, what: str | Callable[[], str]) -> None:
-    """Raise :class:`StepBudgetError` when ``steps`` per member times ``B`` members exceed ``max_steps``
-    (``what``: the estimate's origin for the message, or a function making it, called only then)."""
-    total = float(steps) * max(B, 1)
-    if total > max_steps:
-        what = what() if callable(what) else what
-        raise StepBudgetError(
-            f"this run needs about {total:.3g} integration steps ({what}), more than the budget max_steps = "
-            f"{_validate.fmt(int(max_steps))}; raise it with simulate(..., max_steps=...) or "
-            f"hyperrotor.options(max_steps=...) if you mean it, or ask for less (shorter t, larger rtol/dt)"
-        )
+class UnreachableAccuracyError(ValueError):
+    """``rtol`` cannot be met at a reasonable cost: the error grows exponentially (a chaotic orbit)
+    or sits at round-off. The message names the estimated growth and the reachable accuracy."""
 
 
-class FixedStep:
-    """Largest step ``dt`` (in the user's time units)."""
+class CheckFailed(Exception):
+    """Raised by :class:`RichardsonCheck` inside a run: re-run at step ``h`` (scaled units)."""
 
-    def __init__(self, dt: Any):
-        self.dt = _validate.positive("dt", dt)
-
-    def step(self, solver: FixedStepSolver, problem: Problem, max_steps: int) -> float:
-        return self.dt * problem.scale  # (the driver checks the budget once it has counted the steps)
-
-    def __repr__(self) -> str:
-        return f"FixedStep(dt={self.dt!r})"
+    def __init__(self, h: float, why: str):
+        super().__init__(why)
+        self.h = h
+        self.why = why
 
 
-def _rate_bound(problem: Problem) -> tuple[np.ndarray, float]:
-    """Per-member bound on the rates reachable on the orbit (see the module docstring, step 1)."""
-    L0, m = problem.L0, problem.moments
+def rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
+    r"""Per row of ``L0`` (rows, n): :math:`\max_a \min(|L|, \sqrt{2EI_a})/I_a`, a bound on every
+    angular velocity on the orbit (from the Casimir :math:`|L|^2` and the energy)."""
     C = np.sqrt(np.sum(L0 * L0, axis=1, keepdims=True))
-    E2 = np.sum(L0 * L0 / m, axis=1, keepdims=True)
-    W = np.minimum(C, np.sqrt(E2 * m)) / m  # (B, n)
-    wmax_b = W.max(axis=1) if W.size else np.zeros(L0.shape[0])
+    E2 = np.sum(L0 * L0 / moments, axis=1, keepdims=True)
+    W = np.minimum(C, np.sqrt(E2 * moments)) / moments
+    return W.max(axis=1) if W.size else np.zeros(L0.shape[0])
+
+
+def _orbit_rates(problem: Problem) -> np.ndarray:
+    """Per-member bound on the rates reachable on the orbit (module docstring, step 1)."""
+    L0, m = problem.L0, problem.moments
+    wmax_b = rate_bound(m, L0)
     tc, ta, tb = _triples(problem.N)
-    if tc.size and W.size:
+    if tc.size and L0.size:
+        C = np.sqrt(np.sum(L0 * L0, axis=1, keepdims=True))
+        E2 = np.sum(L0 * L0 / m, axis=1, keepdims=True)
+        W = np.minimum(C, np.sqrt(E2 * m)) / m  # (B, n)
         Ic, Ia, Ib = m[tc], m[ta], m[tb]
         lam = W[:, tc] * np.sqrt(np.abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib))
         wmax_b = np.maximum(wmax_b, lam.max(axis=1))
-    tq = 0.0
     if problem.kick:
         tq = float(np.max(np.abs(problem.torque) / m))
         wmax_b = np.maximum(wmax_b, max(tq * problem.span, tq ** 0.5))
-    return wmax_b, tq
+    return wmax_b
 
 
 @lru_cache(maxsize=32)
@@ -137,58 +168,92 @@ def _triples(N: int):
     return cols
 
 
+class FixedStep:
+    """Largest step ``dt`` (in the user's time units)."""
+
+    rtol = None
+
+    def __init__(self, dt: Any):
+        self.dt = _validate.positive("dt", dt)
+
+    def first_step(self, solver, problem: Problem, work: Work) -> float:
+        return self.dt * problem.scale  # (the driver checks the budget once it has counted the steps)
+
+    def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None):
+        return None
+
+    verified_step = first_step
+
+    def announce(self, solver, problem: Problem, h: float) -> None:
+        """Nothing: a given step is the caller's choice."""
+
+    def __repr__(self) -> str:
+        return f"FixedStep(dt={self.dt!r})"
+
+
+def _relative_difference(La: np.ndarray, Lb: np.ndarray, moments: np.ndarray, Lmax: np.ndarray,
+                         Wmax: np.ndarray) -> np.ndarray:
+    """Per sample (axis 1): max over members of max(|dL|/max|L|, |dW|/max|W|) (members on axis 0)."""
+    d = np.abs(La - Lb)
+    dL = d.max(axis=2) / Lmax[:, None]
+    dW = (d / moments).max(axis=2) / Wmax[:, None]
+    return np.maximum(dL, dW).max(axis=0)
+
+
 class ErrorTarget:
-    """Step chosen once from a whole-run error target ``rtol`` (see the module docstring)."""
+    """Step from a whole-run error target ``rtol``: a probe guesses, the run's own check decides
+    (see the module docstring)."""
 
     def __init__(self, rtol: Any):
         self.rtol = _validate.positive("rtol", rtol)
         self.seconds_per_step: float | None = None
+        self.retries = 0
+        self.history: list = []  # (h, estimated error) of every checked run (partial ones too)
+        self.last_growth = 0.0
 
     def __repr__(self) -> str:
         return f"ErrorTarget(rtol={self.rtol!r})"
 
-    def step(self, solver: FixedStepSolver, problem: Problem, max_steps: int) -> float:
+    def _members(self, problem: Problem) -> np.ndarray:
+        wmax_b = _orbit_rates(problem)
+        return np.sort(np.argsort(wmax_b)[::-1][: min(PROBE_MEMBERS, problem.B)])
+
+    def first_step(self, solver, problem: Problem, work: Work) -> float:
+        """The probe (module docstring, steps 1-3): a step for ``SAFETY * rtol`` from a leading window."""
         span = problem.span
         B = problem.B
+        self.retries = 0
+        self.history = []
         if B == 0 or span == 0.0:
             return max(span, 1.0)
-        wmax_b, _ = _rate_bound(problem)
+        wmax_b = _orbit_rates(problem)
         wmax = float(wmax_b.max())
-        if wmax == 0.0 or (hasattr(solver, "flows_per_step") and solver.flows_per_step(problem) == 0):
+        if wmax == 0.0 or solver.flows_per_step(problem) == 0:
             return span  # nothing moves
         p = solver.order
         target = SAFETY * self.rtol
-        sel = np.argsort(wmax_b)[::-1][: min(PROBE_MEMBERS, B)]
+        sel = self._members(problem)
         L0s = problem.L0[sel]
         Ms = problem.moments
         direction = 1.0 if problem.t[-1] >= problem.t[0] else -1.0
-        T0s = None
-        spent = [math.inf]  # least seconds per member-step seen (the first call may include JIT compilation)
 
         def richardson(Pv, m, samples):
-            """Error estimate (relative, see the module docstring) of ~m steps over [0, Pv]; None if failed."""
-            k = max(1, min(m, samples))
-            ms = int(math.ceil(m / k))
+            """Error estimate (relative) of ~m steps over [0, Pv] from the same members at twice the
+            step (1.5x the work of the m steps); ``(None, h)`` if a run failed."""
+            k = max(1, min(m // 2, samples))
+            ms = 2 * max(1, int(math.ceil(m / (2 * k))))
             tg = direction * np.linspace(0.0, Pv, k + 1) + problem.t[0]
-            t0 = time.perf_counter()
+            work.refuse(1.5 * k * ms * len(sel), lambda: f"the step control's probe of {1.5 * k * ms:.0f} steps")
             try:
-                y1 = solver.advance(problem, L0s, T0s, tg, np.full(k, ms), members=sel)[0]
-                y2 = solver.advance(problem, L0s, T0s, tg, np.full(k, 2 * ms), members=sel)[0]
-            except RuntimeError:  # an implicit step without solution at this h
+                y1 = advance_chunked(solver, problem, L0s, tg, np.full(k, ms), members=sel, work=work)[0]
+                y2 = advance_chunked(solver, problem, L0s, tg, np.full(k, ms // 2), members=sel, work=work)[0]
+            except (RuntimeError, FloatingPointError):  # no implicit step / an overflow at this h
                 return None, Pv / (k * ms)
-            finally:
-                spent[0] = min(spent[0], (time.perf_counter() - t0) / (3 * k * ms * len(sel)))
-            if not (math.isfinite(float(y1.sum() + y2.sum())) or (np.all(np.isfinite(y1)) and np.all(np.isfinite(y2)))):
-                return None, Pv / (k * ms)  # (a finite sum proves finite entries; else look at them)
-            dL = np.abs(y1 - y2)  # (members, k + 1, n)
-            dW = dL / Ms
-            Lmax = np.maximum(np.abs(y2).max(axis=(1, 2)), 1e-300)
-            wmax_s = np.maximum(np.abs(y2 / Ms).max(axis=(1, 2)), 1e-300)
-            # max(x / c) = max(x) / c for c > 0 (rounded division is monotonic): per member, then over members
-            e = max(float(np.max(dL.max(axis=(1, 2)) / Lmax)), float(np.max(dW.max(axis=(1, 2)) / wmax_s)))
-            return e / (1.0 - 2.0 ** -p), Pv / (k * ms)
+            Lmax = np.maximum(np.abs(y1).max(axis=(1, 2)), 1e-300)
+            Wmax = np.maximum(np.abs(y1 / Ms).max(axis=(1, 2)), 1e-300)
+            e = float(_relative_difference(y1, y2, Ms, Lmax, Wmax).max())
+            return e / (2.0 ** p - 1.0), Pv / (k * ms)
 
-        # 2. probe
         P = min(span, PROBE_TURNS / wmax)
         h = min(P, 1.0 / wmax)
         est = None
@@ -217,57 +282,247 @@ class ErrorTarget:
             h, err, P = est
             on_run = max(err, 1e3 * np.finfo(float).eps) * max(1.0, span / P)
             h_star = min(MAX_STEP_GROWTH * h, 0.8 * h * (target / on_run) ** (1.0 / p))
-        # 3. budget, before any long work
-        refuse_steps(span / h_star, B, max_steps,
-                     lambda: f"step {h_star / problem.scale:.3g} chosen for rtol = {self.rtol:g}")
-        # 4. whole-run check at h_c >= h*, costing at most CHECK_FRACTION of the run
-        widen = 1.0
-        grown = 0
-        last_good = None
-        for _ in range(6):
-            verified = False
-            allowance = widen * max(CHECK_STEPS_MIN, CHECK_FRACTION * (span / h_star) * B / len(sel))
-            h_c = max(h_star, 3.0 * span / allowance)
-            e, hv = richardson(span, max(1, int(math.ceil(span / h_c - 1e-9))), CHECK_SAMPLES)
-            coarse = hv > h_star * (1.0 + 1e-9)
-            if e is None or not np.isfinite(e) or e > ASYMPTOTIC:  # the check's step is not asymptotic
-                if last_good is not None:
-                    h_star = last_good  # a grown step failed: back to the last step that passed
-                    break
-                if coarse:
-                    widen *= 4.0  # check at a finer step (costs more)
-                else:
-                    h_star /= 4.0
-                continue
-            if e <= target:
-                h_star = hv  # the checked step meets the target (cheaper than the probe's if coarser)
-                if e < GROW_BELOW * target and grown < 2:  # far below: a longer step, checked again
-                    grown += 1
-                    h_star = min(MAX_STEP_GROWTH * hv, 0.9 * hv * (target / max(e, 1e-300)) ** (1.0 / p))
-                    last_good = hv
-                    continue
-                verified = True
-                break
-            h_new = 0.9 * hv * (target / e) ** (1.0 / p)
-            h_star = h_new if coarse else min(h_star, h_new)
-            if last_good is not None and h_star <= last_good:
-                h_star = last_good  # a grown step failed: back to the last step that passed
-                break
-            if coarse:
-                break  # extrapolated from an asymptotic estimate of the whole run
-        if not verified and last_good is not None:
-            h_star = last_good
-        refuse_steps(span / h_star, B, max_steps,
-                     lambda: f"step {h_star / problem.scale:.3g} chosen for rtol = {self.rtol:g}")
-        if math.isfinite(spent[0]):
-            self.seconds_per_step = spent[0]
-            seconds = self.seconds_per_step * float(nsub_for(problem.t, h_star).sum()) * B
-            limit = options["slow_run_warning_seconds"]
-            if seconds > limit:
-                warnings.warn(
-                    f"simulate: {solver.name!r} at rtol = {self.rtol:g} needs about {seconds:.3g} s "
-                    f"({span / h_star:.3g} steps per trajectory); a splitting of higher order reaches this "
-                    f"accuracy much sooner (options['slow_run_warning_seconds'] = {_validate.fmt(limit)})",
-                    UserWarning, stacklevel=4,
-                )
         return h_star
+
+    def announce(self, solver, problem: Problem, h: float) -> None:
+        """The slow-run warning (once the budget is checked), from the cost per flow learned by the probes."""
+        key = cost_key(solver, problem)
+        spf = seconds_per_flow(key)
+        steps = float(nsub_for(problem.t, h).sum())
+        self.seconds_per_step = spf * solver.flows_per_step(problem)
+        seconds = self.seconds_per_step * steps * problem.B * (1.0 + 1.0 / COMPANION_RATIO)
+        limit = options["slow_run_warning_seconds"]
+        if seconds > limit:
+            warnings.warn(
+                f"simulate: {solver.name!r} at rtol = {self.rtol:g} needs about {seconds:.3g} s "
+                f"({steps:.3g} steps per trajectory)"
+                + (", a splitting of higher order reaches this accuracy much sooner" if solver.order < 8 else "")
+                + f" (options['slow_run_warning_seconds'] = {_validate.fmt(limit)})",
+                UserWarning, stacklevel=5,
+            )
+
+    def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None) -> "RichardsonCheck | None":
+        if problem.B == 0 or not nsub.size or int(nsub.sum()) == 0 or solver.flows_per_step(problem) == 0:
+            return None
+        return RichardsonCheck(solver, problem, nsub, self, self._members(problem), work, bar)
+
+    def next_step(self, failure: CheckFailed, solver, problem: Problem, work: Work) -> float:
+        """The step of the re-run after a failed check, or an error when the target is out of reach."""
+        self.retries += 1
+        if self.retries > MAX_RETRIES:
+            best = min(e for _, e in self.history) if self.history else None
+            raise UnreachableAccuracyError(
+                f"simulate: rtol = {self.rtol:g} was not reached after {MAX_RETRIES} re-runs at shorter steps "
+                f"({failure.why}); the error does not follow the method's order here (round-off, or an orbit "
+                f"whose error grows exponentially); reachable accuracy about "
+                f"{best if best is not None else float('nan'):.2g} at reasonable cost. Ask for a larger rtol "
+                f"or a shorter run")
+        return failure.h
+
+    def verified_step(self, solver, problem: Problem, work: Work) -> float:
+        """The step, checked before any member runs (ensembles run member by member): the probe,
+        then the checked members run on their own with the companion (no output kept)."""
+        h = self.first_step(solver, problem, work)
+        t = problem.t
+        while True:
+            nsub = nsub_for(t, h)
+            check = self.checker(solver, problem, nsub, work)
+            if check is None:
+                return h
+            work.refuse(2 * check.planned_steps, "the step control's check")
+            try:
+                check.run_alone()
+                return h
+            except CheckFailed as failure:
+                h = self.next_step(failure, solver, problem, work)
+
+
+class RichardsonCheck:
+    """The a-posteriori check of one run (module docstring, steps 4-5).
+
+    ``marks`` are global step indices of the run (sample points); the driver keeps the run's
+    states there and calls :meth:`update` with them as the run reaches them; the companion of
+    the checked ``members`` follows, and :class:`CheckFailed` stops the run when the estimate
+    (or its projection) is over the target.
+    """
+
+    def __init__(self, solver, problem: Problem, nsub: np.ndarray, control: ErrorTarget, members: np.ndarray,
+                 work: Work, bar=None):
+        self.solver, self.problem, self.control, self.members, self.work, self.bar = (
+            solver, problem, control, members, work, bar)
+        t = problem.t
+        p = solver.order
+        self.p = p
+        self.nsub = nsub
+        self.cs = cs = np.concatenate([[0], np.cumsum(nsub)])
+        steps = int(cs[-1])
+        self.steps = steps
+        hs = step_lengths(t, nsub)
+        self.h = float(np.abs(hs).max())
+        # the companion's ratio: as long as its own error stays asymptotic
+        c = (COMPANION_ASYMPTOTIC / (SAFETY * control.rtol)) ** (1.0 / p)
+        c = float(min(COMPANION_RATIO, max(2.0, c), max(2.0, math.sqrt(steps / 8.0))))  # short runs: smaller c
+        finer = steps < 32  # a very short run: the companions take half and quarter steps instead
+        if finer:
+            spacing = max(1, int(math.ceil(steps / CHECK_SAMPLES)))
+        else:
+            spacing = max(int(math.ceil(2 * c * c)), int(math.ceil(steps / CHECK_SAMPLES)))
+        marks = np.arange(spacing, steps, spacing, dtype=np.int64)
+        if marks.size and steps - marks[-1] < spacing // 2:
+            marks = marks[:-1]
+        self.marks = marks = np.append(marks, steps)
+        seg = np.diff(np.concatenate([[0], marks]))
+        if finer:
+            self.nc, self.nc2 = seg * 2, seg * 4
+        else:
+            self.nc = np.maximum(1, np.floor(seg / c).astype(np.int64))
+            self.nc2 = np.maximum(1, np.floor(self.nc / c).astype(np.int64))
+        self.tm = step_times(t, cs, nsub, marks)
+        self.grid = np.concatenate([[t[0]], self.tm])
+        lengths = np.abs(np.diff(self.grid))
+        H, H2 = lengths / self.nc, lengths / self.nc2
+        # largest and smallest run step in each segment (the run's step differs between output intervals)
+        first = np.searchsorted(cs, np.concatenate([[0], marks[:-1]]), side="right") - 1
+        last = np.searchsorted(cs, marks - 1, side="right") - 1
+        ah = np.abs(hs)
+        hmax = np.array([ah[a:b + 1].max() for a, b in zip(first, last)])
+        hmin = np.array([ah[a:b + 1].min() for a, b in zip(first, last)])
+        # step ratios (companion / run, second / first companion), the smallest over the segments,
+        # or for the finer companions the ratios run / companion
+        self.r = float(np.min(H / hmax)) if not finer else float(np.min(hmin / H))
+        self.r2 = float(np.min(H2 / H)) if not finer else float(np.min(H / H2))
+        self.finer = finer
+        self.planned_steps = int(self.nc.sum() + self.nc2.sum()) * len(members)
+        self.moments = problem.moments
+        self.Lc = self.Lc2 = problem.L0[members]
+        self.carry = self.carry2 = None
+        self.j = 0
+        self.Lmax = np.maximum(np.abs(self.Lc).max(axis=1), 1e-300)
+        self.Wmax = np.maximum(np.abs(self.Lc / self.moments).max(axis=1), 1e-300)
+        self.d1 = np.zeros(marks.size)  # run - first companion, relative, per sample
+        self.d2 = np.zeros(marks.size)  # first - second companion
+        self.err = np.zeros(marks.size)  # estimated error of the run at each sample
+        self.span = problem.span
+
+    def _divisor(self) -> float:
+        r"""``e_run = |y_run - y_1| / divisor`` from the observed convergence of the three runs.
+
+        With errors :math:`C h^q`: :math:`|y_1 - y_2| / |y_{run} - y_1| \approx r_2^q` (more
+        precisely :math:`(r^q r_2^q - r^q)/(r^q - 1)`), which gives the observed order
+        :math:`q \le p` (never more than the method's order); the run's error is then
+        :math:`|y_{run} - y_1| / (r^q - 1)` (run vs coarser companion) or
+        :math:`|y_{run} - y_1|\,r^q/(1 - r^q)`... (finer companions: the run is the coarsest).
+        Outside the asymptotic regime (:math:`q < 1/2`) the difference itself is the estimate.
+        """
+        D1, D2 = float(self.d1[:self.j].max()), float(self.d2[:self.j].max())
+        p = self.p
+        if D1 <= 0.0:
+            return math.inf
+        rho = D2 / D1
+        if self.finer:  # the run is the coarsest: D1 ~ e_run (1 - r^-q), D2 ~ D1 / r2^q (r, r2 > 1)
+            q = min(p, math.log(max(rho, 1e-300)) / -math.log(self.r2)) if rho < 1.0 else 0.0
+            self.q = q
+            return max(1.0 - self.r ** -q, 1e-300) if q >= 0.5 else 1.0
+        q = min(p, math.log(rho) / math.log(self.r2)) if rho > 1.0 else 0.0
+        self.q = q
+        return max(self.r ** q - 1.0, 1.0) if q >= 0.5 else 1.0
+
+    def update(self, upto: int, Lf: np.ndarray) -> None:
+        """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones."""
+        j = self.j
+        if upto <= j:
+            return
+        grid = self.grid[j:upto + 1]
+        L1, self.carry = advance_chunked(self.solver, self.problem, self.Lc, grid, self.nc[j:upto],
+                                         members=self.members, work=self.work, bar=self.bar, carry=self.carry)
+        L2, self.carry2 = advance_chunked(self.solver, self.problem, self.Lc2, grid, self.nc2[j:upto],
+                                          members=self.members, work=self.work, bar=self.bar, carry=self.carry2)
+        self.Lc, self.Lc2 = L1[:, -1], L2[:, -1]
+        self.Lmax = np.maximum(self.Lmax, np.abs(Lf).max(axis=(1, 2)))
+        self.Wmax = np.maximum(self.Wmax, np.abs(Lf / self.moments).max(axis=(1, 2)))
+        self.d1[j:upto] = _relative_difference(Lf, L1[:, 1:], self.moments, self.Lmax, self.Wmax)
+        self.d2[j:upto] = _relative_difference(L1[:, 1:], L2[:, 1:], self.moments, self.Lmax, self.Wmax)
+        if not (np.all(np.isfinite(self.d1[j:upto])) and np.all(np.isfinite(self.d2[j:upto]))):
+            raise CheckFailed(self.h / 2.0, "a companion run overflowed")
+        self.j = upto
+        self.err[:upto] = self.d1[:upto] / self._divisor()
+        accept = ACCEPT * self.control.rtol
+        e = float(self.err[:upto].max())
+        done = abs(self.tm[upto - 1] - self.problem.t[0]) / self.span
+        if e > accept:
+            raise self._failure(e, self._project(upto, e, done), done)
+        if upto < self.marks.size and done >= PROJECT_AFTER:
+            projected = self._project(upto, e, done)
+            if projected > PROJECT_MARGIN * accept:
+                raise self._failure(e, projected, done)
+        if upto == self.marks.size:
+            self.control.history.append((self.h, e))
+
+    def _user(self, h: float) -> float:
+        return h / self.problem.scale
+
+    def _growth(self, upto: int) -> float:
+        """Exponential rate of the error envelope (scaled time), or 0.0 when it grows like a power of t.
+
+        On a regular orbit the error grows like :math:`t` (at most :math:`t^2`): by a factor 2-4
+        per doubling of the time. Over the last two doublings of the time done, a factor above
+        :data:`GROWTH_RATIO` (faster than :math:`t^3`) counts as exponential, with the rate of
+        the faster one (the envelope saturates once the error is of order one).
+        """
+        if upto < 16:
+            return 0.0
+        t = np.abs(self.tm[:upto] - self.problem.t[0])
+        env = np.maximum.accumulate(self.err[:upto])
+        idx = [int(np.searchsorted(t, t[-1] * f)) for f in (0.25, 0.5)] + [upto - 1]
+        lam = 0.0
+        for i, k in zip(idx[:-1], idx[1:]):
+            if env[i] > 0.0 and env[k] / env[i] > GROWTH_RATIO and t[k] > t[i]:
+                lam = max(lam, math.log(env[k] / env[i]) / (t[k] - t[i]))
+        return lam
+
+    def _project(self, upto: int, e: float, done: float) -> float:
+        """The estimated error at the end of the run from the samples so far, growing linearly (the
+        regular case; an exponential projection would stop runs near a separatrix, where the error
+        grows fast for a while only, and ask for far too short steps)."""
+        return e / max(done, 1e-300)
+
+    def _failure(self, e: float, projected: float, done: float) -> CheckFailed:
+        """The re-run's step, priced; or the error naming why ``rtol`` is out of reach."""
+        rtol, p = self.control.rtol, self.p
+        end = max(e, projected)
+        self.control.history.append((self.h, end))
+        q = min(p, max(1.0, getattr(self, "q", p)))  # the observed order (outside the asymptotic regime: < p)
+        h_new = 0.9 * self.h * (SAFETY * rtol / end) ** (1.0 / q)
+        h_new = min(h_new, self.h / 1.25)
+        lam = self._growth(self.j)
+        why = (f"estimated error {end:.2g} at the end of the run (rtol = {rtol:g}) with step "
+               f"{self._user(self.h):.3g}")
+        if lam > 0.0:
+            why += (f"; the error grows like exp(lambda t) with lambda ~ {lam * self.problem.scale:.3g} "
+                    f"(growth exp(lambda T) ~ {math.exp(min(lam * self.span, 700.0)):.3g} over the run, estimated "
+                    f"from the check at {done:.0%} of it)")
+        self.control.last_growth = lam
+        steps_new = self.span / h_new * self.problem.B * (1.0 + 1.0 / COMPANION_RATIO)
+        if self.work.done + steps_new > self.work.max_steps:
+            h_budget = self.span * self.problem.B * (1.0 + 1.0 / COMPANION_RATIO) / max(
+                self.work.max_steps - self.work.done, 1.0)
+            reachable = min(1.0, end * (h_budget / self.h) ** p)  # (1: no digit left)
+            raise StepBudgetError(
+                f"simulate: rtol = {rtol:g} needs about {self.work.done + steps_new:.3g} integration steps here "
+                f"({why}); reachable accuracy about {reachable:.2g} within the budget max_steps = "
+                f"{self.work.max_steps}; raise it with simulate(..., max_steps=...) or "
+                f"hyperrotor.options(max_steps=...), or ask for a larger rtol or a shorter run",
+                needed=self.work.done + steps_new, budget=self.work.max_steps, option="max_steps")
+        return CheckFailed(h_new, why)
+
+    def run_alone(self) -> None:
+        """The check without the run: the checked members advance on their own to every sample."""
+        problem, t, cs, nsub = self.problem, self.problem.t, self.cs, self.nsub
+        points = np.union1d(cs, np.concatenate([[0], self.marks]))
+        grid = step_times(t, cs, nsub, points)
+        hs = step_lengths(t, nsub)
+        h = hs[np.clip(np.searchsorted(cs, points[:-1], side="right") - 1, 0, nsub.size - 1)]
+        L, _ = advance_chunked(self.solver, problem, problem.L0[self.members], grid, np.diff(points), h,
+                               members=self.members, work=self.work, bar=self.bar)
+        pos = np.searchsorted(points, self.marks)
+        self.update(self.marks.size, L[:, pos])

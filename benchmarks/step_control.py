@@ -1,0 +1,179 @@
+"""Cost and reliability of the step control of hyperrotor.simulate(rtol=...) (issue #22).
+
+Three tables, each measured side by side in one run (ratios are load-robust):
+
+1. Overhead: wall time of ``simulate(body, omega0, t, rtol=r)`` (step chosen inside the call)
+   over the wall time of the fixed-step run at the step it chose (``dt=stats["dt"]``, same
+   method, same ``compensated`` choice), on the 3D top (2, 3, 4), the 5D quartet (kappa = 0.5)
+   and generic 5D bodies (ten independent moments, log-uniform in [0.3, 3]), T = 20 and 200,
+   rtol 1e-6 ... 1e-12. Goal: <= 1.5x. Also the achieved whole-run error over rtol
+   (max|L - L_ref| / max|L|, references: closed forms; generic bodies: splitting8 at dt = 0.002,
+   compensated, checked against DOP853 at rtol 1e-13).
+2. Headline: one rtol call of hyperrotor (step choice included) reaching error <= 1e-10
+   (error = max|omega - omega_ref| / max|omega0|) against scipy's DOP853 at the largest rtol that
+   reaches it: the quartet at T = 200 (goal >= 250x) and a generic 5D body (goal >= 60x).
+3. Bound held: over many random generic 5D bodies (T = 20), the fraction of runs whose whole-run
+   error stays <= rtol, rtol = 1e-6 ... 1e-10.
+
+Usage: python benchmarks/step_control.py [--quick]  (run with PYTHONPATH=<other tree>/src for "before")
+Writes benchmarks/results/step_control*.csv.
+"""
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+import numpy as np
+
+from hyperrotor import Inertia, RigidBody, simulate
+from hyperrotor.bench import best_of, write_csv
+from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+
+RESULTS = Path(__file__).resolve().parent / "results"
+MOM3 = np.array([2.0, 3.0, 4.0])
+W3 = np.array([0.6, 1.0, -0.5])
+
+
+def generic_body(seed):
+    """Ten independent plane moments, log-uniform in [0.3, 3], and omega0 with max|omega0| = 1."""
+    rng = np.random.default_rng(seed)
+    moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
+    w0 = rng.normal(size=10)
+    return moments, w0 / np.abs(w0).max()
+
+
+def reference(body, w0, t):
+    """splitting8 with compensated storage at dt = 0.002 (errors ~1e-15 over these runs), as omega;
+    its distance to an independent method (DOP853 at rtol 1e-13) is printed."""
+    ref = simulate(body, w0, t, method="splitting8", dt=0.002, compensated=True).omega
+    dop = simulate(body, w0, t, method="DOP853", rtol=1e-13).omega
+    print(f"  reference T={t[-1]:g}: splitting8(dt=0.002) vs DOP853(rtol=1e-13): "
+          f"{np.abs(ref - dop).max() / np.abs(w0).max():.1e}")
+    return ref
+
+
+def problems(quick):
+    out = []
+    for T in (20.0, 200.0):
+        t = np.linspace(0.0, T, 101)
+        out.append((f"top3d T={T:g}", RigidBody(MOM3), W3, t, euler_poinsot(MOM3, W3, t)))
+        q = Inertia.quartet(0.5)
+        wq = np.random.default_rng(2026).normal(size=10)
+        wq /= np.abs(wq).max()
+        out.append((f"quartet T={T:g}", RigidBody(q), wq, t, quartet_solution(0.5, wq, t)))
+        for seed in ((1,) if quick else (1, 2)):
+            m, w0 = generic_body(seed)
+            out.append((f"generic5#{seed} T={T:g}", m, w0, t, reference(m, w0, t)))
+    return out
+
+
+def overhead_table(probs, quick, repeats):
+    print("\n== 1. rtol call over the fixed-step run at the step it chose (goal <= 1.5x) ==")
+    print(f"{'problem':>20} {'rtol':>7} {'method':>11} {'steps':>8} {'t_rtol [s]':>10} {'t_dt [s]':>9} "
+          f"{'ratio':>6} {'err/rtol':>8}")
+    rows = []
+    rtols = (1e-6, 1e-9, 1e-12) if quick else (1e-6, 1e-8, 1e-10, 1e-12)
+    for name, body, w0, t, ref in probs:
+        simulate(body, w0, t[:2], method="splitting8", dt=0.1)  # JIT
+        moments = np.asarray(getattr(getattr(body, "inertia", None), "moments", body), dtype=float)
+        for rtol in rtols:
+            try:
+                el, tr = best_of(lambda: simulate(body, w0, t, rtol=rtol), repeats)
+            except ValueError as exc:  # refused: out of reach (chaotic orbit) or over the budget
+                print(f"{name:>20} {rtol:>7.0e} refused: {str(exc)[:150]}...")
+                rows.append(dict(problem=name, rtol=rtol, method="refused", steps=None, t_rtol=None, t_dt=None,
+                                 ratio=None, error_over_rtol=None))
+                continue
+            kw = dict(method=tr.stats["method"], dt=tr.stats["dt"])
+            if "compensated" in tr.stats:
+                kw["compensated"] = tr.stats["compensated"]
+            el_dt, _ = best_of(lambda: simulate(body, w0, t, **kw), repeats)
+            L, Lref = tr.omega * moments, ref * moments
+            err = np.abs(L - Lref).max() / np.abs(Lref).max() / rtol
+            rows.append(dict(problem=name, rtol=rtol, method=tr.stats["method"], steps=tr.stats["steps"],
+                             t_rtol=el, t_dt=el_dt, ratio=el / el_dt, error_over_rtol=err))
+            print(f"{name:>20} {rtol:>7.0e} {tr.stats['method']:>11} {tr.stats['steps']:>8d} {el:>10.4g} "
+                  f"{el_dt:>9.4g} {el / el_dt:>6.2f} {err:>8.3f}")
+    r = np.array([row["ratio"] for row in rows if row["ratio"] is not None])
+    print(f"ratio: median {np.median(r):.2f}, max {r.max():.2f}; bound missed in "
+          f"{sum((row['error_over_rtol'] or 0) > 1 for row in rows)} of {len(rows)} (refused: "
+          f"{sum(row['ratio'] is None for row in rows)})")
+    return rows
+
+
+def headline(quick, repeats, target=1e-10):
+    print(f"\n== 2. one rtol call reaching error <= {target:g} vs DOP853 at the same error ==")
+    q = Inertia.quartet(0.5)
+    wq = np.random.default_rng(2026).normal(size=10)
+    wq /= np.abs(wq).max()
+    tq = np.linspace(0.0, 200.0, 101)
+    m, wg = generic_body(1)
+    tg = np.linspace(0.0, 20.0, 101)
+    cases = [("quartet T=200", RigidBody(q), wq, tq, quartet_solution(0.5, wq, tq), 250.0),
+             ("generic5#1 T=20", m, wg, tg, reference(m, wg, tg), 60.0)]
+    rows = []
+    for name, body, w0, t, ref, goal in cases:
+        scale = np.abs(w0).max()
+        ours = None
+        for rtol in (1e-9, 3e-10, 1e-10, 3e-11, 1e-11):
+            el, tr = best_of(lambda: simulate(body, w0, t, rtol=rtol), repeats)
+            err = np.abs(tr.omega - ref).max() / scale
+            if err <= target:
+                ours = (rtol, el, err, tr.stats["method"])
+                break
+        dop = None
+        for rtol in (1e-10, 3e-11, 1e-11, 3e-12, 1e-12, 3e-13, 1e-13):
+            el, tr = best_of(lambda: simulate(body, w0, t, method="DOP853", rtol=rtol), max(1, repeats - 1))
+            err = np.abs(tr.omega - ref).max() / scale
+            if err <= target:
+                dop = (rtol, el, err)
+                break
+        ratio = dop[1] / ours[1] if ours and dop else float("nan")
+        print(f"{name:>16}: hyperrotor rtol={ours[0]:g} ({ours[3]}) {ours[1]:.4g} s err {ours[2]:.2e}; "
+              f"DOP853 rtol={dop[0] if dop else float('nan'):g} {dop[1] if dop else float('nan'):.4g} s -> "
+              f"{ratio:.0f}x (goal >= {goal:g}x)")
+        rows.append(dict(problem=name, ours_rtol=ours[0], ours_time=ours[1], ours_error=ours[2],
+                         dop853_rtol=dop and dop[0], dop853_time=dop and dop[1], speedup=ratio, goal=goal))
+    return rows
+
+
+def bound_table(quick):
+    n = 6 if quick else 20
+    print(f"\n== 3. whole-run bound on {n} random generic 5D bodies (T = 20, auto method) ==")
+    rows = []
+    t = np.linspace(0.0, 20.0, 41)
+    cases = [generic_body(100 + k) for k in range(n)]
+    refs = [reference(m, w0, t) * m for m, w0 in cases]
+    for rtol in (1e-6, 1e-8, 1e-10):
+        worst, held, t0 = 0.0, 0, time.perf_counter()
+        for (m, w0), Lref in zip(cases, refs):
+            tr = simulate(m, w0, t, rtol=rtol)
+            e = np.abs(tr.L - Lref).max() / np.abs(Lref).max() / rtol
+            worst = max(worst, e)
+            held += e <= 1.0
+        print(f"rtol {rtol:.0e}: bound held {held}/{n}, worst err/rtol {worst:.3f} ({time.perf_counter() - t0:.2f} s)")
+        rows.append(dict(rtol=rtol, bodies=n, held=held, worst_error_over_rtol=worst))
+    return rows
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="fewer problems and tolerances")
+    ap.add_argument("--tag", default="", help="suffix of the csv files (e.g. _before)")
+    args = ap.parse_args(argv)
+    RESULTS.mkdir(exist_ok=True)
+    t0 = time.perf_counter()
+    repeats = 2 if args.quick else 3
+    probs = problems(args.quick)
+    rows = overhead_table(probs, args.quick, repeats)
+    head = headline(args.quick, repeats)
+    bound = bound_table(args.quick)
+    write_csv(rows, RESULTS / f"step_control_overhead{args.tag}.csv")
+    write_csv(head, RESULTS / f"step_control_headline{args.tag}.csv")
+    write_csv(bound, RESULTS / f"step_control_bound{args.tag}.csv")
+    print(f"\nwrote {RESULTS}/step_control*{args.tag}.csv (total {time.perf_counter() - t0:.0f} s)")
+
+
+if __name__ == "__main__":
+    main()

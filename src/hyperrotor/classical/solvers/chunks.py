@@ -1,0 +1,157 @@
+r"""Chunked compiled work of the fixed-step methods: the one place that sizes chunks and learns their cost.
+
+Every phase of a fixed-step run (the step control's probes, the run itself, the coarse
+companion run of the a-posteriori check) advances the state through
+:meth:`~.driver.FixedStepSolver.advance` in calls of about ``options["chunk_seconds"]``
+each: between two calls Python runs its signal handlers (Ctrl-C raises
+:class:`KeyboardInterrupt` within about a chunk's time), and every call is counted against
+the run's budget (:class:`Work`). A call continues from the exact state of the previous
+one (``carry``), so the numbers do not depend on where the chunks fall.
+
+The measured seconds per elementary flow of each kind of kernel call (solver class and
+variant, N, attitude, ensemble size to a factor 2) are kept in :data:`SECONDS_PER_FLOW`:
+they size the first chunk of the next call and give the step control its time estimates.
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from hyperrotor._options import options
+
+from .base import Problem, StepBudgetError
+
+__all__ = ["Work", "advance_chunked", "step_times", "check_finite", "cost_key", "learn", "seconds_per_flow",
+           "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
+
+#: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
+#: are sized from its measured time to last ``options["chunk_seconds"]``
+FIRST_CHUNK_FLOWS = 2_000_000
+#: measured seconds per elementary flow and member of the last timed chunk, per :func:`cost_key`
+SECONDS_PER_FLOW: dict = {}
+#: chunks shorter than this (s) are not timed for the table above (call overhead dominates)
+MIN_TIMED_CHUNK = 2e-3
+#: ... and calls of fewer flows than this (a few probe steps cost mostly the call itself)
+MIN_TIMED_FLOWS = 200_000
+#: seconds per elementary flow assumed before anything of a kind was timed (a 5D splitting, one core)
+DEFAULT_SECONDS_PER_FLOW = 1e-8
+
+
+def cost_key(solver, problem: Problem, B: int | None = None, with_attitude: bool | None = None):
+    """The kind of a kernel call: solver variant, N, attitude, ensemble size to a factor 2."""
+    B = problem.B if B is None else B
+    att = problem.with_attitude if with_attitude is None else with_attitude
+    return solver.kernel_variant(), problem.N, att, 0 if B < 32 else B.bit_length()
+
+
+def learn(key, elapsed: float, flows: float) -> None:
+    """Record the seconds per flow of a timed call (calls shorter than :data:`MIN_TIMED_CHUNK` or of
+    fewer than :data:`MIN_TIMED_FLOWS` flows are ignored: the call's overhead would dominate)."""
+    if elapsed >= MIN_TIMED_CHUNK and flows >= MIN_TIMED_FLOWS:
+        SECONDS_PER_FLOW[key] = elapsed / flows
+
+
+def seconds_per_flow(key) -> float:
+    """The learned seconds per flow of ``key``, else :data:`DEFAULT_SECONDS_PER_FLOW`."""
+    return SECONDS_PER_FLOW.get(key, DEFAULT_SECONDS_PER_FLOW)
+
+
+class Work:
+    """The integration steps (times members) spent by one ``simulate`` call, against its budget ``max_steps``.
+
+    Every phase adds to ``done``; :meth:`refuse` stops a phase whose *planned* work would
+    carry the total over the budget before it starts.
+    """
+
+    def __init__(self, max_steps: int):
+        self.max_steps = int(max_steps)
+        self.done = 0.0
+
+    def add(self, steps: float) -> None:
+        self.done += float(steps)
+
+    def refuse(self, planned: float, what) -> None:
+        """Raise :class:`StepBudgetError` when ``done + planned`` exceeds the budget (``what``: the
+        estimate's origin, or a function making it, called only then)."""
+        total = self.done + float(planned)
+        if total > self.max_steps:
+            what = what() if callable(what) else what
+            raise StepBudgetError(
+                f"this run needs about {total:.3g} integration steps ({what}), more than the budget max_steps = "
+                f"{int(self.max_steps)}; raise it with simulate(..., max_steps=...) or "
+                f"hyperrotor.options(max_steps=...) if you mean it, or ask for less (shorter t, larger rtol/dt)",
+                needed=total, budget=self.max_steps, option="max_steps",
+            )
+
+
+def step_times(t: np.ndarray, cs: np.ndarray, nsub: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Times of the global step indices ``s`` (output times exactly where a step ends an interval);
+    ``cs``: cumulative steps ``[0, nsub[0], nsub[0] + nsub[1], ...]``."""
+    k = np.clip(np.searchsorted(cs, s, side="right") - 1, 0, nsub.size - 1)
+    out = t[k] + (t[k + 1] - t[k]) * ((s - cs[k]) / nsub[k])
+    return np.where(s == cs[k + 1], t[k + 1], out)
+
+
+def check_finite(Ls: np.ndarray, grid: np.ndarray, problem: Problem) -> None:
+    """``FloatingPointError`` unless the chunk's last states are finite (a finite sum proves it)."""
+    last = Ls[:, -1]
+    if math.isfinite(float(last.sum())) or np.all(np.isfinite(last)):
+        return
+    bad = int(np.argmax(~np.all(np.isfinite(Ls), axis=(0, 2))))
+    raise FloatingPointError(
+        f"simulate: the solution became non-finite near t = {grid[bad] / problem.scale:.6g} "
+        f"(the inputs overflow double precision; max|L0| = {np.abs(problem.L0).max() * problem.scale:.3g})"
+    )
+
+
+def advance_chunked(solver, problem: Problem, L0: np.ndarray, grid: np.ndarray, nsub: np.ndarray,
+                    h: np.ndarray | None = None, *, members: np.ndarray | None = None, work: Work | None = None,
+                    bar: Any = None, carry: Any = None) -> tuple[np.ndarray, Any]:
+    """Momenta ``(rows, K, n)`` on ``grid`` (no attitude) from ``L0`` at ``grid[0]``, in timed chunks.
+
+    Interval ``k`` takes ``nsub[k]`` steps of length ``h[k]`` (default: equal steps). A long
+    interval is cut inside (at step points, with the exact ``carry``), so no call lasts much
+    longer than ``options["chunk_seconds"]``. Returns the states and the carry of the last one.
+    """
+    nsub = np.asarray(nsub, dtype=np.int64)
+    if h is None:
+        h = (grid[1:] - grid[:-1]) / nsub
+    rows = L0.shape[0]
+    out = np.empty((rows, grid.size, L0.shape[1]))
+    out[:, 0] = L0
+    key = cost_key(solver, problem, B=rows, with_attitude=False)
+    flows = max(1, rows * solver.flows_per_step(problem))
+    target = float(options["chunk_seconds"])
+    cap = max(1, int(max(FIRST_CHUNK_FLOWS, target / seconds_per_flow(key)) // flows))
+    cs = np.concatenate([[0], np.cumsum(nsub)])
+    steps = int(cs[-1])
+    Lc = L0
+    s0 = 0
+    while s0 < steps:
+        s1 = min(steps, s0 + cap)
+        outs = np.arange(np.searchsorted(cs, s0, side="right"), np.searchsorted(cs, s1, side="right"))
+        marks = cs[outs]
+        if marks.size == 0 or marks[-1] != s1:
+            marks = np.append(marks, s1)
+        points = np.concatenate([[s0], marks])
+        pts = step_times(grid, cs, nsub, points)
+        t0 = time.perf_counter()
+        Ls, _ = solver.advance(problem, Lc, None, pts, np.diff(points).astype(np.int64), members=members,
+                               h=h[np.searchsorted(cs, points[:-1], side="right") - 1], carry=carry)
+        elapsed = time.perf_counter() - t0
+        carry = solver.last_carry
+        learn(key, elapsed, (s1 - s0) * flows)
+        check_finite(Ls, pts, problem)
+        for i, o in enumerate(outs):
+            out[:, o] = Ls[:, i + 1]
+        Lc = Ls[:, -1]
+        if work is not None:
+            work.add((s1 - s0) * rows)
+        if bar is not None:
+            bar.update((s1 - s0) * rows)
+        s0 = s1
+        cap = int(min(8 * cap, max(1, cap * target / max(elapsed, 1e-6))))
+    return out, carry
