@@ -49,6 +49,21 @@ def norm(v: np.ndarray) -> float:
     return float(np.sqrt(x @ x))
 
 
+#: how often (in Lanczos steps) a restart checks whether its space already reaches the last output time
+_CHECK_EVERY = 6
+
+
+def _reaches(alpha: np.ndarray, beta: np.ndarray, m: int, beta0: float, tau: float, hbar: float, tol: float) -> bool:
+    """Whether the Krylov space of dimension ``m`` meets ``tol`` at ``tau`` (the estimate of the restart, by Pade).
+
+    ``beta0 beta_m |e_m^T exp(-i T_m tau / hbar) e_1|`` with scipy's ``expm`` of the small tridiagonal
+    ``T_m`` (which keeps tiny values accurate: no eigendecomposition round-off floor). Lets short
+    propagations, such as the plane rotations of a coherent state, stop well below ``m_max``.
+    """
+    Tm = np.diag(alpha[:m]) + np.diag(beta[: m - 1], 1) + np.diag(beta[: m - 1], -1)
+    return beta0 * beta[m - 1] * abs(sla.expm((-1j * tau / hbar) * Tm)[m - 1, 0]) <= tol
+
+
 def krylov_propagator(mat, v0, times, hbar, stats, *, atol: float, m_max: int) -> Iterator[np.ndarray]:
     """Lanczos propagation of ``exp(-i H t / hbar) v0`` on a time grid.
 
@@ -93,6 +108,10 @@ def krylov_propagator(mat, v0, times, hbar, stats, *, atol: float, m_max: int) -
                 breakdown = True
                 break
             V[j + 1] = w / beta[j]
+            if (j + 1) % _CHECK_EVERY == 0 and j + 1 < m_max and _reaches(alpha, beta, j + 1, beta0,
+                                                                         times[-1] - t_cur, hbar, tol):
+                m = j + 1  # every remaining output time is served already: a smaller space suffices
+                break
         stats["n_krylov"] = stats.get("n_krylov", 0) + 1
         if m == 1:
             theta, S = np.array([alpha[0]]), np.ones((1, 1))
