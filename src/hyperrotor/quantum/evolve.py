@@ -46,7 +46,7 @@ from .. import _lazy, _parallel, _pricing, _validate
 from .._options import options as _options
 from ._krylov import single_thread_blas
 from .hamiltonian import blocks_of, hermitian_matrix
-from .propagators import EVOLVE_METHODS, PROPAGATORS, Eigen, Krylov, propagator_class  # noqa: F401 (EVOLVE_METHODS: quantum.rotor re-exports it)
+from .propagators import PROPAGATORS, Eigen, Krylov, propagator_class
 from .sectors import nonempty_blocks, restrict
 
 __all__ = ["SectorPropagator", "evolve"]
