@@ -1,8 +1,10 @@
 """Estimate vs measured cost of every priced entry point (hyperrotor._pricing, issue #21).
 
-For each entry point with a cost model, a few sizes below the budgets are run: the wall
-time (perf_counter, one run, no tracing) and the peak traced memory (tracemalloc, a second
-run; only for entries whose model prices memory) are printed next to the model's estimate,
+For each entry point with a cost model, a few sizes below the budgets are run: the CPU
+time of this process (process_time, one run, no tracing; BLAS and OpenMP limited to one thread,
+so it is single-core time and does not depend on the load of the machine) and the peak traced
+memory (tracemalloc, a second run; only for entries whose model prices memory) are printed
+next to the model's estimate,
 with their ratio (estimate / measured; the models aim at a factor ~3 either way). A plot
 of estimate against measured is written to benchmarks/results/pricing.png.
 
@@ -93,6 +95,14 @@ def cases():
     for N, l in ((3, 6), (3, 10), (4, 5)):
         out.append(("orthonormal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), lambda: None,
                     lambda _, N=N, l=l: hq.orthonormal_harmonic_basis(N, l)))
+    for N in (40, 80, 120):
+        out.append(("angular_momentum_operators", f"N={N}", dict(N=N), lambda: None,
+                    lambda _, N=N: hq.angular_momentum_operators(N)))
+    for N in (100, 200, 300):
+        out.append(("plane_symbols", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hr.plane_symbols(f"q{N}", N)))
+    for K in (10**5, 10**6):
+        out.append(("closed_form_output", f"quartet_solution {K} times N=5", dict(n_times=K, width=10), lambda: None,
+                    lambda _, K=K: hr.quartet_solution(0.5, np.linspace(0.1, 1.0, 10), np.linspace(0, 1, K))))
     for N in (6, 10, 14):
         out.append(("bivector_product_table", f"N={N}", dict(N=N), lambda: None,
                     lambda _, N=N: hr.bivector_product_table(N)))
@@ -109,9 +119,9 @@ def cases():
 def measure(setup, run, memory):
     arg = setup()
     gc.collect()
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     run(arg)
-    wall = time.perf_counter() - t0
+    wall = time.process_time() - t0
     peak = None
     if memory:
         arg = setup()
@@ -129,7 +139,7 @@ def main(argv=None):
     ap.add_argument("--plot", default=os.path.join(os.path.dirname(__file__), "results", "pricing.png"))
     args = ap.parse_args(argv)
     rows, seen = [], set()
-    print(f"load: {os.getloadavg()[0]:.2f}   (estimate / measured; time: single-core s, memory: peak traced bytes)")
+    print(f"load: {os.getloadavg()[0]:.2f}   (estimate / measured; time: CPU s of one core, memory: peak traced bytes)")
     print(f"| entry | size | est. s | meas. s | ratio | est. MiB | meas. MiB | ratio |")
     print(f"| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     with hr.options(max_seconds=1e300, max_memory_bytes=2**62, max_output_bytes=2**62):

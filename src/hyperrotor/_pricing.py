@@ -162,21 +162,21 @@ _EIGH_S = 8.0e-11
 #: seconds per SymPy term operation (a product or sum of two monomials with rational coefficients)
 _SYMPY_S = 2.0e-5
 #: seconds per plane pair of the structure-constant table (a Python loop)
-_PAIR_S = 5.0e-6
+_PAIR_S = 1.3e-6
 #: seconds per entry of an n^3 table converted and sliced (memory bound)
-_TABLE_S = 2.0e-8
+_TABLE_S = 1.4e-8
 #: seconds per dim^3 of the dense products building the spinor generators
-_DENSE_S = 3.6e-9
+_DENSE_S = 2.0e-9
 #: seconds per dim^2 of real_form (measured: dominated by dim^2 work up to dim ~1000)
-_REAL_FORM_S = 2.2e-5
+_REAL_FORM_S = 7.0e-6
 #: seconds per dim^2 * monomials of the exact harmonic basis (measured for N = 3, l = 20..80)
-_HARMONIC_S = 3.1e-7
+_HARMONIC_S = 1.5e-7
 #: seconds per pure-Python integer tuple operation (Freudenthal's recursion)
-_PY_S = 1.0e-6
+_PY_S = 3.0e-7
 #: seconds per dim^2 of the Lanczos highest-weight search
-_LANCZOS_S = 1.8e-8
+_LANCZOS_S = 6.0e-9
 #: seconds per output time of evolve (a state Qobj per time, expectation values)
-_EVOLVE_S = 7.0e-5
+_EVOLVE_S = 2.6e-5
 #: bytes held per stored output time of evolve besides the state's entries (Qobj and its data object)
 _QOBJ_BYTES = 360.0
 
@@ -262,7 +262,7 @@ def _dense_representation(dim: Any, copies: Any = 4) -> tuple[Cost, ...]:
     d = _f(dim)
     return (
         _memory(f"dense {dim} x {dim} complex matrices ({copies} of them)", 16.0 * _f(copies) * d * d),
-        _seconds(f"dense O(dim^3) linear algebra at dimension {dim}", 16.0 / 3.0 * d ** 3 * _EIGH_S),
+        _seconds(f"dense O(dim^3) linear algebra at dimension {dim}", 50.0 * d ** 3 * _EIGH_S),
     )
 
 
@@ -315,7 +315,7 @@ def _lyapunov_sweep(bodies: Any, orbits: Any, n: Any, k: Any = 1) -> tuple[Cost,
 @model("closed_form_output", "ask for fewer output times (t)")
 def _closed_form_output(n_times: Any, width: Any) -> tuple[Cost, ...]:
     # the returned (K, width) float array and one temporary of the same size
-    return (Cost(f"{n_times} output times x {width} values", 16.0 * _mul(n_times, width), "max_output_bytes", "bytes"),)
+    return (Cost(f"{n_times} output times x {width} values", 22.0 * _mul(n_times, width), "max_output_bytes", "bytes"),)
 
 
 @model("ellipsoid_points", "ask for fewer points")
@@ -407,13 +407,13 @@ def _casimir_operator(N: Any) -> tuple[Cost, ...]:
     # sum over n planes of L_a^2 (each 2-term operator squared), merged into a total of O(N^2) terms:
     # measured ~ n * N (N = 16..96)
     n = _n_planes(N)
-    return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", n * _f(N) * 0.35 * _SYMPY_S),)
+    return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", n * _f(N) * 0.12 * _SYMPY_S),)
 
 
 @model("angular_momentum_operators")
 def _angular_momentum_operators(N: Any) -> tuple[Cost, ...]:
     n = _n_planes(N)
-    return (_seconds(f"the {n:.0f} symbolic generators of so({N})", n * 8.0 * _SYMPY_S),)
+    return (_seconds(f"the {n:.0f} symbolic generators of so({N})", n * 3.0 * _SYMPY_S),)
 
 
 @model("harmonic_polynomial_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
@@ -430,26 +430,26 @@ def _orthonormal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
     monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
     dim = _harmonic_dim(N, l)
     return (_harmonic_space(N, l, dim), _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
-                     f"({monomials:.6g} monomials)", dim * dim * monomials * 0.5 * _SYMPY_S),)
+                     f"({monomials:.6g} monomials)", dim * dim * monomials * 0.3 * _SYMPY_S),)
 
 
 @model("bivector_product_table")
 def _bivector_product_table(N: Any) -> tuple[Cost, ...]:
     n = _n_planes(N)
-    return (_seconds(f"the {n:.0f} x {n:.0f} symbolic product table", n * n * 9.0 * _SYMPY_S),)
+    return (_seconds(f"the {n:.0f} x {n:.0f} symbolic product table", n * n * 3.0 * _SYMPY_S),)
 
 
 @model("euler_equations")
 def _euler_equations(N: Any) -> tuple[Cost, ...]:
     # n equations, each a sum over the planes that share an axis with the plane (2(N-2) products)
     n = _n_planes(N)
-    return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", n * n * 3.0 * _SYMPY_S),)
+    return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", n * n * _SYMPY_S),)
 
 
 @model("plane_symbols")
 def _plane_symbols(N: Any) -> tuple[Cost, ...]:
     n = _n_planes(N)
-    return (_seconds(f"{n:.0f} SymPy symbols", n * 1.5e-5),)
+    return (_seconds(f"{n:.0f} SymPy symbols", n * 1.0e-5),)
 
 
 @model("weight_multiplicities", "use weyl_dimension for the dimension only")

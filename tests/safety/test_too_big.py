@@ -383,7 +383,8 @@ def _walk(names):
         proc = subprocess.Popen([sys.executable, __file__, *todo], stdout=subprocess.PIPE,
                                 stderr=subprocess.DEVNULL, text=True, env=env)
         lines: queue.Queue = queue.Queue()
-        threading.Thread(target=lambda: [lines.put(x) for x in proc.stdout] + [lines.put(None)], daemon=True).start()
+        reader = threading.Thread(target=lambda: [lines.put(x) for x in proc.stdout] + [lines.put(None)], daemon=True)
+        reader.start()
         first = True
         while True:
             try:  # the first answer waits for the imports too
@@ -394,6 +395,8 @@ def _walk(names):
             if line is None or line == "hang":
                 proc.kill()
                 proc.wait()
+                reader.join(timeout=10.0)  # the pipe is at its end once the worker is gone
+                proc.stdout.close()
                 if todo:
                     what = "hang (no answer, not interruptible)" if line == "hang" else f"worker died ({proc.returncode})"
                     out[todo[0]] = {"name": todo[0], "outcome": what, "detail": "", "cpu": float("nan"),
