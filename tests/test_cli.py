@@ -110,32 +110,8 @@ def test_choices_ignore_case_like_the_python_api():
     assert (args.shape, args.inertia) == ("simplex", "box")
 
 
-#: Text that must never be run (#21): each is refused by the one parser of user text.
-PAYLOADS = ["__import__('os').system('touch pwned')", "9**9**9**9", "().__class__.__mro__", "lambda: 1",
-            "exec('1')", "__builtins__", "1e999999", "(" * 200 + "1" + ")" * 200]
-#: Options that take a FILE or STEM: names of files, never read as numbers (checked as paths, cli/_files.py).
-PATH_OPTIONS = {"--output", "--png"}
-
-
-def _text_options():
-    """(subcommand, option) for every option of every subcommand that takes a value, except paths."""
-    import argparse
-
-    from hyperrotor.cli import build_parser
-
-    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
-    return [(name, a.option_strings[0]) for name, p in sub.choices.items() for a in p._actions
-            if a.option_strings and a.nargs != 0 and a.option_strings[0] not in PATH_OPTIONS]
-
-
-@pytest.mark.parametrize("command,option", _text_options())
-def test_payloads_in_every_text_option_are_usage_errors(capsys, tmp_path, monkeypatch, command, option):
-    monkeypatch.chdir(tmp_path)
-    for payload in PAYLOADS:
-        code, out, err = _run(capsys, [command, f"{option}={payload}"])
-        assert code == 2 and out == "", (payload, err)
-        assert option in err and err.count("\n") == 1, (payload, err)
-    assert _files(tmp_path) == []
+# Payloads (os.system, 9**9**9**9, dunders, ...) through every CLI option that takes text:
+# tests/safety/test_payloads.py walks build_parser() (#21).
 
 
 def test_help_lists_subcommands(capsys):
@@ -311,6 +287,12 @@ MORE = [
     (["scene", "--max-memory", "lots"], ["argument --max-memory: expected a size such as 2G"]),
     (["scene", "--kappa", "1e300"], ["--kappa must have magnitude <= 1e+100, got 1e+300"]),
     (["scene", "--N", "1000000000"], ["2^1000000000 points", "budget of 2 GiB"]),
+    # an integrated motion is priced before it runs (#22: this ran 506 s with --max-seconds 10)
+    (["scene", "--inertia", "box", "--t-end", "1e6", "--max-seconds", "10"],
+     ["scene --t-end 1000000 (", "integration steps of splitting8", "over the budget of 10 s (--max-seconds"]),
+    (["scene", "--inertia", "box", "--t-end", "1e6", "--max-steps", "1000"],
+     ["integration steps (splitting8), over the budget of 1000 (--max-steps", "raise --max-steps"]),
+    (["scene", "--inertia", "box", "--max-steps", "5"], ["over the budget of 5 (--max-steps"]),
     (["demo", "--omega=1e100,1e100,1,1,1,1,1,1,1,1"], ["fastest rate 1.6e+100", "budget of 10 min"]),
     (["demo", "--kappa", "1e50"], ["fastest rate 5e+99", "budget"]),
     (["demo", "--omega=1e308,1,1,1,1,1,1,1,1,1"], ["--omega must have magnitude <= 1e+100, got 1e+308"]),
@@ -327,6 +309,7 @@ def _check_refusal(args, words, code, out, err, folder):
     for w in words:
         assert w in err
     assert "np.float64" not in err
+    assert "simulate(" not in err and "hr.options(" not in err  # a CLI user is told the CLI's options
     assert _files(folder) == []  # nothing written, no temporary file left
 
 
@@ -542,3 +525,15 @@ def test_stdout_failing_after_the_files_were_written_says_so(capsys, tmp_path, m
     assert "No space left on device" in _one_line(err)
     assert "(written before the failure, complete: r.md)" in err
     assert _files(tmp_path) == ["r.md"] and (tmp_path / "r.md").read_text().startswith("# Verification")
+
+
+def test_force_replaces_a_symlink_never_writes_through_it(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # #21 §4: the report used to be written through a symlink
+    (tmp_path / "target.md").write_text("someone else's file")
+    (tmp_path / "r.md").symlink_to(tmp_path / "target.md")
+    code, _, err = _run(capsys, ["verify", "--section", "euler", "-o", "r.md"])
+    assert code == 2 and "'r.md' exists; pass --force" in err
+    code, _, err = _run(capsys, ["verify", "--section", "euler", "-o", "r.md", "--force"])
+    assert code == 0, err
+    assert not (tmp_path / "r.md").is_symlink() and (tmp_path / "r.md").read_text().startswith("# Verification")
+    assert (tmp_path / "target.md").read_text() == "someone else's file"

@@ -216,8 +216,11 @@ def have_matplotlib() -> bool:
     return have_module("matplotlib")
 
 
-def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool = False) -> None:
-    """The options every subcommand has (--force, --progress, --debug) and the budget options."""
+def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool = False, steps: str = "") -> None:
+    """The options every subcommand has (--force, --progress, --debug) and the budget options.
+
+    ``budget``: --max-seconds; ``memory``: --max-memory; ``steps`` (what integrates): --max-steps.
+    """
     g = p.add_argument_group("behaviour")
     g.add_argument("--force", action="store_true",
                    help="replace existing output files (default: refuse and leave them as they are)")
@@ -233,6 +236,10 @@ def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool
         g.add_argument("--max-memory", type=byte_size, default=None, metavar="SIZE",
                        help="refuse a run estimated to need more memory, e.g. 4G (default "
                             f"hr.options['cli_max_memory'] = {size_text(options['cli_max_memory'])})")
+    if steps:
+        g.add_argument("--max-steps", default=None, metavar="N",
+                       help=f"refuse {steps} estimated to need more integration steps "
+                            f"(default hr.options['max_steps'] = {options['max_steps']:.3g})")
 
 
 def check_common(args: argparse.Namespace) -> None:

@@ -10,7 +10,8 @@ import argparse
 
 import numpy as np
 
-from hyperrotor import _validate
+from hyperrotor import BudgetError, _validate
+from hyperrotor._options import options
 from hyperrotor.cli._common import (UsageError, add_common, bar, check_budget, check_common, choice_of,
                                     have_matplotlib, have_module, int_list, integer, num, number, number_list,
                                     usage)
@@ -68,7 +69,7 @@ def configure(p: argparse.ArgumentParser) -> None:
                         "time) or FILE.html (interactive page: rotate, zoom, play/pause, time slider, invariants; "
                         "self-contained, opens offline in a browser; needs plotly) "
                         "(default hyperrotor-scene.png; an existing file is kept unless --force)")
-    add_common(p, budget=True, memory=True)
+    add_common(p, budget=True, memory=True, steps="an integrated motion (--inertia box, --lock)")
 
 
 def _scene_size(shape: str, N: int) -> tuple[float, float]:
@@ -164,7 +165,8 @@ def _scene_check(args: argparse.Namespace):
     if omega.shape != (n,):
         raise UsageError(f"--omega needs N(N-1)/2 = {n} components for N = {N}, got {omega.size}")
     omega = np.where([any(k in p for k in lock) for p in planes(N)], 0.0, omega)
-    return {"N": N, "frames": frames, "t_end": t_end, "axes": axes, "colour_axis": colour_axis or None,
+    max_steps = options["max_steps"] if args.max_steps is None else integer(args.max_steps, "--max-steps", minimum=1)
+    return {"N": N, "frames": frames, "integrate": args.inertia == "box" or bool(lock), "max_steps": max_steps, "t_end": t_end, "axes": axes, "colour_axis": colour_axis or None,
             "sides": sides, "omega": omega, "format": fmt, "seconds": seconds, "memory": memory, "kappa": kappa,
             "axis": axis}
 
@@ -199,15 +201,19 @@ def run(args: argparse.Namespace) -> int:
         observables = ("projection", "omega") if fmt == ".html" else ("projection",)  # the page shows invariants
         scene = Scene(RigidBody(inertia), s["omega"], t, observables=observables, points=points, axes=proj_axes,
                       progress=args.progress)  # a bar while an integrated motion is computed
-        res = scene.evaluate()
+        with options(max_steps=s["max_steps"]):
+            if s["integrate"]:
+                _check_motion(args, s, scene)
+            try:
+                res = scene.evaluate()
+            except BudgetError as err:  # the library's advice names Python options; name the CLI's
+                raise UsageError(_budget_message(err)) from None
         checkpoint()
         kind = "points" if args.shape == "ellipsoid" else args.shape
         edges = body_edges(points, kind)
         title = (f"{args.shape} in {N}D, {args.inertia} inertia: space axes {', '.join(map(str, s['axes']))} drawn"
                  + (f", colour = x{s['colour_axis']}" if s["colour_axis"] else ""))
         if fmt == ".html":
-            from hyperrotor._options import options
-
             with options(scene_html_max_bytes=max(float(options["scene_html_max_bytes"]), s["memory"])):
                 scene.to_html(out.tmp, edges=kind, title=title, result=res)
         else:
@@ -231,3 +237,45 @@ def _draw(args, s: dict, path, res, edges, title: str) -> None:
             save_projection_animation(path, res.t, res.projection, edges, **kw)
         else:
             save_projection_frames(path, res.t, res.projection, edges, format="png", **kw)
+
+
+def _check_motion(args: argparse.Namespace, s: dict, scene) -> None:
+    """Price the integrated motion (:func:`hyperrotor.classical.simulate.estimate_cost`) before it runs.
+
+    Adds its estimated seconds to the drawing's and checks both budgets
+    (--max-seconds, --max-steps); the estimate uses the full body (a locked
+    run integrates a smaller one: an upper bound). With ``rtol`` the library
+    probes a short leading window (milliseconds; the first call also loads or
+    compiles the kernel).
+    """
+    from hyperrotor.classical.simulate import estimate_cost
+
+    try:
+        cost = estimate_cost(scene.rigid_body, s["omega"], scene.t, method=scene.method, rtol=scene.rtol,
+                             attitude=True)
+    except BudgetError as err:
+        raise UsageError(_budget_message(err)) from None
+    what = f"scene --t-end {num(s['t_end'])}"
+    if cost.steps is not None and cost.steps > s["max_steps"]:
+        raise UsageError(f"{what}: the motion needs about {cost.steps:.3g} integration steps ({cost.method}), "
+                         f"over the budget of {s['max_steps']} (--max-steps, default hr.options['max_steps']); "
+                         "choose a shorter --t-end, or raise --max-steps (and --max-seconds)")
+    check_budget(args, f"{what} ({cost.steps:.3g} integration steps of {cost.method})",
+                 s["seconds"] + (cost.seconds or 0.0), hint="choose a shorter --t-end")
+
+
+#: hr.options budget -> the option of ``hyperrotor scene`` that sets it for one run.
+_CLI_BUDGETS = {"max_steps": "--max-steps", "max_output_bytes": "--max-memory", "max_memory_bytes": "--max-memory",
+                "max_seconds": "--max-seconds"}
+
+
+def _budget_message(err: BudgetError) -> str:
+    """A library budget refusal, worded with the command line's options."""
+    option = getattr(err, "option", None)
+    needed, budget = getattr(err, "needed", None), getattr(err, "budget", None)
+    flag = _CLI_BUDGETS.get(option or "", "--max-seconds")
+    if needed is not None and budget is not None:
+        return (f"the motion needs about {needed:.3g} ({option}), over the budget of {budget:.6g} "
+                f"({flag}); choose a shorter --t-end or fewer --frames, or raise {flag}")
+    text = str(err).split("; raise it with", 1)[0].split(" (raise it", 1)[0]
+    return f"{text}; choose a smaller run or raise {flag}"
