@@ -386,10 +386,9 @@ def _scene(shape: str, N: int, frames: Any, format: str = ".png", integrate: boo
               + 4 * K * N * N * 8 + 2 * K * P * 4 * 8)
     seconds = (c["start"] + K * N * N * c["motion"] * (50 if integrate else 1)
                + (P * N * N * c["cube_edges"] if shape == "cube" else 0))
-    if format == ".html":
-        from hyperrotor.classical.scene_html import scene_html_bytes
-
-        page = scene_html_bytes(int(min(K, 2**62)), int(min(P, 2**62)), int(min(E, 2**62)), colour=colour)
+    if format == ".html":  # the page's bytes: the "Scene.to_html" model (registered by classical/scene_html.py)
+        page = sum(c.amount for c in estimate("Scene.to_html", n_times=int(min(K, 2**62)), n_points=int(min(P, 2**62)),
+                                              n_edges=int(min(E, 2**62)), colour=colour))
         memory += c["html_copies"] * page
         seconds += K * (c["frame_html"] + E * c["html_edge"] + P * c["html_point"])
     else:
