@@ -62,14 +62,15 @@ from hyperrotor.conventions import dimension_from_count, plane_index
 from .solvers._tangent_kernels import tangent_run, tangent_run_lanes
 from .simulate import simulate
 from .solvers import SOLVERS
-from .solvers.splitting import Splitting, casimir_shift, rotation_tables, splitting_word
+from .solvers.splitting import casimir_shift, rotation_tables, splitting_word
+from .solvers.step_control import rate_bound
 
 __all__ = ["lyapunov", "lyapunov_sweep", "LyapunovResult", "LYAPUNOV_METHODS", "poincare_section", "PoincareSection"]
 
-#: ``method=`` names of :func:`lyapunov`: the Lie-Poisson splittings of the solver registry
-#: :data:`hyperrotor.SOLVERS` (their steps are products of plane rotations, whose tangent maps
-#: :mod:`~hyperrotor.classical.solvers._tangent_kernels` composes), in the registry's order.
-_ORDER = {name: cls.order for name, cls in SOLVERS.items() if issubclass(cls, Splitting)}
+#: ``method=`` names of :func:`lyapunov`: the solvers of the registry :data:`hyperrotor.SOLVERS`
+#: with compiled tangent maps (``Solver.tangent``: the Lie-Poisson splittings, whose steps are
+#: products of plane rotations), in the registry's order.
+_ORDER = {name: cls.order for name, cls in SOLVERS.items() if cls.tangent}
 LYAPUNOV_METHODS = tuple(_ORDER)
 #: measured throughput of the tangent kernel (flow-vectors per second and thread, 5D: 2e8 for the
 #: maximal exponent, 9e7 for the full spectrum); used for budgets and chunk sizes
@@ -110,13 +111,6 @@ def _benettin_rows(L0, rates, W0, h, nsub, word_planes, word_coefs, pair_p, pair
 # ----------------------------------------------------------------------------
 # shared driver
 # ----------------------------------------------------------------------------
-def _rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
-    """Per row: max_a min(|L|, sqrt(2 E I_a)) / I_a, the largest angular velocity on the orbit."""
-    C = np.sqrt(np.sum(L0 * L0, axis=1, keepdims=True))
-    E2 = np.sum(L0 * L0 / moments, axis=1, keepdims=True)
-    return np.max(np.minimum(C, np.sqrt(E2 * moments)) / moments, axis=1)
-
-
 def _check_common(T, spectrum, method, dt, renorm_interval, n):
     T = _validate.positive("T", T)
     method = _validate.choice("method", method, LYAPUNOV_METHODS)
@@ -154,7 +148,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     tau = T / nren
     # steps per renormalisation (as floats, for the budget check before any cast)
     if dt is None:
-        wmax = _rate_bound(moments_rows, Ls)  # of the scaled orbit, time tau * scale
+        wmax = rate_bound(moments_rows, Ls)  # of the scaled orbit, time tau * scale
         with np.errstate(over="ignore"):
             nsub_f = np.where(wmax > 0, np.ceil(tau * scale * wmax / options["lyapunov_step"] * (1 - 1e-12)), 1.0)
     else:
@@ -175,7 +169,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     budget = options["lyapunov_max_work"]
     if not work_rows.sum() / threads <= budget:  # also refuses an infinite estimate
         with np.errstate(over="ignore"):
-            w_top = float(np.max(_rate_bound(moments_rows, Ls) * scale)) if B else 0.0
+            w_top = float(np.max(rate_bound(moments_rows, Ls) * scale)) if B else 0.0
         raise ValueError(
             f"this run needs about {work_rows.sum():.3g} units of work (5D plane flows x (1 + {k} tangent vectors"
             f"{f' x (N - 2) / 3 = {tangent:.4g}' if N > 5 else ''})), "
@@ -549,7 +543,7 @@ def poincare_section(
     L0 = w0 * moments
     if dt is None:
         s = float(np.ldexp(1.0, np.frexp(np.max(np.abs(L0)))[1])) or 1.0  # power of two: no overflow
-        wmax = float(_rate_bound(moments[None, :], L0[None, :] / s)[0]) * s
+        wmax = float(rate_bound(moments[None, :], L0[None, :] / s)[0]) * s
         dt = options["lyapunov_step"] / wmax if wmax > 0 else T
         dt = min(dt, T)  # a (nearly) resting body: one step (lyapunov_step / wmax overflows for subnormal omega)
     steps = T / dt
