@@ -14,7 +14,6 @@ import hyperrotor as hr
 from hyperrotor import Inertia, RigidBody
 from hyperrotor.cli import EXIT_CODES, SUBCOMMANDS, main
 from hyperrotor.cli.bench import bench_paths
-from hyperrotor.cli.scene import scene_estimate
 
 
 def _run(capsys, argv):
@@ -458,9 +457,11 @@ def test_runtime_failure_exits_1_and_leaves_no_file(capsys, tmp_path, monkeypatc
 
 
 def test_scene_estimate_of_the_40_cube():
-    memory, seconds = scene_estimate("cube", 40, 60)
+    from hyperrotor._pricing import estimate
+
+    memory, seconds = (c.amount for c in estimate("scene", shape="cube", N=40, frames=60))
     assert memory >= 2**40 * 40 * 8  # the vertex array alone: 8 TiB
-    small, quick = scene_estimate("cube", 5, 60)
+    small, quick = (c.amount for c in estimate("scene", shape="cube", N=5, frames=60))
     assert small < 2**27 and quick < 10
 
 

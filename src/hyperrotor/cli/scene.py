@@ -3,6 +3,9 @@
 The interactive page (``--output FILE.html``) is the library's
 :meth:`hyperrotor.Scene.to_html` (plotly, self-contained: rotatable and
 zoomable 3D view, play/pause, a time slider, the time and the invariants).
+Costs are estimated before any work by the library: the drawing by the cost
+model ``"scene"`` of :mod:`hyperrotor._pricing`, an integrated motion by
+:func:`hyperrotor.classical.simulate.estimate_cost`.
 """
 from __future__ import annotations
 
@@ -10,7 +13,7 @@ import argparse
 
 import numpy as np
 
-from hyperrotor import BudgetError, _validate
+from hyperrotor import BudgetError, _pricing, _validate
 from hyperrotor._options import options
 from hyperrotor.cli._common import (UsageError, add_common, bar, check_budget, check_common, choice_of,
                                     have_matplotlib, have_module, int_list, integer, num, number, number_list,
@@ -18,32 +21,21 @@ from hyperrotor.cli._common import (UsageError, add_common, bar, check_budget, c
 from hyperrotor.cli._files import Outputs, output_file
 from hyperrotor.cli._signals import checkpoint
 
-__all__ = ["configure", "run", "scene_estimate", "SCENE_SHAPES", "SCENE_INERTIAS", "SCENE_FORMATS"]
+__all__ = ["configure", "run", "SCENE_SHAPES", "SCENE_INERTIAS", "SCENE_FORMATS"]
 
 
+#: Body points of ``scene --shape``.
 SCENE_SHAPES = ("cube", "simplex", "ellipsoid")
 #: Bodies of ``scene --inertia``.
 SCENE_INERTIAS = ("quartet", "equal", "box")
 #: Formats of ``scene --output``, chosen by the file's suffix.
 SCENE_FORMATS = (".png", ".gif", ".html")
-#: Points of the ellipsoid sample of ``scene --shape ellipsoid``.
-_ELLIPSOID_POINTS = 400
-#: Cost model of ``scene`` (seconds, measured on the shared 2-core machine: --N 12 cube PNG 15.8 s
-#: wall against 13.7 s estimated): start-up (imports), per drawn frame, per drawn edge and point of
-#: a frame, per frame-plane of the motion, per cube vertex and axis^2 (finding the edges).
-#: The page (--output .html, measured the same way: cube N = 5, 8, 10 took 4.1, 9.1, 46 s against 6.4,
-#: 15.6, 55 s estimated, 0.26, 0.32, 0.56 GB peak against 0.30, 0.35, 0.44 GB): per frame, per edge and point
-#: of a frame (plotly builds and validates every frame), memory ~14 copies of the page's text.
-_SCENE_COST = {"start": 5.0, "frame_png": 0.35, "frame_gif": 0.1, "frame_html": 0.01, "edge": 3.5e-5,
-               "point": 1e-5, "html_edge": 1.5e-4, "html_point": 5e-5, "html_copies": 14,
-               "motion": 2e-7, "cube_edges": 2e-6}
-_GIF_FRAME_BYTES = 540 * 480 * 4  # Pillow keeps every RGBA frame until the file is written
 
 
 def configure(p: argparse.ArgumentParser) -> None:
     p.add_argument("--shape", default="cube", choices=SCENE_SHAPES, type=choice_of(SCENE_SHAPES),
                    help="body points: N-cube vertices (2^N), N-simplex vertices (N+1) or "
-                        f"{_ELLIPSOID_POINTS} ellipsoid points (default cube)")
+                        f"{_pricing.SCENE_ELLIPSOID_POINTS} ellipsoid points (default cube)")
     p.add_argument("--N", default=5, help="dimension of space, >= 3 (default 5)")
     p.add_argument("--inertia", default="quartet", choices=SCENE_INERTIAS, type=choice_of(SCENE_INERTIAS),
                    help="quartet: the paper's eqs. 84-85 (any N), equal: eq. 82, box: solid hyper-box of the "
@@ -70,52 +62,6 @@ def configure(p: argparse.ArgumentParser) -> None:
                         "self-contained, opens offline in a browser; needs plotly) "
                         "(default hyperrotor-scene.png; an existing file is kept unless --force)")
     add_common(p, budget=True, memory=True, steps="an integrated motion (--inertia box, --lock)")
-
-
-def _scene_size(shape: str, N: int) -> tuple[float, float]:
-    """Number of body points and of drawn edges (floats: 2^N may be huge)."""
-    if shape == "cube":
-        n = min(N, 200)  # past 2^200 nothing fits anyway; keeps every estimate a finite float
-        return 2.0**n, n * 2.0 ** (n - 1)
-    if shape == "simplex":
-        return N + 1.0, (N + 1.0) * N / 2
-    return float(_ELLIPSOID_POINTS), 0.0
-
-
-def scene_estimate(shape: str, N: int, frames: int, *, format: str = ".png", integrate: bool = False,
-                   colour: bool = True) -> tuple[float, float]:
-    """Memory (bytes) and wall time (s) of ``hyperrotor scene``, estimated from its arguments.
-
-    Memory: body points ``P x N``, the edge list (about 120 bytes per edge as
-    Python tuples, plus the cube's grouping ``P x (60 + 40 N)``), the attitudes
-    ``K x N^2`` (4 copies) and projections ``K x P x 4`` (2 copies), the drawn
-    segments of one frame, for a GIF every rendered frame (Pillow keeps them
-    until the end), for a page copies of its text
-    (:func:`hyperrotor.classical.scene_html.scene_html_bytes`: the figure, its
-    validated frames, its JSON, the file). Time: :data:`_SCENE_COST`: start-up, per drawn frame,
-    edge and point (per byte of a page), the cube's edge search, plus the
-    motion on the closed-form routes (an integrated motion is priced by
-    :func:`hyperrotor.classical.simulate.estimate_cost`, see :func:`run`).
-    """
-    P, E = _scene_size(shape, N)
-    K = float(frames)
-    memory = (P * N * 8 + E * 120 + (P * (60 + 40 * N) if shape == "cube" else 0)
-              + 4 * K * N * N * 8 + 2 * K * P * 4 * 8)
-    seconds = (_SCENE_COST["start"] + K * N * N * _SCENE_COST["motion"] * (50 if integrate else 1)
-               + (P * N * N * _SCENE_COST["cube_edges"] if shape == "cube" else 0))
-    if format == ".html":
-        from hyperrotor.classical.scene_html import scene_html_bytes
-
-        page = scene_html_bytes(int(min(K, 2**62)), int(min(P, 2**62)), int(min(E, 2**62)), colour=colour)
-        memory += _SCENE_COST["html_copies"] * page
-        seconds += K * (_SCENE_COST["frame_html"] + E * _SCENE_COST["html_edge"] + P * _SCENE_COST["html_point"])
-    else:
-        gif = format == ".gif"
-        drawn = K if gif else min(6.0, K)
-        memory += E * 500 + (K * _GIF_FRAME_BYTES if gif else 0)
-        frame = _SCENE_COST["frame_gif" if gif else "frame_png"]
-        seconds += drawn * (frame + E * _SCENE_COST["edge"] + P * _SCENE_COST["point"])
-    return memory, seconds
 
 
 def _scene_check(args: argparse.Namespace):
@@ -151,9 +97,11 @@ def _scene_check(args: argparse.Namespace):
     if args.sides is not None and args.inertia != "box":
         raise UsageError(f"--sides applies to --inertia box only, got --inertia {args.inertia}")
     fmt = next((f for f in SCENE_FORMATS if args.output.lower().endswith(f)), ".png")  # others: refused later
-    memory, seconds = scene_estimate(args.shape, N, frames, format=fmt, integrate=args.inertia == "box" or bool(lock),
-                                     colour=bool(colour_axis))
-    P, E = _scene_size(args.shape, N)
+    # the drawing's cost model (an integrated motion is priced on its own, _check_motion)
+    memory, seconds = (c.amount for c in _pricing.estimate(
+        "scene", shape=args.shape, N=N, frames=frames, format=fmt, integrate=args.inertia == "box" or bool(lock),
+        colour=bool(colour_axis)))
+    P, E = _pricing.scene_size(args.shape, N)
     count = f"2^{N} points, {N} x 2^{N - 1} edges" if args.shape == "cube" and N > 30 else f"{P:.4g} points, {E:.4g} edges"
     what = f"scene --N {N} --shape {args.shape} ({count}, {frames} frames)"
     hint = "use a smaller --N" + (", --shape simplex" if args.shape == "cube" else "") + " or fewer --frames"
@@ -194,7 +142,7 @@ def run(args: argparse.Namespace) -> int:
         # --- work ------------------------------------------------------------------
         points = {"cube": lambda: hypercube_vertices(N),
                   "simplex": lambda: simplex_vertices(N),
-                  "ellipsoid": lambda: ellipsoid_points(np.linspace(1.0, 0.4, N), _ELLIPSOID_POINTS, rng=0)}[
+                  "ellipsoid": lambda: ellipsoid_points(np.linspace(1.0, 0.4, N), _pricing.SCENE_ELLIPSOID_POINTS, rng=0)}[
             args.shape]()
         t = np.linspace(0.0, s["t_end"], s["frames"])
         proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
