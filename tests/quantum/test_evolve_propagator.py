@@ -127,3 +127,18 @@ def test_threads_give_the_same_states_as_one_thread(rng):
         one = SectorPropagator(H, method="krylov", workers=1).states(psi, t)
         two = SectorPropagator(H, method="krylov", workers=2).states(psi, t)
     np.testing.assert_array_equal(one, two)
+
+
+def test_evolve_reuses_the_propagator_of_an_unchanged_H(rng):
+    """A second evolve of the same H reuses its blocks (no new eigh); H changed in place is rebuilt."""
+    rep, H = _generic(rng)
+    psi = _state(rng, rep.dim)
+    first = evolve(H, psi, [0.0, 1.0])
+    again = evolve(H, psi, [0.0, 1.0])
+    assert first.stats["n_eigh"] > 0 and again.stats["n_eigh"] == 0
+    np.testing.assert_array_equal(first.states[-1].full(), again.states[-1].full())
+    A = H.full()
+    a = evolve(A, psi, [0.0, 1.0])
+    A *= 2.0  # the same object, other entries: exp(-i 2H t/2) must equal exp(-i H t)
+    b = evolve(A, psi, [0.0, 0.5])
+    np.testing.assert_allclose(b.states[-1].full(), a.states[-1].full(), rtol=0, atol=scaled_tol(1.0, dim=rep.dim, k=1e3))

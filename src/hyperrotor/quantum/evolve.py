@@ -530,6 +530,13 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     hyperrotor.UnknownOptionError
         An option key the method does not have.
 
+    Notes
+    -----
+    The native methods keep the :class:`SectorPropagator` built for ``H`` while ``H`` lives:
+    a later call with the same ``H`` object, method, options, ``hbar`` and ``rep`` reuses its
+    blocks and eigendecompositions, after checking that the matrix of ``H`` is unchanged
+    entry for entry (a matrix modified in place is propagated afresh).
+
     See Also
     --------
     SectorPropagator : build once, evolve many states.
@@ -554,7 +561,43 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     store = bool(given) if given is not None else no_e_ops
     if hasattr(H, "shape") and len(H.shape) == 2:  # priced at the door, before the blocks are built
         _pricing.check("evolve", dim=int(H.shape[0]), n_times=int(np.size(t)), states=store)
-    prop = SectorPropagator(H, rep=rep, hbar=hbar, method=cls.name, options=options, workers=workers,
-                            client=client, progress=progress)
+    prop = _propagator_for(H, rep=rep, hbar=hbar, method=cls.name, options=options, workers=workers,
+                           client=client, progress=progress)
     return prop.evolve(psi0, t, e_ops=e_ops, store_states=prop.options["store_states"],
                        store_final_state=prop.options["store_final_state"])
+
+
+#: id(H) -> (weak reference to H, parameters, SectorPropagator): the last propagator :func:`evolve` built for H
+_PROPAGATOR_CACHE: dict[int, tuple[Any, str, SectorPropagator]] = {}
+
+
+def _propagator_for(H: Any, *, rep: Any, hbar: float, method: str, options: dict | None, workers: Any, client: Any,
+                    progress: Any) -> SectorPropagator:
+    """The :class:`SectorPropagator` of ``H``: reused when the same ``H`` object comes back unchanged.
+
+    :func:`evolve` keeps, while ``H`` lives (a weak reference), the propagator it built for it, with
+    its blocks and eigendecompositions. It is reused only for the same method, options, ``hbar``
+    and ``rep`` and when the matrix of ``H`` is still equal, entry for entry, to the one the
+    propagator was built from (an ``O(nnz)`` comparison: a matrix changed in place is rebuilt).
+    """
+    params = repr((method, float(hbar), id(rep), sorted((str(k), repr(v)) for k, v in (options or {}).items())
+                   if isinstance(options, dict) else repr(options)))
+    hit = _PROPAGATOR_CACHE.get(id(H))
+    if hit is not None and hit[0]() is H and hit[1] == params:
+        prop = hit[2]
+        mat, _ = hermitian_matrix(H)
+        old = prop.matrix
+        if (mat.shape == old.shape and mat.dtype == old.dtype and np.array_equal(mat.indptr, old.indptr)
+                and np.array_equal(mat.indices, old.indices) and np.array_equal(mat.data, old.data)):
+            prop.workers = None if workers is None else _validate.integer("workers", workers, minimum=1)
+            prop.client = client
+            prop.progress = progress
+            return prop
+    prop = SectorPropagator(H, rep=rep, hbar=hbar, method=method, options=options, workers=workers,
+                            client=client, progress=progress)
+    try:
+        ref = weakref.ref(H, lambda _, key=id(H): _PROPAGATOR_CACHE.pop(key, None))
+    except TypeError:  # objects without weak references (lists): no reuse
+        return prop
+    _PROPAGATOR_CACHE[id(H)] = (ref, params, prop)
+    return prop
