@@ -253,7 +253,7 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
             grid = step_times(t, cs, nsub, svals)
             ns = np.ones(grid.size - 1, dtype=np.int64)
             starts = svals[:-1]
-            out_pos = {int(o): int(cs[o] - s0) for o in outs}
+            out_pos = cs[outs] - s0
             sample_pos = samples[new] - s0
         else:  # the chunk's start, the output times and samples inside it, and its end
             marks = np.union1d(cs[outs], samples[new])
@@ -263,16 +263,16 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
             grid = step_times(t, cs, nsub, points)
             ns = np.diff(points).astype(np.int64)
             starts = points[:-1]
-            out_pos = {int(o): int(np.searchsorted(points, cs[o])) for o in outs}
+            out_pos = np.searchsorted(points, cs[outs])
             sample_pos = np.searchsorted(points, samples[new])
         Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=hs[np.searchsorted(cs, starts, side="right") - 1],
                                 carry=carry)
         carry = solver.last_carry
         check_finite(Ls, grid, problem)
-        for o, i in out_pos.items():
-            outL[:, o] = Ls[:, i]
+        if outs.size:
+            outL[:, outs] = Ls[:, out_pos]
             if outT is not None:
-                outT[:, o] = Ts[:, i]
+                outT[:, outs] = Ts[:, out_pos]
         if bar is not None:
             bar.update((s1 - s0) * B)
         if new.size:

@@ -385,8 +385,11 @@ class RichardsonCheck:
         first = np.searchsorted(cs, np.concatenate([[0], marks[:-1]]), side="right") - 1
         last = np.searchsorted(cs, marks - 1, side="right") - 1
         ah = np.abs(hs)
-        hmax = np.array([ah[a:b + 1].max() for a, b in zip(first, last)])
-        hmin = np.array([ah[a:b + 1].min() for a, b in zip(first, last)])
+        if np.all(first == last):  # every segment inside one output interval (long intervals)
+            hmax = hmin = ah[first]
+        else:
+            hmax = np.array([ah[a:b + 1].max() for a, b in zip(first, last)])
+            hmin = np.array([ah[a:b + 1].min() for a, b in zip(first, last)])
         # step ratios (companion / run, second / first companion), the smallest over the segments,
         # or for the finer companions the ratios run / companion
         self.r = float(np.min(H / hmax)) if not finer else float(np.min(hmin / H))
