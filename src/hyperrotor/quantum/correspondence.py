@@ -155,7 +155,7 @@ def otoc(H: Any, W: Any, V: Any, t: Any, *, state: Any = None, samples: int | No
     W, V : qutip.Qobj, scipy.sparse matrix or ndarray
         Operators of the dimension of ``H`` (any; Hermitian is not required).
     t : sequence of float
-        Times (any order, any sign; ``W(t)`` is evaluated at each).
+        A non-empty 1-D array of times (any order, any sign; ``W(t)`` is evaluated at each).
     state : ket, density matrix or None, keyword-only
         ``None``: infinite temperature, :math:`\mathrm{Tr}(\cdot)/d`. A ket (normalized
         here) or a density matrix (Hermitian, positive; divided by its trace).
@@ -187,17 +187,20 @@ def otoc(H: Any, W: Any, V: Any, t: Any, *, state: Any = None, samples: int | No
     U = SectorPropagator(H, rep=rep, hbar=hbar)
     dim = U.dim
     Wm, Vm = _operator("W", W, dim), _operator("V", V, dim)
-    t = _validate.finite_array("t", t).ravel()
+    _validate.numeric_input("t", t)
+    t = _validate.finite_array("t", t)
+    if t.ndim != 1 or t.size == 0:
+        raise ValueError(f"t must be a non-empty 1-D array of times, got shape {t.shape}")
     stderr = None
     if state is not None:
         if samples is not None:
             raise ValueError("samples applies to the infinite-temperature trace (state=None) only")
         is_ket = (hasattr(state, "isket") and state.isket) or np.ndim(state) == 1 or np.shape(state)[1:] == (1,)
         X = unit_state(state, dim, "state")[:, None] if is_ket else _density_columns(state, dim)
-        _pricing.check("evolve", dim=dim, n_times=4 * t.size * X.shape[1], states=False)
+        _pricing.check("otoc", n_times=t.size, columns=X.shape[1], dim=dim)
         values = _commutator_norms(U, Wm, Vm, X, t).sum(axis=1)
     elif samples is None:
-        _pricing.check("evolve", dim=dim, n_times=4 * t.size * dim, states=False)
+        _pricing.check("otoc", n_times=t.size, columns=dim, dim=dim)
         values = np.zeros(t.size)
         eye = np.eye(dim)
         for start in range(0, dim, _COLUMNS):
@@ -205,7 +208,7 @@ def otoc(H: Any, W: Any, V: Any, t: Any, *, state: Any = None, samples: int | No
         values /= dim
     else:
         samples = _validate.integer("samples", samples, minimum=2)
-        _pricing.check("evolve", dim=dim, n_times=4 * t.size * samples, states=False)
+        _pricing.check("otoc", n_times=t.size, columns=samples, dim=dim)
         gen = _validate.rng(rng)
         parts = []
         for start in range(0, samples, _COLUMNS):
@@ -298,7 +301,10 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     threshold = _validate.positive("threshold", threshold)
     t = _validate.time_grid(t, allow_decreasing=False)
     rtol = options["quantum_ehrenfest_rtol"] if rtol is None else _validate.positive("rtol", rtol)
-    traj = simulate(moments, L0 / moments, t, rtol=rtol)
+    try:
+        traj = simulate(moments, L0 / moments, t, rtol=rtol)
+    except FloatingPointError as exc:  # moments (or L0) out of the range of double precision
+        raise ValueError(f"body and L0 give a classical run outside double precision: {exc}") from exc
     classical = np.asarray(traj.L)
     hbars, dims, quantum, devs, tE = [], [], [], [], []
     bar = progress_bar(progress, len(ls), "ehrenfest_time: irreps")

@@ -326,6 +326,12 @@ class SectorPropagator:
         self.stats: dict[str, Any] = {"method": cls.name}
         self._blocks = self._split(cls, rep)
 
+    def __setstate__(self, state: dict) -> None:
+        """Unpickled (e.g. back from a dask worker): the blocks point to this propagator again."""
+        self.__dict__.update(state)
+        for b in self._blocks:
+            b.owner = self
+
     def _split(self, cls, rep) -> list[_Block]:
         opts = self.options
         engine = cls(**{k: opts[k] for k in cls.options})
