@@ -40,6 +40,8 @@ def pi_rotation(rep, plane, *, format: str = "csr"):
     rep = _validate.representation("rep", rep)
     i, j = _validate.plane(plane, rep.N)
     fmt = _validate.choice("format", format, ("csr", "dense"))
+    if fmt == "dense":
+        _pricing.check("dense_matrix", dim=rep.dim)
     if j == i + 1:
         rot = gt_rotations(rep, [i])
         if rot is not None:
