@@ -125,11 +125,7 @@ _SECTOR_CACHE: dict[int, tuple[Any, list | None]] = {}
 
 def _sector_block(M: sps.csr_matrix, B: Any) -> sps.csr_matrix:
     """The sparse block ``B^H M B`` (real when its imaginary part is round-off, as in the real sectors)."""
-    blk = sps.csr_matrix(restrict(M, B, dense=False))
-    if blk.dtype.kind == "c" and blk.nnz:
-        if float(np.abs(blk.data.imag).max()) <= 1e-13 * float(np.abs(blk.data).max()):
-            blk = blk.real.tocsr()
-    blk = ((blk + blk.conj().T) * 0.5).tocsr()
+    blk = sps.csr_matrix(restrict(M, B, dense=False))  # Hermitian, real when the imaginary part is round-off
     blk.eliminate_zeros()
     return blk
 
