@@ -111,7 +111,8 @@ class _MemberRHS:
         total = self.count[0]
         if total > self.budget:
             raise StepBudgetError(f"scipy {self.name} stopped after {self.budget} right-hand-side evaluations (the "
-                                  f"budget max_steps = {self.budget}) at member {self.b}; {_RAISE_BUDGET}")
+                                  f"budget max_steps = {self.budget}) at member {self.b}; {_RAISE_BUDGET}",
+                                  needed=total, budget=self.budget, option="max_steps")
         self.far = max(self.far, abs(tt - self.t0))
         if total >= self.next:  # at EXTRAPOLATE_AFTER evaluations of this member, then at every doubling
             self.next = total + (total - self.start)
@@ -320,7 +321,8 @@ def _extrapolate(total: int, member: int, covered: float, span: float, members_l
         raise StepBudgetError(
             f"scipy {name} would need about {projected:.3g} right-hand-side evaluations for this run "
             f"(extrapolated from {member} evaluations covering {covered / span:.3g} of the time span), more than "
-            f"the budget max_steps = {budget}; {_RAISE_BUDGET}"
+            f"the budget max_steps = {budget}; {_RAISE_BUDGET}",
+            needed=projected, budget=budget, option="max_steps",
         )
 
 
