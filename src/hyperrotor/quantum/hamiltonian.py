@@ -70,7 +70,7 @@ from scipy.sparse.csgraph import connected_components
 from .. import _lazy, _validate
 from .._options import options
 from ..conventions import planes
-from .representation import Representation, as_csr, check_antihermitian
+from .representation import Representation, as_csr, check_antihermitian, operator_mapping
 
 __all__ = ["rotor_hamiltonian", "symmetry_blocks"]
 
@@ -151,9 +151,11 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
         gens = rep.generators()
     elif isinstance(rep, Mapping):
         form = _validate.form(form)
-        mapped = Representation.from_qobj(rep, form=form, hbar=hbar if form == "hermitian" else 1, check=False)
-        check_antihermitian(mapped.generators(format="csr"), form=form)
-        N, dim, gens = mapped.N, mapped.dim, mapped.generators(format="csr")
+        N, gens = operator_mapping(rep, "rep")
+        if form == "hermitian":
+            gens = {p: (1j / hbar) * M for p, M in gens.items()}
+        check_antihermitian(gens, form=form)
+        dim = Representation(N, gens).dim
     else:
         raise TypeError(
             "rep must be a Representation or a mapping plane -> operator (qutip.Qobj, scipy.sparse, array), "

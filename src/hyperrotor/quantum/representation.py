@@ -472,23 +472,9 @@ class Representation:
             are not anti-Hermitian (with a hint when they are Hermitian: pass
             ``form="hermitian"``), or brackets that fail (naming the pair of planes).
         """
-        if not isinstance(generators, Mapping):
-            raise TypeError(
-                f"generators must be a mapping plane -> operator (qutip.Qobj, scipy.sparse or 2-D array), "
-                f"got {type(generators).__name__}"
-            )
         form, hbar = _validate.form_hbar(form, hbar)
         check = _validate.flag("check", check)
-        N = _validate.dimension_from_count(len(generators), name="generators", what="planes")
-        mats = {}
-        for p, M in generators.items():
-            try:
-                q = _validate.plane(p, N)
-            except ValueError as exc:
-                raise ValueError(f"generators: the keys must be planes (i, j) of so({N}); {exc}") from None
-            if q in mats:
-                raise ValueError(f"generators name the plane {q} twice")
-            mats[q] = as_csr(M, f"generator of plane {q}")
+        N, mats = operator_mapping(generators)
         if form == "hermitian":
             mats = {p: (1j / hbar) * M for p, M in mats.items()}
         mats = {p: _real_if_possible(M) for p, M in mats.items()}
@@ -521,6 +507,30 @@ class Representation:
                         f"sum_c C_ab^c X_c by {res:.3g} (tolerance {rtol * scale:.3g}); check the plane labels, "
                         f"the form (antihermitian/hermitian) and, for qutip.jmat, use jmat_generators(j)"
                     )
+
+
+def operator_mapping(value: Any, name: str = "generators") -> tuple[int, dict]:
+    """``(N, {plane: csr})`` of a mapping plane -> operator (Qobj, sparse, array), ``N`` from the number of planes.
+
+    The one reader of user operator mappings (:meth:`Representation.from_qobj`,
+    :func:`~.hamiltonian.rotor_hamiltonian`); ``name`` names the argument in messages.
+    """
+    if not isinstance(value, Mapping):
+        raise TypeError(
+            f"{name} must be a mapping plane -> operator (qutip.Qobj, scipy.sparse or 2-D array), "
+            f"got {type(value).__name__}"
+        )
+    N = _validate.dimension_from_count(len(value), name=name, what="planes")
+    mats = {}
+    for p, M in value.items():
+        try:
+            q = _validate.plane(p, N)
+        except ValueError as exc:
+            raise ValueError(f"{name}: the keys must be planes (i, j) of so({N}); {exc}") from None
+        if q in mats:
+            raise ValueError(f"{name} name the plane {q} twice")
+        mats[q] = as_csr(M, f"{name}[{q}]")
+    return N, mats
 
 
 def check_same_algebra(*reps: Any) -> None:
