@@ -69,7 +69,6 @@ from scipy.sparse.csgraph import connected_components
 
 from .. import _lazy, _validate
 from .._options import options
-from ..conventions import planes
 from .representation import Representation, as_csr, check_antihermitian, operator_mapping
 
 __all__ = ["rotor_hamiltonian", "symmetry_blocks"]
@@ -179,11 +178,10 @@ def rotor_matrix(gens: Mapping, moments: np.ndarray, hbar: float) -> sps.csr_mat
     (``ValueError``); a complex result is made exactly Hermitian.
     """
     dim = next(iter(gens.values())).shape[0]
-    N = _validate.dimension_from_count(len(gens), name="generators", what="planes")
     H = sps.csr_matrix((dim, dim), dtype=float)
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below, with its cause
-        for (i, j), m in zip(planes(N), moments):
-            G = sps.csr_matrix(gens[(i, j)])
+        for p, m in zip(sorted(gens), moments):  # sorted planes (i, j) are the order of hyperrotor.planes
+            G = sps.csr_matrix(gens[p])
             H = H + (G @ G) * (-(hbar * hbar) / (2.0 * m))
     H = sps.csr_matrix(H)
     if H.nnz and not np.all(np.isfinite(H.data)):

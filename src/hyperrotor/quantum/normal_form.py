@@ -32,7 +32,7 @@ from fractions import Fraction
 from itertools import product as _iproduct
 from math import comb
 from numbers import Integral, Rational
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 import sympy as sp
 

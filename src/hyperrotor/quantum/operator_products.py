@@ -34,7 +34,6 @@ from collections import namedtuple
 from typing import Any
 
 import numpy as np
-import sympy as sp
 
 from .. import _parse, _validate
 from ..conventions import check_convention, check_dimension
