@@ -480,11 +480,7 @@ NOT_FUZZED = {
 }
 #: Cases that failed when written, by owner (requests in /work/coord/requests.md): strict xfail.
 PENDING_IDS: dict[str, list[str]] = {
-    "qreps": ["q.rotor_hamiltonian-0-dict"],  # the message says "generators", the argument is rep
-    "sectors": ["q.sector_spectra-1-None", "q.sector_spectra-1-scalar"],  # the message says "inertia", not body
-    "dynamics": ["q.otoc-3-scalar", "q.otoc-3-empty", "q.otoc-3-ndim3",  # t of otoc: a 1-D grid
-                 "q.ehrenfest_time-0-huge",  # FloatingPointError instead of a ValueError naming body
-                 "q.otoc-samples-huge"],  # priced with the "evolve" model, whose message does not name samples
+    "dynamics": ["q.otoc-samples-huge"],  # priced with the "evolve" model, whose message does not name samples
 }
 #: Cases that hang (> 3 s; no work budget): xfail, not run.
 HANGING_IDS: dict[str, list[str]] = {}
