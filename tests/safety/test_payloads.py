@@ -90,10 +90,13 @@ def _with_symbol(good, text):
 
 
 def _python_cases():
+    """Every argument of every entry's good call (marked for fuzzing or not; the bound method of a
+    method entry excepted), plus the array arguments as lists holding a symbol and the payload."""
     for label, path, args, kwargs, kinds in FUZZ.ENTRIES:
-        for where, kind in kinds.items():
+        wheres = list(kinds) + [w for w in (*range(1 if path is None else 0, len(args())), *kwargs()) if w not in kinds]
+        for where in wheres:
             yield pytest.param(label, path, args, kwargs, where, False, id=f"{label}-{where}")
-            if kind.startswith(("arr", "map", "vec", "pts")):
+            if kinds.get(where, "").startswith(("arr", "map", "vec", "pts")):
                 yield pytest.param(label, path, args, kwargs, where, True, id=f"{label}-{where}-in_list")
 
 
