@@ -122,8 +122,9 @@ def run_members_with_events(solver, problem: Problem, control: Any, *, events, m
     T = None if problem.T0 is None else np.concatenate([r.T for r in results])
     stats = dict(results[0].stats)
     stats["nfev"] = None if steps is not None else int(used)
-    if "chunks" in stats:
-        stats["chunks"] = int(sum(r.stats.get("chunks", 0) for r in results))
+    for key in ("chunks", "work"):  # summed over the members (work: their runs; the ensemble's probe and
+        if key in stats:             # check before them are not counted here)
+            stats[key] = int(sum(r.stats.get(key, 0) for r in results))
 
 
     def per_event(attr):
