@@ -68,6 +68,7 @@ __all__ = ["Representation", "as_csr", "check_antihermitian"]
 #: The matrix formats of :meth:`Representation.generator` and friends.
 FORMATS = ("csr", "dense")
 
+
 def _check_format(format: str) -> str:
     if format is None:
         return "csr"
