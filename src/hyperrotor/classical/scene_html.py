@@ -157,6 +157,7 @@ def projection_figure(t: Any, projection: Any, *, edges: Any = (), axes: Sequenc
     e = np.asarray(edges, dtype=int).reshape(-1, 2) if len(edges) else np.zeros((0, 2), dtype=int)
     if e.size and (e.min() < 0 or e.max() >= proj.shape[1]):
         raise ValueError(f"edges must be pairs of point indices in 0..{proj.shape[1] - 1}")
+    _pricing.check("Scene.to_html", n_times=t.size, n_points=proj.shape[1], n_edges=len(e), colour=proj.shape[-1] == 4)
     xyz = proj[..., :3]
     colour = proj[..., 3] if proj.shape[-1] == 4 else None
     energy = None if energy is None else _v.finite_array("energy", energy, ndim=1)
