@@ -215,6 +215,8 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
     if not specs and cap >= steps and check is None:  # one call, no chunk grid, no copies
         t_start = time.perf_counter()
         Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
+        if Ts is not None:  # the start exactly (the attitude's shift correction rounds at t[0] too), as in chunks
+            Ts[:, 0] = problem.T0
         learn(key, time.perf_counter() - t_start, steps * flows)
         check_finite(Ls, t, problem)
         stats["chunks"] = 1
