@@ -87,23 +87,43 @@ def _group_elements(ops: list[Monomial], reps_idx: np.ndarray) -> list[tuple[np.
     return elems
 
 
-def _project_monomial(elems: list, eigs: tuple, reps_idx: np.ndarray, dim: int) -> sps.csc_matrix:
+def _orbit_layout(elems: list, n: int, dim: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The entries shared by every projection of :func:`_project_monomial`: ``(rows, cols, slot)``.
+
+    The images ``D_S e_a`` of the orbit representatives land on the sorted distinct
+    positions ``(rows, cols)`` (column-major, the CSC order); ``slot`` sends each image to
+    its position. Computed once per group: only the coefficients depend on the character.
+    """
+    r = np.concatenate([perm for perm, _, _ in elems]).astype(np.int64)
+    c = np.tile(np.arange(n, dtype=np.int64), len(elems))
+    key, slot = np.unique(c * dim + r, return_inverse=True)
+    return key % dim, key // dim, slot.ravel()
+
+
+def _project_monomial(elems: list, eigs: tuple, layout: tuple, n: int, dim: int) -> sps.csc_matrix:
     r"""Orthonormal basis of the joint eigenspace D_k = eigs[k] (sparse columns, one per orbit).
 
     :math:`\prod_k (1 + \bar\lambda_k D_k)/2 = 2^{-m} \sum_S \prod_{k \in S} \bar\lambda_k\, D_S`
-    applied to one GT vector per orbit, all orbits at once.
+    applied to one GT vector per orbit, all orbits at once (``layout``: :func:`_orbit_layout`).
+    The coefficients and phases are dyadic numbers times powers of i, so the sums over
+    the group are exact in any order.
     """
-    n, m = len(reps_idx), len(eigs)
+    rows, cols, slot = layout
+    m = len(eigs)
     coef = [np.prod([np.conj(eigs[k]) for k in S]) / 2**m for _, _, S in elems]
-    rows = np.concatenate([perm for perm, _, _ in elems])
     data = np.concatenate([c * phase for c, (_, phase, _) in zip(coef, elems)])
-    V = sps.csc_matrix((data, (rows, np.tile(np.arange(n), len(elems)))), shape=(dim, n))
-    V.data[np.abs(V.data) < 1e-12] = 0
-    V.eliminate_zeros()
-    norms = np.sqrt(np.asarray(abs(V).power(2).sum(axis=0)).ravel())
+    x = np.empty(len(rows), dtype=complex)
+    x.real = np.bincount(slot, weights=data.real, minlength=len(rows))
+    x.imag = np.bincount(slot, weights=data.imag, minlength=len(rows))
+    nz = np.abs(x) >= 1e-12
+    x, r, c = x[nz], rows[nz], cols[nz]
+    norms = np.sqrt(np.bincount(c, weights=np.abs(x) ** 2, minlength=n))  # in CSC order, as a column sum
     keep = norms > 1e-8
-    V = V[:, np.nonzero(keep)[0]] @ sps.diags(1.0 / norms[keep])
-    return sps.csc_matrix(V)
+    new = np.cumsum(keep) - 1  # the kept columns, renumbered
+    on = keep[c]
+    x = x[on] * (1.0 / norms[c[on]])
+    indptr = np.concatenate([[0], np.cumsum(np.bincount(new[c[on]], minlength=int(keep.sum())))])
+    return sps.csc_matrix((x, r[on], indptr), shape=(dim, int(keep.sum())))
 
 
 def _project_dense(Ds: list[np.ndarray], eigs: tuple, dim: int) -> np.ndarray:
@@ -146,6 +166,7 @@ def make_real(B: sps.csc_matrix, V: sps.csr_matrix) -> sps.csc_matrix:
     out = sps.csc_matrix(sps.hstack(cols))
     out.data[np.abs(out.data) < 1e-15] = 0
     out.eliminate_zeros()
+    out.sort_indices()  # canonical storage: the same sums in every later product
     return out
 
 
@@ -208,10 +229,11 @@ def sectors_of(rep, complete: bool) -> list[Sector]:
     if g.monomial:
         reps_idx = _orbit_representatives(g.ops, dim)
         elems = _group_elements(g.ops, reps_idx)
+        layout = _orbit_layout(elems, len(reps_idx), dim)
         V = None if g.antiunitary is None else g.antiunitary.matrix()
 
         def project(eigs):
-            B = _project_monomial(elems, eigs, reps_idx, dim)
+            B = _project_monomial(elems, eigs, layout, len(reps_idx), dim)
             return B if V is None else make_real(B, V)
     else:
         def project(eigs):
