@@ -58,8 +58,8 @@ def test_paper_and_standard_differ_by_the_checkerboard(data):
     assert np.array_equal(signs, [(-1) ** (i + j) for i, j in hr.planes(N)])
     assert np.array_equal(hr.plane_signs(N, convention="standard"), np.ones(hr.n_planes(N)))
     # the map between the conventions' components is the sign vector (an involution)
-    assert np.array_equal(hr.to_components(hr.to_matrix(x, "paper"), convention="standard"), signs * x)
-    assert np.array_equal(hr.to_components(hr.to_matrix(signs * x, "standard"), convention="paper"), x)
+    assert np.array_equal(hr.to_components(hr.to_matrix(x, convention="paper"), convention="standard"), signs * x)
+    assert np.array_equal(hr.to_components(hr.to_matrix(signs * x, convention="standard"), convention="paper"), x)
 
 
 @SETTINGS

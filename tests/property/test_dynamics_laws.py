@@ -34,7 +34,7 @@ def free_bodies(draw, physical):
     # no subnormals: (I w) / I is exact to a few ulps only for normal numbers
     omega0 = draw(arrays(np.float64, n, elements=st.floats(-2.0, 2.0, allow_subnormal=False)))
     convention = draw(st.sampled_from(hr.CONVENTIONS))
-    return hr.RigidBody(inertia, convention), omega0
+    return hr.RigidBody(inertia, convention=convention), omega0
 
 
 def _round_off_steps(tr, n_planes, fallback_steps):
