@@ -46,7 +46,7 @@ def generic_body(seed):
 def reference(body, w0, t):
     """splitting8 with compensated storage at dt = 0.002 (errors ~1e-15 over these runs), as omega;
     its distance to an independent method (DOP853 at rtol 1e-13) is printed."""
-    ref = simulate(body, w0, t, method="splitting8", dt=0.002, compensated=True).omega
+    ref = simulate(body, w0, t, method="splitting8", dt=0.002, options={"compensated": True}).omega
     dop = simulate(body, w0, t, method="DOP853", rtol=1e-13).omega
     print(f"  reference T={t[-1]:g}: splitting8(dt=0.002) vs DOP853(rtol=1e-13): "
           f"{np.abs(ref - dop).max() / np.abs(w0).max():.1e}")

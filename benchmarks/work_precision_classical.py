@@ -187,7 +187,7 @@ def ablation(rows, probs, target=1e-10):
             try:
                 best = None
                 for dt in dts:
-                    el, tr = best_of(lambda: simulate(body, w0, t, method="splitting8", dt=dt, compensated=comp), 5)
+                    el, tr = best_of(lambda: simulate(body, w0, t, method="splitting8", dt=dt, options={"compensated": comp}), 5)
                     err = np.abs(tr.omega - ref).max() / scale
                     if err <= target and (best is None or el < best[0]):
                         best = (el, tr)
@@ -206,7 +206,7 @@ def ablation(rows, probs, target=1e-10):
 
 
 def casimirs(L):
-    M = to_matrix(L, "standard")
+    M = to_matrix(L, convention="standard")
     M2 = M @ M
     return np.trace(M2, axis1=-2, axis2=-1), np.trace(M2 @ M2, axis1=-2, axis2=-1)
 

@@ -291,7 +291,8 @@ def unknown_option(where: str, key: Any, allowed: Sequence[str]) -> None:
     """
     from ._options import UnknownOptionError
 
-    raise UnknownOptionError(f"{where}: unknown option {fmt(key)}; allowed: {', '.join(map(repr, sorted(allowed)))}")
+    names = ", ".join(map(repr, sorted(allowed))) or "none"
+    raise UnknownOptionError(f"{where}: unknown option {fmt(key)}; allowed: {names}")
 
 
 # ----------------------------------------------------------------------------

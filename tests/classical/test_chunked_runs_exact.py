@@ -32,13 +32,13 @@ def test_chunks_do_not_change_the_numbers(case, rng):
     t = np.linspace(0.0, span, 4)  # chunk boundaries fall inside these intervals
     att = method == "moser-veselov"  # (an ensemble without attitude runs the splittings' bodies-innermost kernel)
     with hr.options(chunk_seconds=1e3):
-        few = hr.simulate(body, w0, t, method=method, dt=0.001, attitude=att, **opts)
+        few = hr.simulate(body, w0, t, method=method, dt=0.001, attitude=att, options=opts)
     with hr.options(chunk_seconds=1e-3):
-        many = hr.simulate(body, w0, t, method=method, dt=0.001, attitude=att, **opts)
+        many = hr.simulate(body, w0, t, method=method, dt=0.001, attitude=att, options=opts)
     assert many.stats["chunks"] > max(3, few.stats["chunks"])
     np.testing.assert_array_equal(many.L, few.L)
     if att:
         np.testing.assert_array_equal(many.attitude, few.attitude)
     if members:  # each member's row is its own run (another kernel, other chunks)
-        single = hr.simulate(body, w0[5], t, method=method, dt=0.001, attitude=att, **opts)
+        single = hr.simulate(body, w0[5], t, method=method, dt=0.001, attitude=att, options=opts)
         np.testing.assert_array_equal(few.L[5], single.L)

@@ -6,6 +6,7 @@ and as explicit error bounds against closed forms otherwise.
 import numpy as np
 import pytest
 
+import hyperrotor as hr
 from hyperrotor import Inertia, RigidBody
 from hyperrotor._jit import JIT_ENABLED
 from hyperrotor.classical.solvers import _kernels
@@ -290,7 +291,7 @@ def test_casimirs_kept_to_round_off(method, compensated, rng, eps):
     flows by default): the round-off random walk stays below eps sqrt(flows) (measured ~0.15 of it)."""
     inertia, w0 = generic5(rng)
     body = RigidBody(inertia)
-    tr = simulate(body, w0, np.linspace(0, 50, 101), method=method, dt=0.01, compensated=compensated)  # 5000 steps
+    tr = simulate(body, w0, np.linspace(0, 50, 101), method=method, dt=0.01, options={"compensated": compensated})  # 5000 steps
     assert tr.stats["compensated"] is compensated
     c2, c4 = casimirs(tr.L)
     bound = 64 * eps if compensated else eps * np.sqrt(tr.stats["steps"] * tr.stats["flows_per_step"])
@@ -316,7 +317,7 @@ def test_compensation_rule_and_its_round_off_floor(rng):
     assert simulate(MOM3, W3, t[:3], rtol=1e-10).stats["compensated"] is False
     # splitting8 at dt = 0.05 is converged (truncation << 1e-15): what is left is round-off
     plain = np.abs(short.omega - exact).max()
-    comp = np.abs(simulate(MOM3, W3, t, method="splitting8", dt=0.05, compensated=True).omega - exact).max()
+    comp = np.abs(simulate(MOM3, W3, t, method="splitting8", dt=0.05, options={"compensated": True}).omega - exact).max()
     assert comp < 1e-14 and comp < plain
     assert plain < 1e-12
 
@@ -539,8 +540,9 @@ BAD = [
     (dict(rtol="tight"), TypeError, "rtol"),
     (dict(method="splitting4", dt=0.1, rtol=1e-6), ValueError, "not both"),
     (dict(method="DOP853", dt=0.1), ValueError, "takes rtol and atol"),
-    (dict(method="DOP853", compensated=True), TypeError, "no option 'compensated'; allowed: first_step, max_step"),
-    (dict(compensated="yes"), TypeError, "True, False or None"),
+    (dict(method="DOP853", options={"compensated": True}), hr.UnknownOptionError, "unknown option 'compensated'; allowed: 'first_step', 'max_step'"),
+    (dict(options={"compensated": "yes"}), TypeError, "True, False or None"),
+    (dict(options=["compensated"]), TypeError, "options must be a mapping"),
     (dict(method="splitting4", torque=lambda t, w: w), ValueError, "callable torque"),
     (dict(torque=[1.0, 2.0]), ValueError, "constant torque"),
     (dict(omega0=np.ones((4, 3)), torque=np.ones((3, 3))), ValueError, "inconsistent"),

@@ -58,8 +58,10 @@ def test_every_solver_states_its_properties(method):
 
 @pytest.mark.parametrize("method", ALL)
 def test_unknown_option_names_the_allowed_ones(method):
-    allowed = ", ".join(sorted(SOLVERS[method].option_docs)) or "none"
-    with pytest.raises(TypeError, match=f"no option 'bogus'; allowed: {allowed}"):
+    allowed = ", ".join(f"'{k}'" for k in sorted(SOLVERS[method].option_docs)) or "none"
+    with pytest.raises(hr.UnknownOptionError, match=f"unknown option 'bogus'; allowed: {allowed}"):
+        hr.simulate(MOM3, W3, [0.0, 1.0], method=method, options={"bogus": 1})
+    with pytest.raises(TypeError, match="unexpected keyword argument 'bogus'"):  # options go in options=
         hr.simulate(MOM3, W3, [0.0, 1.0], method=method, bogus=1)
 
 
@@ -114,7 +116,7 @@ def _generic(J, rng):
 
 
 def _reference(body, w0, t):
-    return hr.simulate(body, w0, t, method="splitting8", dt=0.01, compensated=True).L
+    return hr.simulate(body, w0, t, method="splitting8", dt=0.01, options={"compensated": True}).L
 
 
 CASES = ["3d", "quartet", "generic5", "generic7"]
@@ -483,7 +485,7 @@ def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol):
     worst = 0.0
     for seed in range(10):
         moments, w0 = _random_generic5(1000 + seed)
-        Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, compensated=True).L
+        Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, options={"compensated": True}).L
         tr = hr.simulate(moments, w0, t, rtol=rtol)
         worst = max(worst, np.abs(tr.L - Lref).max() / np.abs(Lref).max() / rtol)
     assert worst <= 1.0, worst
@@ -517,9 +519,9 @@ def test_a_failed_check_reruns_at_a_shorter_step(monkeypatch):
     first_step = step_control.ErrorTarget.first_step
     monkeypatch.setattr(step_control.ErrorTarget, "first_step", lambda self, *a: 8.0 * first_step(self, *a))
     tr = hr.simulate(moments, w0, t, method="splitting8", rtol=1e-9)
-    Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, compensated=True).L
+    Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, options={"compensated": True}).L
     assert np.abs(tr.L - Lref).max() <= 1e-9 * np.abs(Lref).max()
-    again = hr.simulate(moments, w0, t, method="splitting8", dt=tr.stats["dt"], compensated=tr.stats["compensated"])
+    again = hr.simulate(moments, w0, t, method="splitting8", dt=tr.stats["dt"], options={"compensated": tr.stats["compensated"]})
     np.testing.assert_array_equal(tr.L, again.L)
 
 

@@ -19,12 +19,12 @@ from __future__ import annotations
 
 import time
 from functools import lru_cache
-from typing import Any, Callable, NamedTuple
+from typing import Any, Callable, Mapping, NamedTuple
 
 import numpy as np
 
 from hyperrotor import _pricing, _validate
-from hyperrotor._options import options, register
+from hyperrotor._options import options as _table, register
 from hyperrotor.conventions import dimension_from_count
 
 from .solvers import SOLVERS, FixedStepSolver, Problem, ScipyIVP, Solver, solver_for
@@ -157,14 +157,24 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Probl
                    T0=T0, torque=tq, t=ts, scale=s), t_user
 
 
-def _choose_solver(method, rtol, dt, torque, solver_options) -> Solver:
+def _solver_options(value: Any) -> dict:
+    """The ``options=`` mapping of :func:`simulate` (the chosen method's option table), checked."""
+    if value is None:
+        return {}
+    if not isinstance(value, Mapping) or not all(isinstance(k, str) for k in value):
+        raise TypeError(f"options must be a mapping of option names to values (e.g. {{'compensated': True}}), "
+                        f"got {_validate.fmt(value)}")
+    return dict(value)
+
+
+def _choose_solver(method, rtol, dt, torque, solver_options: dict) -> Solver:
     if isinstance(method, str) and method.lower() == "auto":
         if callable(torque):
             method = "DOP853"
         elif rtol is None and dt is not None:
             method = "splitting4"
         else:
-            r = options["simulate_rtol"] if rtol is None else rtol
+            r = _table["simulate_rtol"] if rtol is None else rtol
             method = next(name for bound, name in AUTO_ORDER if r >= bound)
     elif isinstance(method, str) and method.lower() not in _LOWER_NAMES:
         raise ValueError(f"unknown method {method!r}; allowed: {', '.join(map(repr, SIMULATION_METHODS))}")
@@ -182,13 +192,13 @@ def _atol(atol: Any, problem: Problem) -> np.ndarray | None:
 
 
 def _step_control(solver: Solver, rtol: float | None, dt: float | None, atol: Any = None) -> FixedStep | ErrorTarget:
-    """``dt`` (fixed-step methods only) or ``rtol`` (default ``options["simulate_rtol"]``), not both;
+    """``dt`` (fixed-step methods only) or ``rtol`` (default ``_table["simulate_rtol"]``), not both;
     ``atol`` (checked, scaled) for scipy methods only."""
     if isinstance(solver, ScipyIVP):
         if dt is not None:
             raise ValueError(f"dt fixes the step of the fixed-step methods; scipy method {solver.name!r} takes "
                              f"rtol and atol")
-        control = ErrorTarget(options["simulate_rtol"] if rtol is None else rtol)
+        control = ErrorTarget(_table["simulate_rtol"] if rtol is None else rtol)
         control.atol = atol
         return control
     if atol is not None:
@@ -199,7 +209,7 @@ def _step_control(solver: Solver, rtol: float | None, dt: float | None, atol: An
                          f"{solver.name!r}, not both (got dt={_validate.fmt(dt)}, rtol={_validate.fmt(rtol)})")
     elif dt is not None:
         return FixedStep(dt)
-    return ErrorTarget(options["simulate_rtol"] if rtol is None else rtol)
+    return ErrorTarget(_table["simulate_rtol"] if rtol is None else rtol)
 
 
 def simulate(
@@ -217,7 +227,7 @@ def simulate(
     max_steps: int | None = None,
     progress: bool | None = None,
     client: Any = None,
-    **solver_options: Any,
+    options: Mapping[str, Any] | None = None,
 ) -> Trajectory:
     r"""Integrate the Euler equations (eqs. 24-26) of a rigid body in N dimensions.
 
@@ -290,9 +300,11 @@ def simulate(
         run the members of an ensemble (2-D ``omega0``) on a dask cluster in chunks of
         about a second of work each (see ``docs/scaling-out.md``); the same results as
         without it.
-    **solver_options
-        options of the chosen method (e.g. ``compensated=True`` for the splittings);
-        unknown ones are an error naming the allowed ones.
+    options : mapping, optional
+        options of the chosen method, as in :func:`hyperrotor.quantum.evolve` (e.g.
+        ``options={"compensated": True}`` for the splittings; each solver's table:
+        ``hyperrotor.SOLVERS[name].option_docs``); an unknown key raises
+        :class:`~hyperrotor.UnknownOptionError` naming the allowed ones.
 
     Returns
     -------
@@ -315,7 +327,7 @@ def simulate(
         ``"moser-veselov"`` with a step too long for its implicit equation; a scipy method
         that fails. ``FloatingPointError``: the solution left double precision.
     KeyboardInterrupt
-        Ctrl-C, honoured within about ``options["chunk_seconds"]`` in every phase (the step
+        Ctrl-C, honoured within about ``_table["chunk_seconds"]`` in every phase (the step
         control's probes and check run in chunks too).
 
     Examples
@@ -326,12 +338,12 @@ def simulate(
     (5, 3)
     """
     wall = time.perf_counter()
-    max_steps = options["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
+    max_steps = _table["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
     rtol = _validate.positive("rtol", rtol, allow_none=True)
     progress = _validate.flag("progress", progress, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
-    solver = _choose_solver(method, rtol, dt, torque, solver_options)
-    problem, t_user = _problem(body, omega0, t, attitude, torque, options["max_output_bytes"])
+    solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
+    problem, t_user = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"])
     _pricing.check("simulate", N=problem.N)
     control = _step_control(solver, rtol, dt, _atol(atol, problem))
     if events is not None and problem.batch:
@@ -390,7 +402,7 @@ class RunCost(NamedTuple):
 
 def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "auto", rtol: float | None = None,
                   dt: float | None = None, attitude: bool | Any = False, torque: Any = None,
-                  max_steps: int | None = None, **solver_options: Any) -> RunCost:
+                  max_steps: int | None = None, options: Mapping[str, Any] | None = None) -> RunCost:
     """Price a :func:`simulate` call before running it (for budgets such as the CLI's ``--max-seconds``).
 
     Same arguments as :func:`simulate`. With ``dt`` nothing is integrated; with ``rtol`` the
@@ -413,11 +425,11 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     """
     import warnings
 
-    max_steps = options["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
+    max_steps = _table["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
     rtol = _validate.positive("rtol", rtol, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
-    solver = _choose_solver(method, rtol, dt, torque, solver_options)
-    problem, _ = _problem(body, omega0, t, attitude, torque, options["max_output_bytes"])
+    solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
+    problem, _ = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"])
     control = _step_control(solver, rtol, dt)
     if not isinstance(solver, FixedStepSolver):
         return RunCost(None, None, None, solver.name)

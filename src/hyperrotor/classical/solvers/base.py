@@ -146,8 +146,7 @@ class Solver:
         self.options = {k: v for k, (v, _) in self.option_docs.items()}
         unknown = sorted(set(options) - set(self.option_docs))
         if unknown:
-            allowed = ", ".join(sorted(self.option_docs)) or "none"
-            raise TypeError(f"method {self.name!r} has no option {', '.join(map(repr, unknown))}; allowed: {allowed}")
+            _validate.unknown_option(f"method {self.name!r}", unknown[0], tuple(self.option_docs))
         self.options.update(options)
         self._check_options()
 
