@@ -9,7 +9,7 @@ from scipy.stats import special_ortho_group
 
 import hyperrotor as hr
 from hyperrotor import Inertia
-from hyperrotor.classical.inertia import check_tensor_symmetries, inertia_tensor
+from hyperrotor.classical.mass_points import check_tensor_symmetries, inertia_tensor
 from tolerance import scaled_tol
 
 

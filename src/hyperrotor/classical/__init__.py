@@ -1,10 +1,11 @@
 """Classical rigid rotation in N dimensions: inertia, Euler equations, integrators, closed forms."""
-from . import closed_form, inertia, rigid_body, scene_html, scenes, solvers, stability
+from . import closed_form, inertia, mass_points, rigid_body, scene_html, scenes, solvers, stability
 from . import simulate as _simulate_module
 from . import chaos
 from .chaos import *  # noqa: F401,F403
 from .closed_form import *  # noqa: F401,F403
 from .inertia import *  # noqa: F401,F403
+from .mass_points import *  # noqa: F401,F403
 from .rigid_body import *  # noqa: F401,F403
 from .scene_html import *  # noqa: F401,F403
 from .scenes import *  # noqa: F401,F403
@@ -14,6 +15,7 @@ from .stability import *  # noqa: F401,F403
 
 __all__ = [
     *inertia.__all__,
+    *mass_points.__all__,
     *rigid_body.__all__,
     *_simulate_module.__all__,
     "SOLVERS",
