@@ -75,12 +75,19 @@ def test_notebooks_that_plot_draw_on_the_page():
         assert not _plots(path) or "%matplotlib inline" in "".join(first["source"]).splitlines(), path.name
 
 
-@pytest.fixture(scope="session")
-def docs_build(tmp_path_factory):
-    pytest.importorskip("sphinx")
-    pytest.importorskip("myst_nb")
-    pytest.importorskip("ipykernel")
-    build = tmp_path_factory.getbasetemp() / DOCS_BUILD_DIRNAME
+def build_docs(basetemp: Path) -> tuple[Path, subprocess.CompletedProcess]:
+    """The session's one documentation build (it executes every notebook), run on first use.
+
+    Used by the fixture below and by tests/test_notebooks.py, which reads the executed
+    notebooks from it when this session runs the build test (so each notebook runs once per
+    session, whatever the test order). The result is kept in files under ``basetemp``, so a
+    second call in the session returns it without building again.
+    """
+    build = basetemp / DOCS_BUILD_DIRNAME
+    done = build / "BUILD_DONE.json"
+    if done.exists():
+        saved = json.loads(done.read_text())
+        return build, subprocess.CompletedProcess(saved["args"], saved["returncode"], saved["stdout"], saved["stderr"])
     build.mkdir(exist_ok=True)
     # a kernelspec "python3" that runs this interpreter, found first on JUPYTER_PATH
     spec = build / "jupyter" / "kernels" / "python3"
@@ -97,7 +104,17 @@ def docs_build(tmp_path_factory):
     proc = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, timeout=1200)
     if proc.returncode == 0:
         (build / "BUILD_OK").write_text("ok\n")
+    done.write_text(json.dumps({"args": cmd, "returncode": proc.returncode, "stdout": proc.stdout,
+                                "stderr": proc.stderr}))
     return build, proc
+
+
+@pytest.fixture(scope="session")
+def docs_build(tmp_path_factory):
+    pytest.importorskip("sphinx")
+    pytest.importorskip("myst_nb")
+    pytest.importorskip("ipykernel")
+    return build_docs(tmp_path_factory.getbasetemp())
 
 
 @pytest.mark.slow

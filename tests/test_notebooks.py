@@ -7,15 +7,17 @@ caught too). That cell is plumbing for the tests: it carries the ``remove-cell``
 tag, so myst-nb executes it but leaves it off the rendered page (the executed
 copy in ``jupyter_execute`` keeps it, with its output).
 
-Execution happens once per pytest session: when ``tests/test_docs.py`` built
-the documentation in this session (myst-nb executed every notebook and wrote
-the executed copies next to the HTML), those copies are checked; otherwise
-(e.g. ``pytest -m "not slow"`` or no Sphinx installed) the notebook is
-executed here with nbclient, on a kernel running the current interpreter,
-with ``MPLBACKEND=Agg``.
+Execution happens once per pytest session: when the session also runs the
+documentation build (``tests/test_docs.py``, marked slow), the first of these
+tests to need a notebook starts that build (myst-nb executes every notebook
+and writes the executed copies next to the HTML) and the copies are checked,
+whatever the test order; otherwise (e.g. ``pytest -m "not slow"``, a selection
+of notebooks, or no Sphinx installed) the notebook is executed here with
+nbclient, on a kernel running the current interpreter, with ``MPLBACKEND=Agg``.
 """
 from __future__ import annotations
 
+import importlib.util
 import json
 import math
 import sys
@@ -132,11 +134,20 @@ def _kernel_env(tmp_dir: Path, monkeypatch) -> str:
     return name
 
 
-def _executed(path: Path, tmp_path_factory, monkeypatch):
-    """The executed notebook: from this session's docs build if any, else nbclient."""
+def _session_builds_the_docs(session) -> bool:
+    return (any(item.name == "test_docs_build_offline_without_warnings" for item in session.items)
+            and all(importlib.util.find_spec(m) for m in ("sphinx", "myst_nb", "ipykernel")))
+
+
+def _executed(path: Path, request, tmp_path_factory, monkeypatch):
+    """The executed notebook: from this session's docs build if it runs one, else nbclient."""
+    if _session_builds_the_docs(request.session):
+        from test_docs import build_docs  # the one build of the session (tests/ is on sys.path)
+
+        build_docs(tmp_path_factory.getbasetemp())
     build = tmp_path_factory.getbasetemp() / DOCS_BUILD_DIRNAME
     built = build / "jupyter_execute" / "notebooks" / path.name
-    if (build / "BUILD_OK").exists() and built.exists():
+    if built.exists():  # executed by the build (a failing notebook stops the build: no copy of it)
         return nbformat.read(built, as_version=4), "docs build"
     nb = nbformat.read(path, as_version=4)
     kernel = _kernel_env(tmp_path_factory.mktemp("jupyter"), monkeypatch)
@@ -198,8 +209,8 @@ def test_the_checks_cell_is_the_last_code_cell_and_hidden_from_readers():
 @pytest.mark.filterwarnings("ignore::DeprecationWarning:nbclient.*")
 @pytest.mark.filterwarnings("ignore::ResourceWarning")
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.stem for p in NOTEBOOKS])
-def test_notebook_executes_and_checks_hold(path, tmp_path_factory, monkeypatch):
-    nb, source = _executed(path, tmp_path_factory, monkeypatch)
+def test_notebook_executes_and_checks_hold(path, request, tmp_path_factory, monkeypatch):
+    nb, source = _executed(path, request, tmp_path_factory, monkeypatch)
     assert not _errors(nb), f"{path.name} ({source}): {_errors(nb)}"
     values = _checks(nb)
     spec = CHECKS[path.stem]
