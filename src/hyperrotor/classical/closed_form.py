@@ -344,15 +344,21 @@ def quartet_frequencies(kappa: float, omega0: Any, axis: int = 5) -> np.ndarray:
     return abs(th) * np.sort(np.abs(lam), axis=-1)[..., ::-1][..., : 2 * k : 2]
 
 
-def _expm_antisym(W: np.ndarray, tt: np.ndarray) -> np.ndarray:
-    """exp(W t) for one real antisymmetric W and many t (eigh of the Hermitian iW), shape (n_t, N, N)."""
+def expm_antisym(W: np.ndarray, tt: np.ndarray) -> np.ndarray:
+    """exp(W t) for one real antisymmetric W and many t (eigh of the Hermitian iW), shape (n_t, N, N).
+
+    Shared in the package (the scenes' closed-form attitude route); not public API.
+    """
     lam, U = np.linalg.eigh(1j * W)
     ph = np.exp(-1j * tt[:, None] * lam[None, :])
     return np.einsum("ij,kj,lj->kil", U, ph, U.conj()).real
 
 
-def _quartet_attitude_std(theta: float, omega0: np.ndarray, tt: np.ndarray, axis: int) -> np.ndarray:
-    """T(t) (plain convention, T(0) = 1) of the one-distinguished-axis body."""
+def quartet_attitude_standard(theta: float, omega0: np.ndarray, tt: np.ndarray, axis: int) -> np.ndarray:
+    """T(t) (plain convention, T(0) = 1) of the one-distinguished-axis body, ``tt`` trusted.
+
+    Shared in the package (:func:`quartet_attitude` and the scenes); not public API.
+    """
     from ..conventions import to_matrix
 
     N = dimension_from_count(omega0.size)
@@ -360,8 +366,8 @@ def _quartet_attitude_std(theta: float, omega0: np.ndarray, tt: np.ndarray, axis
     Wr = W0.copy()
     Wr[axis - 1, :] = 0.0
     Wr[:, axis - 1] = 0.0
-    R = _expm_antisym(theta * Wr, tt)
-    S = _expm_antisym(W0 - theta * Wr, tt)
+    R = expm_antisym(theta * Wr, tt)
+    S = expm_antisym(W0 - theta * Wr, tt)
     return R @ S
 
 
@@ -403,7 +409,7 @@ def quartet_attitude(kappa: float, omega0: Any, t: Any, axis: int = 5, *, attitu
     axis = _check_axis(axis, N)
     tt = _times(t)
     _pricing.check("closed_form_output", n_times=tt.size, width=N * N)
-    T = _quartet_attitude_std(quartet_theta(kappa), w, tt, axis)
+    T = quartet_attitude_standard(quartet_theta(kappa), w, tt, axis)
     Sg = np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
     if attitude0 is not None:
         T0 = np.asarray(attitude0, dtype=float)

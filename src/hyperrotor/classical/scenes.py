@@ -496,11 +496,11 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
             if need_att:
                 from ..conventions import to_matrix
 
-                U = _cf._expm_antisym(to_matrix(w_red, convention="standard").astype(float), tau)
+                U = _cf.expm_antisym(to_matrix(w_red, convention="standard").astype(float), tau)
         else:
             om_red, _ = _cf.closed_form_solution(I_red, w_red, tau)
             if need_att:  # T = exp(Theta W_r t) exp((W0 - Theta W_r) t), see quartet_attitude
-                U = _cf._quartet_attitude_std(info["theta"], w_red, tau, info["axis"])
+                U = _cf.quartet_attitude_standard(info["theta"], w_red, tau, info["axis"])
         steps.append("closed-form:" + info["kind"])
     else:
         red_body = RigidBody(I_red, convention="standard")
