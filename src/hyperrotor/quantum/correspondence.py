@@ -31,7 +31,7 @@ from ..classical.simulate import simulate
 from ..conventions import n_planes, planes
 from .coherent import coherent_state
 from .evolve import SectorPropagator, unit_state
-from .gelfand_tsetlin import irrep
+from .gelfand_tsetlin import DEFAULT_MAX_DIM, gt_size, irrep
 from .hamiltonian import operator_matrix_and_dims, rotor_hamiltonian
 
 __all__ = ["EhrenfestResult", "OTOCResult", "ehrenfest_time", "otoc"]
@@ -301,6 +301,10 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     threshold = _validate.positive("threshold", threshold)
     t = _validate.time_grid(t, allow_decreasing=False)
     rtol = options["quantum_ehrenfest_rtol"] if rtol is None else _validate.positive("rtol", rtol)
+    hws = [tuple(_highest_weight_entry(l * x) for x in w) for l in ls]
+    for hw in hws:  # every irrep's size before any work (the classical run compiles and integrates)
+        if gt_size(N, hw) > DEFAULT_MAX_DIM:
+            irrep(N, hw)  # raises irrep's own error, naming the dimension and max_dim
     try:
         traj = simulate(moments, L0 / moments, t, rtol=rtol)
     except FloatingPointError as exc:  # moments (or L0) out of the range of double precision
@@ -309,8 +313,7 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     hbars, dims, quantum, devs, tE = [], [], [], [], []
     bar = progress_bar(progress, len(ls), "ehrenfest_time: irreps")
     try:
-        for l in ls:
-            hw = tuple(_highest_weight_entry(l * x) for x in w)
+        for l, hw in zip(ls, hws):
             rep = irrep(N, hw)
             hbar = norm0 / (l * float(np.linalg.norm(w)))
             H = rotor_hamiltonian(rep, moments, hbar=hbar)
