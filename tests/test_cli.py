@@ -181,8 +181,11 @@ def test_scene_html_is_the_library_page(capsys, tmp_path):
     assert code == 0, err
     assert f"written: {page}" in out and _files(tmp_path) == ["scene.html"]
     html = page.read_text()
-    assert html.lstrip().lower().startswith(("<!doctype html>", "<html")) and "Plotly.newPlot" in html  # plotly 5 omits the doctype
-    assert 'src="http' not in html and len(html) > 3_000_000  # self-contained: plotly.js is inside
+    # booleans, not the 3 MB page, in the assertions (pytest's diff of such a string takes minutes)
+    starts_as_html = html.lstrip().lower().startswith(("<!doctype html>", "<html"))  # plotly 5 omits the doctype
+    assert starts_as_html and ("Plotly.newPlot" in html) is True
+    loads_nothing = re.search(r"<script[^>]*\bsrc\s*=", html, re.I) is None and re.search(r"<link[^>]*\bhref\s*=", html, re.I) is None
+    assert loads_nothing and len(html) > 3_000_000  # self-contained: plotly.js is inside (the bundle's own text may say src="http)
     assert len(re.findall(r'"name"\s*:\s*"', html)) >= 5  # one animation frame per time (--frames 5)
 
 
