@@ -73,6 +73,37 @@ def test_auto_diagonalizes_a_large_block_once_krylov_would_cost_more(rng):
     np.testing.assert_allclose(S[-1], _exact(H.full(), 50.0, psi).ravel(), rtol=0, atol=scaled_tol(1.0, dim=rep.dim, k=1e4))
 
 
+def test_evolve_rents_krylov_then_buys_the_sectors(rng):
+    """Rent or buy across evolve calls ("auto", every sector small enough for eigh): a fresh H is first
+    propagated by Lanczos on the whole space without building any sector; a grid whose predicted Krylov
+    work exceeds the price of the sectors switches to them in its middle (from the state reached), and a
+    later call of the same H uses them at once. Every state equals the dense exponential."""
+    rep, H = _generic(rng)
+    Hd = H.full()
+    psi = _state(rng, rep.dim)
+    tol = scaled_tol(1.0, dim=rep.dim, k=1e4)  # Krylov atol 1e-12 per restart
+
+    def check(res, t):
+        for k, tk in enumerate(t):
+            np.testing.assert_allclose(res.states[k].full().ravel(), _exact(Hd, tk, psi).ravel(), rtol=0, atol=tol)
+
+    with hr.options(quantum_eigen_max_block=20):  # sparsity blocks of (3, 1) above 20: the sectors (of ~5) apply
+        short = np.linspace(0.0, 0.5, 4)
+        res = evolve(H, psi, short)
+        assert res.stats["block_methods"] == ["krylov"] and "sectors" not in res.stats
+        check(res, short)
+        H2 = rotor_hamiltonian(rep, rng.uniform(1.0, 2.0, size=10))  # a fresh H: renting again
+        Hd, psi = H2.full(), _state(rng, rep.dim)
+        long = np.concatenate([[0.0, 0.05, 0.1], np.linspace(1.0, 400.0, 4)])
+        res = evolve(H2, psi, long)
+        assert res.stats["block_methods"] == ["eigen", "krylov"] and res.stats["sectors"] == 16
+        assert 0 < res.stats["n_matvec"] and res.stats["n_eigh"] > 0
+        check(res, long)
+        res = evolve(H2, psi, short)
+        assert res.stats["block_methods"] == ["eigen"] and res.stats["n_eigh"] == 0  # bought: cached
+        check(res, short)
+
+
 def test_quartet_sparsity_blocks_and_evolve_result(rng):
     """A quartet body is block diagonal in the GT basis: no sectors, the populated blocks only."""
     rep = irrep(5, (3, 1))

@@ -454,10 +454,11 @@ def test_sector_spectra_on_a_dask_client(dask_client, rng):
             np.testing.assert_allclose(got[k], ref[k], rtol=1e-12, atol=1e-12 * max(1.0, np.abs(ref[k]).max(initial=0)))
 
 
-@pytest.mark.parametrize("method", ["auto", "eigen", "krylov"])
+@pytest.mark.parametrize("method", ["eigen", "krylov"])
 def test_evolve_uses_sectors_for_a_generic_inertia(method, rng):
     """evolve() of a generic rotor knows its representation and propagates sector by sector;
-    the states agree with the dense exponential and with the run without blocks."""
+    the states agree with the dense exponential and with the run without blocks. ("auto" may first
+    rent a whole-space Krylov run: test_evolve_propagator.py::test_evolve_rents_krylov_then_buys_the_sectors.)"""
     rep = irrep(5, (4, 2))
     H = rotor_hamiltonian(rep, _moments(5, rng))
     psi0 = rng.standard_normal(rep.dim) + 1j * rng.standard_normal(rep.dim)

@@ -46,7 +46,7 @@ from .. import _lazy, _parallel, _pricing, _validate
 from .._options import options as _options
 from ._krylov import single_thread_blas
 from .hamiltonian import blocks_of, hermitian_matrix
-from .propagators import PROPAGATORS, Eigen, Krylov, propagator_class
+from .propagators import PROPAGATORS, Auto, Eigen, Krylov, propagator_class
 from .sectors import nonempty_blocks, restrict
 
 __all__ = ["SectorPropagator", "evolve"]
@@ -121,6 +121,20 @@ def _sector_bases(rep: Any) -> list | None:
 
 #: id(rep) -> (weak reference to rep, sector bases)
 _SECTOR_CACHE: dict[int, tuple[Any, list | None]] = {}
+
+#: Work (in the flop units of the rent-or-buy rule) of building the sectors, per basis vector and sector,
+#: and of restricting H to them, per nonzero of H (measured on this machine, so(5) (9, 3): see _sector_price).
+_SECTOR_WORK = 1.2e4
+_RESTRICT_WORK = 1.5e3
+
+
+def _sector_price(M: sps.csr_matrix, rep: Any) -> float:
+    """Estimated work of the sector route of ``M``: build the sectors of ``rep`` (unless cached), restrict
+    ``M`` to them and diagonalize ``2^(N-1)`` blocks of ``dim / 2^(N-1)`` (the unit of :class:`_Block`'s rule)."""
+    n_sec = 2.0 ** (rep.N - 1)
+    hit = _SECTOR_CACHE.get(id(rep))
+    build = 0.0 if hit is not None and hit[0]() is rep else _SECTOR_WORK * rep.dim * n_sec
+    return build + _RESTRICT_WORK * M.nnz + n_sec * _EIGH_FLOPS * (rep.dim / n_sec) ** 3
 
 
 def _sector_block(M: sps.csr_matrix, B: Any) -> sps.csr_matrix:
@@ -301,6 +315,18 @@ class SectorPropagator:
     def __init__(self, H: Any, *, rep: Any = None, hbar: float = 1, method: str = "auto",
                  options: dict | None = None, workers: int | None = None, client: Any = None,
                  progress: bool | None = None) -> None:
+        self._setup(H, rep, hbar, method, options, workers, client, progress, rent=False)
+
+    @classmethod
+    def _for_one_call(cls, H: Any, **kw: Any) -> "SectorPropagator":
+        """The propagator :func:`evolve` builds: it may rent (whole-space Krylov) before it builds the sectors."""
+        self = cls.__new__(cls)
+        self._setup(H, kw["rep"], kw["hbar"], kw["method"], kw["options"], kw["workers"], kw["client"],
+                    kw["progress"], rent=True)
+        return self
+
+    def _setup(self, H: Any, rep: Any, hbar: Any, method: str, options: dict | None, workers: Any, client: Any,
+               progress: Any, *, rent: bool) -> None:
         cls = propagator_class(method)
         if not cls.native:
             raise ValueError(f"method {cls.name!r} is QuTiP's solver, not a native propagator; use evolve(..., "
@@ -320,25 +346,44 @@ class SectorPropagator:
         self.progress = _validate.flag("progress", progress, allow_none=True)
         self.diagonal = self.matrix.diagonal().real
         self.stats: dict[str, Any] = {"method": cls.name}
-        self._blocks = self._split(cls, rep)
+        self._parts: list[_Block] | None = None
+        self._rent: dict | None = None  # whole-space Krylov before the sectors are bought (evolve, "auto")
+        self._split(cls, rep, rent)
 
     def __setstate__(self, state: dict) -> None:
         """Unpickled (e.g. back from a dask worker): the blocks point to this propagator again."""
         self.__dict__.update(state)
-        for b in self._blocks:
+        for b in self._parts or ():
             b.owner = self
 
-    def _split(self, cls, rep) -> list[_Block]:
+    @property
+    def _blocks(self) -> list[_Block]:
+        """The invariant blocks; the sectors of a renting propagator are built (bought) at the first need."""
+        if self._parts is None:
+            cls, rep, blocks = self._rent.pop("deferred")
+            self._rent = None
+            self._parts = self._block_list(cls, rep, blocks)
+        return self._parts
+
+    def _split(self, cls, rep, rent: bool) -> None:
         opts = self.options
-        engine = cls(**{k: opts[k] for k in cls.options})
         use = opts["blocks"]
         blocks = blocks_of(self.matrix, atol=opts["block_atol"]) if use else [np.arange(self.dim)]
         self.stats["blocks"] = len(blocks)
+        big = max((len(b) for b in blocks if len(b) > 1), default=0)
+        sectors = rep is not None and use and big > int(_options["quantum_eigen_max_block"])
+        if (rent and sectors and cls is Auto and self.client is None
+                and rep.dim <= _options["quantum_eigen_max_block"] * 2 ** (rep.N - 1)):
+            # every sector would be diagonalized: for one state a Krylov run on the whole space may cost less
+            self._rent = {"deferred": (cls, rep, blocks), "spent": 0.0, "rate": None, "rep": rep}
+            return
+        self._parts = self._block_list(cls, rep if sectors else None, blocks)
+
+    def _block_list(self, cls, rep, blocks) -> list[_Block]:
+        """The blocks: the sectors of ``rep`` (when given and usable), else the sparsity ``blocks``."""
+        engine = cls(**{k: self.options[k] for k in cls.options})
         multi = [b for b in blocks if len(b) > 1]
-        big = max((len(b) for b in multi), default=0)
-        bases = None
-        if rep is not None and use and big > int(_options["quantum_eigen_max_block"]):
-            bases = _sector_bases(rep)
+        bases = _sector_bases(rep) if rep is not None else None
         out: list[_Block] = []
         if bases is not None:  # generic inertia: the sectors split the sparsity blocks ~2^(N-1) ways
             self.stats["sectors"] = len(bases)
@@ -359,7 +404,63 @@ class SectorPropagator:
         return out
 
     def _run(self, vec: np.ndarray, t: np.ndarray, hbar: float) -> np.ndarray:
-        """``(dim, nt)`` states ``exp(-i H (t - t[0]) / hbar) vec`` (``hbar < 0`` runs backwards)."""
+        """``(dim, nt)`` states ``exp(-i H (t - t[0]) / hbar) vec`` (``hbar < 0`` runs backwards).
+
+        Rent or buy (a propagator of :func:`evolve`, method ``"auto"``, whose sectors would all be
+        diagonalized): while the Krylov work on the whole space, spent and predicted, stays below the
+        estimated price of the sectors (build, blocks, ``eigh``: :func:`_sector_price`), the states come
+        from Lanczos on the whole matrix and no sector is built; the prediction of a call is the work
+        per unit time measured so far (before any: one Krylov space). Once renting would cost more,
+        the sectors are built and diagonalized, also in the middle of a grid (the rest of it starts
+        from the state reached).
+        """
+        rent = self._rent
+        if rent is not None and self._parts is None:
+            price = _sector_price(self.matrix, rent["rep"])
+            span = abs(float(t[-1] - t[0]))
+            engine = Krylov(**{key: self.options[key] for key in Krylov.options})
+            m = min(self.dim, engine.settings()[1])
+            step = 8.0 * self.matrix.nnz + 16.0 * m * self.dim  # work of one Lanczos step (as in _Block)
+            guess = rent["rate"] * span if rent["rate"] is not None else m * step
+            if rent["spent"] + guess <= price:
+                C, k, stats = self._rent_run(engine, vec, t, hbar, step, price)
+                if k == t.size - 1:
+                    self.stats.update(stats)
+                    return C
+                rest = self._run_blocks(C[:, k], t[k:], hbar)  # bought: the sectors from t[k] on
+                for key in ("n_matvec", "n_krylov"):
+                    self.stats[key] = self.stats.get(key, 0) + stats[key]
+                self.stats["block_methods"] = sorted(set(self.stats["block_methods"]) | {"krylov"})
+                return np.concatenate([C[:, :k], rest], axis=1)
+        return self._run_blocks(vec, t, hbar)
+
+    def _rent_run(self, engine: Krylov, vec: np.ndarray, t: np.ndarray, hbar: float, step: float,
+                  price: float) -> tuple[np.ndarray, int, dict]:
+        """Lanczos on the whole matrix over ``t`` until renting is predicted to cost more than ``price``
+        (asked before every restart): ``(states (dim, k + 1), k, stats)`` for the times ``t[: k + 1]``."""
+        t0 = _time.perf_counter()
+        rent = self._rent
+        stats: dict = {"n_matvec": 0, "n_krylov": 0}
+        span = abs(float(t[-1] - t[0]))
+
+        def stop(t_cur: float, n_matvec: int) -> bool:  # the rest of the grid is cheaper in the sectors
+            return rent["spent"] + n_matvec * step * span / abs(float(t_cur - t[0])) > price
+
+        out = np.empty((self.dim, t.size), dtype=complex)
+        k = -1
+        with single_thread_blas():
+            for k, state in enumerate(engine.propagate(self.matrix, vec, t, hbar, stats, stop=stop)):
+                out[:, k] = state
+        work = stats["n_matvec"] * step
+        rent["spent"] += work
+        if k > 0:
+            rent["rate"] = work / abs(float(t[k] - t[0]))
+        stats.update({"populated_blocks": 1, "populated_dim": self.dim, "n_eigh": 0, "block_methods": ["krylov"],
+                      "run time": _time.perf_counter() - t0})
+        return out[:, : k + 1], k, stats
+
+    def _run_blocks(self, vec: np.ndarray, t: np.ndarray, hbar: float) -> np.ndarray:
+        """:meth:`_run` in the blocks (the sectors, or the sparsity blocks)."""
         t0 = _time.perf_counter()
         scale = float(np.abs(vec).max()) if vec.size else 0.0
         coords = [b.coords(vec) for b in self._blocks]
@@ -595,8 +696,8 @@ def _propagator_for(H: Any, *, rep: Any, hbar: float, method: str, options: dict
             prop.client = client
             prop.progress = progress
             return prop
-    prop = SectorPropagator(H, rep=rep, hbar=hbar, method=method, options=options, workers=workers,
-                            client=client, progress=progress)
+    prop = SectorPropagator._for_one_call(H, rep=rep, hbar=hbar, method=method, options=options, workers=workers,
+                                          client=client, progress=progress)
     try:
         ref = weakref.ref(H, lambda _, key=id(H): _PROPAGATOR_CACHE.pop(key, None))
     except TypeError:  # objects without weak references (lists): no reuse

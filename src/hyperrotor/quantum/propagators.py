@@ -222,12 +222,17 @@ class Krylov(Propagator):
         "krylov_dim": (None, "largest Krylov space (default options['quantum_krylov_dim'] = 30)"),
     }
 
-    def propagate(self, mat, v0, t, hbar, stats):
+    def settings(self) -> tuple[float, int]:
+        """``(atol, krylov_dim)``: the options, or their defaults in :data:`hyperrotor.options`."""
         atol = self.opts.get("atol")
         dim = self.opts.get("krylov_dim")
         atol = _options["quantum_krylov_atol"] if atol is None else _validate.positive("atol", atol)
         dim = _options["quantum_krylov_dim"] if dim is None else _validate.integer("krylov_dim", dim, minimum=1)
-        return krylov_propagator(mat, v0, t, hbar, stats, atol=float(atol), m_max=int(dim))
+        return float(atol), int(dim)
+
+    def propagate(self, mat, v0, t, hbar, stats, stop=None):
+        atol, dim = self.settings()
+        return krylov_propagator(mat, v0, t, hbar, stats, atol=atol, m_max=dim, stop=stop)
 
 
 @register_propagator
