@@ -26,17 +26,21 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    :math:`e(h) = \max|y_h - y_{2h}| / (2^p - 1)` (the same members at twice the step: 1.5x the
    work of the steps :math:`h`) from step :math:`h = 1/\omega_\text{max}`,
    refined (x1/4) while not asymptotic (:math:`e > ` :data:`ASYMPTOTIC`) and enlarged (x4) while
-   at round-off. With linear growth of the error in time (Hairer, Lubich & Wanner, *Geometric
-   Numerical Integration*, ch. X: the error of a symplectic method on a regular orbit grows
-   linearly in t) this gives the step :math:`h^*` for the target ``SAFETY * rtol``.
+   at round-off. The error is carried to the end of the run with the growth seen inside the
+   window (:func:`_growth_to_end`: like :math:`t` on a regular orbit, Hairer, Lubich & Wanner,
+   *Geometric Numerical Integration*, ch. X; like :math:`t^a`, :math:`a \le` :data:`PROBE_MAX_POWER`,
+   when the window shows faster growth, e.g. a chaotic orbit), which gives the step :math:`h^*`
+   for the target ``SAFETY * rtol``.
 3. *Budget.* All planned work (probes, run, check) above ``max_steps`` is refused here,
    before the run starts (:class:`~.chunks.Work`).
-4. *Check inside the run* (:class:`RichardsonCheck`, costing :math:`1/c + 1/c^2` of the run for
+4. *Check inside the run* (:class:`RichardsonCheck`, costing :math:`1/c + 1/(c c_2)` of the run for
    up to :data:`PROBE_MEMBERS` members). Beside the run at :math:`h^*` two companion runs of the
-   same members advance with steps :math:`c` and :math:`c^2` times longer
-   (:math:`2 \le c \le` :data:`COMPANION_RATIO`, as large as keeps the companions asymptotic)
-   between :data:`CHECK_SAMPLES` sample points of the run. The three runs give the observed
-   order :math:`q \le p` (from :math:`|y_{ch} - y_{c^2h}| / |y_h - y_{ch}| \approx c^q`: stiff
+   same members advance with steps :math:`c` and :math:`c c_2` times longer
+   (:math:`2 \le c \le` :data:`COMPANION_RATIO`, as large as keeps the first companion's error below
+   :data:`COMPANION_ASYMPTOTIC`; :math:`2 \le c_2 \le c`, the second's below
+   :data:`SECOND_COMPANION_ASYMPTOTIC`) between :data:`CHECK_SAMPLES` sample points of the run.
+   The three runs give the observed order :math:`q \le p` (:func:`observed_order`, from
+   :math:`|y_{ch} - y_{cc_2h}| / |y_h - y_{ch}| = c^q (c_2^q - 1)/(c^q - 1)`: stiff
    problems, steps far outside the asymptotic regime show :math:`q < p`), and at every sample
    :math:`e \approx |y_{h^*} - y_{ch^*}| / (c^q - 1)` estimates the run's own error (with
    :math:`c` the smallest ratio of companion to run step over the samples, so the estimate errs
@@ -80,6 +84,7 @@ from .chunks import Work, advance_chunked, cost_key, seconds_per_flow, step_time
 __all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "RichardsonCheck", "CheckFailed",
            "UnreachableAccuracyError", "rate_bound"]
 
+_EPS = float(np.finfo(float).eps)
 #: the error target used for the step: rtol times this (margin for the asymptotic model)
 SAFETY = 0.5
 #: the check accepts a run whose estimated error stays within rtol times this
@@ -88,12 +93,16 @@ ACCEPT = 0.8
 ASYMPTOTIC = 1e-2
 #: the companion's own error is kept below this (it chooses the ratio c of the check)
 COMPANION_ASYMPTOTIC = 1e-3
-#: largest ratio c of companion to run step (cost of the check: 1/c + 1/c^2 of the run for the checked members)
+#: largest ratio c of companion to run step (cost of the check: 1/c + 1/(c c2) of the run for the checked members)
 COMPANION_RATIO = 4.0
+#: the second companion's step is c2 >= 2 times the first's, as long as its own error stays below this
+SECOND_COMPANION_ASYMPTOTIC = 3e-2
 #: length of the probe interval in turns of the fastest rate (20 radians: a few periods)
 PROBE_TURNS = 20.0
 #: ensemble members probed and checked (the fastest ones): the step is one for all members
 PROBE_MEMBERS = 8
+#: the probe extrapolates its error to the end of the run like t^a, 1 <= a <= this (the steady growth it sees)
+PROBE_MAX_POWER = 4.0
 #: no extrapolation beyond this factor of the probed step (the error model is asymptotic in h)
 MAX_STEP_GROWTH = 8.0
 #: sample points of the check (the error can peak between output times)
@@ -106,6 +115,31 @@ PROJECT_MARGIN = 4.0
 GROWTH_RATIO = 8.0
 #: re-runs at a shorter step before the call gives up with UnreachableAccuracyError
 MAX_RETRIES = 3
+
+
+def observed_order(rho: float, r: float, r2: float, p: float) -> float:
+    r"""The order :math:`q \in [0, p]` with :math:`r^q (r_2^q - 1)/(r^q - 1) = \rho` (ratio of the
+    differences of three runs at steps :math:`h`, :math:`rh`, :math:`r r_2 h`, errors :math:`C h^q`).
+
+    The left side increases with :math:`q` (from :math:`\ln r_2/\ln r` at 0); below its value at
+    :math:`q = 1/2` the answer is 0 (not asymptotic), above its value at ``p`` it is ``p``; bisection
+    in between. ``r == r2`` gives :math:`\log\rho / \log r`.
+    """
+    if not rho > 0.0 or r <= 1.0 or r2 <= 1.0:
+        return 0.0
+
+    def f(q):
+        return r ** q * (r2 ** q - 1.0) / (r ** q - 1.0)
+
+    if rho < f(0.5):
+        return 0.0
+    if rho >= f(p):
+        return float(p)
+    lo, hi = 0.5, float(p)
+    for _ in range(40):  # |hi - lo| < 1e-11
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(mid) < rho else (lo, mid)
+    return 0.5 * (lo + hi)
 
 
 class UnreachableAccuracyError(ValueError):
@@ -168,6 +202,30 @@ def _triples(N: int):
     return cols
 
 
+def _growth_to_end(envelope: list, floor: float, ratio: float) -> float:
+    r"""Factor by which the error of the probe window grows by the end of the run (``ratio``: run / window).
+
+    Linear growth (a regular orbit, GNI ch. X) gives ``ratio``. A faster growth seen inside the
+    window is extrapolated as :math:`t^a`, :math:`1 \le a \le` :data:`PROBE_MAX_POWER`, with
+    :math:`a` the smaller power of the two halves of the window's last three quarters (the
+    envelope ``(fraction of the window, estimate)`` at :math:`P/4, P/2, P`): growth must be
+    steady to count (a chaotic orbit, a separatrix passage), an error that oscillates up and down
+    does not. Estimates at round-off (``floor``) say nothing: linear. The check inside the run
+    decides anyway; this only makes a re-run rarer.
+    """
+    if ratio <= 1.0:
+        return 1.0
+    a = PROBE_MAX_POWER
+    if len(envelope) < 3:
+        a = 1.0
+    for (t0, e0), (t1, e1) in zip(envelope[:-1], envelope[1:]):
+        if e0 <= 2.0 * floor or e1 <= e0 or t1 <= t0:
+            a = 1.0
+            break
+        a = min(a, math.log(e1 / e0) / math.log(t1 / t0))
+    return ratio ** max(1.0, a)
+
+
 class FixedStep:
     """Largest step ``dt`` (in the user's time units)."""
 
@@ -214,9 +272,17 @@ class ErrorTarget:
     def __repr__(self) -> str:
         return f"ErrorTarget(rtol={self.rtol!r})"
 
+    def _rates(self, problem: Problem) -> tuple:
+        """``(rate bound per member, the checked members)`` of ``problem`` (computed once per problem)."""
+        cached = getattr(self, "_rates_of", None)
+        if cached is None or cached[0] is not problem:
+            wmax_b = _orbit_rates(problem)
+            members = np.sort(np.argsort(wmax_b)[::-1][: min(PROBE_MEMBERS, problem.B)])
+            cached = self._rates_of = (problem, wmax_b, members)
+        return cached[1:]
+
     def _members(self, problem: Problem) -> np.ndarray:
-        wmax_b = _orbit_rates(problem)
-        return np.sort(np.argsort(wmax_b)[::-1][: min(PROBE_MEMBERS, problem.B)])
+        return self._rates(problem)[1]
 
     def first_step(self, solver, problem: Problem, work: Work) -> float:
         """The probe (module docstring, steps 1-3): a step for ``SAFETY * rtol`` from a leading window."""
@@ -226,13 +292,12 @@ class ErrorTarget:
         self.history = []
         if B == 0 or span == 0.0:
             return max(span, 1.0)
-        wmax_b = _orbit_rates(problem)
+        wmax_b, sel = self._rates(problem)
         wmax = float(wmax_b.max())
         if wmax == 0.0 or solver.flows_per_step(problem) == 0:
             return span  # nothing moves
         p = solver.order
         target = SAFETY * self.rtol
-        sel = self._members(problem)
         L0s = problem.L0[sel]
         Ms = problem.moments
         direction = 1.0 if problem.t[-1] >= problem.t[0] else -1.0
@@ -251,12 +316,18 @@ class ErrorTarget:
                 return None, Pv / (k * ms)
             Lmax = np.maximum(np.abs(y1).max(axis=(1, 2)), 1e-300)
             Wmax = np.maximum(np.abs(y1 / Ms).max(axis=(1, 2)), 1e-300)
-            e = float(_relative_difference(y1, y2, Ms, Lmax, Wmax).max())
-            return e / (2.0 ** p - 1.0), Pv / (k * ms)
+            d = _relative_difference(y1, y2, Ms, Lmax, Wmax)  # per sample
+            # the estimate's envelope at (about) half the window and at its end (d[i]: at grid point i)
+            env = np.maximum.accumulate(d) / (2.0 ** p - 1.0)
+            samples_e[:] = [(i / k, float(env[i])) for i in (k // 4, k // 2, k) if i > 0]
+            return float(env[-1]), Pv / (k * ms)
+
+        samples_e = []
 
         P = min(span, PROBE_TURNS / wmax)
         h = min(P, 1.0 / wmax)
         est = None
+        floor = 0.0
         for _ in range(24):
             m = max(1, int(math.ceil(P / h - 1e-9)))
             if m > 200_000:
@@ -265,7 +336,7 @@ class ErrorTarget:
             if err is None or not np.isfinite(err) or err > ASYMPTOTIC:
                 h /= 4.0
                 continue
-            floor = 1e3 * np.finfo(float).eps * math.sqrt(2 * m * solver.flows_per_step(problem))
+            floor = 1e3 * _EPS * math.sqrt(2 * m * solver.flows_per_step(problem))
             est = (h, err, P)
             if err < floor:  # round-off level: try longer steps / a longer probe
                 if m > 1:
@@ -280,7 +351,7 @@ class ErrorTarget:
             h_star = min(P, 0.01 / wmax)
         else:
             h, err, P = est
-            on_run = max(err, 1e3 * np.finfo(float).eps) * max(1.0, span / P)
+            on_run = max(err, 1e3 * _EPS) * _growth_to_end(samples_e, floor, span / P)
             h_star = min(MAX_STEP_GROWTH * h, 0.8 * h * (target / on_run) ** (1.0 / p))
         return h_star
 
@@ -362,11 +433,14 @@ class RichardsonCheck:
         # the companion's ratio: as long as its own error stays asymptotic
         c = (COMPANION_ASYMPTOTIC / (SAFETY * control.rtol)) ** (1.0 / p)
         c = float(min(COMPANION_RATIO, max(2.0, c), max(2.0, math.sqrt(steps / 8.0))))  # short runs: smaller c
+        # the second companion's ratio to the first: 2 or more, while its error stays near-asymptotic
+        c2 = (SECOND_COMPANION_ASYMPTOTIC / (SAFETY * control.rtol * c ** p)) ** (1.0 / p)
+        c2 = float(min(c, max(2.0, c2)))
         finer = steps < 32  # a very short run: the companions take half and quarter steps instead
         if finer:
             spacing = max(1, int(math.ceil(steps / CHECK_SAMPLES)))
         else:
-            spacing = max(int(math.ceil(2 * c * c)), int(math.ceil(steps / CHECK_SAMPLES)))
+            spacing = max(int(math.ceil(2 * c * c2)), int(math.ceil(steps / CHECK_SAMPLES)))
         marks = np.arange(spacing, steps, spacing, dtype=np.int64)
         if marks.size and steps - marks[-1] < spacing // 2:
             marks = marks[:-1]
@@ -376,7 +450,7 @@ class RichardsonCheck:
             self.nc, self.nc2 = seg * 2, seg * 4
         else:
             self.nc = np.maximum(1, np.floor(seg / c).astype(np.int64))
-            self.nc2 = np.maximum(1, np.floor(self.nc / c).astype(np.int64))
+            self.nc2 = np.maximum(1, np.floor(self.nc / c2).astype(np.int64))
         self.tm = step_times(t, cs, nsub, marks)
         self.grid = np.concatenate([[t[0]], self.tm])
         lengths = np.abs(np.diff(self.grid))
@@ -410,9 +484,9 @@ class RichardsonCheck:
     def _divisor(self) -> float:
         r"""``e_run = |y_run - y_1| / divisor`` from the observed convergence of the three runs.
 
-        With errors :math:`C h^q`: :math:`|y_1 - y_2| / |y_{run} - y_1| \approx r_2^q` (more
-        precisely :math:`(r^q r_2^q - r^q)/(r^q - 1)`), which gives the observed order
-        :math:`q \le p` (never more than the method's order); the run's error is then
+        With errors :math:`C h^q`: :math:`\rho = |y_1 - y_2| / |y_{run} - y_1| = r^q (r_2^q - 1)/(r^q - 1)`
+        (:func:`observed_order` solves it for :math:`q`; :math:`r_2^q` when :math:`r_2 = r`), which gives
+        the observed order :math:`q \le p` (never more than the method's order); the run's error is then
         :math:`|y_{run} - y_1| / (r^q - 1)` (run vs coarser companion) or
         :math:`|y_{run} - y_1|\,r^q/(1 - r^q)`... (finer companions: the run is the coarsest).
         Outside the asymptotic regime (:math:`q < 1/2`) the difference itself is the estimate.
@@ -426,7 +500,7 @@ class RichardsonCheck:
             q = min(p, math.log(max(rho, 1e-300)) / -math.log(self.r2)) if rho < 1.0 else 0.0
             self.q = q
             return max(1.0 - self.r ** -q, 1e-300) if q >= 0.5 else 1.0
-        q = min(p, math.log(rho) / math.log(self.r2)) if rho > 1.0 else 0.0
+        q = observed_order(rho, self.r, self.r2, p)
         self.q = q
         return max(self.r ** q - 1.0, 1.0) if q >= 0.5 else 1.0
 
