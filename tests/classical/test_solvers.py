@@ -509,6 +509,75 @@ def test_every_step_of_the_call_counts_against_max_steps():
     assert cost.dt == pytest.approx(tr.stats["dt"], rel=1e-12) and cost.seconds > 0
 
 
+@pytest.mark.parametrize("r, r2", [(4.0, 4.0), (4.0, 2.0), (3.3, 2.4), (8.0, 2.0)])
+def test_observed_order_inverts_the_three_run_ratio(r, r2):
+    """Errors C h^q at steps h, r h, r r2 h: the ratio of the differences gives back q (and the limits)."""
+    from hyperrotor.classical.solvers.step_control import observed_order
+
+    def rho(q):  # |y_rh - y_rr2h| / |y_h - y_rh| for errors C h^q (C = 1, h = 1)
+        return ((r * r2) ** q - r ** q) / (r ** q - 1.0)
+
+    for q in (0.7, 2.0, 4.5, 6.0):
+        assert observed_order(rho(q), r, r2, 8) == pytest.approx(q, abs=1e-9)
+    assert observed_order(rho(9.0), r, r2, 8) == 8.0  # never above the method's order
+    assert observed_order(rho(0.3), r, r2, 8) == 0.0  # not asymptotic
+    assert observed_order(-1.0, r, r2, 8) == 0.0 and observed_order(float("nan"), r, r2, 8) == 0.0
+
+
+def test_the_probe_extrapolates_steady_growth_only():
+    """Linear growth (regular orbit) -> the run/window ratio; steady t^3 -> ratio^3; capped at t^4;
+    an envelope flat in its first half (oscillating error), or at round-off, counts as linear."""
+    from hyperrotor.classical.solvers.step_control import PROBE_MAX_POWER, growth_to_end
+
+    def env(a):
+        return [(f, f ** a) for f in (0.25, 0.5, 1.0)]
+
+    assert growth_to_end(env(1.0), 0.0, 10.0) == pytest.approx(10.0)
+    assert growth_to_end(env(0.5), 0.0, 10.0) == pytest.approx(10.0)  # slower than linear: linear
+    assert growth_to_end(env(3.0), 0.0, 10.0) == pytest.approx(1e3)
+    assert growth_to_end(env(9.0), 0.0, 10.0) == pytest.approx(10.0 ** PROBE_MAX_POWER)
+    assert growth_to_end([(0.25, 1.0), (0.5, 1.0), (1.0, 64.0)], 0.0, 10.0) == pytest.approx(10.0)
+    assert growth_to_end(env(3.0), 1.0, 10.0) == pytest.approx(10.0)  # at round-off: linear
+    assert growth_to_end(env(3.0), 0.0, 1.0) == 1.0  # the window is the run
+
+
+def test_the_progress_bar_covers_the_probe_the_run_and_its_check(monkeypatch):
+    """progress=True with rtol: the bar is open from the step control's probe on, and ends at every
+    step the call took (stats["work"]: probe, run and companions)."""
+    from hyperrotor.classical.solvers import driver, step_control
+
+    bars, seen = [], []
+
+    class Bar:
+        def __init__(self, total):
+            self.n, self.total, self.closed = 0, total, False
+            bars.append(self)
+
+        def update(self, k):
+            self.n += k
+
+        def reset(self, total=None):
+            self.n, self.total = 0, total
+
+        def close(self):
+            self.closed = True
+
+    first_step = step_control.ErrorTarget.first_step
+
+    def probe(self, *a, **k):
+        h = first_step(self, *a, **k)
+        seen.append(bars[0].n)  # the probe's steps, on the bar before the run starts
+        return h
+
+    monkeypatch.setattr(driver, "progress_bar", lambda progress, total, *a, **k: Bar(total))
+    monkeypatch.setattr(step_control.ErrorTarget, "first_step", probe)
+    moments, w0 = _random_generic5(4)
+    tr = hr.simulate(moments, w0, np.linspace(0.0, 20.0, 11), method="splitting8", rtol=1e-9, progress=True)
+    (bar,) = bars
+    assert tr.stats["reruns"] == 0 and seen[0] > 0
+    assert bar.closed and bar.n == bar.total == tr.stats["work"] > tr.stats["steps"] + seen[0]
+
+
 def test_a_failed_check_reruns_at_a_shorter_step(monkeypatch):
     """A probe that guesses a step 8x too long: the check inside the run sees the error and the
     call re-runs at a step that meets rtol (the numbers equal a fixed-step run at that step)."""
@@ -517,7 +586,7 @@ def test_a_failed_check_reruns_at_a_shorter_step(monkeypatch):
     moments, w0 = _random_generic5(3)
     t = np.linspace(0.0, 20.0, 21)
     first_step = step_control.ErrorTarget.first_step
-    monkeypatch.setattr(step_control.ErrorTarget, "first_step", lambda self, *a: 8.0 * first_step(self, *a))
+    monkeypatch.setattr(step_control.ErrorTarget, "first_step", lambda self, *a, **k: 8.0 * first_step(self, *a, **k))
     tr = hr.simulate(moments, w0, t, method="splitting8", rtol=1e-9)
     Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, options={"compensated": True}).L
     assert np.abs(tr.L - Lref).max() <= 1e-9 * np.abs(Lref).max()
@@ -533,6 +602,21 @@ def test_an_unreachable_rtol_on_a_chaotic_orbit_says_so():
     with pytest.raises(StepBudgetError, match=r"grows like exp\(lambda t\) .* reachable accuracy about") as info:
         hr.simulate(moments, w0, t, method="splitting8", rtol=1e-10, max_steps=10**5)
     assert info.value.needed > info.value.budget == 10**5
+
+
+def test_a_run_priced_over_the_budget_after_the_probe_is_refused_before_it_starts(monkeypatch):
+    """A budget the probe fits in but the run does not: refused before the run's first step, naming the
+    accuracy reachable within the budget (the probe's estimate) and the option to raise."""
+    from hyperrotor.classical.solvers import step_control
+
+    def no_run(*a, **k):
+        raise AssertionError("the run started")
+
+    monkeypatch.setattr(step_control.RichardsonCheck, "update", no_run)
+    moments, w0 = _random_generic5(2)
+    with pytest.raises(StepBudgetError, match=r"reachable accuracy about .* within the budget") as info:
+        hr.simulate(moments, w0, np.linspace(0.0, 100.0, 11), method="splitting8", rtol=1e-10, max_steps=2000)
+    assert info.value.option == "max_steps" and info.value.needed > info.value.budget == 2000
 
 
 @pytest.mark.slow

@@ -133,12 +133,14 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
     K = t.size
     B, n, N = problem.B, problem.n, problem.N
     work = Work(max_steps)
-    h = control.first_step(solver, problem, work) if K > 1 and B > 0 else 1.0
     specs = event_specs(events)
     fps = solver.flows_per_step(problem)
     bar = None
     after = ""  # why the previous attempt was stopped (for a budget message)
     try:
+        if K > 1 and B > 0 and control.rtol is not None:  # the step control's probe is on the bar too
+            bar = progress_bar(progress, None, "simulate", unit="step", leave=False)
+        h = control.first_step(solver, problem, work, bar=bar) if K > 1 and B > 0 else 1.0
         while True:
             nsub = nsub_for(t, h) if K > 1 else np.zeros(0, dtype=np.int64)
             steps = int(nsub.sum())
@@ -148,7 +150,7 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
             planned = steps * B + (check.planned_steps if check is not None else 0)
             work.refuse(planned, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member"
                                          + (", its check and the step control's probes" if check is not None else "")
-                                         + after)
+                                         + after + _refusal_note(control, work, planned, solver))
             if check is not None and not check.control.retries:
                 control.announce(solver, problem, h)
             hs = step_lengths(t, nsub)  # the run's steps, (K - 1,)
@@ -197,6 +199,12 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
         res.L_events = [np.array(x, dtype=float).reshape(-1, n) for x in L_events]
         res.T_events = [np.array(x, dtype=float).reshape(-1, N, N) for x in T_events] if outT is not None else None
     return res
+
+
+def _refusal_note(control, work: Work, planned: float, solver) -> str:
+    """The step control's word on a refused run (the growth its probe saw, the reachable accuracy)."""
+    note = getattr(control, "refusal_note", None)
+    return note(work.done + planned, work.max_steps, solver.order) if note is not None else ""
 
 
 def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps, stats, bar, check):

@@ -36,7 +36,7 @@ class GivenStep:
         self.h = h
         self.rtol = rtol
 
-    def first_step(self, solver, problem, work):
+    def first_step(self, solver, problem, work, bar=None):
         return self.h
 
     verified_step = first_step

@@ -27,7 +27,7 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    work of the steps :math:`h`) from step :math:`h = 1/\omega_\text{max}`,
    refined (x1/4) while not asymptotic (:math:`e > ` :data:`ASYMPTOTIC`) and enlarged (x4) while
    at round-off. The error is carried to the end of the run with the growth seen inside the
-   window (:func:`_growth_to_end`: like :math:`t` on a regular orbit, Hairer, Lubich & Wanner,
+   window (:func:`growth_to_end`: like :math:`t` on a regular orbit, Hairer, Lubich & Wanner,
    *Geometric Numerical Integration*, ch. X; like :math:`t^a`, :math:`a \le` :data:`PROBE_MAX_POWER`,
    when the window shows faster growth, e.g. a chaotic orbit), which gives the step :math:`h^*`
    for the target ``SAFETY * rtol``.
@@ -202,7 +202,7 @@ def _triples(N: int):
     return cols
 
 
-def _growth_to_end(envelope: list, floor: float, ratio: float) -> float:
+def growth_to_end(envelope: list, floor: float, ratio: float) -> float:
     r"""Factor by which the error of the probe window grows by the end of the run (``ratio``: run / window).
 
     Linear growth (a regular orbit, GNI ch. X) gives ``ratio``. A faster growth seen inside the
@@ -234,7 +234,7 @@ class FixedStep:
     def __init__(self, dt: Any):
         self.dt = _validate.positive("dt", dt)
 
-    def first_step(self, solver, problem: Problem, work: Work) -> float:
+    def first_step(self, solver, problem: Problem, work: Work, bar=None) -> float:
         return self.dt * problem.scale  # (the driver checks the budget once it has counted the steps)
 
     def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None):
@@ -268,6 +268,7 @@ class ErrorTarget:
         self.retries = 0
         self.history: list = []  # (h, estimated error) of every checked run (partial ones too)
         self.last_growth = 0.0
+        self.probe_note = ""  # the error growth the probe saw, when faster than PROBE_MAX_POWER allows
 
     def __repr__(self) -> str:
         return f"ErrorTarget(rtol={self.rtol!r})"
@@ -284,12 +285,14 @@ class ErrorTarget:
     def _members(self, problem: Problem) -> np.ndarray:
         return self._rates(problem)[1]
 
-    def first_step(self, solver, problem: Problem, work: Work) -> float:
-        """The probe (module docstring, steps 1-3): a step for ``SAFETY * rtol`` from a leading window."""
+    def first_step(self, solver, problem: Problem, work: Work, bar=None) -> float:
+        """The probe (module docstring, steps 1-3): a step for ``SAFETY * rtol`` from a leading window
+        (``bar``: a progress bar the probe's steps advance)."""
         span = problem.span
         B = problem.B
         self.retries = 0
         self.history = []
+        self.probe_note = ""
         if B == 0 or span == 0.0:
             return max(span, 1.0)
         wmax_b, sel = self._rates(problem)
@@ -310,8 +313,9 @@ class ErrorTarget:
             tg = direction * np.linspace(0.0, Pv, k + 1) + problem.t[0]
             work.refuse(1.5 * k * ms * len(sel), lambda: f"the step control's probe of {1.5 * k * ms:.0f} steps")
             try:
-                y1 = advance_chunked(solver, problem, L0s, tg, np.full(k, ms), members=sel, work=work)[0]
-                y2 = advance_chunked(solver, problem, L0s, tg, np.full(k, ms // 2), members=sel, work=work)[0]
+                y1 = advance_chunked(solver, problem, L0s, tg, np.full(k, ms), members=sel, work=work, bar=bar)[0]
+                y2 = advance_chunked(solver, problem, L0s, tg, np.full(k, ms // 2), members=sel, work=work,
+                                     bar=bar)[0]
             except (RuntimeError, FloatingPointError):  # no implicit step / an overflow at this h
                 return None, Pv / (k * ms)
             Lmax = np.maximum(np.abs(y1).max(axis=(1, 2)), 1e-300)
@@ -351,9 +355,26 @@ class ErrorTarget:
             h_star = min(P, 0.01 / wmax)
         else:
             h, err, P = est
-            on_run = max(err, 1e3 * _EPS) * _growth_to_end(samples_e, floor, span / P)
+            growth = growth_to_end(samples_e, floor, span / P)
+            on_run = max(err, 1e3 * _EPS) * growth
             h_star = min(MAX_STEP_GROWTH * h, 0.8 * h * (target / on_run) ** (1.0 / p))
+            if len(samples_e) == 3 and span > P and growth >= (span / P) ** PROBE_MAX_POWER * (1.0 - 1e-12):
+                (t1, e1), (t2, e2) = samples_e[1:]  # faster than t^4: name the exponential rate it shows
+                lam = math.log(e2 / e1) / ((t2 - t1) * P)
+                self.probe_note = (
+                    f"; the probe's error grows faster than t^{PROBE_MAX_POWER:g}, like exp(lambda t) with lambda ~ "
+                    f"{lam * problem.scale:.3g} (a chaotic orbit? exp(lambda T) ~ "
+                    f"{math.exp(min(lam * span, 700.0)):.3g} over the run)")
         return h_star
+
+    def refusal_note(self, needed: float, budget: float, order: int) -> str:
+        """What a refusal before the run adds: the growth the probe saw (if fast) and the accuracy
+        reachable within ``budget`` steps (error ~ h^order, h ~ 1/steps)."""
+        if self.probe_note:
+            return self.probe_note + "; no accuracy can be promised within a budget before such a run"
+        reach = min(1.0, SAFETY * self.rtol * (needed / max(budget, 1.0)) ** order)
+        return (f"; reachable accuracy about {reach:.2g} within the budget (the probe's estimate from a leading "
+                f"window; faster error growth later, e.g. on a chaotic orbit, makes it worse)")
 
     def announce(self, solver, problem: Problem, h: float) -> None:
         """The slow-run warning (once the budget is checked), from the cost per flow learned by the probes."""
@@ -586,7 +607,7 @@ class RichardsonCheck:
         if self.work.done + steps_new > self.work.max_steps:
             h_budget = self.span * self.problem.B * (1.0 + 1.0 / COMPANION_RATIO) / max(
                 self.work.max_steps - self.work.done, 1.0)
-            reachable = min(1.0, end * (h_budget / self.h) ** p)  # (1: no digit left)
+            reachable = min(1.0, end * (h_budget / self.h) ** q)  # the order h_new assumed (1: no digit left)
             raise StepBudgetError(
                 f"simulate: rtol = {rtol:g} needs about {self.work.done + steps_new:.3g} integration steps here "
                 f"({why}); reachable accuracy about {reachable:.2g} within the budget max_steps = "
