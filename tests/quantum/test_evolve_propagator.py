@@ -87,7 +87,8 @@ def test_evolve_rents_krylov_then_buys_the_sectors(rng):
         for k, tk in enumerate(t):
             np.testing.assert_allclose(res.states[k].full().ravel(), _exact(Hd, tk, psi).ravel(), rtol=0, atol=tol)
 
-    with hr.options(quantum_eigen_max_block=20):  # sparsity blocks of (3, 1) above 20: the sectors (of ~5) apply
+    # sparsity blocks of (3, 1) above 20: the sectors (of ~5) apply; Krylov spaces of 2 * 4 < dim 81
+    with hr.options(quantum_eigen_max_block=20, quantum_krylov_dim=4):
         short = np.linspace(0.0, 0.5, 4)
         res = evolve(H, psi, short)
         assert res.stats["block_methods"] == ["krylov"] and "sectors" not in res.stats

@@ -410,7 +410,9 @@ class SectorPropagator:
         diagonalized): while the Krylov work on the whole space, spent and predicted, stays below the
         estimated price of the sectors (build, blocks, ``eigh``: :func:`_sector_price`), the states come
         from Lanczos on the whole matrix and no sector is built; the prediction of a call is the work
-        per unit time measured so far (before any: one Krylov space). Once renting would cost more,
+        per unit time measured so far (before any: one Krylov space). The Krylov space may grow to twice
+        ``options["quantum_krylov_dim"]`` unless ``krylov_dim`` is given: these problems are small, and one
+        space that serves the whole grid saves the restarts. Once renting would cost more,
         the sectors are built and diagonalized, also in the middle of a grid (the rest of it starts
         from the state reached).
         """
@@ -418,7 +420,10 @@ class SectorPropagator:
         if rent is not None and self._parts is None:
             price = _sector_price(self.matrix, rent["rep"])
             span = abs(float(t[-1] - t[0]))
-            engine = Krylov(**{key: self.options[key] for key in Krylov.options})
+            kopts = {key: self.options[key] for key in Krylov.options}
+            if kopts["krylov_dim"] is None:  # a small problem: one space for the whole grid saves the restarts
+                kopts["krylov_dim"] = 2 * int(_options["quantum_krylov_dim"])
+            engine = Krylov(**kopts)
             m = min(self.dim, engine.settings()[1])
             step = 8.0 * self.matrix.nnz + 16.0 * m * self.dim  # work of one Lanczos step (as in _Block)
             guess = rent["rate"] * span if rent["rate"] is not None else m * step
@@ -446,7 +451,7 @@ class SectorPropagator:
         def stop(t_cur: float, n_matvec: int) -> bool:  # the rest of the grid is cheaper in the sectors
             return rent["spent"] + n_matvec * step * span / abs(float(t_cur - t[0])) > price
 
-        out = np.empty((self.dim, t.size), dtype=complex)
+        out = np.empty((self.dim, t.size), dtype=complex, order="F")  # one contiguous column per time
         k = -1
         with single_thread_blas():
             for k, state in enumerate(engine.propagate(self.matrix, vec, t, hbar, stats, stop=stop)):
