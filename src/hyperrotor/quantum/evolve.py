@@ -137,11 +137,34 @@ def _sector_price(M: sps.csr_matrix, rep: Any) -> float:
     return build + _RESTRICT_WORK * M.nnz + n_sec * _EIGH_FLOPS * (rep.dim / n_sec) ** 3
 
 
-def _sector_block(M: sps.csr_matrix, B: Any) -> sps.csr_matrix:
-    """The sparse block ``B^H M B`` (real when its imaginary part is round-off, as in the real sectors)."""
-    blk = sps.csr_matrix(restrict(M, B, dense=False))  # Hermitian, real when the imaginary part is round-off
-    blk.eliminate_zeros()
-    return blk
+def _sector_block_list(M: sps.csr_matrix, bases: list) -> list[sps.csr_matrix]:
+    """The sparse blocks ``B^H M B`` of the sector ``bases`` (each real when its imaginary part is round-off,
+    as in the real sectors), from ONE product with the side-by-side bases: the diagonal blocks of
+    ``P^H M P``, ``P = [B_1, B_2, ...]`` (the sectors are invariant: off the diagonal only round-off)."""
+    if len(bases) == 1 or not all(sps.issparse(B) for B in bases):
+        blocks = [restrict(M, B, dense=False) for B in bases]
+    else:
+        K = restrict(M, sps.hstack(bases, format="csc"), dense=False)  # Hermitian, real when its imaginary part is round-off
+        ends = np.cumsum([0] + [B.shape[1] for B in bases])
+        blocks = [K[a:b, a:b] for a, b in zip(ends[:-1], ends[1:])]
+    out = []
+    for blk in blocks:
+        blk = sps.csr_matrix(blk)
+        if blk.dtype.kind == "c" and blk.nnz and np.abs(blk.data.imag).max() <= 1e-13 * np.abs(blk.data).max():
+            blk = sps.csr_matrix(blk.real)  # a real sector whose product was complex only in the off-diagonal blocks
+        blk.eliminate_zeros()
+        out.append(blk)
+    return out
+
+
+def _times(A: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """``A @ Z`` for complex ``Z``; a real ``A`` multiplies the (Re, Im) pairs in real arithmetic (4x fewer flops)."""
+    if A.dtype.kind == "f" and Z.dtype == np.complex128:
+        Z = np.ascontiguousarray(Z)
+        shape = Z.shape
+        out = A @ Z.view(np.float64).reshape(shape[0], -1)
+        return out.view(np.complex128).reshape((A.shape[0],) + shape[1:])
+    return A @ Z
 
 
 class _Block:
@@ -173,7 +196,7 @@ class _Block:
             if self.indexed:
                 self._matrix = M[self.basis][:, self.basis].tocsr()
             else:
-                self._matrix = _sector_block(M, self.basis)
+                self.owner._restrict_sectors()
         return self._matrix
 
     def coords(self, vec: np.ndarray) -> np.ndarray:
@@ -211,7 +234,7 @@ class _Block:
         return cplx * _EIGH_FLOPS * self.n**3 + 8.0 * nt * self.n**2
 
     def diagonalize(self, stats: dict) -> None:
-        E, V = np.linalg.eigh(self.matrix.toarray())
+        E, V = np.linalg.eigh(self.matrix.toarray())  # LAPACK ?syevd: real for the real sectors
         stats["n_eigh"] = stats.get("n_eigh", 0) + 1
         self.eig = (E, V)
 
@@ -233,8 +256,8 @@ class _Block:
                 pass
         if self.eig is not None:
             E, V = self.eig
-            c = V.conj().T @ c0
-            return V @ (np.exp((-1j / hbar) * np.outer(E, tau)) * c[:, None]), stats, "eigen"
+            c = _times(V.conj().T, c0)
+            return _times(V, np.exp((-1j / hbar) * np.outer(E, tau)) * c[:, None]), stats, "eigen"
         sub, local = self.matrix, None
         if self.pieces is not None and len(self.pieces) > 1:  # merged sparsity blocks: only the populated ones
             scale = float(np.abs(c0).max())
@@ -364,6 +387,12 @@ class SectorPropagator:
             self._rent = None
             self._parts = self._block_list(cls, rep, blocks)
         return self._parts
+
+    def _restrict_sectors(self) -> None:
+        """Give every sector block its matrix, all from one product (:func:`_sector_block_list`)."""
+        todo = [b for b in self._blocks if not b.indexed and b._matrix is None]
+        for b, blk in zip(todo, _sector_block_list(self.matrix, [b.basis for b in todo])):
+            b._matrix = blk
 
     def _split(self, cls, rep, rent: bool) -> None:
         opts = self.options
