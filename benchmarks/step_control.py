@@ -87,7 +87,7 @@ def overhead_table(probs, quick, repeats):
                 continue
             kw = dict(method=tr.stats["method"], dt=tr.stats["dt"])
             if "compensated" in tr.stats:
-                kw["compensated"] = tr.stats["compensated"]
+                kw["options"] = {"compensated": tr.stats["compensated"]}
             el_dt, _ = best_of(lambda: simulate(body, w0, t, **kw), repeats)
             L, Lref = tr.omega * moments, ref * moments
             err = np.abs(L - Lref).max() / np.abs(Lref).max() / rtol
