@@ -122,36 +122,42 @@ def _sector_bases(rep: Any) -> list | None:
 #: id(rep) -> (weak reference to rep, sector bases)
 _SECTOR_CACHE: dict[int, tuple[Any, list | None]] = {}
 
-#: Work (in the flop units of the rent-or-buy rule) of building the sectors, per basis vector and sector,
-#: and of restricting H to them, per nonzero of H (measured on this machine, so(5) (9, 3): see _sector_price).
-_SECTOR_WORK = 1.2e4
-_RESTRICT_WORK = 1.5e3
+#: The price of the sector route in the units of the whole-space Krylov work (:meth:`SectorPropagator._lanczos_work`),
+#: measured on this machine for so(5) (9, 3) (dim 2401, 16 real sectors of ~150, nnz(H) 143,817; CPU times at
+#: ~8.5e9 units/s): building the sectors 26-30 ms (per basis vector and sector), restricting H to them 14-16 ms
+#: (per nonzero of H), the real eigh of the blocks 23 ms (per n^3 of a block; 4x for complex blocks).
+_SECTOR_WORK = 6.0e3
+_RESTRICT_WORK = 9.0e2
+_SECTOR_EIGH_WORK = 3.6
 
 
 def _sector_price(M: sps.csr_matrix, rep: Any) -> float:
     """Estimated work of the sector route of ``M``: build the sectors of ``rep`` (unless cached), restrict
-    ``M`` to them and diagonalize ``2^(N-1)`` blocks of ``dim / 2^(N-1)`` (the unit of :class:`_Block`'s rule)."""
+    ``M`` to them and diagonalize ``2^(N-1)`` blocks of ``dim / 2^(N-1)`` (real for a GT irrep)."""
     n_sec = 2.0 ** (rep.N - 1)
     hit = _SECTOR_CACHE.get(id(rep))
     build = 0.0 if hit is not None and hit[0]() is rep else _SECTOR_WORK * rep.dim * n_sec
-    return build + _RESTRICT_WORK * M.nnz + n_sec * _EIGH_FLOPS * (rep.dim / n_sec) ** 3
+    cplx = 1.0 if rep.highest_weight is not None else 4.0
+    return build + _RESTRICT_WORK * M.nnz + cplx * n_sec * _SECTOR_EIGH_WORK * (rep.dim / n_sec) ** 3
 
 
 def _sector_block_list(M: sps.csr_matrix, bases: list) -> list[sps.csr_matrix]:
     """The sparse blocks ``B^H M B`` of the sector ``bases`` (each real when its imaginary part is round-off,
     as in the real sectors), from ONE product with the side-by-side bases: the diagonal blocks of
     ``P^H M P``, ``P = [B_1, B_2, ...]`` (the sectors are invariant: off the diagonal only round-off)."""
-    if len(bases) == 1 or not all(sps.issparse(B) for B in bases):
+    if not all(sps.issparse(B) for B in bases):
         blocks = [restrict(M, B, dense=False) for B in bases]
     else:
-        K = restrict(M, sps.hstack(bases, format="csc"), dense=False)  # Hermitian, real when its imaginary part is round-off
+        P = sps.hstack(bases, format="csc")
+        K = (sps.csr_matrix(P.conj().T) @ (M @ P)).tocsr()
+        K = ((K + K.conj().T) * 0.5).tocsr()  # exactly Hermitian
         ends = np.cumsum([0] + [B.shape[1] for B in bases])
         blocks = [K[a:b, a:b] for a, b in zip(ends[:-1], ends[1:])]
     out = []
     for blk in blocks:
         blk = sps.csr_matrix(blk)
         if blk.dtype.kind == "c" and blk.nnz and np.abs(blk.data.imag).max() <= 1e-13 * np.abs(blk.data).max():
-            blk = sps.csr_matrix(blk.real)  # a real sector whose product was complex only in the off-diagonal blocks
+            blk = sps.csr_matrix(blk.real)  # real sectors: the imaginary part is round-off
         blk.eliminate_zeros()
         out.append(blk)
     return out
@@ -437,7 +443,8 @@ class SectorPropagator:
 
         Rent or buy (a propagator of :func:`evolve`, method ``"auto"``, whose sectors would all be
         diagonalized): while the Krylov work on the whole space, spent and predicted, stays below the
-        estimated price of the sectors (build, blocks, ``eigh``: :func:`_sector_price`), the states come
+        estimated price of the sectors (build, blocks, ``eigh``: :func:`_sector_price`, in the units of
+        :meth:`_lanczos_work`), the states come
         from Lanczos on the whole matrix and no sector is built; the prediction of a call is the work
         per unit time measured so far (before any: one Krylov space). The Krylov space may grow to twice
         ``options["quantum_krylov_dim"]`` unless ``krylov_dim`` is given: these problems are small, and one
@@ -454,10 +461,9 @@ class SectorPropagator:
                 kopts["krylov_dim"] = 2 * int(_options["quantum_krylov_dim"])
             engine = Krylov(**kopts)
             m = min(self.dim, engine.settings()[1])
-            step = 8.0 * self.matrix.nnz + 16.0 * m * self.dim  # work of one Lanczos step (as in _Block)
-            guess = rent["rate"] * span if rent["rate"] is not None else m * step
+            guess = rent["rate"] * span if rent["rate"] is not None else self._lanczos_work(m, 1)
             if rent["spent"] + guess <= price:
-                C, k, stats = self._rent_run(engine, vec, t, hbar, step, price)
+                C, k, stats = self._rent_run(engine, vec, t, hbar, price)
                 if k == t.size - 1:
                     self.stats.update(stats)
                     return C
@@ -468,7 +474,12 @@ class SectorPropagator:
                 return np.concatenate([C[:, :k], rest], axis=1)
         return self._run_blocks(vec, t, hbar)
 
-    def _rent_run(self, engine: Krylov, vec: np.ndarray, t: np.ndarray, hbar: float, step: float,
+    def _lanczos_work(self, n_matvec: int, n_krylov: int) -> float:
+        """Work of ``n_matvec`` Lanczos steps on the whole matrix in ``n_krylov`` spaces: a product (8 nnz)
+        and a re-orthogonalization against the space built so far (8 dim m on average) per step."""
+        return n_matvec * (8.0 * self.matrix.nnz + 8.0 * self.dim * n_matvec / max(1, n_krylov))
+
+    def _rent_run(self, engine: Krylov, vec: np.ndarray, t: np.ndarray, hbar: float,
                   price: float) -> tuple[np.ndarray, int, dict]:
         """Lanczos on the whole matrix over ``t`` until renting is predicted to cost more than ``price``
         (asked before every restart): ``(states (dim, k + 1), k, stats)`` for the times ``t[: k + 1]``."""
@@ -478,14 +489,15 @@ class SectorPropagator:
         span = abs(float(t[-1] - t[0]))
 
         def stop(t_cur: float, n_matvec: int) -> bool:  # the rest of the grid is cheaper in the sectors
-            return rent["spent"] + n_matvec * step * span / abs(float(t_cur - t[0])) > price
+            work = self._lanczos_work(n_matvec, stats["n_krylov"])
+            return rent["spent"] + work * span / abs(float(t_cur - t[0])) > price
 
         out = np.empty((self.dim, t.size), dtype=complex, order="F")  # one contiguous column per time
         k = -1
         with single_thread_blas():
             for k, state in enumerate(engine.propagate(self.matrix, vec, t, hbar, stats, stop=stop)):
                 out[:, k] = state
-        work = stats["n_matvec"] * step
+        work = self._lanczos_work(stats["n_matvec"], stats["n_krylov"])
         rent["spent"] += work
         if k > 0:
             rent["rate"] = work / abs(float(t[k] - t[0]))

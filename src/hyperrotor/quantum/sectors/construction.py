@@ -135,37 +135,55 @@ def _project_dense(Ds: list[np.ndarray], eigs: tuple, dim: int) -> np.ndarray:
     return V[:, w > 0.5]
 
 
-def make_real(B: sps.csc_matrix, V: sps.csr_matrix) -> sps.csc_matrix:
+def make_real(B: sps.csc_matrix, V: Monomial) -> sps.csc_matrix:
     r"""Columns fixed by :math:`A = VK` spanning the same space as ``B`` (A preserves the span).
 
     The columns of ``B`` have disjoint supports (one orbit of the monomial group
     each) and A maps orbits to orbits, so :math:`A b_j = \theta_j b_{\tau(j)}`.
     A fixed column (:math:`\tau(j) = j`) becomes :math:`e^{i\arg\theta_j/2} b_j`; a pair
-    becomes :math:`(b_j + A b_j)/\sqrt2` and :math:`i(b_j - A b_j)/\sqrt2`.
+    becomes :math:`(b_j + A b_j)/\sqrt2` and :math:`i(b_j - A b_j)/\sqrt2`. All on the
+    stored entries: :math:`A b_j` has the entry :math:`\bar x\, v_r` in row :math:`\rho(r)`
+    for each entry ``x`` of :math:`b_j` in row ``r`` (``V e_r = v_r e_{rho(r)}``), and
+    :math:`\theta_j = b_{\tau(j)}^\dagger A b_j`.
     """
     n = B.shape[1]
     if n == 0:
         return B
-    AB = sps.csc_matrix(V @ B.conj())
-    G = sps.csc_matrix(B.conj().T @ AB)
-    G.data[np.abs(G.data) < 1e-9] = 0
-    G.eliminate_zeros()
-    G.sort_indices()
-    if np.any(np.diff(G.indptr) != 1):  # one overlap per column: A b_j = theta_j b_tau(j)
+    B = sps.csc_matrix(B)
+    B.sort_indices()
+    dim = B.shape[0]
+    x, r = B.data, B.indices
+    col = np.repeat(np.arange(n), np.diff(B.indptr))
+    owner = np.full(dim, -1, dtype=np.int64)  # the column holding each row (disjoint supports)
+    owner[r] = col
+    value = np.zeros(dim, dtype=complex)
+    value[r] = x
+    ar, ax = V.perm[r], np.conj(x) * V.phase[r]  # A b_j: entries (ar, ax) in column col
+    tau = owner[ar[B.indptr[:-1]]]  # the column each column's first image lands in
+    if np.any(owner[ar] != tau[col]) or np.any(tau < 0) or np.any(np.diff(B.indptr)[tau] != np.diff(B.indptr)):
         raise ArithmeticError("the antiunitary symmetry does not map sector columns to sector columns (internal error)")
-    tau, theta = G.indices, G.data
-    if np.abs(np.abs(theta) - 1).max() > 1e-9 or abs(AB - B @ G).max() > 1e-9 or np.any(tau[tau] != np.arange(n)):
+    target = value[ar]  # b_tau(j) at the rows of A b_j
+    prod = np.conj(target) * ax
+    theta = np.bincount(col, weights=prod.real, minlength=n) + 1j * np.bincount(col, weights=prod.imag, minlength=n)
+    if (np.abs(np.abs(theta) - 1).max() > 1e-9 or np.abs(ax - theta[col] * target).max() > 1e-9
+            or np.any(tau[tau] != np.arange(n))):
         raise ArithmeticError("the antiunitary symmetry does not preserve the sector (internal error)")
-    fixed = tau == np.arange(n)
-    first = np.nonzero(tau > np.arange(n))[0]
     s = 1.0 / np.sqrt(2.0)
-    cols = [B[:, np.nonzero(fixed)[0]] @ sps.diags(np.exp(0.5j * np.angle(theta[fixed])))]
-    if first.size:
-        Bj, Aj = B[:, first], AB[:, first]
-        cols += [(Bj + Aj) * s, (Bj - Aj) * (1j * s)]
-    out = sps.csc_matrix(sps.hstack(cols))
-    out.data[np.abs(out.data) < 1e-15] = 0
-    out.eliminate_zeros()
+    fixed = np.nonzero(tau == np.arange(n))[0]
+    first = np.nonzero(tau > np.arange(n))[0]
+    # new column of each stored entry: the fixed columns first, then the sums and the differences of the pairs
+    new_fixed = np.full(n, -1, dtype=np.int64)
+    new_fixed[fixed] = np.arange(fixed.size)
+    new_pair = np.full(n, -1, dtype=np.int64)
+    new_pair[first] = fixed.size + np.arange(first.size)
+    f, p = new_fixed[col] >= 0, new_pair[col] >= 0
+    half = np.exp(0.5j * np.angle(theta))
+    rows = np.concatenate([r[f], r[p], ar[p], r[p], ar[p]])
+    cols = np.concatenate([new_fixed[col[f]], new_pair[col[p]], new_pair[col[p]],
+                           new_pair[col[p]] + first.size, new_pair[col[p]] + first.size])
+    data = np.concatenate([x[f] * half[col[f]], x[p] * s, ax[p] * s, x[p] * (1j * s), -ax[p] * (1j * s)])
+    keep = np.abs(data) >= 1e-15
+    out = sps.csc_matrix((data[keep], (rows[keep], cols[keep])), shape=(dim, n))
     out.sort_indices()  # canonical storage: the same sums in every later product
     return out
 
@@ -230,7 +248,7 @@ def sectors_of(rep, complete: bool) -> list[Sector]:
         reps_idx = _orbit_representatives(g.ops, dim)
         elems = _group_elements(g.ops, reps_idx)
         layout = _orbit_layout(elems, len(reps_idx), dim)
-        V = None if g.antiunitary is None else g.antiunitary.matrix()
+        V = g.antiunitary
 
         def project(eigs):
             B = _project_monomial(elems, eigs, layout, len(reps_idx), dim)
