@@ -161,6 +161,22 @@ def test_threads_give_the_same_states_as_one_thread(rng):
     np.testing.assert_array_equal(one, two)
 
 
+def test_client_gives_the_same_states_as_the_serial_run(rng):
+    """client=: the blocks are dask tasks (an in-process cluster, one worker of two threads); every state
+    equals the serial run bit for bit, for the cached eigendecompositions and for Krylov."""
+    dd = pytest.importorskip("dask.distributed")
+    rep, H = _generic(rng)
+    psi = _state(rng, rep.dim)
+    t = [0.0, 0.3, 0.9]
+    with dd.Client(processes=False, n_workers=1, threads_per_worker=2, dashboard_address=":0") as client, \
+            hr.options(quantum_eigen_max_block=20):  # the 16 sectors of (3, 1) go to Krylov under "krylov"
+        for method in ("eigen", "krylov"):
+            serial = SectorPropagator(H, method=method).states(psi, t)
+            U = SectorPropagator(H, method=method, client=client)
+            np.testing.assert_array_equal(U.states(psi, t), serial)
+            np.testing.assert_array_equal(U.states(psi, t), serial)  # again, with what came back from the workers
+
+
 def test_evolve_reuses_the_propagator_of_an_unchanged_H(rng):
     """A second evolve of the same H reuses its blocks (no new eigh); H changed in place is rebuilt."""
     rep, H = _generic(rng)
