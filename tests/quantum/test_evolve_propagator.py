@@ -58,6 +58,19 @@ def test_many_states_and_grids_match_expm(method, rng):
         np.testing.assert_allclose(U.apply(X, tau), _exact(Hd, tau, X), rtol=0, atol=tol)
 
 
+def test_sector_blocks_restricted_in_groups_match_expm(rng, monkeypatch):
+    """The sector blocks come from products of groups of side-by-side bases; groups of one or two
+    sectors (a 10-column budget, as for a large irrep) give the same propagator."""
+    import sys
+
+    monkeypatch.setattr(sys.modules["hyperrotor.quantum.evolve"], "_GROUP_COLUMNS", 10)
+    rep, H = _generic(rng)
+    psi = _state(rng, rep.dim)
+    with hr.options(quantum_eigen_max_block=20):
+        S = SectorPropagator(H, method="eigen").states(psi, [0.0, 0.8])
+    np.testing.assert_allclose(S[1], _exact(H.full(), 0.8, psi).ravel(), rtol=0, atol=scaled_tol(1.0, dim=rep.dim, k=1e3))
+
+
 def test_auto_diagonalizes_a_large_block_once_krylov_would_cost_more(rng):
     """Rent-or-buy: a short window stays in Krylov, a long one (or repeated use) ends in the cached eigh."""
     rep, H = _generic(rng, (6, 3))  # dim 770, sectors of ~48

@@ -141,18 +141,32 @@ def _sector_price(M: sps.csr_matrix, rep: Any) -> float:
     return build + _RESTRICT_WORK * M.nnz + cplx * n_sec * _SECTOR_EIGH_WORK * (rep.dim / n_sec) ** 3
 
 
+#: Sector bases restricted together in one product, up to this many columns (the product's off-diagonal
+#: blocks are round-off but cost memory: the 16 sectors of a dim-2401 irrep in one product, the ~3,300
+#: of the dim-52,976 irrep (20, 10) one at a time).
+_GROUP_COLUMNS = 4096
+
+
 def _sector_block_list(M: sps.csr_matrix, bases: list) -> list[sps.csr_matrix]:
     """The sparse blocks ``B^H M B`` of the sector ``bases`` (each real when its imaginary part is round-off,
-    as in the real sectors), from ONE product with the side-by-side bases: the diagonal blocks of
-    ``P^H M P``, ``P = [B_1, B_2, ...]`` (the sectors are invariant: off the diagonal only round-off)."""
+    as in the real sectors), from one product with the side-by-side bases: the diagonal blocks of
+    ``P^H M P``, ``P = [B_1, B_2, ...]`` (the sectors are invariant: off the diagonal only round-off),
+    for groups of up to ``_GROUP_COLUMNS`` columns."""
     if not all(sps.issparse(B) for B in bases):
         blocks = [restrict(M, B, dense=False) for B in bases]
     else:
-        P = sps.hstack(bases, format="csc")
-        K = (sps.csr_matrix(P.conj().T) @ (M @ P)).tocsr()
-        K = ((K + K.conj().T) * 0.5).tocsr()  # exactly Hermitian
-        ends = np.cumsum([0] + [B.shape[1] for B in bases])
-        blocks = [K[a:b, a:b] for a, b in zip(ends[:-1], ends[1:])]
+        blocks, i = [], 0
+        while i < len(bases):  # groups of at most _GROUP_COLUMNS columns (or one sector): bounded memory
+            j, cols = i + 1, bases[i].shape[1]
+            while j < len(bases) and cols + bases[j].shape[1] <= _GROUP_COLUMNS:
+                cols += bases[j].shape[1]
+                j += 1
+            P = sps.hstack(bases[i:j], format="csc")
+            K = (sps.csr_matrix(P.conj().T) @ (M @ P)).tocsr()
+            K = ((K + K.conj().T) * 0.5).tocsr()  # exactly Hermitian
+            ends = np.cumsum([0] + [B.shape[1] for B in bases[i:j]])
+            blocks += [K[a:b, a:b] for a, b in zip(ends[:-1], ends[1:])]
+            i = j
     out = []
     for blk in blocks:
         blk = sps.csr_matrix(blk)
