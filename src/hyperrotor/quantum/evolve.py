@@ -28,8 +28,16 @@ Krylov above, and switches a large block to its (cached) eigendecomposition as
 soon as the Krylov work spent and estimated on it exceeds the cost of ``eigh``
 (the rule of a rent-or-buy problem: within a factor 2 of the better choice made
 in hindsight): many states or long times end in exact diagonalization, a single
-state over a short window stays in Krylov. The blocks are independent tasks
-(:func:`hyperrotor._parallel.map_rows`: threads, or a dask ``client=``).
+state over a short window stays in Krylov. The same rule one level up: when every
+sector would be diagonalized (sectors up to ``eigen_max_block``), a propagator that
+:func:`evolve` builds for a new ``H`` first propagates by Lanczos on the whole space
+without building any sector, and builds and diagonalizes the sectors only once the
+Krylov work spent and predicted exceeds their estimated price (a single evolution of a
+coherent state in so(5) (9, 3), dim 2401, costs ~25 ms instead of ~80 ms; the fourth
+call with the same ``H`` buys the sectors, and later calls cost ~10 ms). A
+:class:`SectorPropagator` built directly is meant for many states: it builds its sectors
+at once. The blocks are independent tasks (:func:`hyperrotor._parallel.map_rows`:
+threads, or a dask ``client=``).
 """
 from __future__ import annotations
 
@@ -695,6 +703,9 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
 
     Notes
     -----
+    ``"auto"`` on a rotor whose sectors are all small propagates a new ``H`` by Lanczos on the
+    whole space until building and diagonalizing the sectors is estimated to cost less than more
+    Krylov work (rent or buy, module docstring): ``stats["block_methods"]`` says which was used.
     The native methods keep the :class:`SectorPropagator` built for ``H`` while ``H`` lives:
     a later call with the same ``H`` object, method, options, ``hbar`` and ``rep`` reuses its
     blocks and eigendecompositions, after checking that the matrix of ``H`` is unchanged
