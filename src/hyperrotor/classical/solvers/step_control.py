@@ -223,7 +223,7 @@ def growth_to_end(envelope: list, floor: float, ratio: float) -> float:
             a = 1.0
             break
         a = min(a, math.log(e1 / e0) / math.log(t1 / t0))
-    return ratio ** max(1.0, a)
+    return math.exp(min(max(1.0, a) * math.log(ratio), 700.0))  # (no overflow for absurd spans)
 
 
 class FixedStep:
@@ -358,7 +358,8 @@ class ErrorTarget:
             growth = growth_to_end(samples_e, floor, span / P)
             on_run = max(err, 1e3 * _EPS) * growth
             h_star = min(MAX_STEP_GROWTH * h, 0.8 * h * (target / on_run) ** (1.0 / p))
-            if len(samples_e) == 3 and span > P and growth >= (span / P) ** PROBE_MAX_POWER * (1.0 - 1e-12):
+            if (len(samples_e) == 3 and span > P
+                    and math.log(growth) >= min(PROBE_MAX_POWER * math.log(span / P), 700.0) * (1.0 - 1e-12)):
                 (t1, e1), (t2, e2) = samples_e[1:]  # faster than t^4: name the exponential rate it shows
                 lam = math.log(e2 / e1) / ((t2 - t1) * P)
                 self.probe_note = (
