@@ -179,8 +179,9 @@ def _sector_block_list(M: sps.csr_matrix, bases: list) -> list[sps.csr_matrix]:
     for blk in blocks:
         blk = sps.csr_matrix(blk)
         if blk.dtype.kind == "c" and blk.nnz and np.abs(blk.data.imag).max() <= 1e-13 * np.abs(blk.data).max():
-            blk = sps.csr_matrix(blk.real)  # real sectors: the imaginary part is round-off
+            blk = sps.csr_matrix(blk.real.copy())  # real sectors: the imaginary part is round-off (copy: contiguous data)
         blk.eliminate_zeros()
+        blk.sort_indices()  # a slice of the product comes unsorted
         out.append(blk)
     return out
 
