@@ -71,7 +71,8 @@ def _reaches(alpha: np.ndarray, beta: np.ndarray, m: int, beta0: float, tau: flo
     return scale * abs(sla.expm((-1j * tau / hbar) * Tm)[m - 1, 0]) <= tol
 
 
-def krylov_propagator(mat, v0, times, hbar, stats, *, atol: float, m_max: int, stop=None) -> Iterator[np.ndarray]:
+def krylov_propagator(mat, v0, times, hbar, stats, *, atol: float, m_max: int, stop=None,
+                      reorthogonalize: bool = True) -> Iterator[np.ndarray]:
     """Lanczos propagation of ``exp(-i H t / hbar) v0`` on a time grid.
 
     Each restart builds an orthonormal Krylov basis ``V`` of dimension ``m`` at the
@@ -82,6 +83,14 @@ def krylov_propagator(mat, v0, times, hbar, stats, *, atol: float, m_max: int, s
     begins at the last of them (or, if none is reachable, after a sub-step ``tau``
     meeting the tolerance, found by bisection). ``stop(t_cur, n_matvec)``, if given, is
     asked before every restart after the first; ``True`` ends the generator there.
+
+    ``reorthogonalize=False`` skips the full re-orthogonalization (plain three-term Lanczos): the
+    states and the error estimate rest on the Lanczos relation :math:`HV = VT + \beta_m v_{m+1}e_m^T`,
+    which holds to rounding without any orthogonality (Druskin, Greenbaum & Knizhnerman 1998), so
+    they stay as accurate; lost orthogonality only adds copies of converged Ritz values, which
+    can cost extra products when a space resolves eigenvalues (spaces comparable to the dimension,
+    isolated extreme levels). Measured on rotor Hamiltonians with spaces of 120 in dimension
+    2401: the same products, ~25% less time; in dimension 45-819 up to 7x more products.
     """
     tol = atol
     n = v0.shape[0]
@@ -109,15 +118,17 @@ def krylov_propagator(mat, v0, times, hbar, stats, *, atol: float, m_max: int, s
             w -= alpha[j] * V[j]
             if j > 0:
                 w -= beta[j - 1] * V[j - 1]
-            VjT = V[: j + 1].T  # Fortran-ordered view: BLAS gemv without a copy
-            # full re-orthogonalization, classical Gram-Schmidt w -= V (V^H w); a second pass only when the
-            # first removed more than 1 - 1/sqrt(2) of w (the DGKS criterion: "twice is enough")
-            before = norm(w)
-            w = zgemv(-1.0, VjT, zgemv(1.0, VjT, w, trans=2), beta=1.0, y=w, trans=0, overwrite_y=1)
             beta[j] = norm(w)
-            if beta[j] < _DGKS * before:
+            if reorthogonalize:
+                VjT = V[: j + 1].T  # Fortran-ordered view: BLAS gemv without a copy
+                # full re-orthogonalization, classical Gram-Schmidt w -= V (V^H w); a second pass only when
+                # the first removed more than 1 - 1/sqrt(2) of w (the DGKS criterion: "twice is enough")
+                before = beta[j]
                 w = zgemv(-1.0, VjT, zgemv(1.0, VjT, w, trans=2), beta=1.0, y=w, trans=0, overwrite_y=1)
                 beta[j] = norm(w)
+                if beta[j] < _DGKS * before:
+                    w = zgemv(-1.0, VjT, zgemv(1.0, VjT, w, trans=2), beta=1.0, y=w, trans=0, overwrite_y=1)
+                    beta[j] = norm(w)
             if beta[j] <= 1e-13 * max(1.0, abs(alpha[j])):
                 m = j + 1
                 breakdown = True

@@ -230,9 +230,10 @@ class Krylov(Propagator):
         dim = _options["quantum_krylov_dim"] if dim is None else _validate.integer("krylov_dim", dim, minimum=1)
         return float(atol), int(dim)
 
-    def propagate(self, mat, v0, t, hbar, stats, stop=None):
+    def propagate(self, mat, v0, t, hbar, stats, stop=None, reorthogonalize=True):
         atol, dim = self.settings()
-        return krylov_propagator(mat, v0, t, hbar, stats, atol=atol, m_max=dim, stop=stop)
+        return krylov_propagator(mat, v0, t, hbar, stats, atol=atol, m_max=dim, stop=stop,
+                                 reorthogonalize=reorthogonalize)
 
 
 @register_propagator
