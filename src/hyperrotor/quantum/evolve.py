@@ -481,7 +481,7 @@ class SectorPropagator:
         from the state reached).
         """
         rent = self._rent
-        if rent is not None and self._parts is None:
+        if rent is not None and self._parts is None and self.client is None:  # (a client given on a later call: buy)
             price = _sector_price(self.matrix, rent["rep"])
             span = abs(float(t[-1] - t[0]))
             kopts = {key: self.options[key] for key in Krylov.options}
@@ -504,7 +504,8 @@ class SectorPropagator:
 
     def _lanczos_work(self, n_matvec: int, n_krylov: int) -> float:
         """Work of ``n_matvec`` Lanczos steps on the whole matrix in ``n_krylov`` spaces: a product (8 nnz)
-        and a re-orthogonalization against the space built so far (8 dim m on average) per step."""
+        and a re-orthogonalization against the space built so far (8 dim m on average) per step (counted
+        for plain Lanczos too: the rent is overestimated, never under)."""
         return n_matvec * (8.0 * self.matrix.nnz + 8.0 * self.dim * n_matvec / max(1, n_krylov))
 
     def _rent_run(self, engine: Krylov, vec: np.ndarray, t: np.ndarray, hbar: float,
