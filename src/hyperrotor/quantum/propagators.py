@@ -175,7 +175,7 @@ class Auto(Propagator):
     name = "auto"
     options = {
         "atol": (None, "Krylov error bound per restart (default options['quantum_krylov_atol'] = 1e-12)"),
-        "krylov_dim": (None, "largest Krylov space (default options['quantum_krylov_dim'] = 30)"),
+        "krylov_dim": (None, "largest Krylov space (default options['quantum_krylov_dim'] = 60)"),
         "eigen_max_block": (None, "largest block propagated by 'eigen' (default options['quantum_eigen_max_block'] = 400)"),
     }
 
@@ -219,7 +219,7 @@ class Krylov(Propagator):
     union_blocks = True
     options = {
         "atol": (None, "error bound per restart in the 2-norm (default options['quantum_krylov_atol'] = 1e-12)"),
-        "krylov_dim": (None, "largest Krylov space (default options['quantum_krylov_dim'] = 30)"),
+        "krylov_dim": (None, "largest Krylov space (default options['quantum_krylov_dim'] = 60)"),
     }
 
     def settings(self) -> tuple[float, int]:
