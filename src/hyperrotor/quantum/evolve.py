@@ -435,7 +435,7 @@ class SectorPropagator:
         self.stats["blocks"] = len(blocks)
         big = max((len(b) for b in blocks if len(b) > 1), default=0)
         sectors = rep is not None and use and big > int(_options["quantum_eigen_max_block"])
-        if (rent and sectors and cls is Auto and self.client is None
+        if (rent and sectors and cls is Auto and self.client is None and self.progress is not True
                 and rep.dim <= _options["quantum_eigen_max_block"] * 2 ** (rep.N - 1)):
             # every sector would be diagonalized: for one state a Krylov run on the whole space may cost less
             self._rent = {"deferred": (cls, rep, blocks), "spent": 0.0, "rate": None, "rep": rep}
@@ -481,7 +481,8 @@ class SectorPropagator:
         from the state reached).
         """
         rent = self._rent
-        if rent is not None and self._parts is None and self.client is None:  # (a client given on a later call: buy)
+        # a client or a progress bar asked for on a later call: buy (the blocks go to the workers / the bar)
+        if rent is not None and self._parts is None and self.client is None and self.progress is not True:
             price = _sector_price(self.matrix, rent["rep"])
             span = abs(float(t[-1] - t[0]))
             kopts = {key: self.options[key] for key in Krylov.options}
@@ -716,6 +717,8 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     ``"auto"`` on a rotor whose sectors are all small propagates a new ``H`` by Lanczos on the
     whole space until building and diagonalizing the sectors is estimated to cost less than more
     Krylov work (rent or buy, module docstring): ``stats["block_methods"]`` says which was used.
+    With ``client`` or ``progress=True`` the sectors are built at once (tasks for the workers,
+    blocks for the bar).
     The native methods keep the :class:`SectorPropagator` built for ``H`` while ``H`` lives:
     a later call with the same ``H`` object, method, options, ``hbar`` and ``rep`` reuses its
     blocks and eigendecompositions, after checking that the matrix of ``H`` is unchanged
