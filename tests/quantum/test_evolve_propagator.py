@@ -116,6 +116,8 @@ def test_evolve_rents_krylov_then_buys_the_sectors(rng):
         res = evolve(H2, psi, short)
         assert res.stats["block_methods"] == ["eigen"] and res.stats["n_eigh"] == 0  # bought: cached
         check(res, short)
+        res = evolve(rotor_hamiltonian(rep, rng.uniform(1.0, 2.0, size=10)), psi, short, progress=True)
+        assert res.stats["sectors"] == 16  # a bar asked for: the blocks at once, no renting
 
 
 def test_whole_space_krylov_without_reorthogonalization_matches_expm(rng):
