@@ -86,6 +86,10 @@ class FixedStepSolver(Solver):
         """Rough cost unit per step and member (used for chunk sizes and budgets)."""
         return 1
 
+    def can_compensate(self) -> bool:
+        """Whether the step control may switch the run to compensated (TwoSum) storage of ``L``."""
+        return False
+
     def kernel_variant(self) -> Any:
         """Hashable label of the compiled code :meth:`advance` runs (the driver learns its speed per label)."""
         return type(self)
@@ -145,7 +149,8 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
             nsub = nsub_for(t, h) if K > 1 else np.zeros(0, dtype=np.int64)
             steps = int(nsub.sum())
             if hasattr(solver, "set_accuracy"):
-                solver.set_accuracy(problem, control.rtol, steps)
+                solver.set_accuracy(problem, control.rtol, steps,
+                                    roundoff_amplified=getattr(control, "roundoff_amplified", False))
             check = control.checker(solver, problem, nsub, work) if B > 0 and steps > 0 else None
             planned = steps * B + (check.planned_steps if check is not None else 0)
             work.refuse(planned, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member"

@@ -341,11 +341,17 @@ class Splitting(FixedStepSolver):
             compensated=self.options["compensated"],
         )
 
-    def set_accuracy(self, problem: Problem, rtol: float | None, steps: int) -> None:
-        """Fix the automatic ``compensated`` choice once the step is known."""
+    def set_accuracy(self, problem: Problem, rtol: float | None, steps: int, *, roundoff_amplified: bool = False
+                     ) -> None:
+        """Fix the automatic ``compensated`` choice once the step is known (``roundoff_amplified``: the
+        step control's check saw the orbit amplify round-off towards ``rtol``, e.g. a chaotic orbit)."""
         if self.options["compensated"] is None:
-            tight = rtol is not None and rtol < COMPENSATE_BELOW_RTOL
+            tight = (rtol is not None and rtol < COMPENSATE_BELOW_RTOL) or roundoff_amplified
             self._state["compensated"] = bool(tight or steps * self.flows_per_step(problem) > COMPENSATE_ABOVE)
+
+    def can_compensate(self) -> bool:
+        """Whether the step control may switch this run to compensated storage (automatic choice, not yet on)."""
+        return self.options["compensated"] is None and not self._state["compensated"]
 
     def flows_per_step(self, problem: Problem) -> int:
         return max(1, int(self._state["word"][0].size))
