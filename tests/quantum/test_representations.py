@@ -332,3 +332,32 @@ def test_representations_pickle_and_deepcopy(make):
     H = rotor_hamiltonian(rep, np.linspace(1.0, 2.0, rep.N * (rep.N - 1) // 2))
     H2 = pickle.loads(pickle.dumps(H))
     assert H2 == H and H2._hyperrotor_rep == rep  # the sectors of spectrum/evolve still find the representation
+
+
+def test_checking_generators_never_changes_them():
+    """as_csr returns a canonical copy: checking a non-canonical generator whose data is complex with
+    zero imaginary part (its real part shared the caller's index arrays, and scipy canonicalizes in
+    place) scrambled the caller's matrix; rotor_hamiltonian of irrep (8, 0)'s generators changed by 0.2."""
+    from hyperrotor.quantum import rotor_hamiltonian
+    from hyperrotor.quantum.representation import as_csr, check_antihermitian
+
+    # a non-canonical complex matrix with zero imaginary part: unsorted column indices in row 0
+    M = sps.csr_matrix((np.array([2.0, 1.0, -1.0, -2.0], dtype=complex), np.array([2, 1, 0, 0]),
+                        np.array([0, 2, 3, 4])), shape=(3, 3))
+    M.has_sorted_indices = False
+    dense = M.toarray()
+    X = as_csr(M, "M")
+    X.max(), abs(X).max()  # canonicalizing the result in place (scipy does) ...
+    np.testing.assert_array_equal(M.toarray(), dense)  # ... leaves the caller's matrix alone
+    assert X.has_canonical_format and not np.shares_memory(X.indices, M.indices)
+    rep = irrep(5, (8, 0))
+    gens = rep.generators(format="csr")
+    before = {p: G.toarray() for p, G in gens.items()}
+    moments = np.linspace(1.0, 2.0, 10)
+    H_rep = rotor_hamiltonian(rep, moments).full()
+    check_antihermitian(gens)
+    H_map = rotor_hamiltonian(gens, moments).full()  # the mapping path checks them too
+    for p, G in gens.items():
+        np.testing.assert_array_equal(G.toarray(), before[p])
+        np.testing.assert_array_equal(rep.generators(format="csr")[p].toarray(), before[p])
+    np.testing.assert_allclose(H_map, H_rep, rtol=0, atol=1e-12 * np.abs(H_rep).max())

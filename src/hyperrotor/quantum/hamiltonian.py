@@ -84,6 +84,8 @@ def operator_matrix_and_dims(H: Any, name: str = "H") -> tuple[sps.csr_matrix, l
 def hermitian_matrix(H: Any, name: str = "H") -> tuple[sps.csr_matrix, list]:
     """``(csr, dims)`` of a Hermitian operator; refuses a non-Hermitian one (``options["quantum_hermiticity_rtol"]``)."""
     mat, dims = operator_matrix_and_dims(H, name)
+    if getattr(H, "_hyperrotor_rep", None) is not None:  # rotor_hamiltonian's own H: Hermitian by construction
+        return mat, dims
     rtol = options["quantum_hermiticity_rtol"]
     diff = (mat - mat.conj().T).tocsr()
     scale = max(1.0, float(np.max(np.abs(mat.data))) if mat.nnz else 1.0)
@@ -145,6 +147,9 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
     if isinstance(rep, Representation):
         N, dim = rep.N, rep.dim
         gens = rep.generators(format="csr")
+        # checked once here (a Representation takes any square matrices): the H built below is then
+        # Hermitian by construction, and evolve/spectrum skip their O(nnz) check of it
+        check_antihermitian(gens)
     elif hasattr(rep, "generators") and hasattr(rep, "N"):  # a Representation-like object
         N, dim = int(rep.N), int(rep.dim)
         gens = rep.generators()
@@ -162,9 +167,10 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
         )
     moments = _validate.moments(body, N, name="body")  # refuses complex moments too
     H = rotor_matrix(gens, moments, hbar)
-    Hq = _lazy.qutip.Qobj(H, dims=[[dim], [dim]])
+    Hq = _lazy.qutip.Qobj(H, dims=[[dim], [dim]], isherm=True)  # sum of squares of Hermitian L^ij / hbar
     if isinstance(rep, Representation):
-        # for the symmetry sectors of spectrum/evolve (arithmetic on Hq gives new Qobjs without it)
+        # for the symmetry sectors of spectrum/evolve, and to skip hermitian_matrix's O(nnz) check of an H
+        # built here (arithmetic on Hq gives new Qobjs without it)
         Hq._hyperrotor_rep = rep
     return Hq
 

@@ -92,12 +92,15 @@ def as_csr(M: Any, name: str = "operator") -> sps.csr_matrix:
     """
     if not isinstance(name, str) or not name:
         raise TypeError(f"name must be a non-empty string (the operator's name in messages), got {_validate.fmt(name)}")
+    # a copy, in canonical format: the caller's matrix (or the Qobj's data, which as_scipy() views) never
+    # shares its arrays with the result, so canonicalizing it in place (scipy's max, sum_duplicates) cannot
+    # reorder the caller's indices under its data (it did: an irrep's non-canonical generator was scrambled)
     if hasattr(M, "isoper") and hasattr(M, "to") and hasattr(M, "dims"):  # qutip.Qobj
         if not M.isoper:
             raise ValueError(f"{name} must be an operator, got a Qobj of type {M.type!r}")
-        mat = M.to("CSR").data.as_scipy().tocsr()
+        mat = sps.csr_matrix(M.to("CSR").data.as_scipy(), copy=True)
     elif sps.issparse(M):
-        mat = sps.csr_matrix(M)
+        mat = sps.csr_matrix(M, copy=True)
     elif isinstance(M, np.ndarray):
         arr = np.asarray(M)
         if arr.ndim != 2:
@@ -109,6 +112,7 @@ def as_csr(M: Any, name: str = "operator") -> sps.csr_matrix:
         raise TypeError(f"{name} must be a qutip.Qobj, a scipy.sparse matrix or a 2-D ndarray, got {type(M).__name__}")
     if mat.shape[0] != mat.shape[1]:
         raise ValueError(f"{name} must be square, got shape {mat.shape}")
+    mat.sum_duplicates()  # (sorted indices, no duplicates: on the copy)
     if mat.dtype.kind not in "fc":
         mat = mat.astype(float)
     if not np.all(np.isfinite(mat.data)):
