@@ -117,10 +117,16 @@ def _intertwining_phases(chain: dict, perm: np.ndarray, sigma: dict, conj: bool)
     fwd = np.asarray(R[child, pred[child]]).ravel()
     bwd = np.asarray(R[pred[child], child]).ravel()
     step = np.where(fwd > 0, fwd - 1, (-(bwd - 1)) % 4)  # phi_child / phi_parent = i^step
+    # exponent of phi_a = sum of the steps on the tree path from a to the root 0: pointer jumping
+    # (after r rounds up[a] is the 2^r-th ancestor and ex[a] the sum of the steps below it), log2(depth) rounds
+    up = np.zeros(dim, dtype=np.int64)  # the root is its own parent
+    up[child] = pred[child]
     ex = np.zeros(dim, dtype=np.int64)
-    for a, p, st in zip(child.tolist(), pred[child].tolist(), step.tolist()):
-        ex[a] = ex[p] + st
-    return PHASES[ex % 4]
+    ex[child] = step
+    while np.any(up):
+        ex = (ex + ex[up]) % 4
+        up = up[up]
+    return PHASES[ex]
 
 
 def _monomial_residual(U: Monomial, chain: dict, sigma: dict, conj: bool) -> float:
