@@ -529,7 +529,7 @@ def test_every_step_of_the_call_counts_against_max_steps():
 @pytest.mark.parametrize("r, r2", [(4.0, 4.0), (4.0, 2.0), (3.3, 2.4), (8.0, 2.0)])
 def test_observed_order_inverts_the_three_run_ratio(r, r2):
     """Errors C h^q at steps h, r h, r r2 h: the ratio of the differences gives back q (and the limits)."""
-    from hyperrotor.classical.solvers.step_control import observed_order
+    from hyperrotor.classical.solvers.richardson_check import observed_order
 
     def rho(q):  # |y_rh - y_rr2h| / |y_h - y_rh| for errors C h^q (C = 1, h = 1)
         return ((r * r2) ** q - r ** q) / (r ** q - 1.0)
@@ -624,12 +624,12 @@ def test_an_unreachable_rtol_on_a_chaotic_orbit_says_so():
 def test_a_run_priced_over_the_budget_after_the_probe_is_refused_before_it_starts(monkeypatch):
     """A budget the probe fits in but the run does not: refused before the run's first step, naming the
     accuracy reachable within the budget (the probe's estimate) and the option to raise."""
-    from hyperrotor.classical.solvers import step_control
+    from hyperrotor.classical.solvers import richardson_check
 
     def no_run(*a, **k):
         raise AssertionError("the run started")
 
-    monkeypatch.setattr(step_control.RichardsonCheck, "update", no_run)
+    monkeypatch.setattr(richardson_check.RichardsonCheck, "update", no_run)
     moments, w0 = _random_generic5(2)
     with pytest.raises(StepBudgetError, match=r"reachable accuracy about .* within the budget") as info:
         hr.simulate(moments, w0, np.linspace(0.0, 100.0, 11), method="splitting8", rtol=1e-10, max_steps=2000)

@@ -43,7 +43,7 @@ from hyperrotor._parallel import progress_bar
 
 from .base import Problem, RunResult, Solver, nsub_for, step_lengths
 from .chunks import FIRST_CHUNK_FLOWS, SECONDS_PER_FLOW, Work, check_finite, cost_key, learn, step_times
-from .step_control import CheckFailed
+from .richardson_check import CheckFailed
 
 __all__ = ["FixedStepSolver", "run_fixed_step", "EventSpec", "event_specs", "DenseOutput", "dense_states"]
 

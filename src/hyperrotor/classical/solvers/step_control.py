@@ -33,13 +33,13 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    for the target ``SAFETY * rtol``.
 3. *Budget.* All planned work (probes, run, check) above ``max_steps`` is refused here,
    before the run starts (:class:`~.chunks.Work`).
-4. *Check inside the run* (:class:`RichardsonCheck`, costing :math:`1/c + 1/(c c_2)` of the run for
+4. *Check inside the run* (:class:`~.richardson_check.RichardsonCheck`, costing :math:`1/c + 1/(c c_2)` of the run for
    up to :data:`PROBE_MEMBERS` members). Beside the run at :math:`h^*` two companion runs of the
    same members advance with steps :math:`c` and :math:`c c_2` times longer
-   (:math:`2 \le c \le` :data:`COMPANION_RATIO`, as large as keeps the first companion's error below
-   :data:`COMPANION_ASYMPTOTIC`; :math:`2 \le c_2 \le c`, the second's below
-   :data:`SECOND_COMPANION_ASYMPTOTIC`) between :data:`CHECK_SAMPLES` sample points of the run.
-   The three runs give the observed order :math:`q \le p` (:func:`observed_order`, from
+   (:math:`2 \le c \le` :data:`~.richardson_check.COMPANION_RATIO`, as large as keeps the first companion's error below
+   :data:`~.richardson_check.COMPANION_ASYMPTOTIC`; :math:`2 \le c_2 \le c`, the second's below
+   :data:`~.richardson_check.SECOND_COMPANION_ASYMPTOTIC`) between :data:`~.richardson_check.CHECK_SAMPLES` sample points of the run.
+   The three runs give the observed order :math:`q \le p` (:func:`~.richardson_check.observed_order`, from
    :math:`|y_{ch} - y_{cc_2h}| / |y_h - y_{ch}| = c^q (c_2^q - 1)/(c^q - 1)`: stiff
    problems, steps far outside the asymptotic regime show :math:`q < p`), and at every sample
    :math:`e \approx |y_{h^*} - y_{ch^*}| / (c^q - 1)` estimates the run's own error (with
@@ -48,8 +48,8 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    companion steps is checked against companions at half and quarter steps instead. The run
    is accepted when the estimate stays within
    ``ACCEPT * rtol``. It is stopped at the first sample where the estimate exceeds that, or
-   (from :data:`PROJECT_AFTER` of the run on) where its linear projection to the end exceeds it
-   :data:`PROJECT_MARGIN`-fold, and re-run at
+   (from :data:`~.richardson_check.PROJECT_AFTER` of the run on) where its linear projection to the end exceeds it
+   :data:`~.richardson_check.PROJECT_MARGIN`-fold, and re-run at
    :math:`h \leftarrow 0.9\,h\,(\mathrm{SAFETY\cdot rtol}/e_\text{end})^{1/p}`. The samples
    also show how the error grows: linearly on regular orbits, like :math:`e^{\lambda t}` on
    chaotic ones (GNI ch. X; the envelope of the estimates over the last two doublings of the
@@ -82,25 +82,13 @@ import numpy as np
 from hyperrotor import _validate
 from hyperrotor._options import options
 
-from .base import Problem, StepBudgetError, nsub_for, step_lengths
-from .chunks import Work, advance_chunked, cost_key, seconds_per_flow, step_times
+from .base import Problem, StepBudgetError, nsub_for
+from .chunks import Work, advance_chunked, cost_key, seconds_per_flow
+from .richardson_check import ASYMPTOTIC, COMPANION_RATIO, SAFETY, CheckFailed, RichardsonCheck, relative_difference
 
-__all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "RichardsonCheck", "CheckFailed",
-           "UnreachableAccuracyError", "rate_bound", "observed_order", "growth_to_end"]
+__all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "UnreachableAccuracyError", "rate_bound", "growth_to_end"]
 
 _EPS = float(np.finfo(float).eps)
-#: the error target used for the step: rtol times this (margin for the asymptotic model)
-SAFETY = 0.5
-#: the check accepts a run whose estimated error stays within rtol times this
-ACCEPT = 0.8
-#: Richardson estimates above this are outside the asymptotic regime (the step is refined)
-ASYMPTOTIC = 1e-2
-#: the companion's own error is kept below this (it chooses the ratio c of the check)
-COMPANION_ASYMPTOTIC = 1e-3
-#: largest ratio c of companion to run step (cost of the check: 1/c + 1/(c c2) of the run for the checked members)
-COMPANION_RATIO = 4.0
-#: the second companion's step is c2 >= 2 times the first's, as long as its own error stays below this
-SECOND_COMPANION_ASYMPTOTIC = 3e-2
 #: length of the probe interval in turns of the fastest rate (20 radians: a few periods)
 PROBE_TURNS = 20.0
 #: ensemble members probed and checked (the fastest ones): the step is one for all members
@@ -109,61 +97,13 @@ PROBE_MEMBERS = 8
 PROBE_MAX_POWER = 4.0
 #: no extrapolation beyond this factor of the probed step (the error model is asymptotic in h)
 MAX_STEP_GROWTH = 8.0
-#: round-off of plain arithmetic per run: this times eps sqrt(flows) times the orbit's amplification ...
-ROUNDOFF_FACTOR = 4.0
-#: ... above this share of the accepted error switches the run to compensated storage
-ROUNDOFF_SHARE = 0.25
-#: the observed order comes from samples where the second companion's difference is below this
-LINEAR_REGIME = 1e-3
-#: sample points of the check (the error can peak between output times)
-CHECK_SAMPLES = 64
-#: the check projects the error to the end of the run once this fraction of it is done ...
-PROJECT_AFTER = 0.125
-#: ... and stops the run when the projection exceeds the accepted error this many times
-PROJECT_MARGIN = 4.0
-#: an error envelope growing this much over the second half of the samples seen is faster than linear
-GROWTH_RATIO = 8.0
 #: re-runs at a shorter step before the call gives up with UnreachableAccuracyError
 MAX_RETRIES = 3
-
-
-def observed_order(rho: float, r: float, r2: float, p: float) -> float:
-    r"""The order :math:`q \in [0, p]` with :math:`r^q (r_2^q - 1)/(r^q - 1) = \rho` (ratio of the
-    differences of three runs at steps :math:`h`, :math:`rh`, :math:`r r_2 h`, errors :math:`C h^q`).
-
-    The left side increases with :math:`q` (from :math:`\ln r_2/\ln r` at 0); below its value at
-    :math:`q = 1/2` the answer is 0 (not asymptotic), above its value at ``p`` it is ``p``; bisection
-    in between. ``r == r2`` gives :math:`\log\rho / \log r`.
-    """
-    if not rho > 0.0 or r <= 1.0 or r2 <= 1.0:
-        return 0.0
-
-    def f(q):
-        return r ** q * (r2 ** q - 1.0) / (r ** q - 1.0)
-
-    if rho < f(0.5):
-        return 0.0
-    if rho >= f(p):
-        return float(p)
-    lo, hi = 0.5, float(p)
-    for _ in range(40):  # |hi - lo| < 1e-11
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if f(mid) < rho else (lo, mid)
-    return 0.5 * (lo + hi)
 
 
 class UnreachableAccuracyError(ValueError):
     """``rtol`` cannot be met at a reasonable cost: the error grows exponentially (a chaotic orbit)
     or sits at round-off. The message names the estimated growth and the reachable accuracy."""
-
-
-class CheckFailed(Exception):
-    """Raised by :class:`RichardsonCheck` inside a run: re-run at step ``h`` (scaled units)."""
-
-    def __init__(self, h: float, why: str):
-        super().__init__(why)
-        self.h = h
-        self.why = why
 
 
 def rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
@@ -259,15 +199,6 @@ class FixedStep:
         return f"FixedStep(dt={self.dt!r})"
 
 
-def _relative_difference(La: np.ndarray, Lb: np.ndarray, moments: np.ndarray, Lmax: np.ndarray,
-                         Wmax: np.ndarray) -> np.ndarray:
-    """Per sample (axis 1): max over members of max(|dL|/max|L|, |dW|/max|W|) (members on axis 0)."""
-    d = np.abs(La - Lb)
-    dL = d.max(axis=2) / Lmax[:, None]
-    dW = (d / moments).max(axis=2) / Wmax[:, None]
-    return np.maximum(dL, dW).max(axis=0)
-
-
 class ErrorTarget:
     """Step from a whole-run error target ``rtol``: a probe guesses, the run's own check decides
     (see the module docstring)."""
@@ -332,7 +263,7 @@ class ErrorTarget:
                 return None, Pv / (k * ms)
             Lmax = np.maximum(np.abs(y1).max(axis=(1, 2)), 1e-300)
             Wmax = np.maximum(np.abs(y1 / Ms).max(axis=(1, 2)), 1e-300)
-            d = _relative_difference(y1, y2, Ms, Lmax, Wmax)  # per sample
+            d = relative_difference(y1, y2, Ms, Lmax, Wmax)  # per sample
             # the estimate's envelope at (about) half the window and at its end (d[i]: at grid point i)
             env = np.maximum.accumulate(d) / (2.0 ** p - 1.0)
             samples_e[:] = [(i / k, float(env[i])) for i in (k // 4, k // 2, k) if i > 0]
@@ -442,246 +373,3 @@ class ErrorTarget:
                 return h
             except CheckFailed as failure:
                 h = self.next_step(failure, solver, problem, work)
-
-
-class RichardsonCheck:
-    """The a-posteriori check of one run (module docstring, steps 4-5).
-
-    ``marks`` are global step indices of the run (sample points); the driver keeps the run's
-    states there and calls :meth:`update` with them as the run reaches them; the companion of
-    the checked ``members`` follows, and :class:`CheckFailed` stops the run when the estimate
-    (or its projection) is over the target.
-    """
-
-    def __init__(self, solver, problem: Problem, nsub: np.ndarray, control: ErrorTarget, members: np.ndarray,
-                 work: Work, bar=None):
-        self.solver, self.problem, self.control, self.members, self.work, self.bar = (
-            solver, problem, control, members, work, bar)
-        t = problem.t
-        p = solver.order
-        self.p = p
-        self.nsub = nsub
-        self.cs = cs = np.concatenate([[0], np.cumsum(nsub)])
-        steps = int(cs[-1])
-        self.steps = steps
-        hs = step_lengths(t, nsub)
-        self.h = float(np.abs(hs).max())
-        # the companion's ratio: as long as its own error stays asymptotic
-        c = (COMPANION_ASYMPTOTIC / (SAFETY * control.rtol)) ** (1.0 / p)
-        c = float(min(COMPANION_RATIO, max(2.0, c), max(2.0, math.sqrt(steps / 8.0))))  # short runs: smaller c
-        # the second companion's ratio to the first: 2 or more, while its error stays near-asymptotic
-        c2 = (SECOND_COMPANION_ASYMPTOTIC / (SAFETY * control.rtol * c ** p)) ** (1.0 / p)
-        c2 = float(min(c, max(2.0, c2)))
-        finer = steps < 32  # a very short run: the companions take half and quarter steps instead
-        if finer:
-            spacing = max(1, int(math.ceil(steps / CHECK_SAMPLES)))
-        else:
-            spacing = max(int(math.ceil(2 * c * c2)), int(math.ceil(steps / CHECK_SAMPLES)))
-        marks = np.arange(spacing, steps, spacing, dtype=np.int64)
-        if marks.size and steps - marks[-1] < spacing // 2:
-            marks = marks[:-1]
-        self.marks = marks = np.append(marks, steps)
-        seg = np.diff(np.concatenate([[0], marks]))
-        if finer:
-            self.nc, self.nc2 = seg * 2, seg * 4
-        else:
-            self.nc = np.maximum(1, np.floor(seg / c).astype(np.int64))
-            self.nc2 = np.maximum(1, np.floor(self.nc / c2).astype(np.int64))
-        self.tm = step_times(t, cs, nsub, marks)
-        self.grid = np.concatenate([[t[0]], self.tm])
-        lengths = np.abs(np.diff(self.grid))
-        H, H2 = lengths / self.nc, lengths / self.nc2
-        # largest and smallest run step in each segment (the run's step differs between output intervals)
-        first = np.searchsorted(cs, np.concatenate([[0], marks[:-1]]), side="right") - 1
-        last = np.searchsorted(cs, marks - 1, side="right") - 1
-        ah = np.abs(hs)
-        if np.all(first == last):  # every segment inside one output interval (long intervals)
-            hmax = hmin = ah[first]
-        else:
-            hmax = np.array([ah[a:b + 1].max() for a, b in zip(first, last)])
-            hmin = np.array([ah[a:b + 1].min() for a, b in zip(first, last)])
-        # step ratios (companion / run, second / first companion), the smallest over the segments,
-        # or for the finer companions the ratios run / companion
-        self.r = float(np.min(H / hmax)) if not finer else float(np.min(hmin / H))
-        self.r2 = float(np.min(H2 / H)) if not finer else float(np.min(H / H2))
-        self.finer = finer
-        self.planned_steps = int(self.nc.sum() + self.nc2.sum()) * len(members)
-        self.moments = problem.moments
-        self.Lc = self.Lc2 = problem.L0[members]
-        self.carry = self.carry2 = None
-        self.j = 0
-        self.Lmax = np.maximum(np.abs(self.Lc).max(axis=1), 1e-300)
-        self.Wmax = np.maximum(np.abs(self.Lc / self.moments).max(axis=1), 1e-300)
-        self.d1 = np.zeros(marks.size)  # run - first companion, relative, per sample
-        self.d2 = np.zeros(marks.size)  # first - second companion
-        self.err = np.zeros(marks.size)  # estimated error of the run at each sample
-        self.span = problem.span
-
-    def _divisor(self) -> float:
-        r"""``e_run = |y_run - y_1| / divisor`` from the observed convergence of the three runs.
-
-        With errors :math:`C h^q`: :math:`\rho = |y_1 - y_2| / |y_{run} - y_1| = r^q (r_2^q - 1)/(r^q - 1)`
-        (:func:`observed_order` solves it for :math:`q`; :math:`r_2^q` when :math:`r_2 = r`), which gives
-        the observed order :math:`q \le p` (never more than the method's order); the run's error is then
-        :math:`|y_{run} - y_1| / (r^q - 1)` (run vs coarser companion) or
-        :math:`|y_{run} - y_1|\,r^q/(1 - r^q)`... (finer companions: the run is the coarsest).
-        Outside the asymptotic regime (:math:`q < 1/2`) the difference itself is the estimate.
-        """
-        d1, d2 = self.d1[:self.j], self.d2[:self.j]
-        D1 = float(d1.max())
-        p = self.p
-        if D1 <= 0.0:
-            return math.inf
-        rho = float(d2.max()) / D1
-        if not self.finer:
-            # the order from the samples where the coarser companion is still in its linear regime (an
-            # error that has grown to order one, e.g. on a chaotic orbit, stops following C h^q and would
-            # show a low order) and the run's difference is above round-off
-            linear = (d2 <= LINEAR_REGIME) & (d1 >= 100.0 * _EPS)
-            if linear.any():
-                rho = float(d2[linear].max()) / float(d1[linear].max())
-        if self.finer:  # the run is the coarsest: D1 ~ e_run (1 - r^-q), D2 ~ D1 / r2^q (r, r2 > 1)
-            q = min(p, math.log(max(rho, 1e-300)) / -math.log(self.r2)) if rho < 1.0 else 0.0
-            self.q = q
-            return max(1.0 - self.r ** -q, 1e-300) if q >= 0.5 else 1.0
-        q = observed_order(rho, self.r, self.r2, p)
-        self.q = q
-        return max(self.r ** q - 1.0, 1.0) if q >= 0.5 else 1.0
-
-    def update(self, upto: int, Lf: np.ndarray) -> None:
-        """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones."""
-        j = self.j
-        if upto <= j:
-            return
-        grid = self.grid[j:upto + 1]
-        L1, self.carry = advance_chunked(self.solver, self.problem, self.Lc, grid, self.nc[j:upto],
-                                         members=self.members, work=self.work, bar=self.bar, carry=self.carry)
-        L2, self.carry2 = advance_chunked(self.solver, self.problem, self.Lc2, grid, self.nc2[j:upto],
-                                          members=self.members, work=self.work, bar=self.bar, carry=self.carry2)
-        self.Lc, self.Lc2 = L1[:, -1], L2[:, -1]
-        self.Lmax = np.maximum(self.Lmax, np.abs(Lf).max(axis=(1, 2)))
-        self.Wmax = np.maximum(self.Wmax, np.abs(Lf / self.moments).max(axis=(1, 2)))
-        self.d1[j:upto] = _relative_difference(Lf, L1[:, 1:], self.moments, self.Lmax, self.Wmax)
-        self.d2[j:upto] = _relative_difference(L1[:, 1:], L2[:, 1:], self.moments, self.Lmax, self.Wmax)
-        if not (np.all(np.isfinite(self.d1[j:upto])) and np.all(np.isfinite(self.d2[j:upto]))):
-            raise CheckFailed(self.h / 2.0, "a companion run overflowed")
-        self.j = upto
-        self.err[:upto] = self.d1[:upto] / self._divisor()
-        accept = ACCEPT * self.control.rtol
-        e = float(self.err[:upto].max())
-        done = abs(self.tm[upto - 1] - self.problem.t[0]) / self.span
-        if e > accept:
-            raise self._failure(e, self._project(upto, e, done), done)
-        if upto < self.marks.size and done >= PROJECT_AFTER:
-            projected = self._project(upto, e, done)
-            if projected > PROJECT_MARGIN * accept:
-                raise self._failure(e, projected, done)
-        if upto == self.marks.size:
-            self._check_roundoff()
-            self.control.history.append((self.h, e))
-
-    def _check_roundoff(self) -> None:
-        r"""Re-run with compensated storage when the orbit amplifies round-off towards ``rtol``.
-
-        Richardson's differences see the truncation error only; the round-off of plain
-        arithmetic, about :math:`\epsilon\sqrt{\text{flows}}` for a regular orbit, is amplified on a
-        chaotic one like the truncation error is: by :math:`A`, the growth of the envelope of the
-        differences to the first companion from an eighth of the run (or the first sample after it
-        where they are above round-off) to its end, beyond linear. When
-        :data:`ROUNDOFF_FACTOR` :math:`\cdot\epsilon\sqrt{\text{flows}}\,A` exceeds
-        :data:`ROUNDOFF_SHARE` of the accepted error, the run is repeated at the same step with
-        compensated (TwoSum) storage (a random generic 5D body at rtol 1e-10 missed the bound 1.7-fold
-        in plain arithmetic, and met it 40-fold with TwoSum, at the same step).
-        """
-        if not self.solver.can_compensate() or self.j < 8:
-            return
-        t = np.abs(self.tm[:self.j] - self.problem.t[0])
-        env = np.maximum.accumulate(self.d1[:self.j])  # (the companion's error, above round-off, grows alike)
-        flows = self.steps * self.solver.flows_per_step(self.problem)
-        # from the first sample after an eighth of the run where the difference is above round-off
-        above = np.flatnonzero((t >= t[-1] / 8.0) & (env > 10.0 * _EPS * np.sqrt(flows * t / max(t[-1], 1e-300))))
-        if above.size == 0 or above[0] >= self.j - 1 or t[above[0]] <= 0.0:
-            return
-        i = int(above[0])
-        amplification = max(1.0, env[-1] / env[i] / (t[-1] / t[i]))
-        roundoff = ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification
-        if roundoff > ROUNDOFF_SHARE * ACCEPT * self.control.rtol:
-            self.control.roundoff_amplified = True
-            raise CheckFailed(self.h, f"the orbit amplifies round-off {amplification:.3g}-fold (about {roundoff:.2g} "
-                                      f"in plain arithmetic, rtol = {self.control.rtol:g}): re-run with compensated "
-                                      f"storage at the same step")
-
-    def _user(self, h: float) -> float:
-        return h / self.problem.scale
-
-    def _growth(self, upto: int) -> float:
-        """Exponential rate of the error envelope (scaled time), or 0.0 when it grows like a power of t.
-
-        On a regular orbit the error grows like :math:`t` (at most :math:`t^2`): by a factor 2-4
-        per doubling of the time. Over the last two doublings of the time done, a factor above
-        :data:`GROWTH_RATIO` (faster than :math:`t^3`) counts as exponential, with the rate of
-        the faster one (the envelope saturates once the error is of order one).
-        """
-        if upto < 16:
-            return 0.0
-        t = np.abs(self.tm[:upto] - self.problem.t[0])
-        env = np.maximum.accumulate(self.err[:upto])
-        idx = [int(np.searchsorted(t, t[-1] * f)) for f in (0.25, 0.5)] + [upto - 1]
-        lam = 0.0
-        for i, k in zip(idx[:-1], idx[1:]):
-            if env[i] > 0.0 and env[k] / env[i] > GROWTH_RATIO and t[k] > t[i]:
-                lam = max(lam, math.log(env[k] / env[i]) / (t[k] - t[i]))
-        return lam
-
-    def _project(self, upto: int, e: float, done: float) -> float:
-        """The estimated error at the end of the run from the samples so far, growing linearly (the
-        regular case; an exponential projection would stop runs near a separatrix, where the error
-        grows fast for a while only, and ask for far too short steps)."""
-        return e / max(done, 1e-300)
-
-    def _failure(self, e: float, projected: float, done: float) -> CheckFailed:
-        """The re-run's step, priced; or the error naming why ``rtol`` is out of reach."""
-        rtol, p = self.control.rtol, self.p
-        end = max(e, projected)
-        self.control.history.append((self.h, end))
-        # the observed order where the error is asymptotic (round-off floors show q < p); an error
-        # above ASYMPTOTIC says nothing about the order (q ~ 1 there would ask for ~1e8 steps where a
-        # few hundred do): extrapolate with the method's order, and the re-run's check decides
-        # (and at least p/2 where one was observed: a run just outside the asymptotic regime shows q ~ 1-2,
-        # and 1.5 asked for 2.5e6 steps where a few thousand do; q < 1/2, no order seen: 1)
-        q_seen = getattr(self, "q", p)
-        q = p if end > ASYMPTOTIC else (min(p, max(p / 2.0, q_seen)) if q_seen >= 0.5 else 1.0)
-        h_new = 0.9 * self.h * (SAFETY * rtol / end) ** (1.0 / q)
-        h_new = min(h_new, self.h / 1.25)
-        lam = self._growth(self.j)
-        why = (f"estimated error {end:.2g} at the end of the run (rtol = {rtol:g}) with step "
-               f"{self._user(self.h):.3g}")
-        if lam > 0.0:
-            why += (f"; the error grows like exp(lambda t) with lambda ~ {lam * self.problem.scale:.3g} "
-                    f"(growth exp(lambda T) ~ {math.exp(min(lam * self.span, 700.0)):.3g} over the run, estimated "
-                    f"from the check at {done:.0%} of it)")
-        self.control.last_growth = lam
-        steps_new = self.span / h_new * self.problem.B * (1.0 + 1.0 / COMPANION_RATIO)
-        if self.work.done + steps_new > self.work.max_steps:
-            h_budget = self.span * self.problem.B * (1.0 + 1.0 / COMPANION_RATIO) / max(
-                self.work.max_steps - self.work.done, 1.0)
-            reachable = min(1.0, end * (h_budget / self.h) ** q)  # the order h_new assumed (1: no digit left)
-            raise StepBudgetError(
-                f"simulate: rtol = {rtol:g} needs about {self.work.done + steps_new:.3g} integration steps here "
-                f"({why}); reachable accuracy about {reachable:.2g} within the budget max_steps = "
-                f"{self.work.max_steps}; raise it with simulate(..., max_steps=...) or "
-                f"hyperrotor.options(max_steps=...), or ask for a larger rtol or a shorter run",
-                needed=self.work.done + steps_new, budget=self.work.max_steps, option="max_steps")
-        return CheckFailed(h_new, why)
-
-    def run_alone(self) -> None:
-        """The check without the run: the checked members advance on their own to every sample."""
-        problem, t, cs, nsub = self.problem, self.problem.t, self.cs, self.nsub
-        points = np.union1d(cs, np.concatenate([[0], self.marks]))
-        grid = step_times(t, cs, nsub, points)
-        hs = step_lengths(t, nsub)
-        h = hs[np.clip(np.searchsorted(cs, points[:-1], side="right") - 1, 0, nsub.size - 1)]
-        L, _ = advance_chunked(self.solver, problem, problem.L0[self.members], grid, np.diff(points), h,
-                               members=self.members, work=self.work, bar=self.bar)
-        pos = np.searchsorted(points, self.marks)
-        self.update(self.marks.size, L[:, pos])
