@@ -8,7 +8,8 @@ imports this one. The vocabulary (``form=``, keyword-only ``hbar``, ``t``,
 ``rtol``/``atol``, ``rng``) is documented in docs/conventions.md.
 """
 from . import (coherent, combine, equivalence, evolve as _evolve_module, gelfand_tsetlin, hamiltonian, harmonic,
-               normal_form, operator_products, operators, representation, sectors, spectrum as _spectrum_module,
+               normal_form, operator_products, operators, representation, sector_propagator, sectors,
+               spectrum as _spectrum_module,
                standard_reps, statistics, weights)
 from .coherent import *  # noqa: F401,F403
 from .combine import *  # noqa: F401,F403
@@ -23,6 +24,7 @@ from .operator_products import *  # noqa: F401,F403
 from .operators import *  # noqa: F401,F403
 from .propagators import *  # noqa: F401,F403
 from .representation import *  # noqa: F401,F403
+from .sector_propagator import *  # noqa: F401,F403
 from .sectors import *  # noqa: F401,F403
 from .spectrum import *  # noqa: F401,F403
 from .standard_reps import *  # noqa: F401,F403
@@ -42,6 +44,7 @@ __all__ = [
     *gelfand_tsetlin.__all__,
     *hamiltonian.__all__,
     *propagators.__all__,
+    *sector_propagator.__all__,
     *_evolve_module.__all__,
     *_spectrum_module.__all__,
     *coherent.__all__,

@@ -30,7 +30,7 @@ from .._parallel import progress_bar
 from ..classical.simulate import simulate
 from ..conventions import n_planes, planes
 from .coherent import coherent_state
-from .evolve import SectorPropagator, unit_state
+from .sector_propagator import SectorPropagator, unit_state
 from .gelfand_tsetlin import DEFAULT_MAX_DIM, gt_size, irrep
 from .hamiltonian import operator_matrix_and_dims, rotor_hamiltonian
 

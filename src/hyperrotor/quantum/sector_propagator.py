@@ -1,0 +1,650 @@
+r"""The reusable propagator of quantum rotors: :class:`SectorPropagator` (used by :func:`~.evolve.evolve`).
+
+Build once, apply to many states and time grids: :math:`e^{-i\hat H t/\hbar}\psi_0` block by
+block, with each block's engine, and the rent-or-buy rules below.
+
+Evolution in invariant blocks
+-----------------------------
+:math:`\hat H` is split once into invariant blocks :math:`\hat H_s = B_s^\dagger
+\hat H B_s` with orthonormal :math:`B_s` spanning the space, so that
+
+.. math:: e^{-i\hat H t/\hbar}\psi_0 = \sum_s B_s\, e^{-i\hat H_s t/\hbar}\, B_s^\dagger\psi_0 .
+
+The blocks are the *symmetry sectors* of the rotations by :math:`\pi`
+(:func:`~hyperrotor.quantum.symmetry_sectors`, ``complete=True``) when the
+representation is known (``rep=``, or recorded on ``H`` by
+:func:`~hyperrotor.quantum.rotor_hamiltonian`) and the connected components of the
+sparsity graph are larger than ``options["quantum_eigen_max_block"]`` (a generic
+inertia: :math:`2^{N-1}` real sectors of about dim / :math:`2^{N-1}` for so(N),
+N odd); otherwise the sparsity blocks themselves (an integrable body often splits
+into many small ones; blocks of dimension one are phases). Only blocks that the
+state populates are propagated, each with the method's engine: ``"eigen"`` (dense
+``eigh``, cached on the propagator), ``"krylov"`` (Lanczos, :mod:`._krylov`),
+``"expm_multiply"``. ``"auto"`` takes ``"eigen"`` up to ``eigen_max_block`` and
+Krylov above, and switches a large block to its (cached) eigendecomposition as
+soon as the Krylov work spent and estimated on it exceeds the cost of ``eigh``
+(the rule of a rent-or-buy problem: within a factor 2 of the better choice made
+in hindsight): many states or long times end in exact diagonalization, a single
+state over a short window stays in Krylov. The same rule one level up: when every
+sector would be diagonalized (sectors up to ``eigen_max_block``), a propagator that
+:func:`evolve` builds for a new ``H`` first propagates by Lanczos on the whole space
+without building any sector, and builds and diagonalizes the sectors only once the
+Krylov work spent and predicted exceeds their estimated price (a single evolution of a
+coherent state in so(5) (9, 3), dim 2401, costs ~25 ms instead of ~80 ms; the fourth
+call with the same ``H`` buys the sectors, and later calls cost ~10 ms). A
+:class:`SectorPropagator` built directly is meant for many states: it builds its sectors
+at once. The blocks are independent tasks (:func:`hyperrotor._parallel.map_rows`:
+threads, or a dask ``client=``).
+"""
+from __future__ import annotations
+
+import time as _time
+import warnings
+import weakref
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sps
+
+from .. import _lazy, _parallel, _pricing, _validate
+from .._options import options as _options
+from ._krylov import single_thread_blas
+from .hamiltonian import blocks_of, hermitian_matrix
+from .propagators import PROPAGATORS, Auto, Eigen, Krylov, propagator_class
+from .sectors import nonempty_blocks, restrict
+
+__all__ = ["SectorPropagator"]
+
+#: Below this populated dimension the blocks run in the calling thread (threads cost more than they give).
+_SERIAL_DIM = 4096
+#: Flop model of the rent-or-buy rule (measured on this machine: eigh ~ 10 n^3 for a real block, 4x complex).
+_EIGH_FLOPS = 10.0
+
+
+def unit_state(psi0: Any, dim: int, name: str = "psi0") -> np.ndarray:
+    r"""``psi0`` as a unit vector: scaled by :math:`\max_k|\psi_k|` *before* the norm is taken.
+
+    Scaling first keeps :math:`|\psi|` finite for amplitudes near the overflow
+    (``np.full(3, 1e200)``) and accurate near the underflow (``1e-200``), where the
+    plain 2-norm is ``inf`` or ``0``. A norm off 1 by more than
+    ``options["quantum_psi0_norm_rtol"]`` warns; the zero vector is refused.
+    """
+    vec = _validate.ket(name, psi0, dim, of="H")
+    scale = float(np.max(np.abs(vec))) if vec.size else 0.0
+    if scale == 0.0:
+        raise ValueError(f"{name} is the zero vector; it cannot be normalized")
+    e = int(np.frexp(scale)[1])  # scale by the power of two 2^-e: exact, and no overflow for subnormal scales
+    vec = np.ldexp(vec.real, -e) + 1j * np.ldexp(vec.imag, -e)
+    nrm = float(np.linalg.norm(vec))
+    norm = float(np.ldexp(nrm, e))  # only reported (may be inf for a huge vector)
+    if abs(norm - 1) > _options["quantum_psi0_norm_rtol"]:
+        warnings.warn(
+            f"{name} has norm {norm:.12g}; evolving the normalized state {name}/|{name}| "
+            f"(tolerance options['quantum_psi0_norm_rtol'] = {_options['quantum_psi0_norm_rtol']:.3g})",
+            UserWarning, stacklevel=3,
+        )
+    return vec / nrm
+
+
+def e_ops_list(e_ops: Any, dims) -> Any:
+    """e_ops as QuTiP accepts them, with scipy.sparse / ndarray operators wrapped as Qobj."""
+    qutip = _lazy.qutip
+
+    def conv(op):
+        if sps.issparse(op) or isinstance(op, np.ndarray):
+            return qutip.Qobj(op, dims=dims)
+        return op
+
+    if e_ops is None:
+        return []
+    if isinstance(e_ops, dict):
+        return {k: conv(op) for k, op in e_ops.items()}
+    if isinstance(e_ops, (list, tuple)):
+        return [conv(op) for op in e_ops]
+    return [conv(e_ops)]
+
+
+def _sector_bases(rep: Any) -> list | None:
+    """Orthonormal bases of the non-empty sectors of ``rep`` spanning the space, or None (no usable sectors).
+
+    Kept while ``rep`` lives (a weak reference): every propagator of the same
+    representation (several bodies, :func:`~hyperrotor.quantum.ehrenfest_time`) reuses them.
+    """
+    hit = _SECTOR_CACHE.get(id(rep))
+    if hit is not None and hit[0]() is rep:
+        return hit[1]
+    parts = nonempty_blocks(rep, True)
+    bases = None if parts is None else [B for B, _, _ in parts]
+    try:
+        ref = weakref.ref(rep, lambda _, key=id(rep): _SECTOR_CACHE.pop(key, None))
+    except TypeError:  # pragma: no cover - a representation without weak references
+        return bases
+    _SECTOR_CACHE[id(rep)] = (ref, bases)
+    return bases
+
+
+#: id(rep) -> (weak reference to rep, sector bases)
+_SECTOR_CACHE: dict[int, tuple[Any, list | None]] = {}
+
+#: The price of the sector route in the units of the whole-space Krylov work (:meth:`SectorPropagator._lanczos_work`),
+#: measured on this machine for so(5) (9, 3) (dim 2401, 16 real sectors of ~150, nnz(H) 143,817; CPU times at
+#: ~8.5e9 units/s): building the sectors 26-30 ms (per basis vector and sector), restricting H to them 14-16 ms
+#: (per nonzero of H), the real eigh of the blocks 23 ms (per n^3 of a block; 4x for complex blocks).
+_SECTOR_WORK = 6.0e3
+_RESTRICT_WORK = 9.0e2
+_SECTOR_EIGH_WORK = 3.6
+
+
+def _sector_price(M: sps.csr_matrix, rep: Any) -> float:
+    """Estimated work of the sector route of ``M``: build the sectors of ``rep`` (unless cached), restrict
+    ``M`` to them and diagonalize ``2^(N-1)`` blocks of ``dim / 2^(N-1)`` (real for a GT irrep)."""
+    n_sec = 2.0 ** (rep.N - 1)
+    hit = _SECTOR_CACHE.get(id(rep))
+    build = 0.0 if hit is not None and hit[0]() is rep else _SECTOR_WORK * rep.dim * n_sec
+    cplx = 1.0 if rep.highest_weight is not None else 4.0
+    return build + _RESTRICT_WORK * M.nnz + cplx * n_sec * _SECTOR_EIGH_WORK * (rep.dim / n_sec) ** 3
+
+
+#: The whole-space Krylov run of a renting propagator skips the re-orthogonalization when the dimension is at
+#: least this many times its largest Krylov space (so(5) (9, 3), dim 2401, spaces of 120: the same 66 products,
+#: 18 -> 14 ms; in dimensions 45-819 plain Lanczos needed up to 7x more products: :func:`krylov_propagator`).
+_PLAIN_LANCZOS = 16
+
+#: Sector bases restricted together in one product, up to this many columns (the product's off-diagonal
+#: blocks are round-off but cost memory: the 16 sectors of a dim-2401 irrep in one product, the ~3,300
+#: of the dim-52,976 irrep (20, 10) one at a time).
+_GROUP_COLUMNS = 4096
+
+
+def _sector_block_list(M: sps.csr_matrix, bases: list) -> list[sps.csr_matrix]:
+    """The sparse blocks ``B^H M B`` of the sector ``bases`` (each real when its imaginary part is round-off,
+    as in the real sectors), from one product with the side-by-side bases: the diagonal blocks of
+    ``P^H M P``, ``P = [B_1, B_2, ...]`` (the sectors are invariant: off the diagonal only round-off),
+    for groups of up to ``_GROUP_COLUMNS`` columns."""
+    if not all(sps.issparse(B) for B in bases):
+        blocks = [restrict(M, B, dense=False) for B in bases]
+    else:
+        blocks, i = [], 0
+        while i < len(bases):  # groups of at most _GROUP_COLUMNS columns (or one sector): bounded memory
+            j, cols = i + 1, bases[i].shape[1]
+            while j < len(bases) and cols + bases[j].shape[1] <= _GROUP_COLUMNS:
+                cols += bases[j].shape[1]
+                j += 1
+            P = sps.hstack(bases[i:j], format="csc")
+            K = (sps.csr_matrix(P.conj().T) @ (M @ P)).tocsr()
+            K = ((K + K.conj().T) * 0.5).tocsr()  # exactly Hermitian
+            ends = np.cumsum([0] + [B.shape[1] for B in bases[i:j]])
+            blocks += [K[a:b, a:b] for a, b in zip(ends[:-1], ends[1:])]
+            i = j
+    out = []
+    for blk in blocks:
+        blk = sps.csr_matrix(blk)
+        if blk.dtype.kind == "c" and blk.nnz and np.abs(blk.data.imag).max() <= 1e-13 * np.abs(blk.data).max():
+            blk = sps.csr_matrix(blk.real.copy())  # real sectors: the imaginary part is round-off (copy: contiguous data)
+        blk.eliminate_zeros()
+        blk.sort_indices()  # a slice of the product comes unsorted
+        out.append(blk)
+    return out
+
+
+def _times(A: np.ndarray, Z: np.ndarray) -> np.ndarray:
+    """``A @ Z`` for complex ``Z``; a real ``A`` multiplies the (Re, Im) pairs in real arithmetic (4x fewer flops)."""
+    if A.dtype.kind == "f" and Z.dtype == np.complex128:
+        Z = np.ascontiguousarray(Z)
+        shape = Z.shape
+        out = A @ Z.view(np.float64).reshape(shape[0], -1)
+        return out.view(np.complex128).reshape((A.shape[0],) + shape[1:])
+    return A @ Z
+
+
+class _Block:
+    """One invariant block: its coordinates in the full space, its matrix (lazy), its caches."""
+
+    def __init__(self, owner: "SectorPropagator", basis: np.ndarray | Any, engine: Any, pieces: list | None = None):
+        self.owner = owner
+        self.basis = basis  # int index array (a sparsity block) or a (dim, n) sector basis
+        self.indexed = isinstance(basis, np.ndarray) and basis.ndim == 1
+        self.engine = engine  # a Propagator instance; None: a diagonal part (all blocks of size 1)
+        self.pieces = pieces  # local index arrays of the sparsity blocks merged into one Krylov problem
+        self.n = int(basis.shape[0] if self.indexed else basis.shape[1])
+        self._matrix = None
+        self._adjoint = None
+        self.diag = owner.diagonal[basis] if engine is None else None
+        self.eig = None
+        self.work = 0.0  # Krylov flops spent on this block (rent-or-buy rule)
+
+    def __getstate__(self):  # pickled to dask workers: without the owner's caches of other blocks
+        state = dict(self.__dict__)
+        state["owner"] = None
+        state["_matrix"] = self.matrix
+        return state
+
+    @property
+    def matrix(self) -> sps.csr_matrix:
+        if self._matrix is None:
+            M = self.owner.matrix
+            if self.indexed:
+                self._matrix = M[self.basis][:, self.basis].tocsr()
+            else:
+                self.owner._restrict_sectors()
+        return self._matrix
+
+    def coords(self, vec: np.ndarray) -> np.ndarray:
+        if self.indexed:
+            return vec[self.basis]
+        if self._adjoint is None:
+            self._adjoint = sps.csr_matrix(self.basis.conj().T) if sps.issparse(self.basis) else self.basis.conj().T
+        out = np.asarray(self._adjoint @ vec)
+        return out.reshape(-1) if vec.ndim == 1 else out
+
+    def embed(self, out: np.ndarray, C: np.ndarray) -> None:
+        """Add the block's states ``C`` (n, nt) to ``out`` (dim, nt)."""
+        if self.indexed:
+            out[self.basis] = C
+        else:
+            out += self.basis @ C
+
+    # ---- propagation ------------------------------------------------------
+    def _krylov_flops(self, span: float, hbar: float) -> float:
+        """Estimated flops of Lanczos over ``span``: matvecs ~ m (1 + width span / (m hbar)), each nnz + m n."""
+        A = self.matrix
+        d = A.diagonal().real
+        r = np.asarray(abs(A).sum(axis=1)).ravel() - np.abs(d)
+        width = float(np.max(d + r) - np.min(d - r)) if self.n else 0.0
+        m = self._krylov_dim()
+        matvecs = m * (1.0 + width * span / (m * abs(hbar)))
+        return matvecs * (8.0 * A.nnz + 16.0 * m * self.n)
+
+    def _krylov_dim(self) -> int:
+        m = getattr(self.engine, "opts", {}).get("krylov_dim")
+        return min(self.n, int(_options["quantum_krylov_dim"] if m is None else m))
+
+    def _eigh_flops(self, nt: int) -> float:
+        cplx = 4.0 if self.matrix.dtype.kind == "c" else 1.0
+        return cplx * _EIGH_FLOPS * self.n**3 + 8.0 * nt * self.n**2
+
+    def diagonalize(self, stats: dict) -> None:
+        E, V = np.linalg.eigh(self.matrix.toarray())  # LAPACK ?syevd: real for the real sectors
+        stats["n_eigh"] = stats.get("n_eigh", 0) + 1
+        self.eig = (E, V)
+
+    def propagate(self, c0: np.ndarray, t: np.ndarray, hbar: float, adaptive: bool) -> tuple[np.ndarray, dict, str]:
+        """States of the block at the times ``t`` (``t[0]`` the time of ``c0``): ``(C (n, nt), stats, method)``."""
+        stats: dict = {}
+        tau = t - t[0]
+        if self.engine is None:
+            stats["populated_dim"] = int(np.count_nonzero(np.abs(c0) > 1e-15 * float(np.abs(c0).max())))
+            return np.exp((-1j / hbar) * np.outer(self.diag, tau)) * c0[:, None], stats, "diagonal"
+        if self.eig is None and isinstance(self.engine, Eigen):
+            _pricing.check("dense_diagonalization", dim=self.n, complex=self.matrix.dtype.kind == "c")
+            self.diagonalize(stats)
+        elif self.eig is None and adaptive and self.work + self._krylov_flops(float(tau[-1]), hbar) > self._eigh_flops(t.size):
+            try:  # buy only what the budgets allow (quantum_max_dense_dim, max_memory_bytes, max_seconds)
+                _pricing.check("dense_diagonalization", dim=self.n, complex=self.matrix.dtype.kind == "c")
+                self.diagonalize(stats)
+            except _pricing.BudgetError:
+                pass
+        if self.eig is not None:
+            E, V = self.eig
+            c = _times(V.conj().T, c0)
+            return _times(V, np.exp((-1j / hbar) * np.outer(E, tau)) * c[:, None]), stats, "eigen"
+        sub, local = self.matrix, None
+        if self.pieces is not None and len(self.pieces) > 1:  # merged sparsity blocks: only the populated ones
+            scale = float(np.abs(c0).max())
+            keep = [p for p in self.pieces if np.any(np.abs(c0[p]) > 1e-15 * scale)]
+            if len(keep) < len(self.pieces):
+                local = np.sort(np.concatenate(keep))
+                sub = sub[local][:, local].tocsr()
+        gen = self.engine.propagate(sub, c0 if local is None else c0[local], t, hbar, stats)
+        C = np.empty((sub.shape[0], t.size), dtype=complex)
+        for k in range(t.size):
+            C[:, k] = next(gen)
+        if isinstance(self.engine, Krylov):
+            m = self._krylov_dim()
+            self.work += stats.get("n_matvec", 0) * (8.0 * sub.nnz + 16.0 * m * sub.shape[0])
+        stats["populated_dim"] = sub.shape[0]
+        if local is not None:
+            full = np.zeros((self.n, t.size), dtype=complex)
+            full[local] = C
+            C = full
+        return C, stats, self.engine.name
+
+
+def _propagate_blocks(idx: np.ndarray, blocks: list, coords: list, t: np.ndarray, hbar: float,
+                      adaptive: bool) -> np.ndarray:
+    """The :func:`~hyperrotor._parallel.map_rows` task: propagate the blocks ``idx`` (an object array of results)."""
+    out = np.empty(len(idx), dtype=object)
+    for k, i in enumerate(idx):
+        out[k] = blocks[i].propagate(coords[i], t, hbar, adaptive)
+    return out
+
+
+class SectorPropagator:
+    r"""A reusable propagator :math:`e^{-i\hat H t/\hbar}` in the invariant blocks of ``H`` (module docstring).
+
+    Built once (the blocks, their matrices, and where it pays their
+    eigendecompositions are cached), applied to many states and time grids.
+
+    Parameters
+    ----------
+    H : qutip.Qobj, scipy.sparse matrix or ndarray
+        Hermitian, time-independent Hamiltonian (e.g. :func:`rotor_hamiltonian`).
+    rep : Representation, keyword-only, optional
+        The representation ``H`` was built from (default: the one
+        :func:`rotor_hamiltonian` recorded on ``H``), for the symmetry sectors.
+    hbar : float, keyword-only, default 1
+    method : str, keyword-only, default "auto"
+        A native method of :data:`PROPAGATORS`: ``"auto"``, ``"eigen"``,
+        ``"krylov"``, ``"expm_multiply"`` (or a registered native subclass).
+    options : dict, keyword-only, optional
+        The keys of :func:`evolve_options` ``(method)`` (``blocks``, ``block_atol``,
+        Krylov ``atol``, ``krylov_dim``, ...; the result keys are used by :meth:`evolve`).
+    workers, client : keyword-only
+        Where the blocks run (:func:`hyperrotor._parallel.map_rows`): ``workers``
+        threads (default: all cores when the populated dimension exceeds 4096,
+        else 1) or the workers of a dask ``client`` (each task receives its
+        blocks' matrices; caches built there stay there).
+    progress : bool or None, keyword-only
+        A bar counting finished blocks (``None``: on a terminal, for runs over a second).
+
+    Attributes
+    ----------
+    dim : int
+    stats : dict
+        ``"blocks"`` (sparsity blocks), ``"sectors"`` (when the sectors are used),
+        ``"parts"`` (independent problems), and the counters of the last run.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from hyperrotor.quantum import irrep, rotor_hamiltonian, SectorPropagator
+    >>> H = rotor_hamiltonian(irrep(5, (2, 1)), np.linspace(1, 2, 10))
+    >>> U = SectorPropagator(H)
+    >>> psi = np.ones(H.shape[0]) / np.sqrt(H.shape[0])
+    >>> U.states(psi, [0.0, 0.5, 1.0]).shape
+    (3, 35)
+    """
+
+    def __init__(self, H: Any, *, rep: Any = None, hbar: float = 1, method: str = "auto",
+                 options: dict | None = None, workers: int | None = None, client: Any = None,
+                 progress: bool | None = None) -> None:
+        self._setup(H, rep, hbar, method, options, workers, client, progress, rent=False)
+
+    @classmethod
+    def for_evolve(cls, H: Any, *, rep: Any = None, hbar: float = 1, method: str = "auto",
+                   options: dict | None = None, workers: int | None = None, client: Any = None,
+                   progress: bool | None = None) -> "SectorPropagator":
+        """The propagator :func:`~.evolve.evolve` builds (the arguments of the constructor): it may rent
+        (Lanczos on the whole space) before it builds the sectors."""
+        self = cls.__new__(cls)
+        self._setup(H, rep, hbar, method, options, workers, client, progress, rent=True)
+        return self
+
+    def _setup(self, H: Any, rep: Any, hbar: Any, method: str, options: dict | None, workers: Any, client: Any,
+               progress: Any, *, rent: bool) -> None:
+        cls = propagator_class(method)
+        if not cls.native:
+            raise ValueError(f"method {cls.name!r} is QuTiP's solver, not a native propagator; use evolve(..., "
+                             f"method={cls.name!r}) or one of {', '.join(repr(k) for k, c in PROPAGATORS.items() if c.native)}")
+        self.hbar = _validate.hbar(hbar)
+        self.matrix, self.dims = hermitian_matrix(H)
+        self.dim = int(self.matrix.shape[0])
+        rep = rep if rep is not None else getattr(H, "_hyperrotor_rep", None)
+        if rep is not None:
+            rep = _validate.representation("rep", rep, dim=self.dim)
+        self.method = cls.name
+        self.options = cls.resolve_options(options)
+        if self.options["blocks"] not in ("auto", True, False):
+            raise ValueError(f"option 'blocks' must be 'auto', True or False, got {_validate.fmt(self.options['blocks'])}")
+        self.workers = None if workers is None else _validate.integer("workers", workers, minimum=1)
+        self.client = client
+        self.progress = _validate.flag("progress", progress, allow_none=True)
+        self.diagonal = self.matrix.diagonal().real
+        self.stats: dict[str, Any] = {"method": cls.name}
+        self._parts: list[_Block] | None = None
+        self._rent: dict | None = None  # whole-space Krylov before the sectors are bought (evolve, "auto")
+        self._split(cls, rep, rent)
+
+    def __setstate__(self, state: dict) -> None:
+        """Unpickled (e.g. back from a dask worker): the blocks point to this propagator again."""
+        self.__dict__.update(state)
+        for b in self._parts or ():
+            b.owner = self
+
+    @property
+    def _blocks(self) -> list[_Block]:
+        """The invariant blocks; the sectors of a renting propagator are built (bought) at the first need."""
+        if self._parts is None:
+            cls, rep, blocks = self._rent.pop("deferred")
+            self._rent = None
+            self._parts = self._block_list(cls, rep, blocks)
+        return self._parts
+
+    def _restrict_sectors(self) -> None:
+        """Give every sector block its matrix, all from one product (:func:`_sector_block_list`)."""
+        todo = [b for b in self._blocks if not b.indexed and b._matrix is None]
+        for b, blk in zip(todo, _sector_block_list(self.matrix, [b.basis for b in todo])):
+            b._matrix = blk
+
+    def _split(self, cls, rep, rent: bool) -> None:
+        opts = self.options
+        use = opts["blocks"]
+        blocks = blocks_of(self.matrix, atol=opts["block_atol"]) if use else [np.arange(self.dim)]
+        self.stats["blocks"] = len(blocks)
+        big = max((len(b) for b in blocks if len(b) > 1), default=0)
+        sectors = rep is not None and use and big > int(_options["quantum_eigen_max_block"])
+        if (rent and sectors and cls is Auto and self.client is None and self.progress is not True
+                and rep.dim <= _options["quantum_eigen_max_block"] * 2 ** (rep.N - 1)):
+            # every sector would be diagonalized: for one state a Krylov run on the whole space may cost less
+            self._rent = {"deferred": (cls, rep, blocks), "spent": 0.0, "rate": None, "rep": rep}
+            return
+        self._parts = self._block_list(cls, rep if sectors else None, blocks)
+
+    def _block_list(self, cls, rep, blocks) -> list[_Block]:
+        """The blocks: the sectors of ``rep`` (when given and usable), else the sparsity ``blocks``."""
+        engine = cls(**{k: self.options[k] for k in cls.options})
+        multi = [b for b in blocks if len(b) > 1]
+        bases = _sector_bases(rep) if rep is not None else None
+        out: list[_Block] = []
+        if bases is not None:  # generic inertia: the sectors split the sparsity blocks ~2^(N-1) ways
+            self.stats["sectors"] = len(bases)
+            for B in bases:
+                for _, eng in engine.plan([np.arange(B.shape[1])]):
+                    out.append(_Block(self, B, eng))
+            return out
+        singles = np.array([b[0] for b in blocks if len(b) == 1], dtype=int)
+        if singles.size:
+            out.append(_Block(self, singles, None))
+        for idx, eng in engine.plan(multi):
+            pieces = None
+            if eng.union_blocks:  # local positions of the merged sparsity blocks
+                pos = np.full(self.dim, -1)
+                pos[idx] = np.arange(idx.size)
+                pieces = [pos[b] for b in multi if pos[b[0]] >= 0]
+            out.append(_Block(self, idx, eng, pieces))
+        return out
+
+    def _run(self, vec: np.ndarray, t: np.ndarray, hbar: float) -> np.ndarray:
+        """``(dim, nt)`` states ``exp(-i H (t - t[0]) / hbar) vec`` (``hbar < 0`` runs backwards).
+
+        Rent or buy (a propagator of :func:`evolve`, method ``"auto"``, whose sectors would all be
+        diagonalized): while the Krylov work on the whole space, spent and predicted, stays below the
+        estimated price of the sectors (build, blocks, ``eigh``: :func:`_sector_price`, in the units of
+        :meth:`_lanczos_work`), the states come
+        from Lanczos on the whole matrix and no sector is built; the prediction of a call is the work
+        per unit time measured so far (before any: one Krylov space). The Krylov space may grow to twice
+        ``options["quantum_krylov_dim"]`` unless ``krylov_dim`` is given: these problems are small, and one
+        space that serves the whole grid saves the restarts. Once renting would cost more,
+        the sectors are built and diagonalized, also in the middle of a grid (the rest of it starts
+        from the state reached).
+        """
+        rent = self._rent
+        # a client or a progress bar asked for on a later call: buy (the blocks go to the workers / the bar)
+        if rent is not None and self._parts is None and self.client is None and self.progress is not True:
+            price = _sector_price(self.matrix, rent["rep"])
+            span = abs(float(t[-1] - t[0]))
+            kopts = {key: self.options[key] for key in Krylov.options}
+            if kopts["krylov_dim"] is None:  # a small problem: one space for the whole grid saves the restarts
+                kopts["krylov_dim"] = 2 * int(_options["quantum_krylov_dim"])
+            engine = Krylov(**kopts)
+            m = min(self.dim, engine.settings()[1])
+            guess = rent["rate"] * span if rent["rate"] is not None else self._lanczos_work(m, 1)
+            if rent["spent"] + guess <= price:
+                C, k, stats = self._rent_run(engine, vec, t, hbar, price)
+                if k == t.size - 1:
+                    self.stats.update(stats)
+                    return C
+                rest = self._run_blocks(C[:, k], t[k:], hbar)  # bought: the sectors from t[k] on
+                for key in ("n_matvec", "n_krylov"):
+                    self.stats[key] = self.stats.get(key, 0) + stats[key]
+                self.stats["block_methods"] = sorted(set(self.stats["block_methods"]) | {"krylov"})
+                return np.concatenate([C[:, :k], rest], axis=1)
+        return self._run_blocks(vec, t, hbar)
+
+    def _lanczos_work(self, n_matvec: int, n_krylov: int) -> float:
+        """Work of ``n_matvec`` Lanczos steps on the whole matrix in ``n_krylov`` spaces: a product (8 nnz)
+        and a re-orthogonalization against the space built so far (8 dim m on average) per step (counted
+        for plain Lanczos too: the rent is overestimated, never under)."""
+        return n_matvec * (8.0 * self.matrix.nnz + 8.0 * self.dim * n_matvec / max(1, n_krylov))
+
+    def _rent_run(self, engine: Krylov, vec: np.ndarray, t: np.ndarray, hbar: float,
+                  price: float) -> tuple[np.ndarray, int, dict]:
+        """Lanczos on the whole matrix over ``t`` until renting is predicted to cost more than ``price``
+        (asked before every restart): ``(states (dim, k + 1), k, stats)`` for the times ``t[: k + 1]``."""
+        t0 = _time.perf_counter()
+        rent = self._rent
+        stats: dict = {"n_matvec": 0, "n_krylov": 0}
+        span = abs(float(t[-1] - t[0]))
+
+        def stop(t_cur: float, n_matvec: int) -> bool:  # the rest of the grid is cheaper in the sectors
+            work = self._lanczos_work(n_matvec, stats["n_krylov"])
+            return rent["spent"] + work * span / abs(float(t_cur - t[0])) > price
+
+        out = np.empty((self.dim, t.size), dtype=complex, order="F")  # one contiguous column per time
+        # plain Lanczos when the spaces are small beside the dimension (no converged Ritz values to repeat)
+        plain = self.dim >= _PLAIN_LANCZOS * min(self.dim, engine.settings()[1])
+        k = -1
+        with single_thread_blas():
+            for k, state in enumerate(engine.propagate(self.matrix, vec, t, hbar, stats, stop=stop,
+                                                       reorthogonalize=not plain)):
+                out[:, k] = state
+        work = self._lanczos_work(stats["n_matvec"], stats["n_krylov"])
+        rent["spent"] += work
+        if k > 0:
+            rent["rate"] = work / abs(float(t[k] - t[0]))
+        stats.update({"populated_blocks": 1, "populated_dim": self.dim, "n_eigh": 0, "block_methods": ["krylov"],
+                      "run time": _time.perf_counter() - t0})
+        return out[:, : k + 1], k, stats
+
+    def _run_blocks(self, vec: np.ndarray, t: np.ndarray, hbar: float) -> np.ndarray:
+        """:meth:`_run` in the blocks (the sectors, or the sparsity blocks)."""
+        t0 = _time.perf_counter()
+        scale = float(np.abs(vec).max()) if vec.size else 0.0
+        coords = [b.coords(vec) for b in self._blocks]
+        active = [i for i, c in enumerate(coords) if c.size and np.any(np.abs(c) > 1e-15 * scale)]
+        populated = sum(self._blocks[i].n for i in active)
+        workers = self.workers if self.workers is not None else (1 if populated <= _SERIAL_DIM else None)
+        results = []
+        if active:
+            with single_thread_blas():  # process-wide: the worker threads run on one BLAS thread each
+                results = _parallel.map_rows(
+                    _propagate_blocks, np.array(active, dtype=int),
+                    args=(self._blocks, coords, t, hbar, self.method == "auto"),
+                    client=self.client, workers=workers, progress=self.progress, desc="evolve: blocks",
+                )
+        out = np.zeros((self.dim, t.size), dtype=complex)
+        stats = {"populated_blocks": len(active), "populated_dim": 0, "n_matvec": 0, "n_krylov": 0, "n_eigh": 0}
+        used = set()
+        for i, (C, st, how) in zip(active, results):
+            self._blocks[i].embed(out, C)
+            used.add(how)
+            stats["populated_dim"] += st.pop("populated_dim", self._blocks[i].n)
+            for k, v in st.items():
+                stats[k] = stats.get(k, 0) + v
+        stats["block_methods"] = sorted(used) if used else ["diagonal"]
+        stats["run time"] = _time.perf_counter() - t0
+        self.stats.update(stats)
+        return out
+
+    def states(self, psi: Any, t: Any) -> np.ndarray:
+        r"""The states :math:`e^{-i\hat H (t_k - t_0)/\hbar}\psi` at the times ``t`` (``t[0]``: the time of ``psi``).
+
+        ``psi`` is used as given (linear map, not normalized; any finite vector).
+        Returns an ndarray ``(len(t), dim)``, complex.
+        """
+        vec = _validate.ket("psi", psi, self.dim, of="H")
+        t = _validate.time_grid(t, allow_decreasing=False)
+        return self._run(vec, t, self.hbar).T
+
+    def apply(self, X: Any, tau: float) -> np.ndarray:
+        r""":math:`e^{-i\hat H\tau/\hbar} X` for one time ``tau`` (either sign) and a vector or a matrix of columns.
+
+        Every block that ``X`` populates is diagonalized once (dense ``eigh``, cached on
+        the propagator; priced against ``hr.options``) and the columns are propagated
+        in its eigenbasis: :math:`O(\sum_s n_s^2)` per column and time, the cheap
+        road for many states and many times (:func:`~hyperrotor.quantum.otoc`).
+
+        Parameters
+        ----------
+        X : array_like, shape ``(dim,)`` or ``(dim, k)``
+        tau : float
+
+        Returns
+        -------
+        ndarray of the shape of ``X``, complex.
+        """
+        X = np.asarray(X)
+        if X.ndim not in (1, 2) or X.shape[0] != self.dim or X.dtype.kind not in "biufc":
+            raise ValueError(f"X must be a numeric vector of length {self.dim} or a ({self.dim}, k) matrix, got "
+                             f"{_validate.fmt(X)} of shape {X.shape}")
+        tau = _validate.real("tau", tau)
+        X = X.astype(complex)
+        out = np.zeros(X.shape, dtype=complex)
+        stats: dict = {}
+        with single_thread_blas():  # small products: threads only oversubscribe a loaded machine
+            for b in self._blocks:
+                C = b.coords(X)
+                if not np.any(C):
+                    continue
+                if b.engine is None:
+                    phase = np.exp((-1j * tau / self.hbar) * b.diag)
+                    C = phase[:, None] * C if C.ndim == 2 else phase * C
+                else:
+                    if b.eig is None:
+                        _pricing.check("dense_diagonalization", dim=b.n, complex=b.matrix.dtype.kind == "c")
+                        b.diagonalize(stats)
+                    E, V = b.eig
+                    phase = np.exp((-1j * tau / self.hbar) * E)
+                    D = V.conj().T @ C
+                    C = V @ (phase[:, None] * D if D.ndim == 2 else phase * D)
+                b.embed(out, C)
+        return out
+
+    def evolve(self, psi0: Any, t: Any, *, e_ops: Any = None, store_states: bool | None = None,
+               store_final_state: bool = True):
+        """:func:`evolve` with this propagator: ``psi0`` normalized, a ``qutip.solver.Result``.
+
+        Without stored states (``e_ops`` given, ``store_states`` not True) the grid is
+        propagated in chunks of at most ~64 MB of states, each chunk starting from the
+        last state of the previous one.
+        """
+        qutip = _lazy.qutip
+        vec = unit_state(psi0, self.dim)
+        t = _validate.time_grid(t, allow_decreasing=False)
+        e_ops = e_ops_list(e_ops, self.dims)
+        store = bool(store_states) if store_states is not None else not e_ops
+        _pricing.check("evolve", dim=self.dim, n_times=t.size, states=store)
+        ropts = {"store_states": store_states, "store_final_state": store_final_state, "normalize_output": False}
+        result = qutip.solver.Result(e_ops, ropts, solver=f"hyperrotor.evolve[{self.method}]", stats=dict(self.stats))
+        ket_dims = [self.dims[0], [1]]
+        chunk = t.size if store else max(2, 2**22 // max(1, self.dim))
+        start = 0
+        while start < t.size:
+            stop = min(t.size, start + chunk)
+            first = max(0, start - 1)  # the chunk starts at the time of vec (the previous chunk's last state)
+            out = self._run(vec, t[first:stop], self.hbar)
+            for k in range(start - first, out.shape[1]):
+                result.add(float(t[first + k]), qutip.Qobj(out[:, k : k + 1].copy(), dims=ket_dims, copy=False))
+            vec, start = out[:, -1].copy(), stop
+        result.stats.update(self.stats)
+        return result
