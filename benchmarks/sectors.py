@@ -120,6 +120,14 @@ def compare_classes(repeats: int) -> list[dict]:
 
 
 def scale(hw: tuple, workers: int) -> dict:
+    import hyperrotor as hr
+
+    # the stretch target's own limits (#24: < 30 min, < 6 GB) as the library's budgets (default 600 s, 4 GiB)
+    with hr.options(max_seconds=1800.0, max_memory_bytes=6 * 2**30):
+        return _scale(hw, workers)
+
+
+def _scale(hw: tuple, workers: int) -> dict:
     t0 = time.perf_counter()
     rep = irrep(5, hw, max_dim=10**6)
     t1 = time.perf_counter()
