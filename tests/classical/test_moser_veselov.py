@@ -138,15 +138,17 @@ def test_jitted_and_python_kernels_agree(rng):
     pi = np.array([i - 1 for i in (1, 1, 1, 1, 2, 2, 2, 3, 3, 4)])
     pj = np.array([j - 1 for j in (2, 3, 4, 5, 3, 4, 5, 4, 5, 5)])
     outs = []
-    for fn in (moser_veselov.mv_run, moser_veselov.mv_run.py_func):
+    for fn in (moser_veselov.mv_run, moser_veselov.mv_run_serial, moser_veselov.mv_run.py_func):
         outL = np.zeros((1, 3, 10))
         outT = np.zeros((1, 3, 5, 5))
         status = np.zeros(1, dtype=np.int64)
         fn(L0, J, m, pi, pj, np.diff(t) / nsub, nsub, np.eye(5)[None], True, outL, outT, status, np.zeros((1, 11)))
         assert status[0] == 0
         outs.append((outL, outT))
-    np.testing.assert_allclose(outs[0][0], outs[1][0], rtol=0, atol=1e-13 * np.abs(L0).max())
-    np.testing.assert_allclose(outs[0][1], outs[1][1], rtol=0, atol=1e-13)
+    np.testing.assert_array_equal(outs[0][0], outs[1][0])  # threaded and serial kernels: the same arithmetic
+    np.testing.assert_array_equal(outs[0][1], outs[1][1])
+    np.testing.assert_allclose(outs[0][0], outs[2][0], rtol=0, atol=1e-13 * np.abs(L0).max())
+    np.testing.assert_allclose(outs[0][1], outs[2][1], rtol=0, atol=1e-13)
 
 
 def test_bad_input():

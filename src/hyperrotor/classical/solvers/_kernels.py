@@ -363,6 +363,10 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                 carry[b0 + j, 1, a] = Ll[a, j]
 
 
+#: ensembles at least this large use the threaded kernels (a thread launch costs ~ms on a busy machine, and on
+#: an oversubscribed one a threaded call for one body can stall far longer)
+PARALLEL_MIN_BODIES = 32
+
 split_run_ensemble = jit(parallel=True)(_split_run_ensemble)
 split_run = jit(parallel=True)(_split_run)
 split_run_serial = jit(_split_run)

@@ -48,7 +48,7 @@ import numpy as np
 
 from hyperrotor._jit import jit, prange
 
-from ._kernels import rotation_tables, start_attitude, store_attitude
+from ._kernels import PARALLEL_MIN_BODIES, rotation_tables, start_attitude, store_attitude
 from .base import Problem, step_lengths
 from .driver import FixedStepSolver
 
@@ -198,6 +198,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
 
 
 mv_run = jit(parallel=True)(_mv_run)
+mv_run_serial = jit(_mv_run)  # one body or a few: no thread launch
 
 
 def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, hstep: np.ndarray, nsub: np.ndarray,
@@ -214,7 +215,8 @@ def run(L0: np.ndarray, J: np.ndarray, moments: np.ndarray, hstep: np.ndarray, n
     status = np.zeros(B, dtype=np.int64)
     pred = np.zeros((B, n + 1)) if pred is None else pred.copy()
     T0c = np.ascontiguousarray(T0) if with_attitude else np.zeros((1, N, N))
-    mv_run(np.ascontiguousarray(L0, dtype=float), np.ascontiguousarray(J, dtype=float),
+    kernel = mv_run if B >= PARALLEL_MIN_BODIES else mv_run_serial
+    kernel(np.ascontiguousarray(L0, dtype=float), np.ascontiguousarray(J, dtype=float),
            np.ascontiguousarray(moments, dtype=float), pair_i, pair_j, np.ascontiguousarray(hstep, dtype=float), nsub,
            T0c, bool(with_attitude), outL, outT, status, pred)
     bad = np.flatnonzero(status)

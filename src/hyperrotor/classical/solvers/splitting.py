@@ -66,8 +66,6 @@ from .driver import FixedStepSolver
 __all__ = ["Splitting", "Splitting2", "Splitting4", "Splitting6", "Splitting8", "splitting_coefficients",
            "casimir_shift"]
 
-#: ensembles at least this large use the threaded kernel (thread launch costs ~ms on a busy machine)
-_PARALLEL_MIN_BODIES = 32
 _ENSEMBLE_CHUNK = 128  # bodies per chunk of the ensemble kernel (working set fits in L1/L2)
 #: ``compensated=None``: runs of more elementary flows than this (per trajectory) keep L in
 #: compensated storage (plain round-off of the Casimirs random-walks as ~0.1-0.4 eps sqrt(flows)) ...
@@ -287,13 +285,13 @@ def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, c
     rates_b = np.ascontiguousarray(rates_b)
     torque_b = np.ascontiguousarray(torque_b)
     hstep = np.ascontiguousarray(hstep, dtype=np.float64)
-    if B >= _PARALLEL_MIN_BODIES and not with_att:
+    if B >= _kernels.PARALLEL_MIN_BODIES and not with_att:
         chunk = max(1, min(_ENSEMBLE_CHUNK, -(-B // 8)))
         _kernels.split_run_ensemble(L0, rates_b, word[0], word[1], *tables[:3], hstep, nsub, torque_b, chunk,
                                     compensated, outL, carry)
         return outL, None, carry
     outT = np.empty((B, K, N, N)) if with_att else np.empty((B, 1, N, N))
-    kernel = _kernels.split_run if B >= _PARALLEL_MIN_BODIES else _kernels.split_run_serial
+    kernel = _kernels.split_run if B >= _kernels.PARALLEL_MIN_BODIES else _kernels.split_run_serial
     kernel(L0, rates_b, word[0], word[1], *tables, hstep, nsub, torque_b, np.ascontiguousarray(T0),
            bool(with_att), compensated, outL, outT, carry)
     return outL, (outT if with_att else None), carry
