@@ -36,3 +36,13 @@ def _no_wall_time_warnings():
 
     with hyperrotor.options(slow_run_warning_seconds=1e9):
         yield
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _matplotlib_font_cache():
+    """Build matplotlib's font cache once, before any test: in a fresh environment the first process to
+    use matplotlib builds it and says so on stderr, and the CLI tests run in subprocesses that must
+    print nothing there (a CI job whose cache was missing or stale failed on 'findfont: ... Falling back')."""
+    import matplotlib.font_manager
+
+    matplotlib.font_manager.findfont("DejaVu Sans", rebuild_if_missing=True)
