@@ -445,8 +445,7 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
         h = control.first_step(solver, problem, work)
     nsub = nsub_for(problem.t, h)
     run = float(nsub.sum()) * problem.B
-    if hasattr(solver, "set_accuracy"):  # the kernel variant the run will use (its cost per flow)
-        solver.set_accuracy(problem, control.rtol, int(nsub.sum()))
+    solver.set_accuracy(problem, control.rtol, int(nsub.sum()))  # the kernel variant the run will use (its cost)
     check = control.checker(solver, problem, nsub, work)
     total = work.done + run + (check.planned_steps if check is not None else 0)
     seconds = total * solver.flows_per_step(problem) * seconds_per_flow(cost_key(solver, problem))

@@ -86,6 +86,11 @@ class FixedStepSolver(Solver):
         """Rough cost unit per step and member (used for chunk sizes and budgets)."""
         return 1
 
+    def set_accuracy(self, problem: Problem, rtol: float | None, steps: int, *, roundoff_amplified: bool = False
+                     ) -> None:
+        """Choose the arithmetic once the step is known (nothing by default; the splittings choose their
+        compensated storage)."""
+
     def can_compensate(self) -> bool:
         """Whether the step control may switch the run to compensated (TwoSum) storage of ``L``."""
         return False
@@ -148,9 +153,8 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
         while True:
             nsub = nsub_for(t, h) if K > 1 else np.zeros(0, dtype=np.int64)
             steps = int(nsub.sum())
-            if hasattr(solver, "set_accuracy"):
-                solver.set_accuracy(problem, control.rtol, steps,
-                                    roundoff_amplified=getattr(control, "roundoff_amplified", False))
+            solver.set_accuracy(problem, control.rtol, steps,
+                                roundoff_amplified=getattr(control, "roundoff_amplified", False))
             check = control.checker(solver, problem, nsub, work) if B > 0 and steps > 0 else None
             planned = steps * B + (check.planned_steps if check is not None else 0)
             work.refuse(planned, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member"

@@ -66,9 +66,7 @@ def member_setup(solver, problem: Problem, control: Any, max_steps: int):
     steps = int(nsub_for(problem.t, h).sum()) if problem.t.size > 1 else 0
     work.refuse(steps * problem.B, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
     control.announce(solver, problem, h)
-    if hasattr(solver, "set_accuracy"):
-        solver.set_accuracy(problem, control.rtol, steps,
-                            roundoff_amplified=getattr(control, "roundoff_amplified", False))
+    solver.set_accuracy(problem, control.rtol, steps, roundoff_amplified=getattr(control, "roundoff_amplified", False))
     member_solver = copy.copy(solver)
     member_solver.options = dict(solver.options)
     if "compensated" in member_solver.options:

@@ -362,8 +362,8 @@ class ErrorTarget:
         t = problem.t
         while True:
             nsub = nsub_for(t, h)
-            if hasattr(solver, "set_accuracy"):  # the arithmetic the members will run in
-                solver.set_accuracy(problem, self.rtol, int(nsub.sum()), roundoff_amplified=self.roundoff_amplified)
+            # the arithmetic the members will run in
+            solver.set_accuracy(problem, self.rtol, int(nsub.sum()), roundoff_amplified=self.roundoff_amplified)
             check = self.checker(solver, problem, nsub, work)
             if check is None:
                 return h
