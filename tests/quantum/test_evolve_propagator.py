@@ -63,7 +63,7 @@ def test_sector_blocks_restricted_in_groups_match_expm(rng, monkeypatch):
     sectors (a 10-column budget, as for a large irrep) give the same propagator."""
     import sys
 
-    monkeypatch.setattr(sys.modules["hyperrotor.quantum.sector_propagator"], "_GROUP_COLUMNS", 10)
+    monkeypatch.setattr(sys.modules["hyperrotor.quantum._sector_blocks"], "_GROUP_COLUMNS", 10)
     rep, H = _generic(rng)
     psi = _state(rng, rep.dim)
     with hr.options(quantum_eigen_max_block=20):
