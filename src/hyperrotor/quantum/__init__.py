@@ -1,18 +1,18 @@
 """Quantum so(N) angular momentum: SymPy operators, matrix representations, QuTiP rotors.
 
-Layers: ``operators``/``normal_form``/``harmonic`` (symbolic, eq. 142) and
+Layers: ``differential_operator``/``operators``/``normal_form``/``harmonic`` (symbolic, eq. 142) and
 ``weights``/``representation``/``standard_reps``/``gelfand_tsetlin`` (matrices)
 sit below ``hamiltonian`` (the rotor Hamiltonian), ``evolve`` (propagators),
 ``spectrum`` and ``coherent`` (coherent states); the classical subpackage never
 imports this one. The vocabulary (``form=``, keyword-only ``hbar``, ``t``,
 ``rtol``/``atol``, ``rng``) is documented in docs/conventions.md.
 """
-from . import (coherent, combine, equivalence, evolve as _evolve_module, gelfand_tsetlin, hamiltonian, harmonic,
-               normal_form, operator_products, operators, representation, sector_propagator, sectors,
-               spectrum as _spectrum_module,
-               standard_reps, statistics, weights)
+from . import (coherent, combine, differential_operator, equivalence, evolve as _evolve_module, gelfand_tsetlin,
+               hamiltonian, harmonic, normal_form, operator_products, operators, representation, sector_propagator,
+               sectors, spectrum as _spectrum_module, standard_reps, statistics, weights)
 from .coherent import *  # noqa: F401,F403
 from .combine import *  # noqa: F401,F403
+from .differential_operator import *  # noqa: F401,F403
 from .correspondence import *  # noqa: F401,F403
 from .equivalence import *  # noqa: F401,F403
 from .evolve import *  # noqa: F401,F403
@@ -32,6 +32,7 @@ from .statistics import *  # noqa: F401,F403
 from .weights import *  # noqa: F401,F403
 
 __all__ = [
+    *differential_operator.__all__,
     *operators.__all__,
     *operator_products.__all__,
     *normal_form.__all__,

@@ -35,8 +35,8 @@ import sympy as sp
 
 from .. import _parse, _pricing, _validate
 from ..conventions import check_dimension
+from .differential_operator import DifferentialOperator, coordinate_symbols, to_coordinates
 from .normal_form import WeylElement, dict_to_polynomial, polynomial_to_dict
-from .operators import DifferentialOperator, coordinate_symbols, to_coordinates
 
 __all__ = [
     "harmonic_dimension",
