@@ -147,9 +147,10 @@ class RichardsonCheck:
         ah = np.abs(hs)
         if np.all(first == last):  # every segment inside one output interval (long intervals)
             hmax = hmin = ah[first]
-        else:
-            hmax = np.array([ah[a:b + 1].max() for a, b in zip(first, last)])
-            hmin = np.array([ah[a:b + 1].min() for a, b in zip(first, last)])
+        else:  # reductions over ah[first:last + 1] (a sentinel closes the last segment)
+            bounds = np.column_stack([first, last + 1]).ravel()
+            hmax = np.maximum.reduceat(np.append(ah, 0.0), bounds)[::2]
+            hmin = np.minimum.reduceat(np.append(ah, np.inf), bounds)[::2]
         # step ratios (companion / run, second / first companion), the smallest over the segments,
         # or for the finer companions the ratios run / companion
         self.r = float(np.min(H / hmax)) if not finer else float(np.min(hmin / H))
