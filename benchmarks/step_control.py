@@ -28,7 +28,7 @@ import numpy as np
 
 from hyperrotor import Inertia, RigidBody, simulate
 from hyperrotor.bench import best_of, write_csv
-from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+from hyperrotor.classical import euler_poinsot, quartet_solution
 
 RESULTS = Path(__file__).resolve().parent / "results"
 MOM3 = np.array([2.0, 3.0, 4.0])

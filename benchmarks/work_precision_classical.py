@@ -34,7 +34,7 @@ import numpy as np
 
 from hyperrotor import Inertia, RigidBody, simulate
 from hyperrotor.bench import best_of, write_csv
-from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+from hyperrotor.classical import euler_poinsot, quartet_solution
 from hyperrotor.classical.solvers import SOLVERS, FixedStepSolver, Splitting
 from hyperrotor.conventions import to_matrix
 

@@ -137,7 +137,7 @@ def test_demo_motion_matches_closed_form_and_writes_png(capsys, tmp_path):
     assert set(errs) == {"splitting8", "DOP853"}
     assert errs["splitting8"] < 1e-10 and errs["DOP853"] < 1e-7
     # the frequencies printed are the closed forms after eq. (118); recompute them from the eigenvalues
-    from hyperrotor.classical.closed_form import quartet_matrix, quartet_theta
+    from hyperrotor.classical import quartet_matrix, quartet_theta
     omega = _vector(out, "omega")
     lam = np.sort(np.abs(np.linalg.eigvals(quartet_theta(0.5) * quartet_matrix(omega, 5)).imag))[::-1]
     np.testing.assert_allclose(_vector(out, "frequencies Omega_1, Omega_2 (after eq. 118)"), lam[::2], rtol=1e-12)

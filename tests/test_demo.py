@@ -4,7 +4,7 @@ import pytest
 import sympy as sp
 
 import hyperrotor as hr
-from hyperrotor.classical.closed_form import quartet_matrix, quartet_theta
+from hyperrotor.classical import quartet_matrix, quartet_theta
 from hyperrotor.demo import (DEMO_OMEGA, DEMO_RUNS, compare_quartet_motion, quartet_invariants,
                              quartet_motion_seconds, save_quartet_motion)
 

@@ -93,7 +93,7 @@ def best_of(fn: Callable, repeats: int, *, warmup: bool = False):
 
 def _problem(name: str):
     from hyperrotor import Inertia, RigidBody
-    from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+    from hyperrotor.classical import euler_poinsot, quartet_solution
 
     if name == "quartet":
         body = RigidBody(Inertia.quartet(0.5))

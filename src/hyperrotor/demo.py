@@ -163,7 +163,7 @@ def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
     hyperrotor.BudgetError
         When the estimate (:func:`quartet_motion_seconds`) exceeds ``hr.options["max_seconds"]``.
     """
-    from .classical.closed_form import quartet_frequencies, quartet_solution
+    from .classical.quartet import quartet_frequencies, quartet_solution
     from .classical.simulate import simulate
 
     body, axis = _body(kappa, axis)

@@ -7,7 +7,7 @@ import pytest
 import hyperrotor as hr
 from hyperrotor.classical.chaos import PoincareSection, poincare_section
 from hyperrotor.plotting import plot_poincare
-from hyperrotor.classical.closed_form import euler_poinsot_period
+from hyperrotor.classical import euler_poinsot_period
 from hyperrotor.conventions import plane_index, planes
 
 EPS = float(np.finfo(float).eps)

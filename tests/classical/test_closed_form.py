@@ -12,7 +12,7 @@ import pytest
 import sympy as sp
 from scipy.integrate import solve_ivp
 
-from hyperrotor.classical.closed_form import (
+from hyperrotor.classical import (
     closed_form_solution,
     detect_closed_form,
     equal_moments_solution,
@@ -446,7 +446,7 @@ def test_euler_poinsot_extreme_scales(moment_scale, omega_scale):
 def test_quartet_attitude_against_simulate(convention, axis, N):
     """T(t) = exp(Theta W_r t) exp((W0 - Theta W_r) t) T0 solves dT/dt = W(t) T."""
     import hyperrotor
-    from hyperrotor.classical.closed_form import quartet_attitude
+    from hyperrotor.classical import quartet_attitude
 
     rng = np.random.default_rng(axis + 10 * N)
     n = N * (N - 1) // 2

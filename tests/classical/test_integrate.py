@@ -10,7 +10,7 @@ import hyperrotor as hr
 from hyperrotor import Inertia, RigidBody
 from hyperrotor._jit import JIT_ENABLED
 from hyperrotor.classical.solvers import _kernels
-from hyperrotor.classical.closed_form import euler_poinsot, quartet_attitude, quartet_moments, quartet_solution
+from hyperrotor.classical import euler_poinsot, quartet_attitude, quartet_moments, quartet_solution
 from hyperrotor.classical.simulate import SIMULATION_METHODS, Trajectory, simulate
 from hyperrotor.classical.solvers import SOLVERS
 from hyperrotor.classical.solvers.splitting import casimir_shift, splitting_coefficients

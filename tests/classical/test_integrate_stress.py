@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from hyperrotor import Inertia, RigidBody
-from hyperrotor.classical.closed_form import euler_poinsot
+from hyperrotor.classical import euler_poinsot
 from hyperrotor.classical.simulate import simulate
 from hyperrotor.conventions import to_matrix
 

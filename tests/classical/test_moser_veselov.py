@@ -12,7 +12,7 @@ import hyperrotor as hr
 from hyperrotor import Inertia, RigidBody, simulate
 from hyperrotor._jit import JIT_ENABLED
 from hyperrotor.classical.solvers import moser_veselov
-from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+from hyperrotor.classical import euler_poinsot, quartet_solution
 from hyperrotor.conventions import to_matrix
 
 MOM3 = np.array([2.0, 3.0, 4.0])  # J = (0.5, 1.5, 2.5)

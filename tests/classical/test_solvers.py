@@ -11,7 +11,7 @@ from scipy import special
 
 import hyperrotor as hr
 from hyperrotor import Inertia, RigidBody
-from hyperrotor.classical.closed_form import euler_poinsot, quartet_solution
+from hyperrotor.classical import euler_poinsot, quartet_solution
 from hyperrotor.classical.solvers import SOLVERS, FixedStepSolver, ScipyIVP, StepBudgetError, solver_for
 from hyperrotor.conventions import to_matrix
 from tolerance import EPS, scaled_tol

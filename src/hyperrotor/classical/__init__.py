@@ -1,9 +1,11 @@
 """Classical rigid rotation in N dimensions: inertia, Euler equations, integrators, closed forms."""
-from . import closed_form, inertia, mass_points, rigid_body, scene_html, scenes, solvers, stability
+from . import closed_form, inertia, mass_points, poinsot, quartet, rigid_body, scene_html, scenes, solvers, stability
 from . import simulate as _simulate_module
 from . import chaos
 from .chaos import *  # noqa: F401,F403
 from .closed_form import *  # noqa: F401,F403
+from .poinsot import *  # noqa: F401,F403
+from .quartet import *  # noqa: F401,F403
 from .inertia import *  # noqa: F401,F403
 from .mass_points import *  # noqa: F401,F403
 from .rigid_body import *  # noqa: F401,F403
@@ -24,6 +26,8 @@ __all__ = [
     "splitting_coefficients",
     "casimir_shift",
     *closed_form.__all__,
+    *quartet.__all__,
+    *poinsot.__all__,
     *chaos.__all__,
     *stability.__all__,
     *scenes.__all__,

@@ -6,63 +6,14 @@ Three families are solved exactly, for use as ground truth and by
 * **Equal moments** (eqs. 82-83), any N: :math:`\dot\omega = 0`.
 * **One distinguished axis** ("quartet", eqs. 84-118, generalised to any N):
   moments :math:`I_P = 1 + \kappa^2` for every plane ``P`` containing the axis
-  ``a`` and :math:`I_P = 2` otherwise (or any common rescaling). With plain
-  matrices, :math:`L = \beta W + (\alpha - \beta) W_a` (``alpha = 1 + kappa^2``,
-  ``beta = 2``, :math:`W_a` the part of :math:`W` in the planes containing ``a``),
-  and :math:`\dot L = [W, L] = (\alpha-\beta)[W_r, W_a]` with :math:`W_r = W - W_a`.
-  Writing :math:`W_a = u e_a^{\mathsf T} - e_a u^{\mathsf T}` one finds
-  :math:`[W_r, W_a] = (W_r u) e_a^{\mathsf T} - e_a (W_r u)^{\mathsf T}`, so
-
-  - every component in a plane **not** containing ``a`` is constant;
-  - :math:`\dot u = \Theta\, W_r u` with :math:`\Theta = 1 - \beta/\alpha =
-    (\kappa^2 - 1)/(\kappa^2 + 1)` (eq. 100).
-
-  In components :math:`x_i = \omega_{(\min(i,a), \max(i,a))} = s_i u_i`,
-  :math:`s_i = +1` for ``i < a`` and ``-1`` for ``i > a``, hence
-  :math:`\dot x = \Theta A x` with the real antisymmetric ``(N-1) x (N-1)``
-  matrix :math:`A = S W_r S` (rows/columns ``i != a``). The flow
-  :math:`x(t) = e^{\Theta A t} x_0` is evaluated through the spectral
-  decomposition of the Hermitian matrix :math:`iA` (orthonormal eigenvectors even
-  for repeated eigenvalues), vectorised over times and batches.
+  ``a`` and :math:`I_P = 2` otherwise (or any common rescaling), solved exactly in
+  :mod:`hyperrotor.classical.quartet` (with the paper's discrepancies in Sec. 3).
 * **3D Euler-Poinsot** with Jacobi elliptic functions, both regimes of the
-  energy-momentum relation, the separatrix and the symmetric top.
+  energy-momentum relation, the separatrix and the symmetric top
+  (:mod:`hyperrotor.classical.poinsot`).
 
-Paper discrepancies (Sec. 3)
-----------------------------
-Checked symbolically in ``tests/classical/test_closed_form.py``:
-
-* (83) lists :math:`d\omega_{23}/dt` twice and omits :math:`d\omega_{14}/dt`.
-* (92) and (95) have the wrong overall sign of the :math:`(1-\kappa^2)` term
-  (compare the general eqs. 34 and 37): correct is
-  :math:`(1+\kappa^2)\dot\omega_{25} - (1-\kappa^2)(\omega_{12}\omega_{15}
-  - \omega_{23}\omega_{35} - \omega_{24}\omega_{45}) = 0` and
-  :math:`(1+\kappa^2)\dot\omega_{45} - (1-\kappa^2)(\omega_{14}\omega_{15}
-  + \omega_{24}\omega_{25} + \omega_{34}\omega_{35}) = 0` (eq. 95 also prints
-  :math:`\omega_{51}` for :math:`\omega_{15}`). (89) and (94) are right, and
-  so are the linear equations (96)-(99).
-* (100): the inverse is :math:`\kappa = \sqrt{1-\Theta^2}/(1-\Theta)`, not
-  :math:`/(\Theta - 1)` (which is negative); and :math:`-1 \le \Theta < 1`
-  (``kappa = 0`` gives ``Theta = -1``).
-* (104)-(105) contain :math:`\omega_{45}, \omega_{35}` instead of
-  :math:`C_{45}, C_{35}`; (105) and the entry (2,4) of (106) have the wrong sign
-  of :math:`\Theta c_5` (correct: :math:`i\Omega C_{45} + \Theta c_3 C_{15} +
-  \Theta c_5 C_{25} + \Theta c_6 C_{35} = 0`, and ``M[1, 3] = -Theta c5`` so
-  that ``M - i Omega 1`` is antisymmetric as the text says).
-* (107)-(109) are right: :math:`l_2 = -\Theta^2 \sum c_k^2`,
-  :math:`l_0 = \Theta^4 (c_1 c_6 - c_2 c_5 + c_3 c_4)^2` (a squared Pfaffian),
-  and the factorisation (109) holds identically. But the strict inequalities
-  are false in general: :math:`l_0 = 0` whenever the Pfaffian vanishes (e.g.
-  only :math:`c_1 \ne 0`), :math:`l_2 = 0` for ``kappa = 1`` or all
-  :math:`c = 0`; in (110) :math:`l_2^2 = l_2^2 - 4 l_0` when the Pfaffian
-  vanishes and :math:`l_2^2 - 4 l_0 = 0` for (anti-)self-dual data
-  (:math:`c_1 = \pm c_6, c_3 = \pm c_4, c_2 = \mp c_5`), where the two
-  frequencies coincide. Only the non-strict versions hold.
-* The frequencies printed after (118),
-  :math:`\Omega = \pm\tfrac12\sqrt{\pm 2\sqrt{l_2^2-4l_0} - 2 l_2}`, are right.
-  (110) guarantees they are real: the motion is always quasi-periodic.
-* The same formulas hold for the other axes (111)-(118) with the relabelled
-  constants, because conjugation by ``S`` does not change the characteristic
-  polynomial; the linear ODEs (96)-(99), however, acquire the signs ``s_i``.
+This module solves the first, tells which family a body belongs to
+(:func:`detect_closed_form`) and dispatches to its solution (:func:`closed_form_solution`).
 """
 from __future__ import annotations
 
@@ -70,11 +21,12 @@ from typing import Any
 
 import numpy as np
 
-from ..conventions import check_dimension, dimension_from_count
 from .. import _pricing, _validate
-from .._lazy import LazyModule
 from .._options import options, register
-from .inertia import Inertia
+from ..conventions import dimension_from_count
+from ._closed_form_input import plane_vector, times
+from .poinsot import euler_poinsot
+from .quartet import axis_layout, plane_axes, quartet_flow
 
 register(
     "closed_form_rtol", 1e-14,
@@ -85,50 +37,11 @@ register(
     "~1e12 / |omega| time units.",
 )
 
-#: scipy.special (elliptic functions), loaded on first use: ``import hyperrotor`` stays light.
-special = LazyModule("scipy.special")
-
 __all__ = [
     "equal_moments_solution",
-    "quartet_moments",
-    "quartet_theta",
-    "quartet_matrix",
-    "quartet_solution",
-    "quartet_frequencies",
-    "quartet_polynomial_coefficients",
-    "quartet_attitude",
-    "euler_poinsot",
-    "euler_poinsot_period",
     "detect_closed_form",
     "closed_form_solution",
 ]
-
-
-# ----------------------------------------------------------------------------
-# input adapters and validation
-# ----------------------------------------------------------------------------
-
-
-def _times(t: Any) -> np.ndarray:
-    tt = np.atleast_1d(_validate.finite_array("t", t, ndim=(0, 1)))
-    if tt.size == 0:
-        raise ValueError("t must hold at least one time, got an empty array")
-    return tt
-
-
-def _omega0(omega0: Any, count: int | None = None) -> np.ndarray:
-    """``omega0`` (batch + ``(n,)``) through :mod:`hyperrotor._validate`; ``n`` a plane count."""
-    if count is not None:
-        return _validate.components("omega0", omega0, count)
-    w = _validate.finite_array("omega0", omega0)
-    if w.ndim == 0:
-        raise ValueError(f"omega0 must be a vector of plane components, got the scalar {_validate.fmt(omega0)}")
-    _validate.dimension_from_count(w.shape[-1], name="omega0")
-    return w
-
-
-def _check_axis(axis: Any, N: int) -> int:
-    return _validate.integer("axis", axis, minimum=1, maximum=N)
 
 
 # ----------------------------------------------------------------------------
@@ -149,446 +62,10 @@ def equal_moments_solution(omega0: Any, t: Any) -> np.ndarray:
     -------
     numpy.ndarray, shape (..., n_t, n_planes)
     """
-    w = _omega0(omega0)
-    tt = _times(t)
+    w = plane_vector(omega0)
+    tt = times(t)
     _pricing.check("closed_form_output", n_times=tt.size, width=w.size)
     return np.broadcast_to(w[..., None, :], w.shape[:-1] + (tt.size, w.shape[-1])).copy()
-
-
-# ----------------------------------------------------------------------------
-# one distinguished axis (eqs. 84-118), any N
-# ----------------------------------------------------------------------------
-def quartet_moments(kappa: float, axis: int = 5, N: int = 5) -> np.ndarray:
-    r"""Plane moments of the quartet case: ``1 + kappa**2`` for planes containing ``axis``, else 2.
-
-    ``axis=5`` is eqs. (84)-(85); ``axis=4, 3, 2, 1`` are eqs. (111)-(114).
-    The moments of :meth:`hyperrotor.Inertia.quartet` as a float array.
-    """
-    return Inertia.quartet(kappa, axis=axis, N=N).moments
-
-
-def quartet_theta(kappa: float) -> float:
-    r""":math:`\Theta = (\kappa^2 - 1)/(\kappa^2 + 1)` of eq. (100); inverse
-    :math:`\kappa = \sqrt{1-\Theta^2}/(1-\Theta)` (the paper prints ``Theta - 1``)."""
-    k = _validate.real("kappa", kappa)
-    k2 = k * k
-    if not np.isfinite(k2):
-        raise ValueError(f"kappa must be finite with a finite square, got {_validate.fmt(kappa)}")
-    return (k2 - 1.0) / (k2 + 1.0)
-
-
-@_pricing.model("quartet_frequencies", "use fewer dimensions or fewer initial conditions")
-def _quartet_frequencies_cost(N: Any, batch: Any = 1) -> tuple:
-    """Complex Hermitian eigenvalues of ``batch`` matrices of dimension N - 1 (16 bytes per entry, three
-    copies; ~4 (4/3) d^3 flops at ~1e-10 s each, as the dense diagonalization model of _pricing)."""
-    d, b = float(N) - 1.0, float(batch)
-    return (_pricing.Cost(f"{batch} matrices of dimension {d:.0f}", 48.0 * b * d * d, "max_memory_bytes", "bytes"),
-            _pricing.Cost(f"{batch} eigenvalue problems of dimension {d:.0f}", 1e-10 * 16.0 / 3.0 * b * d**3,
-                          "max_seconds", "seconds"))
-
-
-def _plane_axes(N: int) -> tuple[np.ndarray, np.ndarray]:
-    """1-based axes ``(i, j)`` of every plane, in plane order (1, 2), (1, 3), ..., (2, 3), ..."""
-    i, j = np.triu_indices(N, 1)
-    return i + 1, j + 1
-
-
-def _axis_layout(N: int, axis: int):
-    """Indices of the planes (i, a) (in order of i != a), their signs s_i, and the other planes (O(n))."""
-    others = np.array([i for i in range(1, N + 1) if i != axis], dtype=int)
-    p, q = np.minimum(others, axis), np.maximum(others, axis)
-    idx = (p - 1) * N - (p - 1) * p // 2 + (q - p - 1)  # plane_index of (p, q), vectorised
-    signs = np.where(others < axis, 1.0, -1.0)
-    i, j = _plane_axes(N)
-    rest = np.flatnonzero((i != axis) & (j != axis))
-    return idx, signs, rest
-
-
-def quartet_matrix(omega0: Any, axis: int = 5) -> np.ndarray:
-    r"""The antisymmetric matrix :math:`A` of :math:`\dot x = \Theta A x` (generalised eqs. 96-99).
-
-    ``x`` lists :math:`\omega_{(\min(i,a),\max(i,a))}` for ``i = 1..N, i != a``;
-    :math:`A_{ij} = s_i s_j (W_r)_{ij}` with :math:`(W_r)_{ij} = \omega_{ij}` (plain
-    antisymmetric matrix of the planes not containing ``a``) and
-    :math:`s_i = \operatorname{sign}(a - i)`. For ``axis = 5, N = 5``,
-    :math:`A = [[0, c_1, c_2, c_3], [-c_1, 0, c_4, c_5], [-c_2, -c_4, 0, c_6],
-    [-c_3, -c_5, -c_6, 0]]`, i.e. exactly eqs. (96)-(99).
-
-    Parameters
-    ----------
-    omega0 : array_like, shape (..., n_planes)
-        Only the components in planes not containing ``axis`` are used.
-    axis : int
-        The distinguished axis (1-based).
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., N-1, N-1)
-    """
-    w = _omega0(omega0)
-    N = dimension_from_count(w.shape[-1])
-    axis = _check_axis(axis, N)
-    others = np.array([i for i in range(1, N + 1) if i != axis])
-    s = np.where(others < axis, 1.0, -1.0)
-    r, c = np.triu_indices(N - 1, 1)  # others is increasing: (r, c) with r < c is the plane (others[r], others[c])
-    p, q = others[r], others[c]
-    planes_rc = (p - 1) * N - (p - 1) * p // 2 + (q - p - 1)  # plane_index, vectorised
-    v = s[r] * s[c] * w[..., planes_rc]
-    A = np.zeros(w.shape[:-1] + (N - 1, N - 1))
-    A[..., r, c] = v
-    A[..., c, r] = -v
-    return A
-
-
-def _quartet_flow(theta: float, omega0: np.ndarray, tt: np.ndarray, axis: int) -> np.ndarray:
-    """exp(theta * A * t) applied to the axis components; the rest stays constant."""
-    N = dimension_from_count(omega0.shape[-1])
-    idx, _, _ = _axis_layout(N, axis)
-    A = quartet_matrix(omega0, axis)
-    # iA is Hermitian: iA = U diag(lam) U^H, so exp(theta A t) = U diag(exp(-i lam theta t)) U^H
-    lam, U = np.linalg.eigh(1j * A)
-    x0 = omega0[..., idx]
-    y0 = np.einsum("...ji,...j->...i", U.conj(), x0)  # U^H x0
-    phase = np.exp(-1j * theta * tt[:, None] * lam[..., None, :])  # (..., n_t, N-1)
-    x = np.einsum("...ij,...tj->...ti", U, phase * y0[..., None, :]).real
-    out = np.broadcast_to(omega0[..., None, :], omega0.shape[:-1] + (tt.size, omega0.shape[-1])).copy()
-    out[..., idx] = x
-    return out
-
-
-def quartet_solution(kappa: float, omega0: Any, t: Any, axis: int = 5, N: int | None = None) -> np.ndarray:
-    r"""Exact solution of the quartet case (eqs. 84-118) and its N-dimensional generalisation.
-
-    Moments: :math:`I_P = 1 + \kappa^2` for the planes containing ``axis``,
-    :math:`I_P = 2` for the others (``axis = 5``: eqs. 84-85; ``4, 3, 2, 1``:
-    eqs. 111-114). The components in planes without ``axis`` are constant
-    (eqs. 86-93, 115-118); the ``N-1`` others obey :math:`\dot x = \Theta A x`
-    (:func:`quartet_matrix`, the corrected eqs. 96-99), solved exactly as
-    :math:`x(t) = e^{\Theta A t} x_0` through the eigendecomposition of the
-    Hermitian :math:`iA`.
-
-    Parameters
-    ----------
-    kappa : float
-    omega0 : array_like, shape (..., n_planes)
-        Initial angular velocity; leading batch axes allowed.
-    t : array_like, shape (n_t,)
-        Output times (any order; t = 0 is the initial time).
-    axis : int, default 5
-        Distinguished axis, 1-based.
-    N : int, optional
-        Checked against ``omega0`` when given.
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., n_t, n_planes)
-    """
-    w = _omega0(omega0)
-    Nw = dimension_from_count(w.shape[-1])
-    if N is not None and check_dimension(N) != Nw:
-        raise ValueError(f"omega0 has {w.shape[-1]} components, i.e. N = {Nw}, but N = {N} was given")
-    axis = _check_axis(axis, Nw)
-    tt = _times(t)
-    _pricing.check("closed_form_output", n_times=tt.size, width=w.size)
-    return _quartet_flow(quartet_theta(kappa), w, tt, axis)
-
-
-def quartet_polynomial_coefficients(kappa: float, omega0: Any, axis: int = 5) -> tuple[float, float]:
-    r"""``(l2, l0)`` of the characteristic polynomial (107) :math:`\Omega^4 + l_2\Omega^2 + l_0` (N = 5).
-
-    :math:`l_2 = -\Theta^2 \sum_k c_k^2`, :math:`l_0 = \Theta^4 (c_1 c_6 - c_2 c_5 + c_3 c_4)^2`
-    (eq. 108; ``c_k`` the six constant components in plane order, eqs. 115-118).
-    Only non-strict signs hold: ``l2 <= 0``, ``l0 >= 0``.
-    """
-    w = _omega0(omega0, 10)
-    axis = _check_axis(axis, 5)
-    th = quartet_theta(kappa)
-    _, _, rest = _axis_layout(5, axis)
-    c1, c2, c3, c4, c5, c6 = (w[..., k] for k in rest)
-    l2 = -th**2 * (c1**2 + c2**2 + c3**2 + c4**2 + c5**2 + c6**2)
-    l0 = th**4 * (c1 * c6 - c2 * c5 + c3 * c4) ** 2
-    return l2, l0
-
-
-def quartet_frequencies(kappa: float, omega0: Any, axis: int = 5) -> np.ndarray:
-    r"""Non-negative angular frequencies of the oscillating components of the quartet case.
-
-    For ``N = 5`` these are the closed forms after eq. (118),
-    :math:`\Omega_{1,2} = \tfrac12\sqrt{\pm 2\sqrt{l_2^2 - 4 l_0} - 2 l_2}`,
-    i.e. :math:`\Omega^2 = (-l_2 \pm \sqrt{l_2^2-4l_0})/2`, returned as
-    ``[Omega_1, Omega_2]`` with ``Omega_1 >= Omega_2``. With the factors
-    :math:`p, q` of (109) (:math:`\sum c^2 = (p+q)/2`, Pfaffian :math:`= (p-q)/4`)
-    they are :math:`|\Theta|(\sqrt p \pm \sqrt q)/2`, evaluated in that
-    cancellation-free form. For other ``N`` the
-    ``floor((N-1)/2)`` frequencies are :math:`|\Theta|` times the moduli of the
-    eigenvalues of :math:`A` (descending).
-    """
-    w = _omega0(omega0)
-    N = dimension_from_count(w.shape[-1])
-    axis = _check_axis(axis, N)
-    th = quartet_theta(kappa)
-    if N == 5:
-        _, _, rest = _axis_layout(5, axis)
-        c1, c2, c3, c4, c5, c6 = (w[..., k] for k in rest)
-        # (109): l2^2 - 4 l0 = Theta^4 [(c5-c2)^2+(c3+c4)^2+(c1+c6)^2][(c5+c2)^2+(c3-c4)^2+(c1-c6)^2]
-        p = (c5 - c2) ** 2 + (c3 + c4) ** 2 + (c1 + c6) ** 2
-        m = (c5 + c2) ** 2 + (c3 - c4) ** 2 + (c1 - c6) ** 2
-        # Omega^2 = (-l2 +- sqrt(l2^2 - 4 l0))/2 = Theta^2 (sqrt(p) +- sqrt(m))^2 / 4
-        big = 0.5 * abs(th) * (np.sqrt(p) + np.sqrt(m))
-        small = 0.5 * abs(th) * np.abs(np.sqrt(p) - np.sqrt(m))
-        return np.stack([big, small], axis=-1)
-    _pricing.check("quartet_frequencies", N=N, batch=int(np.prod(w.shape[:-1])))
-    A = quartet_matrix(w, axis)
-    lam = np.linalg.eigvalsh(1j * A)  # real, symmetric about 0
-    k = (N - 1) // 2
-    return abs(th) * np.sort(np.abs(lam), axis=-1)[..., ::-1][..., : 2 * k : 2]
-
-
-def expm_antisym(W: np.ndarray, tt: np.ndarray) -> np.ndarray:
-    """exp(W t) for one real antisymmetric W and many t (eigh of the Hermitian iW), shape (n_t, N, N).
-
-    Shared in the package (the scenes' closed-form attitude route); not public API.
-    """
-    lam, U = np.linalg.eigh(1j * W)
-    ph = np.exp(-1j * tt[:, None] * lam[None, :])
-    return np.einsum("ij,kj,lj->kil", U, ph, U.conj()).real
-
-
-def quartet_attitude_standard(theta: float, omega0: np.ndarray, tt: np.ndarray, axis: int) -> np.ndarray:
-    """T(t) (plain convention, T(0) = 1) of the one-distinguished-axis body, ``tt`` trusted.
-
-    Shared in the package (:func:`quartet_attitude` and the scenes); not public API.
-    """
-    from ..conventions import to_matrix
-
-    N = dimension_from_count(omega0.size)
-    W0 = to_matrix(omega0, convention="standard").astype(float)
-    Wr = W0.copy()
-    Wr[axis - 1, :] = 0.0
-    Wr[:, axis - 1] = 0.0
-    R = expm_antisym(theta * Wr, tt)
-    S = expm_antisym(W0 - theta * Wr, tt)
-    return R @ S
-
-
-def quartet_attitude(kappa: float, omega0: Any, t: Any, axis: int = 5, *, attitude0: Any = None,
-                     convention: str = "paper") -> np.ndarray:
-    r"""Exact attitude :math:`T(t)` (eq. 19, :math:`\dot T = W T`) of the quartet body, any N.
-
-    With plain matrices, the solution of :func:`quartet_solution` is
-    :math:`W(t) = R(t) W_0 R(t)^{\mathsf T}` with :math:`R(t) = e^{\Theta W_r t}`
-    (:math:`W_r` = the constant part of :math:`W` in the planes without the
-    distinguished axis; ``R`` fixes :math:`e_a` and commutes with :math:`W_r`).
-    Writing :math:`T = R\,S` gives :math:`\dot S = (W_0 - \Theta W_r) S`, so
-
-    .. math:: T(t) = e^{\Theta W_r t}\, e^{(W_0 - \Theta W_r) t}\, T_0,
-
-    the N-dimensional analogue of the regular precession of a symmetric top
-    (for equal moments, :math:`\Theta = 0`, :math:`T = e^{W_0 t} T_0`).
-
-    Parameters
-    ----------
-    kappa, omega0, axis : as in :func:`quartet_solution` (one initial state).
-    t : array_like (n_t,), time since the initial state.
-    attitude0 : array_like (N, N), optional
-        :math:`T_0` in the chosen convention (default identity).
-    convention : {"paper", "standard"}
-        Matrix convention of ``T`` (:math:`T_\text{paper} = S T_\text{standard} S`).
-
-    Returns
-    -------
-    numpy.ndarray, shape (n_t, N, N)
-    """
-    from ..conventions import check_convention
-
-    check_convention(convention)
-    w = _omega0(omega0)
-    if w.ndim != 1:
-        raise ValueError(f"omega0 must be a single vector of plane components, got shape {w.shape}")
-    N = dimension_from_count(w.size)
-    axis = _check_axis(axis, N)
-    tt = _times(t)
-    _pricing.check("closed_form_output", n_times=tt.size, width=N * N)
-    T = quartet_attitude_standard(quartet_theta(kappa), w, tt, axis)
-    Sg = np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
-    if attitude0 is not None:
-        T0 = np.asarray(attitude0, dtype=float)
-        if T0.shape != (N, N):
-            raise ValueError(f"attitude0 must have shape ({N}, {N}), got {T0.shape}")
-        T = T @ (Sg[:, None] * T0 * Sg[None, :])
-    return Sg[None, :, None] * T * Sg[None, None, :]
-
-
-# ----------------------------------------------------------------------------
-# 3D Euler-Poinsot
-# ----------------------------------------------------------------------------
-_EVEN_PERMS = {(0, 1, 2), (1, 2, 0), (2, 0, 1)}
-
-
-def _ellipj(u: np.ndarray, m: float):
-    r"""Jacobi sn, cn, dn accurate to a few ulp for all ``u`` and ``0 <= m <= 1``.
-
-    ``scipy.special.ellipj`` (Cephes) switches to a first-order expansion in
-    ``1 - m`` for ``m > 1 - 1e-9`` that is only valid for small ``|u|`` (it
-    returns values ~1e17 at ``u = 3K`` for ``m = 1 - 1e-10``). The argument is
-    therefore reduced to ``[-K, K]`` with :math:`\mathrm{sn}(u + 2K) = -\mathrm{sn}\,u`,
-    :math:`\mathrm{cn}(u + 2K) = -\mathrm{cn}\,u`, :math:`\mathrm{dn}(u+2K) = \mathrm{dn}\,u`,
-    and ``|u| > K/2`` is folded to ``v = K - |u|`` with
-    :math:`\mathrm{sn}(K - v) = \mathrm{cd}\,v`, :math:`\mathrm{cn}(K - v) = k'\,\mathrm{sd}\,v`,
-    :math:`\mathrm{dn}(K - v) = k'\,\mathrm{nd}\,v`.
-    """
-    u = np.asarray(u, dtype=float)
-    if m >= 1.0:  # separatrix: sn = tanh, cn = dn = sech (exact in Cephes for m = 1)
-        s, c, d, _ = special.ellipj(u, 1.0)
-        return s, c, d
-    K = float(special.ellipk(m))
-    kp = np.sqrt(1.0 - m)
-    j = np.round(u / (2.0 * K))
-    v = u - 2.0 * K * j
-    sg = np.where(np.mod(j, 2.0) == 0.0, 1.0, -1.0)
-    av = np.abs(v)
-    sv = np.where(v < 0.0, -1.0, 1.0)
-    far = av > 0.5 * K
-    w = np.where(far, K - av, av)
-    s, c, d, _ = special.ellipj(w, m)
-    sn = np.where(far, c / d, s) * sv
-    cn = np.where(far, kp * s / d, c)
-    dn = np.where(far, kp / d, d)
-    return sg * sn, sg * cn, dn
-
-
-def _pow2(x: float) -> float:
-    """The power of two nearest above ``x > 0`` (1 for 0): a scale that divides exactly."""
-    return float(np.ldexp(1.0, np.frexp(x)[1])) if x > 0 else 1.0
-
-
-def _ep_setup(body: Any, omega0: Any):
-    I = _validate.moments(body, name="body")
-    if I.size != 3:
-        raise ValueError(f"euler_poinsot needs the 3 plane moments (I_12, I_13, I_23) of a 3D body, got {I.size}")
-    w = _omega0(omega0, 3)
-    if w.ndim != 1:
-        raise ValueError(f"omega0 must be a single vector (w12, w13, w23), got shape {w.shape}")
-    # The motion does not change under I -> c I and scales as w(t) = c w~(c t) under w0 -> c w0:
-    # compute with moments and omega0 divided by powers of two (exact), so that no product of the
-    # formulas below under- or overflows (moments of 1e-310 gave NaN, #21).
-    scale = _pow2(float(np.max(np.abs(w))))
-    In, wn = I / _pow2(float(np.max(I))), w / scale
-    # textbook map: W1 = w23, W2 = -w13, W3 = w12; I1 = I23, I2 = I13, I3 = I12
-    Itb = np.array([In[2], In[1], In[0]])
-    Wtb = np.array([wn[2], -wn[1], wn[0]])
-    order = np.argsort(Itb, kind="stable")  # ascending
-    lo, mid, hi = order
-    # sign of L^2 - 2 E I_mid, cancellation-free
-    s = Itb[hi] * (Itb[hi] - Itb[mid]) * Wtb[hi] ** 2 - Itb[lo] * (Itb[mid] - Itb[lo]) * Wtb[lo] ** 2
-    d = hi if s >= 0 else lo  # dn axis (the one W never changes sign on)
-    c = lo if s >= 0 else hi  # cn axis
-    perm = (c, mid, d)
-    flip = 1.0 if perm in _EVEN_PERMS else -1.0  # odd relabelling = time reversal: V = -W[perm]
-    J = Itb[list(perm)]
-    V = flip * Wtb[list(perm)]
-    # sign symmetries (-,+,-) and (-,-,+) of the Euler equations: make V3 >= 0 and V1 >= 0
-    sg = np.ones(3)
-    if V[2] < 0:
-        sg *= np.array([-1.0, 1.0, -1.0])
-    if sg[0] * V[0] < 0:
-        sg *= np.array([-1.0, -1.0, 1.0])
-    V = sg * V
-    J1, J2, J3 = J
-    V1, V2, V3 = V
-    # cancellation-free: 2EJ3 - L^2 = J1(J3-J1)V1^2 + J2(J3-J2)V2^2 etc.
-    p31, p32, p21 = J1 * (J3 - J1), J2 * (J3 - J2), J2 * (J2 - J1)
-    q = p31 * V1**2 + p32 * V2**2  # 2 E J3 - L^2
-    r = p21 * V2**2 + J3 * (J3 - J1) * V3**2  # L^2 - 2 E J1
-    with np.errstate(divide="ignore", invalid="ignore"):
-        A = np.sqrt(V1**2 + (p32 / p31) * V2**2) if p31 != 0 else abs(V1)
-        B = np.sqrt((p31 / p32) * V1**2 + V2**2) if p32 != 0 else abs(V2)
-        C = np.sqrt((p21 / (J3 * (J3 - J1))) * V2**2 + V3**2) if J3 != J1 else abs(V3)
-    nu2 = (J3 - J2) * r / (J1 * J2 * J3)
-    nu = np.sign(J3 - J2) * np.sqrt(max(nu2, 0.0))
-    m = 0.0 if (q == 0 or J2 == J1) else (J2 - J1) * q / ((J3 - J2) * r)
-    m = float(min(max(m, 0.0), 1.0))
-    # V, A, B, C, nu describe omega0 / scale; the motion is scale times them at time scale * t
-    return dict(I=I, w=w, perm=perm, flip=flip, sg=sg, V=V, J=J, A=A, B=B, C=C, nu=nu, m=m, scale=scale)
-
-
-def _is_steady(P) -> bool:
-    """True when the right-hand side vanishes exactly (rest or principal-axis rotation)."""
-    J, V = P["J"], P["V"]
-    return P["nu"] == 0.0 or (
-        (J[1] - J[2]) * V[1] * V[2] == 0.0 and (J[2] - J[0]) * V[2] * V[0] == 0.0 and (J[0] - J[1]) * V[0] * V[1] == 0.0
-    )
-
-
-def euler_poinsot(body: Any, omega0: Any, t: Any) -> np.ndarray:
-    r"""Exact 3D torque-free motion (Euler-Poinsot) with Jacobi elliptic functions.
-
-    Components in the package order ``(w12, w13, w23)``; internally the textbook
-    map :math:`W_1 = \omega_{23}, W_2 = -\omega_{13}, W_3 = \omega_{12}`,
-    :math:`I_1 = I_{23}, I_2 = I_{13}, I_3 = I_{12}` turns the equations into
-    :math:`I_1\dot W_1 = (I_2 - I_3) W_2 W_3` (cyclic). The axes are relabelled as
-    ``(cn, sn, dn)`` = (an extreme axis, the middle axis, the other extreme axis),
-    the dn axis being the largest-moment axis when :math:`L^2 > 2 E I_\text{mid}`
-    and the smallest otherwise (an odd relabelling is compensated by
-    :math:`W \to -W`). Then, with :math:`J_1, J_2, J_3` the relabelled moments,
-
-    .. math::
-        V_1 = A\,\mathrm{cn}(u), \quad V_2 = B\,\mathrm{sn}(u), \quad V_3 = C\,\mathrm{dn}(u),
-        \qquad u = u_0 + \nu t,
-
-        A^2 = \frac{2EJ_3 - L^2}{J_1(J_3 - J_1)},\;
-        B^2 = \frac{2EJ_3 - L^2}{J_2(J_3 - J_2)},\;
-        C^2 = \frac{L^2 - 2EJ_1}{J_3(J_3 - J_1)},\;
-        \nu^2 = \frac{(J_3-J_2)(L^2 - 2EJ_1)}{J_1J_2J_3},\;
-        m = k^2 = \frac{(J_2-J_1)(2EJ_3 - L^2)}{(J_3-J_2)(L^2 - 2EJ_1)},
-
-    :math:`\operatorname{sign}\nu = \operatorname{sign}(J_3 - J_2)`, and :math:`u_0 =
-    F(\operatorname{atan2}(V_2(0)/B, V_1(0)/A)\,|\,m)`. Signs of the initial state
-    are absorbed by the symmetries :math:`(V_1,V_2,V_3)\to(-V_1,V_2,-V_3)` and
-    :math:`(-V_1,-V_2,V_3)`. All differences :math:`2EJ_3 - L^2` etc. are formed
-    without cancellation. ``m = 1`` is the separatrix (cn = dn = sech,
-    sn = tanh), ``m = 0`` the symmetric top / steady rotation.
-
-    Parameters
-    ----------
-    body : RigidBody, Inertia or array_like (3,)
-        Plane moments ``(I_12, I_13, I_23)`` (any positive scale: the formulas are evaluated
-        with the moments and ``omega0`` scaled by powers of two, so tiny or huge values are exact).
-    omega0 : array_like (3,)
-        ``(w12, w13, w23)`` at t = 0.
-    t : array_like (n_t,)
-
-    Returns
-    -------
-    numpy.ndarray, shape (n_t, 3)
-    """
-    tt = _times(t)
-    P = _ep_setup(body, omega0)
-    w = P["w"]
-    _pricing.check("closed_form_output", n_times=tt.size, width=np.size(w))
-    if _is_steady(P):  # steady rotation about a principal axis (or rest)
-        return np.broadcast_to(w, (tt.size, 3)).copy()
-    A, B, C, nu, m = P["A"], P["B"], P["C"], P["nu"], P["m"]
-    V1, V2 = P["V"][0], P["V"][1]
-    phi0 = np.arctan2(V2 / B if B > 0 else 0.0, V1 / A if A > 0 else 1.0)
-    u0 = float(special.ellipkinc(phi0, m))
-    if not np.isfinite(u0):  # m = 1 and V1 = 0: the unstable middle-axis equilibrium
-        return np.broadcast_to(w, (tt.size, 3)).copy()
-    s = P["scale"]
-    sn, cn, dn = _ellipj(u0 + nu * (s * tt), m)
-    V = np.stack([A * cn, B * sn, C * dn], axis=-1) * (P["sg"] * P["flip"] * s)
-    Wtb = np.empty_like(V)
-    Wtb[:, list(P["perm"])] = V
-    return np.stack([Wtb[:, 2], -Wtb[:, 1], Wtb[:, 0]], axis=-1)
-
-
-def euler_poinsot_period(body: Any, omega0: Any) -> float:
-    r"""Period of :math:`\omega(t)` of the 3D free body: :math:`4K(m)/|\nu|` (``inf`` on the
-    separatrix, ``inf`` for steady rotation)."""
-    P = _ep_setup(body, omega0)
-    if _is_steady(P) or P["m"] >= 1.0:
-        return float("inf")
-    return 4.0 * float(special.ellipk(P["m"])) / abs(P["nu"]) / P["scale"]
 
 
 # ----------------------------------------------------------------------------
@@ -616,14 +93,14 @@ def detect_closed_form(body: Any, *, rtol: float | None = None) -> dict | None:
     if N == 3:
         return {"kind": "euler-poinsot"}
     # candidate axes first, in O(n): the moments of the planes through a must agree (per-axis range)
-    i, j = _plane_axes(N)
+    i, j = plane_axes(N)
     lo, hi = np.full(N + 1, np.inf), np.full(N + 1, -np.inf)
     for ends in (i, j):
         np.minimum.at(lo, ends, I)
         np.maximum.at(hi, ends, I)
     candidates = [a for a in range(N, 0, -1) if hi[a] - lo[a] <= rtol * scale]
     for a in candidates:
-        idx, _, rest = _axis_layout(N, a)
+        idx, _, rest = axis_layout(N, a)
         if same(I[idx]) and same(I[rest]):
             alpha, beta = float(np.mean(I[idx])), float(np.mean(I[rest]))
             return {"kind": "quartet", "axis": a, "theta": 1.0 - beta / alpha}
@@ -647,14 +124,14 @@ def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float | None =
     info = detect_closed_form(I, rtol=rtol)
     if info is None:
         raise ValueError("this inertia admits no closed form (not equal, not one-distinguished-axis, not 3D)")
-    w = _omega0(omega0, I.size)
-    tt = _times(t)
+    w = plane_vector(omega0, I.size)
+    tt = times(t)
     _pricing.check("closed_form_output", n_times=tt.size, width=w.size)
     kind = info["kind"]
     if kind == "equal":
         return equal_moments_solution(w, tt), kind
     if kind == "quartet":
-        return _quartet_flow(info["theta"], w, tt, info["axis"]), kind
+        return quartet_flow(info["theta"], w, tt, info["axis"]), kind
     flat = w.reshape(-1, 3)
     out = np.stack([euler_poinsot(I, x, tt) for x in flat])
     return out.reshape(w.shape[:-1] + (tt.size, 3)), kind

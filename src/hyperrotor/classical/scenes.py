@@ -25,7 +25,7 @@ reports it in :attr:`SceneResult.path`:
 3. **Closed forms** (:mod:`hyperrotor.classical.closed_form`): equal moments
    and one distinguished axis ("quartet", any N), both with the attitude
    (:math:`T = e^{\Theta W_r t} e^{(W_0 - \Theta W_r)t} T_0`,
-   :func:`~hyperrotor.classical.closed_form.quartet_attitude`), and 3D
+   :func:`~hyperrotor.classical.quartet.quartet_attitude`), and 3D
    Euler-Poinsot (angular velocity only; the attitude is then integrated); a
    reduced body with two axes is a single steady rotation. Reported as
    ``"closed-form:<kind>"``.
@@ -52,6 +52,7 @@ from .._options import options, register
 from .._validate import axis_signs
 from ..conventions import dimension_from_count, plane_index, planes
 from . import closed_form as _cf
+from . import quartet as _quartet
 
 __all__ = [
     "SCENE_OBSERVABLES",
@@ -96,8 +97,8 @@ def simplex_vertices(N: int, circumradius: float = 1.0) -> np.ndarray:
     orthonormal basis of the hyperplane :math:`\sum x = 0`, scaled to the given
     circumradius; all pairwise distances are equal.
     """
-    # an (N + 1) x (N + 1) QR: refuse an absurd N up front
-    N = _v.integer("N", N, minimum=1, maximum=options["max_dimension"])
+    # an (N + 1) x (N + 1) QR: refuse an absurd N up front (BudgetError over options["max_dimension"])
+    N = _v.dimension(N, minimum=1)
     circumradius = _v.positive("circumradius", circumradius)
     E = np.eye(N + 1) - 1.0 / (N + 1)
     Q, _ = np.linalg.qr(E[:, :N])  # orthonormal basis of the sum-zero hyperplane
@@ -175,6 +176,7 @@ def locked_axes(omega0: Any, N: int | None = None) -> tuple[int, ...]:
     # an index map: NaN/inf are legitimate (not zero, so not locked); complex values count by != 0
     if omega0 is None or isinstance(omega0, (str, bytes)):
         raise TypeError(f"omega0 must be an array of plane components, got {_v.fmt(omega0)}")
+    _v.numeric_input("omega0", omega0)  # booleans, dates, masked arrays (np.asarray drops a mask)
     try:
         w = np.asarray(omega0)
         if w.dtype.kind not in "biufc":
@@ -496,11 +498,11 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
             if need_att:
                 from ..conventions import to_matrix
 
-                U = _cf.expm_antisym(to_matrix(w_red, convention="standard").astype(float), tau)
+                U = _quartet.expm_antisym(to_matrix(w_red, convention="standard").astype(float), tau)
         else:
             om_red, _ = _cf.closed_form_solution(I_red, w_red, tau)
             if need_att:  # T = exp(Theta W_r t) exp((W0 - Theta W_r) t), see quartet_attitude
-                U = _cf.quartet_attitude_standard(info["theta"], w_red, tau, info["axis"])
+                U = _quartet.quartet_attitude_standard(info["theta"], w_red, tau, info["axis"])
         steps.append("closed-form:" + info["kind"])
     else:
         red_body = RigidBody(I_red, convention="standard")

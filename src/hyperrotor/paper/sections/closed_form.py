@@ -300,7 +300,7 @@ def _regular_bodies() -> list:
 
 
 def _frequencies_numeric(freqs) -> bool:
-    from hyperrotor.classical.closed_form import quartet_frequencies, quartet_polynomial_coefficients
+    from hyperrotor.classical.quartet import quartet_frequencies, quartet_polynomial_coefficients
 
     rng = np.random.default_rng(3)
     ok = True
