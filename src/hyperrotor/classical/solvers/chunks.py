@@ -125,16 +125,24 @@ def advance_chunked(solver, problem: Problem, L0: np.ndarray, grid: np.ndarray, 
     target = float(options["chunk_seconds"])
     cap = max(1, int(max(FIRST_CHUNK_FLOWS, target / seconds_per_flow(key)) // flows))
     steps = int(nsub.sum())
-    if steps <= cap:  # one call: its grid is the output grid (no chunk grid, no copies)
+
+    def advance(L, pts, ns, hs, carry):
+        """One compiled call of ``ns.sum()`` steps, its cost learned, checked and counted."""
         t0 = time.perf_counter()
-        out, _ = solver.advance(problem, L0, None, grid, nsub, members=members, h=h, carry=carry)
-        learn(key, time.perf_counter() - t0, steps * flows)
-        check_finite(out, grid, problem)
+        Ls, _ = solver.advance(problem, L, None, pts, ns, members=members, h=hs, carry=carry)
+        elapsed = time.perf_counter() - t0
+        done = int(ns.sum())
+        learn(key, elapsed, done * flows)
+        check_finite(Ls, pts, problem)
         if work is not None:
-            work.add(steps * rows)
+            work.add(done * rows)
         if bar is not None:
-            bar.update(steps * rows)
-        return out, solver.last_carry
+            bar.update(done * rows)
+        return Ls, solver.last_carry, elapsed
+
+    if steps <= cap:  # one call: its grid is the output grid (no chunk grid, no copies)
+        out, carry, _ = advance(L0, grid, nsub, h, carry)
+        return out, carry
     out = np.empty((rows, grid.size, L0.shape[1]))
     out[:, 0] = L0
     cs = np.concatenate([[0], np.cumsum(nsub)])
@@ -147,21 +155,10 @@ def advance_chunked(solver, problem: Problem, L0: np.ndarray, grid: np.ndarray, 
         if marks.size == 0 or marks[-1] != s1:
             marks = np.append(marks, s1)
         points = np.concatenate([[s0], marks])
-        pts = step_times(grid, cs, nsub, points)
-        t0 = time.perf_counter()
-        Ls, _ = solver.advance(problem, Lc, None, pts, np.diff(points).astype(np.int64), members=members,
-                               h=h[np.searchsorted(cs, points[:-1], side="right") - 1], carry=carry)
-        elapsed = time.perf_counter() - t0
-        carry = solver.last_carry
-        learn(key, elapsed, (s1 - s0) * flows)
-        check_finite(Ls, pts, problem)
-        for i, o in enumerate(outs):
-            out[:, o] = Ls[:, i + 1]
+        Ls, carry, elapsed = advance(Lc, step_times(grid, cs, nsub, points), np.diff(points).astype(np.int64),
+                                     h[np.searchsorted(cs, points[:-1], side="right") - 1], carry)
+        out[:, outs] = Ls[:, 1:outs.size + 1]
         Lc = Ls[:, -1]
-        if work is not None:
-            work.add((s1 - s0) * rows)
-        if bar is not None:
-            bar.update((s1 - s0) * rows)
         s0 = s1
         cap = int(min(8 * cap, max(1, cap * target / max(elapsed, 1e-6))))
     return out, carry
