@@ -81,10 +81,20 @@ def operator_matrix_and_dims(H: Any, name: str = "H") -> tuple[sps.csr_matrix, l
     return mat, dims
 
 
+def representation_of(H: Any) -> "Representation | None":
+    """The :class:`.Representation` that :func:`rotor_hamiltonian` built ``H`` from, or ``None``.
+
+    Only an ``H`` returned by :func:`rotor_hamiltonian` carries it (arithmetic on the Qobj gives a
+    new Qobj without it): the symmetry sectors of :func:`.spectrum` and :func:`.evolve` use it, and
+    :func:`hermitian_matrix` trusts such an ``H`` to be Hermitian (built from checked generators).
+    """
+    return getattr(H, "_hyperrotor_rep", None)
+
+
 def hermitian_matrix(H: Any, name: str = "H") -> tuple[sps.csr_matrix, list]:
     """``(csr, dims)`` of a Hermitian operator; refuses a non-Hermitian one (``options["quantum_hermiticity_rtol"]``)."""
     mat, dims = operator_matrix_and_dims(H, name)
-    if getattr(H, "_hyperrotor_rep", None) is not None:  # rotor_hamiltonian's own H: Hermitian by construction
+    if representation_of(H) is not None:  # rotor_hamiltonian's own H: Hermitian by construction
         return mat, dims
     rtol = options["quantum_hermiticity_rtol"]
     diff = (mat - mat.conj().T).tocsr()
@@ -169,9 +179,7 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
     H = rotor_matrix(gens, moments, hbar)
     Hq = _lazy.qutip.Qobj(H, dims=[[dim], [dim]], isherm=True)  # sum of squares of Hermitian L^ij / hbar
     if isinstance(rep, Representation):
-        # for the symmetry sectors of spectrum/evolve, and to skip hermitian_matrix's O(nnz) check of an H
-        # built here (arithmetic on Hq gives new Qobjs without it)
-        Hq._hyperrotor_rep = rep
+        Hq._hyperrotor_rep = rep  # read by representation_of only
     return Hq
 
 

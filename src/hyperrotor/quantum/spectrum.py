@@ -8,7 +8,7 @@ import scipy.sparse as sps
 
 from .. import _pricing, _validate
 from .._options import options
-from .hamiltonian import blocks_of, hermitian_matrix
+from .hamiltonian import blocks_of, hermitian_matrix, representation_of
 from .sectors import nonempty_blocks, restrict
 
 __all__ = ["Spectrum", "spectrum"]
@@ -69,7 +69,7 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
     ([1.0, 2.0], [1, 2])
     """
     mat, _ = hermitian_matrix(H)
-    rep = rep if rep is not None else getattr(H, "_hyperrotor_rep", None)
+    rep = rep if rep is not None else representation_of(H)
     if rep is not None:
         rep = _validate.representation("rep", rep, dim=mat.shape[0])
     blocks = blocks_of(mat)
