@@ -2,10 +2,14 @@
 
 Each function is run on a small input while ``Figure.savefig`` is watched; every saved figure
 must have: a title (figure or every panel), a label on every axis of every data panel (x, y, and
-z in 3D; the long axis of a colour bar), tick labels of at least 8 points, and no legend box over
-plotted data (the legend's window extent against every data point in display coordinates).
+z in 3D; the long axis of a colour bar), tick labels of at least 8 points, no legend box over
+plotted data (the legend's window extent against every data point in display coordinates), and no
+axis or title cut by the figure's edge or reaching into another panel (where it would be hidden).
+The pictures committed in docs/_static are compared with what their commands draw today.
 """
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,6 +26,9 @@ from hyperrotor import plotting  # noqa: E402
 from hyperrotor.bench import WorkPrecisionPoint  # noqa: E402
 from hyperrotor.classical.chaos import PoincareSection  # noqa: E402
 from hyperrotor.classical.scenes import Scene, body_edges, hypercube_vertices  # noqa: E402
+
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 @pytest.fixture
@@ -71,6 +78,8 @@ def _check(fig) -> None:
         if _is_colourbar(ax):
             long_axis = ax.yaxis if ax.get_position().height >= ax.get_position().width else ax.xaxis
             assert long_axis.get_label().get_text(), "a colour bar without a label"
+            sizes = [t.get_fontsize() for t in long_axis.get_ticklabels() if t.get_text()]
+            assert min(sizes, default=10) >= 8, f"colour bar tick labels of {min(sizes)} pt: too small to read"
             continue
         names = ("x", "y", "z") if ax.name == "3d" else ("x", "y")
         for n in names:
@@ -81,6 +90,7 @@ def _check(fig) -> None:
             sizes = [t.get_fontsize() for t in axis.get_ticklabels() if t.get_text()]
             assert min(sizes, default=10) >= 8, f"{n} tick labels of {min(sizes)} pt: too small to read"
         assert suptitle or ax.get_title(), "a panel without a title (and no figure title)"
+    _check_nothing_cut_or_covered(fig, renderer)
     legends = [ax.get_legend() for ax in data_axes if ax.get_legend() is not None] + list(fig.legends)
     for leg in legends:
         box = leg.get_window_extent(renderer)
@@ -90,6 +100,35 @@ def _check(fig) -> None:
             pts = _data_points(ax)
             inside = ((pts[:, 0] >= box.x0) & (pts[:, 0] <= box.x1) & (pts[:, 1] >= box.y0) & (pts[:, 1] <= box.y1))
             assert not inside.any(), f"the legend covers {inside.sum()} data points of panel {ax.get_title()!r}"
+
+
+def _overlap(a, b, slack: float = 0.5) -> bool:
+    return a.x0 < b.x1 - slack and b.x0 < a.x1 - slack and a.y0 < b.y1 - slack and b.y0 < a.y1 - slack
+
+
+def _check_nothing_cut_or_covered(fig, renderer) -> None:
+    """Every axis (its label and the tick labels drawn) and every title lies inside the figure and
+    off the other panels (a 3D panel's background, or a colour bar, drawn later hides what reaches
+    into it: the scene snapshots once showed their z labels as a lone "x")."""
+    page = fig.bbox
+    boxes = []
+    if fig._suptitle is not None and fig._suptitle.get_text():
+        boxes.append(("the figure title", None, fig._suptitle.get_window_extent(renderer)))
+    for ax in fig.axes:
+        name = repr(ax.get_title() or ax.get_label())
+        for n in ("x", "y", "z") if ax.name == "3d" else ("x", "y"):
+            box = getattr(ax, f"{n}axis").get_tightbbox(renderer)
+            if box is not None and box.width > 0:
+                boxes.append((f"the {n} axis of panel {name}", ax, box))
+        for title in (ax.title, ax._left_title, ax._right_title):
+            if title.get_visible() and title.get_text().strip():
+                boxes.append((f"the title of panel {name}", ax, title.get_window_extent(renderer)))
+    for what, owner, box in boxes:
+        assert (box.x0 >= page.x0 - 1 and box.x1 <= page.x1 + 1 and box.y0 >= page.y0 - 1
+                and box.y1 <= page.y1 + 1), f"{what} is cut by the figure's edge"
+        for other in fig.axes:
+            assert other is owner or not _overlap(box, other.bbox), \
+                f"{what} reaches into panel {other.get_title() or other.get_label()!r}"
 
 
 @pytest.fixture(scope="module")
@@ -123,6 +162,25 @@ def test_motion_comparison(saved, tmp_path):
     plotting.save_motion_comparison(tmp_path / "m.png", t, exact, runs, components=(0, 1),
                                     labels=("$\\omega_{12}$", "$\\omega_{13}$"), scale=1.0, title="demo",
                                     marked="splitting8")
+    _check(saved[0])
+
+
+def test_demo_picture(saved, tmp_path):
+    """The picture of ``hyperrotor demo`` (README), on the demo's own motion, shortened."""
+    from hyperrotor.demo import DEMO_OMEGA, compare_quartet_motion, save_quartet_motion
+
+    save_quartet_motion(compare_quartet_motion(0.5, DEMO_OMEGA, 20.0, n_times=201), tmp_path / "d.png")
+    assert len(saved) == 1
+    _check(saved[0])
+
+
+def test_scene_snapshots_as_the_cli_draws_them(saved, tmp_path):
+    """``hyperrotor scene`` on its defaults: six snapshots of the 5-cube in two rows, colour bar (x4)."""
+    scene = Scene(hr.RigidBody(hr.Inertia.quartet(0.5)), 0.1 * np.arange(1, 11), np.linspace(0, 20, 12),
+                  observables=("projection",), points=hypercube_vertices(5), axes=(1, 2, 3, 4))
+    res = scene.evaluate()
+    plotting.save_projection_frames(tmp_path / "s.png", res.t, res.projection, body_edges(scene.points, "cube"),
+                                    n_frames=6, title="cube in 5D", colour_axis=4)
     _check(saved[0])
 
 
@@ -163,3 +221,24 @@ def test_the_check_finds_a_covering_legend(tmp_path):
     with pytest.raises(AssertionError, match="legend covers"):
         _check(fig)
     plt.close(fig)
+
+
+@pytest.mark.parametrize("argv,picture", [
+    (["demo", "--ascii", "--png", "{out}"], "demo-quartet.png"),      # README.md
+    (["scene", "--output", "{out}"], "scene-5cube.png"),              # README.md, docs/index.md
+])
+def test_committed_pictures_are_what_the_commands_draw_today(capsys, tmp_path, argv, picture):
+    """The pictures in docs/_static (shown by the README and the front page) were made by these commands
+    with today's code: a change of the figures must re-render them (the command is the argv, with the
+    picture's path as the output). Compared pixel by pixel, with room for font rendering."""
+    from PIL import Image
+
+    from hyperrotor.cli import main
+
+    out = tmp_path / picture
+    assert main([a.format(out=out) for a in argv]) == 0, capsys.readouterr().err
+    fresh = np.asarray(Image.open(out).convert("L"), dtype=float)
+    committed = np.asarray(Image.open(ROOT / "docs" / "_static" / picture).convert("L"), dtype=float)
+    assert fresh.shape == committed.shape, f"re-render docs/_static/{picture}: size {committed.shape} != {fresh.shape}"
+    changed = np.mean(np.abs(fresh - committed) > 32)  # a stale layout differs in 9-21 % of its pixels
+    assert changed < 0.02, f"re-render docs/_static/{picture}: {changed:.1%} of its pixels differ"

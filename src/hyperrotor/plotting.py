@@ -91,6 +91,10 @@ def draw_projection(ax, frame: np.ndarray, edges: Sequence[tuple[int, int]], *, 
     ax.set_ylabel(f"x{axes_labels[1]}", labelpad=-2, fontsize=9)
     ax.set_zlabel(f"x{axes_labels[2]}", labelpad=-2, fontsize=9)
     ax.tick_params(labelsize=8, pad=-1, length=0)
+    # equal axes (the limits are equal: a cube looks like a cube), drawn a little smaller than the
+    # panel so that the z label and tick labels stay inside it (a neighbouring panel or the colour
+    # bar would cover what sticks out)
+    ax.set_box_aspect((1, 1, 1), zoom=0.85)
     return sc
 
 
@@ -183,7 +187,7 @@ def save_projection_animation(path, t: np.ndarray, projection: np.ndarray, edges
             cax = fig.add_axes((0.84, 0.15, 0.025, 0.6))
             sm = plt.cm.ScalarMappable(norm=norm, cmap="coolwarm")
             fig.colorbar(sm, cax=cax).set_label(_colour_label(axes_labels, colour_axis), fontsize=8)
-            cax.tick_params(labelsize=7)
+            cax.tick_params(labelsize=8)
         for i in range(len(t)):
             ax.cla()
             draw_projection(ax, xyz[i], edges, limit=lim, axes_labels=axes_labels,
