@@ -174,25 +174,24 @@ def commutator(A: DifferentialOperator, B: DifferentialOperator) -> Differential
     return A.commutator(B)
 
 
-def euler_operator(N: int, coordinates: Any = None) -> DifferentialOperator:
-    r"""The Euler (degree) operator :math:`E = \sum_i x_i\,\partial_i`."""
+def _axis_sum(N: int, coordinates: Any, term) -> DifferentialOperator:
+    r""":math:`\sum_i` ``term(N, i)`` over the N axes (``term`` gives a WeylElement), on the coordinates."""
     N = check_dimension(N)
     coords = coordinate_symbols(N, coordinates)
     e = WeylElement(N, {})
     for i in range(N):
-        e = e + WeylElement.coordinate(N, i).compose(WeylElement.derivative(N, i))
+        e = e + term(N, i)
     return DifferentialOperator(e, coords)
+
+
+def euler_operator(N: int, coordinates: Any = None) -> DifferentialOperator:
+    r"""The Euler (degree) operator :math:`E = \sum_i x_i\,\partial_i`."""
+    return _axis_sum(N, coordinates, lambda n, i: WeylElement.coordinate(n, i).compose(WeylElement.derivative(n, i)))
 
 
 def laplacian_operator(N: int, coordinates: Any = None) -> DifferentialOperator:
     r"""The Laplacian :math:`\Delta = \sum_i \partial_i^2`."""
-    N = check_dimension(N)
-    coords = coordinate_symbols(N, coordinates)
-    e = WeylElement(N, {})
-    for i in range(N):
-        d = WeylElement.derivative(N, i)
-        e = e + d.compose(d)
-    return DifferentialOperator(e, coords)
+    return _axis_sum(N, coordinates, lambda n, i: WeylElement.derivative(n, i).compose(WeylElement.derivative(n, i)))
 
 
 def multiplication_operator(poly: Any, N: int, coordinates: Any = None) -> DifferentialOperator:
