@@ -37,7 +37,8 @@ Operators are :class:`~hyperrotor.quantum.differential_operator.DifferentialOper
 objects (:mod:`hyperrotor.quantum.differential_operator`: the class, its algebra and
 its coordinate symbols) wrapping the exact normal form
 :class:`hyperrotor.quantum.normal_form.WeylElement`; equality ``A == B`` is an exact
-operator identity.
+operator identity. They act on the coordinate symbols *by name* (``coordinates=``,
+:func:`~hyperrotor.quantum.differential_operator.coordinate_symbols`).
 
 Paper material
 --------------
@@ -46,13 +47,6 @@ contraction identities of eqs. (145)-(147) are in
 :mod:`hyperrotor.quantum.operator_products` (``operator_product``,
 ``contraction_identity``), which :mod:`hyperrotor.paper` uses to check the
 print; nothing in :mod:`hyperrotor.quantum` imports :mod:`hyperrotor.paper`.
-
-Symbols
--------
-Operators act on the coordinate symbols *by name* (``coordinates=``, see
-:func:`~hyperrotor.quantum.differential_operator.coordinate_symbols`): ``x1`` created
-with any assumptions is the coordinate ``x1``, and results are written in the
-caller's symbols.
 """
 from __future__ import annotations
 
