@@ -196,10 +196,13 @@ def projection_figure(t: Any, projection: Any, *, edges: Any = (), axes: Sequenc
         layout=go.Layout(
             title=dict(text=title, x=0.02, font=dict(size=15)),
             annotations=[panel(0)],
+            # the camera a little farther than plotly's default (1.25, 1.25, 1.25): the whole box and its
+            # tick labels inside the view; five ticks per axis, so the labels at the corners do not collide
             scene=dict(domain=dict(x=[0.0, 0.66], y=[0.0, 1.0]), aspectmode="cube",
-                       xaxis=dict(title=dict(text=f"x{axes[0]}"), range=rng, autorange=False),
-                       yaxis=dict(title=dict(text=f"x{axes[1]}"), range=rng, autorange=False),
-                       zaxis=dict(title=dict(text=f"x{axes[2]}"), range=rng, autorange=False)),
+                       camera=dict(eye=dict(x=1.5, y=1.5, z=1.1)),
+                       xaxis=dict(title=dict(text=f"x{axes[0]}"), range=rng, autorange=False, nticks=5),
+                       yaxis=dict(title=dict(text=f"x{axes[1]}"), range=rng, autorange=False, nticks=5),
+                       zaxis=dict(title=dict(text=f"x{axes[2]}"), range=rng, autorange=False, nticks=5)),
             font=dict(size=14), margin=dict(l=10, r=10, t=50, b=70), height=640, autosize=True,
             updatemenus=[dict(type="buttons", direction="left", x=0.0, y=0.0, xanchor="left", yanchor="top",
                               pad=dict(t=30, r=10), showactive=False,
@@ -216,26 +219,32 @@ def projection_figure(t: Any, projection: Any, *, edges: Any = (), axes: Sequenc
     )
 
 
-#: Autoplay of the page: one frame every 80 ms from a timer (plotly's own player is driven by
-#: requestAnimationFrame, which a hidden tab or a headless browser does not run), looping, until
-#: the reader presses Play / Pause or moves the slider (then plotly's controls take over).
+#: Autoplay of the page: the next frame 80 ms after the previous one is drawn (plotly's own player is
+#: driven by requestAnimationFrame, which a hidden tab or a headless browser does not run), looping,
+#: until the reader presses Play / Pause or moves the slider (then plotly's controls take over).
+#: Waiting for each frame keeps the view, the time panel and the slider on the same time where
+#: drawing a frame takes longer than the interval (a software-rendered WebGL: a fixed timer with
+#: 'immediate' frames interrupted the drawing, and the slider ran ahead of the picture).
 _AUTOPLAY = """
 (function () {
   var gd = document.getElementById('{plot_id}');
   var names = (gd._transitionData && gd._transitionData._frames || []).map(function (f) { return f.name; });
   if (names.length < 2) { return; }
-  var k = 0;
-  var timer = setInterval(function () {
+  var k = 0, stopped = false;
+  function later() { if (!stopped) { setTimeout(next, 80); } }
+  function next() {
+    if (stopped) { return; }
     k = (k + 1) % names.length;
-    // 'immediate' interrupts the previous frame if still drawing: plotly then rejects its promise
-    // with no reason; any other rejection is a real error and is rethrown
+    // a frame interrupted by the reader's Play or slider is rejected with no reason (then the
+    // autoplay has stopped); any other rejection is a real error and is rethrown
     Plotly.animate(gd, [names[k]], {mode: 'immediate', frame: {duration: 0, redraw: true},
                                     transition: {duration: 0}})
-      .catch(function (e) { if (e !== undefined) { throw e; } });
-  }, 80);
-  function stop() { clearInterval(timer); }
+      .then(later, function (e) { if (e !== undefined) { throw e; } later(); });
+  }
+  function stop() { stopped = true; }
   gd.on('plotly_buttonclicked', stop);
   gd.on('plotly_sliderstart', stop);
+  later();
 })();
 """
 
