@@ -131,9 +131,11 @@ def dimension(N: Any, *, minimum: int = 2, name: str = "N") -> int:
     """
     from hyperrotor._options import options
 
+    from hyperrotor._pricing import BudgetError
+
     N = integer(name, N, minimum=minimum)
     if N > options["max_dimension"]:
-        raise ValueError(
+        raise BudgetError(
             f"{name} = {N} exceeds options['max_dimension'] = {options['max_dimension']} (so({N}) has "
             f"{N * (N - 1) // 2} planes); raise it with hyperrotor.options(max_dimension=...) if you mean it"
         )
@@ -278,6 +280,7 @@ def representation(name: str, value: Any, *, dim: int | None = None, of: str = "
 
 def real_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = None) -> np.ndarray:
     """A finite real float array; complex input is refused (no silent loss of the imaginary part)."""
+    numeric_input(name, value)  # before np.asarray, which would drop a mask
     arr = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray(value, dtype=object)
     if arr.dtype.kind not in "biuf":
         raise TypeError(f"{name} must be a real numeric array, got {fmt(value)} (dtype {arr.dtype})")
@@ -495,6 +498,7 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
         src = [by_plane[p] for p in plane_table(n)]
     if isinstance(src, (str, bytes)):
         raise TypeError(f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, got {fmt(src)}")
+    numeric_input(name, src)  # booleans, datetime64/timedelta64 values and masked arrays are not moments
     try:
         is_complex = np.iscomplexobj(src)
         arr = None if is_complex else np.asarray(src, dtype=float)
@@ -546,6 +550,8 @@ def ket(name: str, value: Any, dim: int, *, of: str) -> np.ndarray:
             raise ValueError(f"{name} must be a ket, got a Qobj of type {value.type!r}")
         vec = value.full().ravel()
     else:
+        if not isinstance(value, (str, bytes)):
+            numeric_input(name, value)  # booleans and masked arrays (np.asarray drops the mask) are not states
         vec = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray(value, dtype=object)
         if vec.dtype.kind not in "biufc":
             raise TypeError(f"{name} must be a ket Qobj or a numeric vector, got {fmt(value)}")

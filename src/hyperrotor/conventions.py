@@ -291,6 +291,7 @@ def to_matrix(components: Any, *, convention: str = "paper"):
             M[i - 1, j - 1] = int(s) * c
             M[j - 1, i - 1] = -int(s) * c
         return M
+    _validate.numeric_input("components", components)  # booleans, dates, masked arrays (np.asarray drops a mask)
     arr = np.asarray(components)
     if arr.ndim == 0:
         raise ValueError(f"components must be a sequence of N(N-1)/2 numbers, got the scalar {components!r}")
@@ -334,6 +335,7 @@ def to_components(matrix: Any, *, convention: str = "paper", atol: float | None 
             raise ValueError(f"matrix is not antisymmetric: M + M^T != 0 at 1-based entries {bad[:5]}")
         signs = plane_signs(N, convention=convention)
         return sp.Matrix([int(s) * M[i - 1, j - 1] for (i, j), s in zip(planes(N), signs)])
+    _validate.numeric_input("matrix", matrix)  # booleans, dates, masked arrays (np.asarray drops a mask)
     arr = np.asarray(matrix)
     if arr.dtype.kind not in "biufc":
         raise TypeError(f"matrix must be numeric (or a SymPy matrix), got {_validate.fmt(matrix)} of dtype {arr.dtype}")
@@ -399,6 +401,7 @@ def structure_constants(N: int) -> np.ndarray:
 
 def _component_array(name: str, value: Any) -> np.ndarray:
     """A numeric array of component vectors (last axis), refused with the argument's name otherwise."""
+    _validate.numeric_input(name, value)  # booleans, dates, masked arrays (np.asarray drops a mask)
     arr = np.asarray(value)
     if arr.dtype.kind not in "biufc":
         raise TypeError(f"{name} must be a numeric component vector (or SymPy), got {_validate.fmt(value)}")

@@ -170,8 +170,8 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     if not work_rows.sum() / threads <= budget:  # also refuses an infinite estimate
         with np.errstate(over="ignore"):
             w_top = float(np.max(rate_bound(moments_rows, Ls) * scale)) if B else 0.0
-        raise ValueError(
-            f"this run needs about {work_rows.sum():.3g} units of work (5D plane flows x (1 + {k} tangent vectors"
+        raise _pricing.BudgetError(
+            f"lyapunov: this run needs about {work_rows.sum():.3g} units of work (5D plane flows x (1 + {k} tangent vectors"
             f"{f' x (N - 2) / 3 = {tangent:.4g}' if N > 5 else ''})), "
             f"{work_rows.sum() / threads:.3g} per worker thread, over the budget options['lyapunov_max_work'] = "
             f"{_validate.fmt(budget)} (~{budget / _WORK_RATE / 60:.0f} min per thread); the work grows with T "
@@ -184,7 +184,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     stride = 1 if history else nren
     nstore = nren if history else 1
     if B * nstore * k * 8 > options["max_output_bytes"]:
-        raise ValueError(f"history=True would store {B * nstore * k * 8 / 2**30:.3g} GiB of running exponents "
+        raise _pricing.BudgetError(f"lyapunov: history=True would store {B * nstore * k * 8 / 2**30:.3g} GiB of running exponents "
                          f"({B} orbits x {nstore} renormalisations x {k}), over options['max_output_bytes'] = "
                          f"{_validate.fmt(options['max_output_bytes'])}; use a larger renorm_interval or fewer orbits")
     if chunk_size is None and B:
@@ -548,7 +548,7 @@ def poincare_section(
         dt = min(dt, T)  # a (nearly) resting body: one step (lyapunov_step / wmax overflows for subnormal omega)
     steps = T / dt
     if not steps <= options["max_steps"]:
-        raise ValueError(f"this section (omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))}) needs about "
+        raise _pricing.BudgetError(f"poincare_section: this section (omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))}) needs about "
                          f"{steps:.3g} steps of dt = {dt:.3g} over T = {_validate.fmt(T)}, "
                          f"over the budget options['max_steps'] = {_validate.fmt(options['max_steps'])}; "
                          f"shorten T, give a larger dt, or raise it: hr.options(max_steps=...)")

@@ -228,6 +228,8 @@ class Inertia:
         if isinstance(moments, Mapping):
             values, N_ = self._values_from_mapping(moments, N)
         else:
+            if isinstance(moments, np.ndarray):  # booleans, dates and masked arrays (asarray drops a mask)
+                _validate.numeric_input("moments", moments)
             seq = _as_list(moments, "moments")
             N_ = dimension_from_count(len(seq)) if len(seq) else None
             if N_ is None:

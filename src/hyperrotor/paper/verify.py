@@ -146,3 +146,11 @@ def configure_parser(parser: argparse.ArgumentParser) -> None:
 #: One-line description of the report (CLI help).
 VERIFY_DESCRIPTION = ("check the preprint's equations (3)-(147) against hyperrotor's derivations; "
                       "each item holds / typo / claim-false / not-checkable")
+
+
+if __name__ == "__main__":  # not a command: the report is written by `hyperrotor verify` (the CLI's one file path)
+    import sys
+
+    print("python -m hyperrotor.paper.verify is not a command; run `hyperrotor verify [--json | --markdown] "
+          "[-o FILE]` (files are written by the command line's checked, no-clobber path)", file=sys.stderr)
+    sys.exit(2)

@@ -89,8 +89,11 @@ def coordinate_symbols(N: int, coordinates: Any = None) -> tuple:
         raise ValueError(f"expected {N} coordinates for N = {N}, got {len(items)}: {items!r}")
     out = []
     for c in items:
-        if isinstance(c, str):
-            out.append(sp.Symbol(c, real=True))
+        if isinstance(c, str):  # a name, read by the one parser of user text (an identifier, nothing else)
+            sym = _parse.to_sympy(c, "a coordinate", real=True)
+            if not isinstance(sym, sp.Symbol):
+                raise ValueError(f"a coordinate name must be an identifier such as 'x' or 'x1', got {c[:80]!r}")
+            out.append(sym)
         elif isinstance(c, sp.Symbol):
             out.append(c)
         else:
@@ -167,6 +170,8 @@ class DifferentialOperator:
     def __init__(self, element: WeylElement, coordinates: Sequence[sp.Symbol]):
         if not isinstance(element, WeylElement):
             raise TypeError(f"element must be a WeylElement, got {type(element).__name__}")
+        if not (isinstance(coordinates, (tuple, list)) and all(isinstance(c, sp.Symbol) for c in coordinates)):
+            coordinates = coordinate_symbols(element.N, coordinates)  # names are read by the one parser
         coords = tuple(coordinates)
         if len(coords) != element.N:
             raise ValueError(f"{len(coords)} coordinates for an operator in {element.N} variables")

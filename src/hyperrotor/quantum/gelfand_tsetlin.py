@@ -76,6 +76,7 @@ import scipy.sparse as sps
 import sympy as sp
 
 from hyperrotor import _validate
+from hyperrotor._pricing import BudgetError
 from hyperrotor.conventions import check_dimension
 
 from .weights import check_highest_weight, dynkin_to_orthogonal, format_weight, weyl_dim
@@ -308,7 +309,7 @@ def _check_max_dim(N: int, m, max_dim):
         n_pl = N * (N - 1) // 2
         # rough nnz: each generator has O(N) non-zeros per row
         est_bytes = dim * n_pl * N * 20
-        raise ValueError(
+        raise BudgetError(
             f"the so({N}) irrep {format_weight(m)} has dimension {dim} > max_dim = {max_dim}; "
             f"its {n_pl} sparse generators need roughly {est_bytes / 2**20:.0f} MiB. "
             f"Pass a larger max_dim (e.g. max_dim={dim}) to build it anyway."
@@ -385,7 +386,7 @@ def _gt_generators_float(N: int, m) -> dict:
 def _gt_generators_exact(N: int, m) -> dict:
     dim = weyl_dim(N, m)
     if dim > EXACT_MAX_DIM:
-        raise ValueError(
+        raise BudgetError(
             f"exact (SymPy) generators are limited to dim <= {EXACT_MAX_DIM} (EXACT_MAX_DIM); "
             f"the so({N}) irrep {format_weight(m)} has dim {dim}: use the float CSR generators"
         )

@@ -108,6 +108,23 @@ def _falling(n: int, k: int) -> int:
 # ----------------------------------------------------------------------------
 # polynomial dicts  {exponent tuple: coefficient}
 # ----------------------------------------------------------------------------
+def _symbols(coordinates: Any) -> tuple:
+    """``coordinates`` as a tuple of SymPy symbols; text (a name or a string of names) is refused:
+    SymPy would turn a string generator into an expression (``sympify``)."""
+    if isinstance(coordinates, (str, bytes)):
+        raise TypeError(f"coordinates must be a sequence of SymPy symbols (e.g. coordinate_symbols(N)), got text "
+                        f"{coordinates[:80]!r}")
+    try:
+        coords = tuple(coordinates)
+    except TypeError:
+        raise TypeError(f"coordinates must be a sequence of SymPy symbols, got {type(coordinates).__name__}") from None
+    bad = [c for c in coords if not isinstance(c, sp.Symbol)]
+    if bad:
+        raise TypeError(f"coordinates must be SymPy symbols (e.g. coordinate_symbols(N)), got {bad[0]!r} of type "
+                        f"{type(bad[0]).__name__}")
+    return coords
+
+
 def polynomial_to_dict(expr: Any, coordinates: Sequence[sp.Symbol]) -> dict:
     """Exact coefficient dict ``{exponent tuple: coefficient}`` of a polynomial.
 
@@ -125,7 +142,7 @@ def polynomial_to_dict(expr: Any, coordinates: Sequence[sp.Symbol]) -> dict:
     ValueError
         If ``expr`` is not a polynomial in ``coordinates``.
     """
-    coords = tuple(coordinates)
+    coords = _symbols(coordinates)
     N = len(coords)
     if isinstance(expr, (Integral, Fraction)) and not isinstance(expr, bool):
         c = _norm_scalar(expr)
@@ -148,7 +165,7 @@ def polynomial_to_dict(expr: Any, coordinates: Sequence[sp.Symbol]) -> dict:
 
 def dict_to_polynomial(poly: Mapping, coordinates: Sequence[sp.Symbol]) -> sp.Expr:
     """SymPy expression of a coefficient dict ``{exponent tuple: coefficient}``."""
-    coords = tuple(coordinates)
+    coords = _symbols(coordinates)
     terms = []
     for m, c in poly.items():
         if len(m) != len(coords):

@@ -38,6 +38,7 @@ from scipy.sparse.linalg import expm_multiply
 
 from .. import _lazy, _validate
 from .._options import options as _options
+from .._pricing import BudgetError
 from ._krylov import krylov_propagator
 
 __all__ = ["EVOLVE_METHODS", "PROPAGATORS", "RESULT_OPTIONS", "Propagator", "evolve_options", "register_propagator"]
@@ -180,8 +181,10 @@ class Auto(Propagator):
     }
 
     def plan(self, blocks):
-        limit = int(self.opts["eigen_max_block"] if self.opts["eigen_max_block"] is not None
-                    else _options["quantum_eigen_max_block"])
+        Krylov(**self.opts).settings()  # atol and krylov_dim are checked even when no block needs Krylov
+        cap = self.opts.get("eigen_max_block")
+        limit = int(_options["quantum_eigen_max_block"] if cap is None
+                    else _validate.integer("eigen_max_block", cap, minimum=1))
         small = [b for b in blocks if len(b) <= limit]
         large = [b for b in blocks if len(b) > limit]
         jobs = Eigen(**self.opts).plan(small)
@@ -200,7 +203,7 @@ class Eigen(Propagator):
         limit = int(_options["quantum_max_dense_dim"])
         big = max((len(b) for b in blocks), default=0)
         if big > limit:
-            raise ValueError(
+            raise BudgetError(
                 f"method 'eigen' would diagonalize a dense block of dimension {big} > "
                 f"options['quantum_max_dense_dim'] = {limit}; use method 'krylov' or raise the limit "
                 f"(hyperrotor.options(quantum_max_dense_dim=...))"

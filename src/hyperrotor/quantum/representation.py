@@ -102,6 +102,7 @@ def as_csr(M: Any, name: str = "operator") -> sps.csr_matrix:
     elif sps.issparse(M):
         mat = sps.csr_matrix(M, copy=True)
     elif isinstance(M, np.ndarray):
+        _validate.numeric_input(name, M)  # booleans, dates, masked arrays (the mask would be dropped)
         arr = np.asarray(M)
         if arr.ndim != 2:
             raise ValueError(f"{name} must be a 2-D matrix, got an array of shape {arr.shape}")

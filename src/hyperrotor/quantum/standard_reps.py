@@ -83,7 +83,7 @@ def jmat_generators(j: Any, *, form: str = "antihermitian", hbar: float = 1) -> 
     if jj.denominator not in (1, 2) or jj <= 0 or float(jj) != float(j):
         raise ValueError(f"spin j must be a positive integer or half-integer, got {_validate.fmt(j)}")
     if 2 * jj + 1 > DEFAULT_MAX_DIM:
-        raise ValueError(f"spin j = {_validate.fmt(float(jj))} has dimension 2j + 1 = {_validate.fmt(int(2 * jj + 1))} "
+        raise _pricing.BudgetError(f"spin j = {_validate.fmt(float(jj))} has dimension 2j + 1 = {_validate.fmt(int(2 * jj + 1))} "
                          f"> {DEFAULT_MAX_DIM} (DEFAULT_MAX_DIM, the limit of irrep(3, (j,)) too)")
     qutip = _lazy.qutip
     out = {}
