@@ -46,11 +46,8 @@ EXAMPLES = {
     # classical
     "Inertia": lambda: hr.Inertia(BODY4),
     "RigidBody": lambda: hr.RigidBody(hr.Inertia(BODY4)),
-    "Trajectory/splitting8": _trajectory("splitting8"),
+    **{f"Trajectory/{m}": _trajectory(m) for m in sorted(hr.SOLVERS)},  # every method (issue #21 §4)
     "Trajectory/splitting4+attitude": _trajectory("splitting4", attitude=True),
-    "Trajectory/moser-veselov": _trajectory("moser-veselov"),
-    "Trajectory/DOP853": _trajectory("DOP853"),
-    "Trajectory/RK45": _trajectory("RK45"),
     "Trajectory/auto (closed form)": _trajectory("auto"),
     "Trajectory/ensemble": lambda: hr.simulate(BODY3, np.stack([W3, 2 * W3]), T5, method="splitting8"),
     "Solver": lambda: hr.SOLVERS["splitting8"](),
