@@ -155,10 +155,13 @@ def test_docs_content(docs_build):
         page = (html / "notebooks" / f"{path.stem}.html").read_text()
         assert "HYPERROTOR_CHECKS" not in page, f"{path.name}: the checks cell shows on the page"
         assert not _plots(path) or "<img" in page, f"{path.name}: no figure on the page"
-    # the interactive scene is on the scenes page, with plotly.js inside: nothing fetched from a CDN
-    scenes = (html / "notebooks" / "03_scenes.html").read_text()
-    assert "plotly-graph-div" in scenes and "Plotly.newPlot" in scenes
-    assert not re.findall(r"<script[^>]*\bsrc=\"https?://[^\"]*(?:plot\.ly|mathjax/3\.2)", scenes)
+    # the interactive scene is on the scenes notebook's page and the tutorial's scenes section, with
+    # plotly.js inside: nothing fetched from a CDN; its set-up cell is not on the page
+    for page in ("notebooks/03_scenes.html", "tutorial.html"):
+        scenes = (html / page).read_text()
+        assert "plotly-graph-div" in scenes and "Plotly.newPlot" in scenes, page
+        assert not re.findall(r"<script[^>]*\bsrc=\"https?://[^\"]*(?:plot\.ly|mathjax/3\.2)", scenes), page
+        assert "PageHTML" not in scenes, page
 
 
 # -- every page's code runs as written ----------------------------------------------------------
