@@ -242,3 +242,21 @@ def test_committed_pictures_are_what_the_commands_draw_today(capsys, tmp_path, a
     assert fresh.shape == committed.shape, f"re-render docs/_static/{picture}: size {committed.shape} != {fresh.shape}"
     changed = np.mean(np.abs(fresh - committed) > 32)  # a stale layout differs in 9-21 % of its pixels
     assert changed < 0.02, f"re-render docs/_static/{picture}: {changed:.1%} of its pixels differ"
+
+
+#: Figure functions checked through another one here (they draw on an axes the caller owns).
+_CHECKED_THROUGH = {"draw_projection": "save_projection_frames"}
+
+
+def test_every_figure_function_is_checked_here():
+    """A new figure function of hyperrotor.plotting (or the demo's) gets a check in this file."""
+    import inspect
+
+    from hyperrotor import demo
+
+    source = Path(__file__).read_text(encoding="utf-8")
+    names = [n for n in plotting.__all__ if n.startswith(("save_", "plot_", "draw_"))]
+    names += [n for n, f in inspect.getmembers(demo, inspect.isfunction) if n.startswith(("save_", "plot_"))]
+    assert "save_quartet_motion" in names and "plot_work_precision" in names
+    missing = [n for n in names if f"{_CHECKED_THROUGH.get(n, n)}(" not in source]
+    assert not missing, f"add a test of {missing} to tests/test_figures.py"
