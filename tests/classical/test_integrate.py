@@ -121,26 +121,6 @@ def test_ensemble_kernel_equals_per_body_kernel(use_py, compensated, rng):
     np.testing.assert_array_equal(a, b)
 
 
-@pytest.mark.parametrize("N", [3, 4, 5, 6, 7])
-def test_flow_order_puts_planes_without_a_common_axis_next_to_each_other(N):
-    """Strang's sweep takes every remaining plane once; consecutive planes share no axis wherever a
-    plane without a common axis remains (the angle of a flow then does not wait for the previous one)."""
-    from hyperrotor.classical.solvers.splitting import flow_order
-    from hyperrotor.conventions import planes
-
-    ps = planes(N)
-    for seq in (tuple(range(len(ps))), tuple(range(1, len(ps), 2))):
-        order = flow_order(N, seq)
-        assert sorted(order) == list(seq)
-        for k in range(1, len(order)):
-            prev = set(ps[order[k - 1]])
-            free = [a for a in order[k:] if not set(ps[a]) & prev]
-            assert (not set(ps[order[k]]) & prev) == bool(free)
-    if N == 5:  # the paper's ten planes: 12, 34, 15, 23, 14, 25, 13, 24, 35, 45
-        assert [ps[a] for a in flow_order(5, tuple(range(10)))] == [
-            (1, 2), (3, 4), (1, 5), (2, 3), (1, 4), (2, 5), (1, 3), (2, 4), (3, 5), (4, 5)]
-
-
 def test_coefficient_sets_are_symmetric_and_consistent():
     for order, stages in [(2, 1), (4, 3), (6, 9), (8, 17)]:
         g = splitting_coefficients(order)

@@ -9,13 +9,7 @@ is split into one term per plane; the flow of :math:`\rho_a L_a^2/2` keeps
 Planes with :math:`\rho_a = 0` (those whose moment equals ``1/c``) drop out;
 the attitude is corrected for the shift exactly; with a torque there is no shift.
 The basic method :math:`S_2(h)` is Strang's symmetric product over the remaining
-planes followed by the reverse order (order 2), the planes taken in an order where
-consecutive planes share no axis wherever possible (:func:`flow_order`: 12, 34, 15, 23,
-14, 25, 13, 24, 35, 45 in 5D). Then the angle of a flow does not wait for the flow before
-it, and the processor overlaps the two: 1.1-1.3x faster per step than paper order on generic
-5D bodies, 1.25x in 4D (same kernel, word alone changed, one process; none in 3D, where every
-two planes share an axis), at the same order; the error constant differs by body (splitting8 at a
-fixed step: geometric mean 1.2x larger over 16 random 5D bodies, range 0.16x-7.6x). Orders 4, 6, 8 are
+planes in paper order followed by the reverse order (order 2). Orders 4, 6, 8 are
 symmetric compositions :math:`S_2(\gamma_s h)\cdots S_2(\gamma_1 h)`
 (:func:`splitting_coefficients`):
 
@@ -70,7 +64,7 @@ from .base import Problem, step_lengths
 from .driver import FixedStepSolver
 
 __all__ = ["Splitting", "Splitting2", "Splitting4", "Splitting6", "Splitting8", "splitting_coefficients",
-           "casimir_shift", "flow_order"]
+           "casimir_shift"]
 
 _ENSEMBLE_CHUNK = 128  # bodies per chunk of the ensemble kernel (working set fits in L1/L2)
 #: ``compensated=None``: runs of more elementary flows than this (per trajectory) keep L in
@@ -212,26 +206,6 @@ def _shift_candidates(moments_bytes: bytes) -> tuple[np.ndarray, np.ndarray, np.
 
 
 @lru_cache(maxsize=None)
-def flow_order(N: int, seq: tuple[int, ...]) -> tuple[int, ...]:
-    """The planes ``seq`` (indices in paper order) in the order of Strang's forward sweep.
-
-    Greedy from the first: each next plane is the first remaining one (paper order) that shares
-    no axis with the previous one, or the first remaining one if none does. Two planes without a
-    common axis commute, and the flow of one does not change the other's component, so its angle
-    is ready before the previous flow ends (in 3D every two planes share an axis: paper order).
-    """
-    from hyperrotor.conventions import planes
-
-    axes = [set(p) for p in planes(N)]
-    rest = list(seq)
-    out = [rest.pop(0)] if rest else []
-    while rest:
-        k = next((i for i, a in enumerate(rest) if not axes[a] & axes[out[-1]]), 0)
-        out.append(rest.pop(k))
-    return tuple(out)
-
-
-@lru_cache(maxsize=None)
 def splitting_word(order: int, seq: tuple[int, ...], kick: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """One step as a word of elementary flows (plane index, fraction of h); -1 = torque kick.
 
@@ -359,7 +333,7 @@ class Splitting(FixedStepSolver):
         # a plane drops out when its rate vanishes for every member (for the others its flow is exact identity)
         seq = tuple(int(a) for a in np.flatnonzero(np.any(rates_b != 0.0, axis=0)))
         self._state = dict(
-            shift=shift, rates=rates_b, word=splitting_word(self.order, flow_order(problem.N, seq), kick=kick),
+            shift=shift, rates=rates_b, word=splitting_word(self.order, seq, kick=kick),
             tables=rotation_tables(problem.N),
             torque=np.zeros((B, n)) if not kick else np.ascontiguousarray(problem.torque),
             compensated=self.options["compensated"],
