@@ -7,7 +7,7 @@ Euler equations (86)-(95); the linear system (96)-(99) of the planes through
 the distinguished axis, the parameter :math:`\Theta` (100), the exponential
 ansatz (101)-(106), the frequency polynomial and its coefficients (107)-(110)
 and the frequencies after (118) (numerically against
-:func:`hyperrotor.classical.closed_form.quartet_frequencies`); and the other
+:func:`hyperrotor.classical.quartet.quartet_frequencies`); and the other
 choices of the distinguished axis (111)-(118). The quartet-body derivations
 are cached.
 """
@@ -243,7 +243,7 @@ def sec_closed_form() -> tuple:
     num_ok = _frequencies_numeric(freqs)
     out.append(claim("after 118 (frequencies)", sec, roots_ok and num_ok,
                       "each printed Omega solves Omega^4 + l2 Omega^2 + l0 = 0 (exact), and numerically they are +-Omega_1, +-Omega_2 of "
-                      "closed_form.quartet_frequencies and the eigenvalues of the derived K; real because l2 <= 0 <= l0 and "
+                      "quartet.quartet_frequencies and the eigenvalues of the derived K; real because l2 <= 0 <= l0 and "
                       "l2^2 - 4 l0 >= 0 (quasi-periodic motion)", "a printed root does not solve (107)",
                       "Omega = +-1/2 sqrt(+-2 sqrt(l2^2 - 4 l0) - 2 l2)"))
     # (111)-(118)
