@@ -3,7 +3,8 @@
 The page written by ``Scene.to_html`` is opened twice with different virtual-time budgets: both
 screenshots must show a picture (not a blank page), they must differ (the page animates by itself),
 and the browser must log no JavaScript error. Skipped when chromium is absent outside CI; in CI
-(``CI=true``) ``.ci/run`` installs it, so its absence is a failure.
+(``CI=true``) ``.ci/run`` installs it, so its absence is a failure. The last test (no browser)
+checks that the command line prices and refuses a page like a GIF.
 """
 from __future__ import annotations
 
@@ -106,3 +107,20 @@ def test_page_logs_no_javascript_error(shots):
                if "CONSOLE" in line and ("HRJSERROR" in line or "Uncaught" in line)]
         assert not bad, "JavaScript errors:\n" + "\n".join(bad)
         assert "HRJSERROR" not in log
+
+
+# -- the page's size budget is the GIF's (no browser needed) -------------------------------------
+@pytest.mark.parametrize("suffix", [".gif", ".html"])
+def test_command_line_page_is_refused_like_the_gif(capsys, tmp_path, suffix):
+    """``hyperrotor scene``: an HTML page too large for the budget is refused before any work, by the
+    same frames x (points + edges) pricing and the same options as the GIF."""
+    from hyperrotor.cli import main
+
+    out = tmp_path / f"big{suffix}"
+    assert main(["scene", "--N", "8", "--frames", "5000", "--output", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "(256 points, 1024 edges, 5000 frames)" in err and "over the budget of 2 GiB (--max-memory" in err
+    assert not list(tmp_path.iterdir())
+    assert main(["scene", "--N", "8", "--frames", "5000", "--max-memory", "64G", "--max-seconds", "1",
+                 "--output", str(out)]) == 2   # and the time budget, priced from the same sizes
+    assert "--max-seconds" in capsys.readouterr().err and not list(tmp_path.iterdir())
