@@ -55,7 +55,7 @@ from ._sector_blocks import (
     sector_blocks,
     sector_price,
 )
-from .hamiltonian import blocks_of, hermitian_matrix
+from .hamiltonian import blocks_of, hermitian_matrix, representation_of
 from .propagators import PROPAGATORS, Auto, Krylov, propagator_class
 
 __all__ = ["SectorPropagator"]
@@ -182,7 +182,7 @@ class SectorPropagator:
         self.hbar = _validate.hbar(hbar)
         self.matrix, self.dims = hermitian_matrix(H)
         self.dim = int(self.matrix.shape[0])
-        rep = rep if rep is not None else getattr(H, "_hyperrotor_rep", None)
+        rep = rep if rep is not None else representation_of(H)
         if rep is not None:
             rep = _validate.representation("rep", rep, dim=self.dim)
         self.method = cls.name
