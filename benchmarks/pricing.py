@@ -1,6 +1,7 @@
 """Estimate vs measured cost of every priced entry point (hyperrotor._pricing, issue #21).
 
-For each entry point with a cost model, a few sizes below the budgets are run: the CPU
+For every entry point with a cost model (a model without a case is listed at the end), a few sizes
+below the budgets are run: the CPU
 time of this process (process_time, one run, no tracing; BLAS and OpenMP limited to one thread,
 so it is single-core time and does not depend on the load of the machine) and the peak traced
 memory (tracemalloc, a second run; only for entries whose model prices memory) are printed
@@ -8,8 +9,10 @@ next to the model's estimate,
 with their ratio (estimate / measured; the models aim at a factor ~3 either way). A plot
 of estimate against measured is written to benchmarks/results/pricing.png.
 
-    python benchmarks/pricing.py            # the table (~2 min on the 2-core machine)
+    python benchmarks/pricing.py            # the table: every model (~10 min of CPU on the 2-core machine)
     python benchmarks/pricing.py --quick    # the smallest size of each entry only
+    python benchmarks/pricing.py --only otoc,scene   # these entries only
+    python benchmarks/pricing.py --list     # the priced entries without a case (none)
 
 Estimates of memory are bytes of working memory; estimates of time are single-core seconds
 on the reference machine. Tiny measurements (below 20 ms or 1 MB) are dominated by fixed
@@ -19,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import gc
+import math
 import os
 import sys
 import time
@@ -34,6 +38,7 @@ import hyperrotor.quantum as hq  # noqa: E402
 from hyperrotor import _pricing  # noqa: E402
 from hyperrotor.classical.solvers.splitting import _shift_candidates  # noqa: E402
 from hyperrotor.conventions import _structure_constants  # noqa: E402
+from hyperrotor.demo import compare_quartet_motion  # noqa: E402
 
 
 def _moments(N):
@@ -113,16 +118,138 @@ def cases():
         sizes = dict(rank=len(hw), n_roots=len(hq.positive_roots(N)), dim=hq.weyl_dimension(N, hw), bound=2 * hw[0])
         out.append(("weight_multiplicities", f"N={N} {hw}", sizes, lambda: None,
                     lambda _, N=N, hw=hw: hq.weight_multiplicities(N, hw)))
+    # --- the other models (issue #21: every priced entry point)
+    for N in (100, 200, 300):
+        out.append(("Inertia", f"N={N} (list of floats)", dict(n=N * (N - 1) // 2), lambda N=N: _moments(N).tolist(),
+                    hr.Inertia))
+    for N in (60, 100, 150):
+        out.append(("RigidBody", f"N={N}", dict(N=N), lambda N=N: _moments(N), hr.RigidBody))
+    for N in (40, 60, 80):
+        out.append(("casimir_shift", f"N={N}", dict(n=N * (N - 1) // 2),
+                    lambda N=N: (_shift_candidates.cache_clear(), _moments(N))[1], hr.casimir_shift))
+    for N in (20, 40, 60):
+        out.append(("inertia_tensor", f"N={N}, 10 points", dict(N=N, points=10),
+                    lambda N=N: np.random.default_rng(0).standard_normal((10, N)),
+                    lambda x: hr.inertia_tensor(np.ones(len(x)), x)))
+    for B in (10, 20, 40):
+        out.append(("quartet_frequencies", f"N=300, {B} initial conditions", dict(N=300, batch=B),
+                    lambda B=B: np.random.default_rng(0).standard_normal((B, 44850)),
+                    lambda w: hr.quartet_frequencies(0.5, w, 5)))
+    for N in (100, 200, 400):
+        out.append(("stability_condition", f"N={N}", dict(N=N), lambda: None,
+                    lambda _, N=N: hr.stability_condition((1, 2), N)))
+    for K in (100, 500, 2000):
+        out.append(("Scene.to_html", f"{K} times, 5-cube (page bytes)", dict(n_times=K, n_points=32, n_edges=80),
+                    lambda K=K: hr.Scene(_moments(5), 0.3 * np.ones(10), np.linspace(0.0, 10.0, K),
+                                         points=hr.hypercube_vertices(5)),
+                    _page_bytes, "output"))
+    for n in (1000, 2000, 3000):
+        out.append(("body_edges", f"simplex of {n} points", dict(pairs=n * (n - 1) // 2),
+                    lambda n=n: np.random.default_rng(0).standard_normal((n, 3)), lambda x: hr.body_edges(x, "simplex")))
+    for n in (10**5, 10**6, 4 * 10**6):
+        out.append(("ellipsoid_points", f"{n} points, N=3", dict(n=n, N=3), lambda: None,
+                    lambda _, n=n: hr.ellipsoid_points([1.0, 2.0, 3.0], n)))
+    for l in (500, 1000, 2000):
+        out.append(("dense_matrix", f"generator of irrep l={l}, dense", dict(dim=2 * l + 1),
+                    lambda l=l: hq.irrep(3, (l,)), lambda a: a.generator((1, 2), format="dense")))
+    for N, hw in ((3, (30000,)), (3, (99999,)), (5, (20, 10))):
+        out.append(("gt_sectors", f"N={N} {hw}", dict(dim=hq.weyl_dimension(N, hw), N=N),
+                    lambda N=N, hw=hw: hq.irrep(N, hw), hq.symmetry_sectors))
+    for a, b in ((50, 1), (100, 1), (200, 1)):
+        dim = (2 * a + 1) * (2 * b + 1)
+        out.append(("sectors_dense", f"tensor l={a} x l={b} (dim {dim})", dict(dim=dim, N=3),
+                    lambda a=a, b=b: hq.tensor(hq.irrep(3, (a,)), hq.irrep(3, (b,))), hq.symmetry_sectors))
+    for l in (1000, 2000, 4000):
+        out.append(("sector_spectra", f"irrep l={l}", _largest_sector(l), lambda l=l: hq.irrep(3, (l,)),
+                    lambda a: hq.sector_spectra(a, [1.0, 2.0, 3.0])))
+    for S in (100, 1000, 4000):
+        out.append(("otoc", f"5 times, {S} samples, dim 5", dict(n_times=5, columns=S, dim=5), _otoc_inputs,
+                    lambda x, S=S: hq.otoc(*x, samples=S)))
+    for N, l in ((3, 6), (3, 10), (3, 14)):
+        out.append(("orthogonal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), lambda: None,
+                    lambda _, N=N, l=l: hq.orthogonal_harmonic_basis(N, l)))
+    for e in (10**4, 2 * 10**4, 4 * 10**4):
+        out.append(("sphere_integral", f"exponents ({e},) * 3", dict(degree=3 * e), lambda: None,
+                    lambda _, e=e: hq.sphere_monomial_integral((e, e, e))))
+    for N in (300, 600, 1000):
+        hw = tuple(range(N // 2, 0, -1))
+        bits = len(hq.positive_roots(N)) * math.log2(2 * (2 * float(max(hw)) + N) + 1)
+        out.append(("weyl_product", f"N={N}, rho-like weight", dict(bits=bits), lambda: None,
+                    lambda _, N=N, hw=hw: hq.weyl_dimension(N, hw)))
+    for t_end in (50.0, 200.0, 800.0):
+        out.append(("compare_quartet_motion", f"kappa=2, t_end={t_end:g} (warm kernels)",
+                    dict(t_end=t_end, rate=_quartet_rate()), _warm_quartet,
+                    lambda _, t_end=t_end: compare_quartet_motion(2.0, t_end=t_end)))
+    for N, frames in ((4, 6), (6, 6), (8, 6)):
+        out.append(("scene", f"hyperrotor scene --N {N} --shape cube, PNG (child process, CPU s)",
+                    dict(shape="cube", N=N, frames=frames, format=".png"), lambda: None,
+                    lambda _, N=N: _cli_scene(N), "child"))
     return out
 
 
-def measure(setup, run, memory):
+def _cli_scene(N):
+    """CPU seconds of ``hyperrotor scene`` in a child process (the 'scene' model prices the whole command,
+    start-up included, against the CLI budgets)."""
+    import resource
+    import subprocess
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        subprocess.run([sys.executable, "-m", "hyperrotor.cli", "scene", "--N", str(N), "--shape", "cube",
+                        "--output", os.path.join(tmp, "s.png")], check=True, capture_output=True,
+                       env=dict(os.environ, MPLBACKEND="Agg"))
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    return cpu
+
+
+def _page_bytes(scene):
+    """The bytes of the page written by Scene.to_html (what the model 'Scene.to_html' estimates)."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "scene.html")
+        scene.to_html(path)
+        return os.path.getsize(path)
+
+
+def _largest_sector(l):
+    secs = hq.symmetry_sectors(hq.irrep(3, (l,)))
+    return dict(dim=max(s.basis.shape[1] for s in secs), real=all(s.real for s in secs))
+
+
+def _otoc_inputs():
+    import qutip
+
+    H = hq.rotor_hamiltonian(hq.irrep(3, (2,)), [1.0, 2.0, 3.0])
+    W = qutip.Qobj(np.diag([2.0, 1.0, 0.0, -1.0, -2.0]))
+    return H, W, W, np.linspace(0.0, 1.0, 5)
+
+
+def _quartet_rate():
+    from hyperrotor.demo import DEMO_OMEGA, _body, _fastest_rate
+
+    return _fastest_rate(_body(2.0, 5)[0], np.asarray(DEMO_OMEGA))
+
+
+def _warm_quartet():
+    compare_quartet_motion(2.0, t_end=1.0)  # the model prices warm kernels: compile first
+
+
+def measure(setup, run, memory, mode="memory"):
+    """CPU seconds of one run, and the peak traced memory of a second run (``mode="output"``: the
+    bytes the run returns it produced, e.g. the size of a written page)."""
     arg = setup()
     gc.collect()
     t0 = time.process_time()
-    run(arg)
+    produced = run(arg)
     wall = time.process_time() - t0
     peak = None
+    if mode == "output":
+        return wall, produced
+    if mode == "child":  # the run measured a child process itself: CPU seconds (its memory is not comparable:
+        return produced, None  # the model counts the command's data, not the interpreter and its imports)
     if memory:
         arg = setup()
         gc.collect()
@@ -137,20 +264,28 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="the smallest size of each entry only")
     ap.add_argument("--plot", default=os.path.join(os.path.dirname(__file__), "results", "pricing.png"))
+    ap.add_argument("--only", default="", help="comma-separated entry names: run these models only")
+    ap.add_argument("--list", action="store_true", help="list the priced entries without a case and exit")
     args = ap.parse_args(argv)
+    only = {x.strip() for x in args.only.split(",") if x.strip()}
+    all_cases = cases()
+    missing = sorted(set(_pricing.MODELS) - {c[0] for c in all_cases})
+    if args.list:
+        print("priced entries without a case:", ", ".join(missing) or "none")
+        return 0
     rows, seen = [], set()
     print(f"load: {os.getloadavg()[0]:.2f}   (estimate / measured; time: CPU s of one core, memory: peak traced bytes)")
     print(f"| entry | size | est. s | meas. s | ratio | est. MiB | meas. MiB | ratio |")
     print(f"| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     with hr.options(max_seconds=1e300, max_memory_bytes=2**62, max_output_bytes=2**62):
-        for entry, label, sizes, setup, run in cases():
-            if args.quick and entry in seen:
+        for entry, label, sizes, setup, run, *mode in all_cases:
+            if (args.quick and entry in seen) or (only and entry not in only):
                 continue
             seen.add(entry)
             costs = _pricing.estimate(entry, **sizes)
             est_s = sum(c.amount for c in costs if c.unit == "seconds") or None
-            est_b = sum(c.amount for c in costs if c.key in ("max_memory_bytes", "max_output_bytes")) or None
-            wall, peak = measure(setup, run, est_b is not None)
+            est_b = sum(c.amount for c in costs if c.unit == "bytes") or None
+            wall, peak = measure(setup, run, est_b is not None, *mode)
             r_s = est_s / wall if est_s and wall > 0.02 else None
             r_b = est_b / peak if est_b and peak and peak > 2**20 else None
             rows.append((entry, label, est_s, wall, r_s, est_b, peak, r_b))
@@ -162,6 +297,7 @@ def main(argv=None):
     if ratios:
         print(f"\n{len(ratios)} ratios: min {min(ratios):.2f}, max {max(ratios):.2f}, "
               f"within a factor 3: {sum(1 / 3 <= r <= 3 for r in ratios)}/{len(ratios)}")
+    print(f"priced entries without a case: {', '.join(missing) or 'none'} ({len(_pricing.MODELS)} models)")
     try:
         import matplotlib
 

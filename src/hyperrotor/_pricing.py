@@ -234,8 +234,10 @@ def _sectors_dense(dim: Any, N: Any = 3) -> tuple[Cost, ...]:
     d = _f(dim)
     return (Cost(f"the dense symmetry sectors of a representation of dimension {dim}", d,
                  "sectors_dense_max_dim", "dimension"),
-            _memory(f"dense {dim} x {dim} complex matrices ({N} rotations and projectors)", 16.0 * (_f(N) + 2) * d * d),
-            _seconds(f"{N} dense matrix exponentials of dimension {dim}", _f(N) * 20.0 * d ** 3 * _EIGH_S))
+            # measured (benchmarks/pricing.py, tensor products of so(3), dim 603-1803): ~190 bytes per d^2 at the
+            # peak and ~1.3e-8 s per d^3 (exponentials, projectors, their products), both scaling with N
+            _memory(f"dense {dim} x {dim} complex matrices ({N} rotations and projectors)", 64.0 * _f(N) * d * d),
+            _seconds(f"{N} dense matrix exponentials of dimension {dim}", _f(N) * 55.0 * d ** 3 * _EIGH_S))
 
 
 @model("sector_spectra", "use a smaller representation or a body with more symmetry")
@@ -245,7 +247,9 @@ def _sector_spectra(dim: Any, real: bool = True) -> tuple[Cost, ...]:
     flops = (1.0 if real else 4.0) * 4.0 / 3.0 * d ** 3
     return (Cost(f"the largest sector (dimension {dim}) diagonalized densely", d, "sectors_max_block_dim", "dimension"),
             _memory(f"the dense {dim} x {dim} sector block (two copies)", 2.0 * item * d * d),
-            _seconds(f"diagonalizing a dense {dim} x {dim} sector block", flops * _EIGH_S))
+            # every sector is diagonalized, not only the largest: the real sectors of so(3) irreps are 4 of about
+            # equal size (measured: 4x one block's eigh, l = 2000..8000)
+            _seconds(f"diagonalizing the dense sector blocks (the largest {dim} x {dim})", 4.0 * flops * _EIGH_S))
 
 
 @model("real_form")
@@ -298,8 +302,10 @@ def _evolve(dim: Any, n_times: Any, states: bool = True) -> tuple[Cost, ...]:
 def _otoc(n_times: Any, columns: Any, dim: Any = 1) -> tuple[Cost, ...]:
     # four propagations of `columns` state columns to every time (the evolve model, states not kept)
     runs = 4.0 * _mul(n_times, columns)
+    # the columns are propagated together (a matrix of states, no Qobj per time): ~3e-6 s per column and
+    # time of each propagation and ~20 ms of set-up (measured, benchmarks/pricing.py, 100-4000 samples)
     return (_seconds(f"{n_times} times (t) x {columns} state columns (samples or the exact trace) x 4 propagations",
-                     runs * _EVOLVE_S),
+                     0.02 + runs * 3e-6),
             Cost(f"{n_times} times (t) x {columns} state columns (samples or the exact trace)",
                  runs * (16.0 * _f(dim) + _QOBJ_BYTES) / 4.0, "max_output_bytes", "bytes"))
 
@@ -423,13 +429,18 @@ def _harmonic_polynomial_basis(N: Any, l: Any) -> tuple[Cost, ...]:
                      dim * dim * monomials * _HARMONIC_S),)
 
 
-@model("orthogonal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
 @model("orthonormal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
-def _orthonormal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
+def _orthonormal_harmonic_basis(N: Any, l: Any, per_term: float = 0.3) -> tuple[Cost, ...]:
     monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
     dim = _harmonic_dim(N, l)
     return (_harmonic_space(N, l, dim), _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
-                     f"({monomials:.6g} monomials)", dim * dim * monomials * 0.3 * _SYMPY_S),)
+                     f"({monomials:.6g} monomials)", dim * dim * monomials * per_term * _SYMPY_S),)
+
+
+@model("orthogonal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
+def _orthogonal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
+    # no normalisation: ~1/5 of the orthonormal basis's work (measured N = 3, l = 10, 14)
+    return _orthonormal_harmonic_basis(N, l, per_term=0.06)
 
 
 @model("bivector_product_table")
