@@ -288,8 +288,8 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
     if ax is not None and not callable(getattr(ax, "scatter", None)):
         raise TypeError(f"ax must be a matplotlib Axes (or None for a new figure), got {_v.fmt(ax)} "
                         f"of type {type(ax).__name__}")
-    if ax is None:
-        _, ax = _pyplot().subplots(figsize=(4.5, 4.5))
+    if ax is None:  # constrained layout: the legend beside the axes stays inside the saved figure
+        _, ax = _pyplot().subplots(figsize=(4.5 if labels is None else 5.6, 4.5), layout="constrained")
     opts = {"s": 2}
     opts.update(scatter_options)
     for k, sec in enumerate(secs):
