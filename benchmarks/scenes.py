@@ -34,7 +34,7 @@ import numpy as np
 from hyperrotor.bench import best_of, write_csv
 
 import hyperrotor
-from hyperrotor.classical.scenes import Scene, evaluate_scene, hypercube_vertices, simplex_vertices
+from hyperrotor.classical import Scene, evaluate_scene, hypercube_vertices, simplex_vertices
 from hyperrotor.conventions import plane_index, planes
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results")

@@ -27,7 +27,7 @@ import hyperrotor as hr  # noqa: E402
 from hyperrotor import plotting  # noqa: E402
 from hyperrotor.bench import WorkPrecisionPoint  # noqa: E402
 from hyperrotor.classical.chaos import PoincareSection  # noqa: E402
-from hyperrotor.classical.scenes import Scene, body_edges, hypercube_vertices  # noqa: E402
+from hyperrotor.classical import Scene, body_edges, hypercube_vertices  # noqa: E402
 
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from hyperrotor.classical.scenes import hypercube_vertices, simplex_vertices
+from hyperrotor.classical import hypercube_vertices, simplex_vertices
 from hyperrotor.plotting import body_edges, save_projection_frames
 
 

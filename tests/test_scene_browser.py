@@ -20,7 +20,7 @@ pytest.importorskip("plotly")
 Image = pytest.importorskip("PIL.Image")
 
 import hyperrotor as hr  # noqa: E402
-from hyperrotor.classical.scenes import Scene, hypercube_vertices  # noqa: E402
+from hyperrotor.classical import Scene, hypercube_vertices  # noqa: E402
 
 #: Written into the page copy under test: every error (uncaught or console.error) becomes a log line.
 _HOOK = ("<script>window.addEventListener('error',function(e){console.log('HRJSERROR '+e.message)});"

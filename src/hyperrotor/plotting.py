@@ -23,7 +23,7 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 
 from . import _validate as _v
-from .classical.scenes import body_edges
+from .classical.body_points import body_edges
 
 __all__ = [
     "body_edges",

@@ -8,7 +8,7 @@ pytest.importorskip("plotly")
 
 import hyperrotor as hr  # noqa: E402
 from hyperrotor.classical.scene_html import projection_figure, scene_html_bytes, write_html  # noqa: E402
-from hyperrotor.classical.scenes import Scene, body_edges, hypercube_vertices, simplex_vertices  # noqa: E402
+from hyperrotor.classical import Scene, body_edges, hypercube_vertices, simplex_vertices  # noqa: E402
 
 
 def _scene(N=4, K=12, **kw):

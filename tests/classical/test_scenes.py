@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import hyperrotor
-from hyperrotor.classical.scenes import (
+from hyperrotor.classical import (
     Scene,
     ellipsoid_points,
     evaluate_scene,

@@ -121,8 +121,8 @@ def _scene_check(args: argparse.Namespace):
 
 def run(args: argparse.Namespace) -> int:
     from hyperrotor import Inertia, RigidBody
-    from hyperrotor.classical.scenes import (Scene, body_edges, ellipsoid_points, hypercube_vertices,
-                                             simplex_vertices)
+    from hyperrotor.classical import (Scene, body_edges, ellipsoid_points, hypercube_vertices,
+                                      simplex_vertices)
 
     s = _scene_check(args)
     fmt = s["format"]
