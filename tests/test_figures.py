@@ -26,7 +26,7 @@ from matplotlib.text import Text  # noqa: E402
 import hyperrotor as hr  # noqa: E402
 from hyperrotor import plotting  # noqa: E402
 from hyperrotor.bench import WorkPrecisionPoint  # noqa: E402
-from hyperrotor.classical.chaos import PoincareSection  # noqa: E402
+from hyperrotor.classical import PoincareSection  # noqa: E402
 from hyperrotor.classical import Scene, body_edges, hypercube_vertices  # noqa: E402
 
 

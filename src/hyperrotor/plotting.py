@@ -249,7 +249,7 @@ def save_motion_comparison(path, t: np.ndarray, exact: np.ndarray, runs: Mapping
 
 def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = None, labels: Sequence[str] | None = None,
                   **scatter_options: Any):
-    r"""Scatter plot of one or several :class:`~hyperrotor.classical.chaos.PoincareSection` in the plane of two momentum components.
+    r"""Scatter plot of one or several :class:`~hyperrotor.classical.poincare.PoincareSection` in the plane of two momentum components.
 
     Parameters
     ----------
@@ -268,7 +268,7 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
     -------
     matplotlib Axes
     """
-    from .classical.chaos import PoincareSection
+    from .classical.poincare import PoincareSection
 
     if isinstance(sections, PoincareSection):
         secs = [sections]

@@ -306,7 +306,7 @@ def test_huge_angular_velocity_is_refused_by_the_budget():
     with pytest.raises(ValueError, match="lyapunov_max_work"):
         lyapunov(moments, 1e300 * w0[0], 1.0)
     with pytest.raises(ValueError, match="max_steps"):
-        chaos.poincare_section(moments, 1e300 * w0[0], 1.0)
+        hr.poincare_section(moments, 1e300 * w0[0], 1.0)
 
 
 def test_budget_refuses_with_estimate():

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import hyperrotor as hr
-from hyperrotor.classical.chaos import PoincareSection, poincare_section
+from hyperrotor.classical import PoincareSection, poincare_section
 from hyperrotor.plotting import plot_poincare
 from hyperrotor.classical import euler_poinsot_period
 from hyperrotor.conventions import plane_index, planes

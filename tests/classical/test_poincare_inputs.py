@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import hyperrotor as hr
-from hyperrotor.classical.chaos import PoincareSection
+from hyperrotor.classical import PoincareSection
 from hyperrotor.plotting import plot_poincare
 
 

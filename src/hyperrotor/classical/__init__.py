@@ -1,9 +1,10 @@
 """Classical rigid rotation in N dimensions: inertia, Euler equations, integrators, closed forms."""
-from . import body_points, closed_form, inertia, mass_points, poinsot, quartet, rigid_body, scene_html, scenes, solvers, stability
+from . import body_points, closed_form, poincare, inertia, mass_points, poinsot, quartet, rigid_body, scene_html, scenes, solvers, stability
 from . import simulate as _simulate_module
 from . import chaos
 from .body_points import *  # noqa: F401,F403
 from .chaos import *  # noqa: F401,F403
+from .poincare import *  # noqa: F401,F403
 from .closed_form import *  # noqa: F401,F403
 from .poinsot import *  # noqa: F401,F403
 from .quartet import *  # noqa: F401,F403
@@ -30,6 +31,7 @@ __all__ = [
     *quartet.__all__,
     *poinsot.__all__,
     *chaos.__all__,
+    *poincare.__all__,
     *stability.__all__,
     *scenes.__all__,
     *body_points.__all__,

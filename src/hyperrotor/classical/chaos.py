@@ -1,4 +1,5 @@
-r"""Chaos indicators of the free rigid body: Lyapunov exponents (Benettin) and their sweeps.
+r"""Chaos indicators of the free rigid body: Lyapunov exponents (Benettin) and their sweeps
+(Poincaré sections: :mod:`hyperrotor.classical.poincare`).
 
 The free rigid body in 3D and the physical N-D body (moments from a mass tensor,
 :math:`I_{ij} = J_i + J_j`, Manakov 1976) are integrable: on their invariant tori
@@ -57,15 +58,14 @@ import numpy as np
 
 from hyperrotor import _parallel, _pricing, _validate
 from hyperrotor._options import options
-from hyperrotor.conventions import dimension_from_count, plane_index
+from hyperrotor.conventions import dimension_from_count
 
 from .solvers._tangent_kernels import tangent_run, tangent_run_lanes
-from .simulate import simulate
 from .solvers import SOLVERS
 from .solvers.splitting import casimir_shift, rotation_tables, splitting_word
 from .solvers.step_control import rate_bound
 
-__all__ = ["lyapunov", "lyapunov_sweep", "LyapunovResult", "LYAPUNOV_METHODS", "poincare_section", "PoincareSection"]
+__all__ = ["lyapunov", "lyapunov_sweep", "LyapunovResult", "LYAPUNOV_METHODS"]
 
 #: ``method=`` names of :func:`lyapunov`: the solvers of the registry :data:`hyperrotor.SOLVERS`
 #: with compiled tangent maps (``Solver.tangent``: the Lie-Poisson splittings, whose steps are
@@ -432,132 +432,3 @@ def lyapunov_sweep(
     t, lam = _benettin(np.ascontiguousarray(Mrows), L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov sweep")
     return _result(t, lam, (P, M), as_spectrum, history, k, method, rng)
-
-
-# ----------------------------------------------------------------------------
-# Poincaré sections (events of simulate)
-# ----------------------------------------------------------------------------
-@dataclass(frozen=True)
-class PoincareSection:
-    r"""Crossings of one orbit through the hyperplane :math:`L_{ij} = c` (see :func:`poincare_section`).
-
-    Attributes
-    ----------
-    t : ndarray (m,)
-        crossing times.
-    L, omega : ndarray (m, n)
-        body-frame angular momenta and angular velocities at the crossings (plane order).
-    plane : tuple (i, j)
-        the plane whose component defines the section.
-    value : float
-        ``c``.
-    direction : int
-        ``+1`` (upward crossings, :math:`\dot L_{ij} > 0`), ``-1`` (downward) or ``0`` (both).
-    N : int
-        dimension of the body.
-    """
-
-    t: np.ndarray
-    L: np.ndarray
-    omega: np.ndarray
-    plane: tuple
-    value: float
-    direction: int
-    N: int
-
-    def coordinates(self, *planes: Any) -> np.ndarray:
-        """Columns of ``L`` for the given planes, shape ``(m, len(planes))`` (e.g. ``sec.coordinates((1, 3), (2, 4))``)."""
-        cols = [plane_index(_validate.plane(p, self.N), self.N) for p in planes]
-        return self.L[:, cols]
-
-    def __len__(self) -> int:
-        return int(self.t.size)
-
-
-def poincare_section(
-    body: Any,
-    omega0: Any,
-    T: float,
-    *,
-    plane: Any = (1, 2),
-    value: float = 0.0,
-    direction: int = 1,
-    method: str = "splitting8",
-    dt: float | None = None,
-    progress: bool | None = None,
-) -> PoincareSection:
-    r"""Poincaré section of one orbit: its crossings of :math:`L_{ij} = c` over ``[0, T]``.
-
-    The orbit is integrated by :func:`hyperrotor.simulate` with a fixed-step splitting
-    (Casimirs kept to round-off, so every crossing lies on the orbit's coadjoint orbit and,
-    up to the method's bounded energy error, on its energy surface); the crossings are
-    located by ``simulate``'s events (``events=g`` with :math:`g = L_{ij} - c` and
-    ``g.direction = direction``) to the method's accuracy.
-
-    For a body with a 2-degree-of-freedom reduced motion (so(4), or a 5D body whose
-    momentum lies in the invariant so(4) of a locked axis: :math:`L_{i5} = 0`) the section
-    is two-dimensional: a regular orbit's crossings lie on curves, a chaotic orbit's fill an
-    area. In 5D in general the section of a regular orbit is a 3-torus, whose 2-D
-    projections (:meth:`PoincareSection.coordinates`) fill areas too.
-
-    Parameters
-    ----------
-    body : RigidBody, Inertia or array_like (n,)
-        the body.
-    omega0 : array_like (n,)
-        initial angular velocities (one orbit).
-    T : float
-        length of the run (> 0).
-    plane : pair or str
-        the plane ``(i, j)`` whose momentum component defines the section (default ``(1, 2)``).
-    value : float
-        the level ``c``.
-    direction : {1, -1, 0}
-        crossings with increasing (``1``), decreasing (``-1``) or either sign of change (``0``).
-    method : str
-        a splitting method (as :func:`lyapunov`).
-    dt : float, optional
-        step; default ``options["lyapunov_step"] / w_max`` (as :func:`lyapunov`).
-    progress : bool or None
-        progress bar of the integration.
-
-    Returns
-    -------
-    PoincareSection
-    """
-    moments = _validate.moments(body, name="body")
-    n = moments.size
-    N = dimension_from_count(n)
-    w0 = _validate.components("omega0", omega0, n, what="angular velocities omega_ij in plane order")
-    if w0.ndim != 1:
-        raise ValueError(f"poincare_section takes one orbit: omega0 must have shape ({n},), got shape {w0.shape}")
-    T = _validate.positive("T", T)
-    ij = _validate.plane(plane, N)
-    value = _validate.real("value", value)
-    if isinstance(direction, bool) or direction not in (1, -1, 0):
-        raise ValueError(f"direction must be 1 (upward), -1 (downward) or 0 (both), got {_validate.fmt(direction)}")
-    method = _validate.choice("method", method, LYAPUNOV_METHODS)
-    dt = _validate.positive("dt", dt, allow_none=True)
-    progress = _validate.flag("progress", progress, allow_none=True)
-    a = plane_index(ij, N)
-    L0 = w0 * moments
-    if dt is None:
-        s = float(np.ldexp(1.0, np.frexp(np.max(np.abs(L0)))[1])) or 1.0  # power of two: no overflow
-        wmax = float(rate_bound(moments[None, :], L0[None, :] / s)[0]) * s
-        dt = options["lyapunov_step"] / wmax if wmax > 0 else T
-        dt = min(dt, T)  # a (nearly) resting body: one step (lyapunov_step / wmax overflows for subnormal omega)
-    steps = T / dt
-    if not steps <= options["max_steps"]:
-        raise _pricing.BudgetError(f"poincare_section: this section (omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))}) needs about "
-                         f"{steps:.3g} steps of dt = {dt:.3g} over T = {_validate.fmt(T)}, "
-                         f"over the budget options['max_steps'] = {_validate.fmt(options['max_steps'])}; "
-                         f"shorten T, give a larger dt, or raise it: hr.options(max_steps=...)")
-
-    def crossing(_t, L):
-        return L[a] - value
-
-    crossing.direction = int(direction)
-    traj = simulate(moments, w0, [0.0, T], method=method, dt=dt, events=crossing, progress=progress)
-    L_ev = np.asarray(traj.L_events[0]).reshape(-1, n)
-    return PoincareSection(t=np.asarray(traj.t_events[0], dtype=float), L=L_ev, omega=L_ev / moments, plane=ij,
-                           value=value, direction=int(direction), N=N)
