@@ -114,6 +114,51 @@ def _d2_sizes(J):
     return {"A": (J - 1) // 2, "B1": (J + 1) // 2, "B2": (J + 1) // 2, "B3": (J + 1) // 2}
 
 
+@pytest.mark.parametrize("N, hw", [(6, (2, 1, 0)), (7, (2, 1, 1)), (8, (1, 1, 1, 0)), (8, (H_, H_, H_, -H_))])
+def test_last_label_flips_compose_to_the_flip_of_several_rows(N, hw):
+    """Every intertwiner of the sign group takes its pattern permutation as a product of the single-row flips of
+    the last labels of the even rows (the rotations, the reflection, the antiunitary): each product must send a
+    pattern exactly to the pattern with those labels negated, for every set of rows."""
+    import itertools
+
+    from hyperrotor.quantum.gelfand_tsetlin import _row_offsets, last_label_flips, patterns
+
+    m = tuple(F(x) for x in hw)
+    P = patterns(N, m)
+    flips = last_label_flips(N, P, m)
+    assert sorted(flips) == list(range(2, N, 2))
+    last = {k: _row_offsets(N)[k][1] - 1 for k in flips}
+    for r in range(1, len(flips) + 1):
+        for rows in itertools.combinations(sorted(flips), r):
+            perm = np.arange(len(P))
+            for k in rows:
+                perm = flips[k][perm]
+            Q = P.copy()
+            Q[:, [last[k] for k in rows]] *= -1.0
+            np.testing.assert_array_equal(P[perm], Q)
+            assert np.array_equal(np.sort(perm), np.arange(len(P)))  # a permutation of the basis
+
+
+def test_a_highest_weight_that_is_not_the_representations_takes_the_dense_route():
+    """A representation that claims a highest weight of another dimension: its GT patterns are counted while they
+    are built and the count stops past ``dim`` (no Weyl product, no pattern array of the claimed irrep, even a huge
+    one), and the sectors come from the dense exponentials, the same as without the claim."""
+    from hyperrotor.quantum import Representation
+    from hyperrotor.quantum.gelfand_tsetlin import patterns
+
+    gens = irrep(4, (1, 0)).generators()
+    assert group_of(Representation(4, gens, highest_weight=(1, 0))).monomial  # the true weight: GT basis
+    for hw in ((3, 0), (10**9, 0), (2, 2)):
+        rep = Representation(4, gens, highest_weight=hw)
+        with hr.options(max_memory_bytes=10**7):
+            group = group_of(rep)
+        assert not group.monomial and not group.reflection
+        labels = [s.label for s in symmetry_sectors(rep)]
+        assert labels == [s.label for s in symmetry_sectors(Representation(4, gens))]
+    assert patterns(4, (F(3), F(0)), max_count=15) is None  # so(4) (3, 0) = (3/2, 3/2) of su(2) + su(2): 16
+    assert len(patterns(4, (F(3), F(0)), max_count=16)) == 16 == len(patterns(4, (F(3), F(0))))
+
+
 @pytest.mark.parametrize("J", range(1, 9))
 def test_3d_four_sectors_with_d2_class_sizes(J):
     rep = irrep(3, (J,))

@@ -1,13 +1,23 @@
-r"""Monomial matrices of the Gelfand-Tsetlin basis: rotations by pi and the real structure (private).
+r"""Monomial matrices of the Gelfand-Tsetlin basis: the sign group of a GT irrep (private).
 
 The machinery behind :mod:`hyperrotor.quantum.sectors` ("Construction without dense
-matrices" there): in the GT basis the rotation by :math:`\pi` in a chain plane
-:math:`(k, k+1)` and the conjugation intertwiner of a real-type irrep are *monomial*
-(one phase per column). Each is found from its pattern permutation and the
-intertwining relation along a spanning tree of the chain generators' nonzeros, then
-checked on every nonzero; nothing here builds a dense ``dim x dim`` matrix.
+matrices" and "Real blocks" there): in the GT basis the rotation by :math:`\pi` in a
+chain plane :math:`(k, k+1)`, the reflection :math:`r = \mathrm{diag}(-1, 1, \dots, 1)`
+and the antiunitary of the real gauge are *monomial* (one phase per column). Each is
+found from its pattern permutation and the intertwining relation along a spanning
+tree of the chain generators' nonzeros, then checked on every nonzero; nothing here
+builds a dense ``dim x dim`` matrix.
+
+:func:`gt_symmetries` is the one door of :mod:`.sectors.group`: everything the sign
+group of a GT irrep needs, as one :class:`GTSymmetries`. :func:`gt_rotations` gives
+the rotations alone (``pi_rotation``). Both take a Representation checked at the
+caller's public door and validate nothing again.
 """
 from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import scipy.linalg as sla
@@ -15,8 +25,7 @@ import scipy.sparse as sps
 from scipy.sparse.csgraph import breadth_first_order
 
 from .. import _pricing
-from .gelfand_tsetlin import PatternIndex, patterns
-from .weights import weyl_dim
+from .gelfand_tsetlin import last_label_flips, patterns
 
 __all__: list[str] = []
 
@@ -46,39 +55,6 @@ class Monomial:
     def matrix(self) -> sps.csr_matrix:
         n = len(self.perm)
         return sps.csr_matrix((self.phase, (self.perm, np.arange(n))), shape=(n, n))
-
-
-def _row_last_column(N: int, k: int) -> int:
-    """Column of the last entry of row M_k in the flattened GT pattern (rows M_N, ..., M_2)."""
-    c = 0
-    for m in range(N, k - 1, -1):
-        c += m // 2
-    return c - 1
-
-
-def gt_patterns_of(rep):
-    """The GT patterns of ``rep`` when it is (claims to be) a Gelfand-Tsetlin irrep, else None.
-
-    Trusted: ``rep`` is a Representation whose ``highest_weight`` its constructor
-    checked; nothing is validated again (one check at the caller's public door).
-    """
-    m = rep.highest_weight
-    if m is None or weyl_dim(rep.N, m) != rep.dim:
-        return None
-    return patterns(rep.N, m)
-
-
-def _flip_perm(N: int, P: np.ndarray, index: PatternIndex, rows: list[int]) -> np.ndarray:
-    """Index map of the GT patterns with the last label of each row ``M_k`` (k in ``rows``) negated."""
-    if not rows:
-        return np.arange(len(P))
-    Q = P.copy()
-    for k in rows:
-        Q[:, _row_last_column(N, k)] *= -1.0
-    perm = index.lookup(Q)
-    if np.any(perm < 0):
-        raise ArithmeticError("the sign flip of a last GT label leaves the irrep: not a GT irrep")
-    return perm
 
 
 def _intertwining_phases(chain: dict, perm: np.ndarray, sigma: dict, conj: bool) -> np.ndarray:
@@ -149,31 +125,73 @@ def _monomial_residual(U: Monomial, chain: dict, sigma: dict, conj: bool) -> flo
     return worst
 
 
-def gt_intertwiner(rep, P: np.ndarray, chain: dict, rows: list[int], sigma: dict, *, conj: bool,
-                   index: PatternIndex | None = None) -> Monomial | None:
+
+# ----------------------------------------------------------------------------
+# the frame of one irrep: patterns, label flips, chain generators
+# ----------------------------------------------------------------------------
+class _Frame(NamedTuple):
+    """What every intertwiner of one GT irrep works on (:func:`_frame`)."""
+
+    N: int
+    m: tuple  #: the highest weight
+    P: np.ndarray  #: the GT patterns, one row per basis vector
+    flips: dict  #: ``{k: perm}``: the patterns with the last label of the even row M_k (k < N) negated
+    chain: dict  #: ``{q: X_(q,q+1)}`` as CSR, ``q = 1, ..., N-1``
+
+
+def _frame(rep) -> _Frame | None:
+    """The :class:`_Frame` of ``rep`` when it is (claims to be) a Gelfand-Tsetlin irrep, else None.
+
+    A claim is a highest weight with exactly ``rep.dim`` patterns (counted while they
+    are built, so a weight that does not match costs at most ``rep.dim`` rows); the
+    intertwining checks then decide.
+    """
+    m = rep.highest_weight
+    if m is None:
+        return None
+    P = patterns(rep.N, m, max_count=rep.dim)
+    if P is None or len(P) != rep.dim:
+        return None
+    flips = last_label_flips(rep.N, P, m)
+    chain = {q: sps.csr_matrix(rep.generator((q, q + 1), format="csr")) for q in range(1, rep.N)}
+    return _Frame(rep.N, m, P, flips, chain)
+
+
+def _flip_perm(frame: _Frame, rows) -> np.ndarray:
+    """Index map of the patterns with the last label of each row ``M_k`` (k in ``rows``) negated.
+
+    The single-row flips commute (each changes one label), so a flip of several rows is their product.
+    """
+    perm = np.arange(len(frame.P))
+    for k in rows:
+        perm = frame.flips[k][perm]
+    return perm
+
+
+def gt_intertwiner(frame: _Frame, rows, sigma: dict, *, conj: bool) -> Monomial | None:
     r"""The monomial U with :math:`U Y_q = \sigma_q X_q U` for every chain generator, if there is one.
 
     :math:`Y_q = \bar X_q` (``conj=True``) or :math:`X_q`; the permutation of U negates
-    the last label of the rows :math:`M_k`, ``k`` in ``rows``; ``sigma`` maps each
-    chain index ``q`` (plane ``(q, q+1)``) to :math:`\pm1`. The overall constant is
-    left as found (the phase of basis vector 0 is 1). ``None`` when the relation
-    fails on some nonzero (relative residual over 1e-9) or no consistent phases
-    exist. Trusted: ``rep``, ``P`` (:func:`gt_patterns_of`) and ``chain``
-    (``{q: X_(q,q+1)}`` as CSR) are not validated again.
+    the last label of the rows :math:`M_k`, ``k`` in ``rows`` (even, ``k < N``);
+    ``sigma`` maps each chain index ``q`` (plane ``(q, q+1)``) to :math:`\pm1`. The
+    overall constant is left as found (the phase of basis vector 0 is 1). ``None`` when
+    the relation fails on some nonzero (relative residual over 1e-9) or no consistent
+    phases exist.
     """
+    perm = _flip_perm(frame, rows)
     try:
-        if index is None:
-            index = PatternIndex(P, rep.highest_weight)
-        perm = _flip_perm(rep.N, P, index, rows)
-        U = Monomial(perm, _intertwining_phases(chain, perm, sigma, conj))
+        U = Monomial(perm, _intertwining_phases(frame.chain, perm, sigma, conj))
     except (ArithmeticError, ValueError):
         return None
-    if _monomial_residual(U, chain, sigma, conj) > 1e-9:
+    if _monomial_residual(U, frame.chain, sigma, conj) > 1e-9:
         return None
     return U
 
 
-def _gt_pi_rotation(rep, P: np.ndarray, k: int, chain: dict, index: PatternIndex) -> Monomial:
+# ----------------------------------------------------------------------------
+# the sign group: rotations by pi, the reflection, the antiunitary, the centre
+# ----------------------------------------------------------------------------
+def _pi_rotation(frame: _Frame, k: int, tensor_irrep: bool) -> Monomial:
     """D(g_(k,k+1)) = exp(pi X_(k,k+1)) of a GT irrep as a monomial matrix (no dense dim x dim work).
 
     The phases come from :func:`gt_intertwiner` (s = -1 on the axes k, k+1); the
@@ -187,19 +205,19 @@ def _gt_pi_rotation(rep, P: np.ndarray, k: int, chain: dict, index: PatternIndex
       ``X_(k,k+1)`` holding vector 0 (one entry for ``k = 1``, where X is diagonal),
       priced first (``dense_representation``).
     """
+    chain = frame.chain
     sigma = {q: (-1.0 if q in (k - 1, k + 1) else 1.0) for q in chain}  # s_q s_{q+1}, s = -1 on k, k+1
-    D = gt_intertwiner(rep, P, chain, [k] if k % 2 == 0 else [], sigma, conj=False, index=index)
+    D = gt_intertwiner(frame, [k] if k % 2 == 0 else [], sigma, conj=False)
     if D is None:
         raise ArithmeticError("the monomial pi rotation fails the intertwining check: not a GT irrep")
     perm, phi = D.perm, D.phase
-    tensor_irrep = all(x.denominator == 1 for x in rep.highest_weight)
     fixed_sum = complex(phi[perm == np.arange(len(perm))].sum()) if (tensor_irrep and k >= 2) else 0j
     if abs(fixed_sum) > 0.5:  # a sum of phases in {1, i, -1, -i}: a Gaussian integer, zero or >= 1
-        trace = float(np.sum(1.0 - 2.0 * (np.rint(P[:, -1]).astype(np.int64) % 2)))
+        trace = float(np.sum(1.0 - 2.0 * (np.rint(frame.P[:, -1]).astype(np.int64) % 2)))
         c0 = _round_phase(np.array([trace / fixed_sum]), "overall phase from the trace")[0]
     else:
         X = chain[k]
-        block, _ = breadth_first_order(abs(X) + sps.identity(rep.dim, format="csr"), 0, directed=False)
+        block, _ = breadth_first_order(abs(X) + sps.identity(len(perm), format="csr"), 0, directed=False)
         block = np.sort(block)
         _pricing.check("dense_representation", dim=len(block), copies=2)
         E = sla.expm(np.pi * X[block][:, block].toarray())
@@ -210,45 +228,158 @@ def _gt_pi_rotation(rep, P: np.ndarray, k: int, chain: dict, index: PatternIndex
     return Monomial(perm, c0 * phi)
 
 
-def gt_conjugation(rep, P: np.ndarray, chain: dict) -> Monomial | None:
-    r"""Monomial U with :math:`U \bar X_{(ij)} U^\dagger = X_{(ij)}` and :math:`U\bar U = 1`, if it exists.
-
-    Then :math:`T = U K` (K: complex conjugation of GT coordinates) is an antiunitary
-    symmetry with :math:`T^2 = 1` commuting with every generator, so the irrep has a real
-    form in which every rotor Hamiltonian is real symmetric. The permutation negates
-    the last label of the rows :math:`M_2, M_6, M_{10}, \dots` (this negates the
-    imaginary diagonal :math:`iC` of every :math:`X_{(2p+1,2p+2)}`: :math:`C` is odd in
-    the last labels of rows :math:`2p` and :math:`2p+2`). ``None`` when no such U
-    exists: spinor irreps are quaternionic (:math:`U\bar U = -1`), so(4k+2) irreps with
-    :math:`m_n \ne 0` are of complex type. Trusted like :func:`gt_intertwiner`.
-    """
-    rows = list(range(2, rep.N, 4))
-    if not rows:
-        return None
-    U = gt_intertwiner(rep, P, chain, rows, {q: 1.0 for q in chain}, conj=True)
-    if U is None:
-        return None
-    # (U conj(U)) e_a = conj(phi_a) phi_{pi(a)} e_{pi(pi(a))}
-    UU = np.conj(U.phase) * U.phase[U.perm]
-    if np.any(U.perm[U.perm] != np.arange(len(U.perm))) or np.abs(UU - 1).max() > 1e-9:
-        return None
-    return U
-
-
-def gt_rotations(rep, planes_k: list[int]) -> dict[int, Monomial] | None:
-    """``{k: D(g_(k,k+1))}`` as monomial matrices for a GT irrep (None for any other representation).
-
-    Trusted: ``rep`` is a Representation checked at the caller's door.
-    """
-    P = gt_patterns_of(rep)
-    if P is None:
-        return None
-    index = PatternIndex(P, rep.highest_weight)
-    chain = {q: sps.csr_matrix(rep.generator((q, q + 1), format="csr")) for q in range(1, rep.N)}
+def _rotations(frame: _Frame, planes_k) -> dict[int, Monomial] | None:
+    """``{k: D(g_(k,k+1))}`` for ``k`` in ``planes_k``; None when one fails (not a GT irrep)."""
+    tensor_irrep = all(x.denominator == 1 for x in frame.m)
     out = {}
     for k in planes_k:
         try:
-            out[k] = _gt_pi_rotation(rep, P, k, chain, index)
+            out[k] = _pi_rotation(frame, k, tensor_irrep)
         except (ArithmeticError, ValueError):
             return None
     return out
+
+
+def gt_reflection(frame: _Frame) -> Monomial | None:
+    r"""The reflection :math:`r = \mathrm{diag}(-1, 1, \dots, 1)` of a GT irrep of so(2n) with :math:`m_n = 0`.
+
+    :math:`U_r X_{(ij)} U_r^{-1} = r X_{(ij)} r`, i.e. :math:`X_{(ij)} \to -X_{(ij)}` when
+    exactly one of ``i, j`` is 1; :math:`U_r^2 = 1`. It commutes with every rotor
+    Hamiltonian (only squares of generators) and with every :math:`D(g_s)`
+    (:math:`r g_s = g_s r`), but it is not in :math:`SO(N)`: with it the sectors of
+    even ``N`` become irreducible. In the GT basis it is monomial: :math:`\mathrm{Ad}(r)`
+    is an outer automorphism of every :math:`so(2p)` of the chain, so it negates the
+    last label of every even row :math:`M_{2p}` (``2p < N``; the top row ends in 0),
+    and it is inner on every odd :math:`so(2p+1)`; on the chain generators
+    :math:`\sigma_1 = -1`, all others ``+1``. Of the two extensions of the irrep to
+    :math:`O(N)` (they differ by the determinant) this is the one with
+    :math:`U_r e_0 = +e_{\pi(0)}` for the first GT pattern. ``None`` when the
+    intertwining check fails (not a GT irrep).
+    """
+    sigma = {q: (-1.0 if q == 1 else 1.0) for q in frame.chain}
+    U = gt_intertwiner(frame, range(2, frame.N, 2), sigma, conj=False)
+    if U is None:
+        return None
+    sq = U.phase * U.phase[U.perm]
+    if np.any(U.perm[U.perm] != np.arange(len(U.perm))) or np.abs(sq - 1).max() > 1e-9:
+        return None  # pragma: no cover - U^2 = 1 holds whenever the intertwining check passes
+    return U
+
+
+def _commutes_conj(V: Monomial, U: Monomial) -> bool:
+    r""":math:`V \bar U = U V` for monomial matrices (U with entries in {+-1, +-i})."""
+    if np.any(V.perm[U.perm] != U.perm[V.perm]):
+        return False
+    # V conj(U) e_a = conj(u_a) v_{rho a} e_{pi rho a};  U V e_a = v_a u_{pi a} e_{rho pi a}
+    return bool(np.abs(np.conj(U.phase) * V.phase[U.perm] - V.phase * U.phase[V.perm]).max() <= 1e-9)
+
+
+def real_structure(frame: _Frame, *, cartan, reflection: Monomial | None) -> Monomial | None:
+    r"""A monomial V such that :math:`A = VK` is antiunitary, :math:`A^2 = 1`, commutes with every rotor
+    Hamiltonian and preserves every sector; ``None`` if no candidate passes.
+
+    Candidates: :math:`A = D(g_s)\,T` for sign vectors ``s`` (any determinant), i.e.
+    :math:`V \bar X_{(q,q+1)} V^{-1} = s_q s_{q+1} X_{(q,q+1)}`; in the GT basis V negates
+    the last label of the rows :math:`M_m` with :math:`m \equiv 2 \pmod 4` (complex
+    conjugation) and of the even rows with :math:`\prod_{i \le m} s_i = -1` (the sign
+    rotation), the two sets combined by symmetric difference. :math:`A H A^{-1} = H`
+    for every rotor Hamiltonian (it only has squares of generators). ``cartan``
+    (spinor irreps): the Cartan planes of the sectors, on which :math:`A` must
+    reverse the generator (:math:`s_k s_{k+1} = -1`): an antiunitary maps the
+    eigenvalue :math:`\pm i` of :math:`D(g_{(k,k+1)})` to :math:`\mp i` times that sign.
+    ``reflection``: :math:`A` must commute with it. Plain conjugation (``s = 1``) is
+    tried first.
+    """
+    N, chain = frame.N, frame.chain
+    conj_rows = {m for m in range(2, N + 1, 2) if m % 4 == 2}
+    top_zero = frame.m[-1] == 0 if N % 2 == 0 else True
+    candidates = sorted(itertools.product((1, -1), repeat=N - 1), key=lambda t: (t.count(-1), t))
+    for tail in candidates:
+        s = np.array(tail + (1,))
+        sigma = {q: float(s[q - 1] * s[q]) for q in chain}
+        if cartan and any(sigma[k] != -1.0 for k in cartan):
+            continue
+        rows = conj_rows ^ {m for m in range(2, N + 1, 2) if np.prod(s[:m]) == -1}
+        if N in rows:
+            if not top_zero:
+                continue  # maps the irrep to the one with the last label negated
+            rows.discard(N)
+        V = gt_intertwiner(frame, sorted(rows), sigma, conj=True)
+        if V is None or np.any(V.perm[V.perm] != np.arange(len(V.perm))):
+            continue
+        if np.abs(np.conj(V.phase) * V.phase[V.perm] - 1).max() > 1e-9:
+            continue  # A^2 = -1 (quaternionic for this s)
+        if reflection is not None and not _commutes_conj(V, reflection):
+            continue
+        return V
+    return None
+
+
+def _centre_scalar(rotations: dict, N: int) -> int | None:
+    """Scalar by which -1 = g_(12) g_(34) ... acts on a tensor irrep of even N > 2; None otherwise."""
+    if N % 2 or N == 2:
+        return None
+    ks = list(range(1, N, 2))
+    if any(k not in rotations for k in ks):
+        return None
+    perm = np.arange(len(rotations[ks[0]].perm))
+    phase = np.ones(len(perm), dtype=complex)
+    for k in ks:
+        D = rotations[k]
+        phase = D.phase[perm] * phase
+        perm = D.perm[perm]
+    if np.any(perm != np.arange(len(perm))) or np.abs(phase - phase[0]).max() > 1e-9:
+        return None
+    return int(round(phase[0].real))
+
+
+@dataclass(frozen=True)
+class GTSymmetries:
+    """What the sign group of a GT irrep needs (:func:`gt_symmetries`).
+
+    Attributes
+    ----------
+    rotations : dict
+        ``{k: D(g_(k,k+1))}``, the rotations by pi in the sector planes, as :class:`Monomial`.
+    reflection : Monomial or None
+        :math:`U_r` (:func:`gt_reflection`) where it acts on the irrep (even ``N >= 4``,
+        tensor irrep, highest weight ending in 0), else None.
+    antiunitary : Monomial or None
+        V of the real structure :math:`A = VK` (:func:`real_structure`), None when ``N <= 2``
+        or no candidate passes.
+    centre : int or None
+        The scalar of :math:`-1 = g_{(12)} g_{(34)} \\cdots` (tensor irreps of even ``N > 2``).
+    """
+
+    rotations: dict
+    reflection: Monomial | None
+    antiunitary: Monomial | None
+    centre: int | None
+
+
+def gt_symmetries(rep, planes_k: list[int], *, spinorial: bool) -> GTSymmetries | None:
+    """The monomial sign group of a GT irrep: rotations in ``planes_k``, reflection, antiunitary, centre.
+
+    ``planes_k``: the planes ``(k, k+1)`` that define the sectors (for a spinor irrep
+    the Cartan planes, which the antiunitary must reverse). None for any other
+    representation (no highest weight, another basis, or an intertwining check that
+    fails): the caller falls back to dense exponentials.
+    """
+    frame = _frame(rep)
+    if frame is None:
+        return None
+    rotations = _rotations(frame, planes_k)
+    if rotations is None:
+        return None
+    U = V = None
+    if frame.N >= 3:
+        if frame.N % 2 == 0 and not spinorial and frame.m[-1] == 0:
+            U = gt_reflection(frame)
+        V = real_structure(frame, cartan=planes_k if spinorial else None, reflection=U)
+    return GTSymmetries(rotations, U, V, None if spinorial else _centre_scalar(rotations, frame.N))
+
+
+def gt_rotations(rep, planes_k: list[int]) -> dict[int, Monomial] | None:
+    """``{k: D(g_(k,k+1))}`` as monomial matrices for a GT irrep (None for any other representation)."""
+    frame = _frame(rep)
+    return None if frame is None else _rotations(frame, planes_k)

@@ -112,11 +112,14 @@ def _resolve_weight(N: int, highest_weight: Any, dynkin: Any) -> tuple[Fraction,
     return check_highest_weight(N, highest_weight)
 
 
-def patterns(N: int, m: tuple[Fraction, ...]) -> np.ndarray:
+def patterns(N: int, m: tuple[Fraction, ...], *, max_count: int | None = None) -> np.ndarray | None:
     """All GT patterns (float array, exact half-integers), lexicographically decreasing.
 
     Trusted core of :func:`gt_patterns` (``N`` and ``m`` already checked, e.g. a
-    Representation's ``highest_weight``): no validation, no size guard.
+    Representation's ``highest_weight``): no validation, no size guard. ``max_count``:
+    None as soon as there would be more patterns than that (the count never falls while
+    the rows are filled in, since every partial pattern extends), so a weight that does
+    not match a known dimension costs at most that many rows.
     """
     P = np.array([[float(x) for x in m]], dtype=float)
     for k in range(N, 2, -1):
@@ -135,6 +138,8 @@ def patterns(N: int, m: tuple[Fraction, ...]) -> np.ndarray:
             lo[:, : n - 1] = top[:, 1:n]
             lo[:, n - 1] = np.abs(top[:, n])
         for j in range(n):
+            if max_count is not None and float(np.maximum(np.rint(hi[:, j] - lo[:, j]) + 1, 0).sum()) > max_count:
+                return None
             cnt = np.maximum(np.rint(hi[:, j] - lo[:, j]).astype(np.int64) + 1, 0)
             idx = np.repeat(np.arange(len(P)), cnt)
             starts = np.cumsum(cnt) - cnt
@@ -190,6 +195,27 @@ class PatternIndex:
         for i, row in enumerate(np.rint(2 * Q).astype(np.int64).tolist()):
             out[i] = self.table.get(tuple(row), -1)
         return out
+
+
+def last_label_flips(N: int, P: np.ndarray, m: tuple) -> dict[int, np.ndarray]:
+    r"""``{k: perm}`` for every even ``k < N``: ``P[perm[a]]`` is ``P[a]`` with the last label of row :math:`M_k` negated.
+
+    That label is bounded symmetrically (:math:`|M_{k,k/2}| \le M_{k+1,k/2}` and
+    :math:`\le M_{k-1,k/2-1}`), so each flip maps the patterns onto themselves; flips of
+    different rows commute, and the flip of several rows is their product. Trusted core
+    (``P`` from :func:`patterns` of the checked highest weight ``m``).
+    """
+    index = PatternIndex(P, m)
+    offs = _row_offsets(N)
+    out = {}
+    for k in range(2, N, 2):
+        Q = P.copy()
+        Q[:, offs[k][1] - 1] *= -1.0
+        perm = index.lookup(Q)
+        if np.any(perm < 0):  # pragma: no cover - internal
+            raise ArithmeticError(f"negating the last label of row M_{k} leaves the GT patterns (internal error)")
+        out[k] = perm
+    return out
 
 
 def gt_size(N: int, highest_weight: Any = None, *, dynkin: Any = None) -> int:

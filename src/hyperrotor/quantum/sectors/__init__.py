@@ -40,8 +40,7 @@ the dihedral group :math:`D_2` of the asymmetric top.
   leaves every rotor Hamiltonian (a sum of squares of generators) unchanged. On a
   tensor irrep whose highest weight ends in 0 it is represented by a unitary
   :math:`U_r`, :math:`U_r^2 = 1`, commuting with every :math:`D(g_s)`: its parity is
-  part of the character there (:func:`~hyperrotor.quantum.sectors.group.gt_reflection`),
-  which doubles the number of sectors and makes every sector irreducible. (For odd
+  part of the character there, which doubles the number of sectors and makes every sector irreducible. (For odd
   N, :math:`r = -\mathbb 1 \cdot (-r)` with :math:`-r` a sign rotation: nothing new; for
   a last label :math:`m_n \ne 0`, r maps the irrep to another one.)
 
@@ -55,8 +54,7 @@ tensor irreps of real type; for spinor irreps (quaternionic, :math:`T^2 = -1`) a
 sign rotation reversing every Cartan plane, :math:`(D(g)T)^2 = D(g)^2 T^2 = +1`; for
 complex-type irreps (so(4k+2), :math:`m_n \ne 0`) a reflection, which maps the
 irrep to its conjugate. The search tries the sign vectors in turn and keeps the
-first that passes (:func:`~hyperrotor.quantum.sectors.group.real_structure`);
-the basis columns are then gauged to be fixed by A, so every block
+first that passes; the basis columns are then gauged to be fixed by A, so every block
 :math:`B^\dagger \hat H B` is real symmetric (GOE class, ~4x cheaper ``eigh``).
 
 Construction without dense matrices (Gelfand-Tsetlin irreps)

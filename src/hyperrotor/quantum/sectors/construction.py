@@ -244,6 +244,7 @@ def sectors_of(rep, complete: bool) -> list[Sector]:
     """:func:`symmetry_sectors` of a checked and priced (``"gt_sectors"``) ``rep`` (trusted core)."""
     g = group_of(rep)
     N, dim = rep.N, rep.dim
+    characters = list(g.characters(complete))
     if g.monomial:
         reps_idx = _orbit_representatives(g.ops, dim)
         elems = _group_elements(g.ops, reps_idx)
@@ -258,7 +259,7 @@ def sectors_of(rep, complete: bool) -> list[Sector]:
             return _project_dense(g.ops, eigs, dim)
     out = []
     types_seen = set()
-    for eigs, lab, character in g.characters(complete):
+    for eigs, lab, character in characters:
         B = project(eigs)
         if g.spinorial and N > 2:
             if B.shape[1] == 0:

@@ -1,11 +1,12 @@
 r"""The symmetry group of the sectors: sign rotations, the reflection parity, the antiunitary, the characters.
 
 :func:`group_of` builds the :class:`SignGroup` of a representation once (the monomial
-matrices of a Gelfand-Tsetlin irrep, or dense exponentials for other
-representations); its :meth:`SignGroup.characters` are the labels of the
-:class:`Sector` s. For even ``N`` the reflection :math:`r = \mathrm{diag}(-1, 1, \dots, 1)`
-joins the group (:func:`gt_reflection`), and :func:`real_structure` finds the
-antiunitary symmetry that makes every block real (package docstring).
+matrices of a Gelfand-Tsetlin irrep, all found by one call of the private
+``_gt_monomials.gt_symmetries``; or dense exponentials for other representations);
+its :meth:`SignGroup.characters` are the labels of the :class:`Sector` s. For even
+``N`` the reflection :math:`r = \mathrm{diag}(-1, 1, \dots, 1)` joins the group of a
+tensor irrep whose highest weight ends in 0, and an antiunitary symmetry makes every
+block real (package docstring).
 """
 from __future__ import annotations
 
@@ -19,7 +20,7 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 
 from ... import _pricing
-from .._gt_monomials import Monomial, gt_intertwiner, gt_patterns_of, gt_rotations
+from .._gt_monomials import Monomial, gt_symmetries
 
 __all__ = ["Sector"]
 
@@ -39,7 +40,7 @@ class Sector:
         Other tensor irreps: the character, the tuple of eigenvalues (``+1``/``-1``)
         of :math:`D(g_{(k,k+1)})`, ``k = 1, ..., N-1``, followed for even ``N`` and a
         highest weight ending in 0 by the reflection parity (``+1``/``-1``, the
-        eigenvalue of :math:`U_r`, :func:`gt_reflection`). Spinor irreps: ``"E1/2"`` in
+        eigenvalue of :math:`U_r`, package docstring). Spinor irreps: ``"E1/2"`` in
         3D (the Kramers irrep of the double group :math:`D_2^*`), ``"spinor"`` for
         ``N >= 4``; with ``complete=True`` the copies are ``(name, psi)`` with ``psi``
         the eigenvalues (``"+i"``/``"-i"``) of the Cartan-plane rotations.
@@ -116,105 +117,6 @@ def label(N: int, spinorial: bool, eigs: tuple, complete: bool, parity: int | No
     return (name, tuple(eig_text(e) for e in eigs)) if complete else name
 
 
-def centre_scalar(ops: dict, N: int, spinorial: bool) -> int | None:
-    """Scalar by which -1 = g_(12) g_(34) ... acts (even N, tensor irreps); None otherwise."""
-    if spinorial or N % 2 or N == 2:
-        return None
-    ks = list(range(1, N, 2))
-    if any(k not in ops for k in ks):
-        return None
-    perm = np.arange(len(ops[ks[0]].perm))
-    phase = np.ones(len(perm), dtype=complex)
-    for k in ks:
-        D = ops[k]
-        phase = D.phase[perm] * phase
-        perm = D.perm[perm]
-    if np.any(perm != np.arange(len(perm))) or np.abs(phase - phase[0]).max() > 1e-9:
-        return None
-    return int(round(phase[0].real))
-
-
-def has_reflection(rep, spinorial: bool) -> bool:
-    """Even N >= 4, tensor irrep, highest weight ending in 0: the reflection r acts on the irrep."""
-    return rep.N % 2 == 0 and rep.N >= 4 and not spinorial and Fraction(rep.highest_weight[-1]) == 0
-
-
-def gt_reflection(rep, P: np.ndarray, chain: dict) -> Monomial | None:
-    r"""The reflection :math:`r = \mathrm{diag}(-1, 1, \dots, 1)` of a GT irrep of so(2n) with :math:`m_n = 0`.
-
-    :math:`U_r X_{(ij)} U_r^{-1} = r X_{(ij)} r`, i.e. :math:`X_{(ij)} \to -X_{(ij)}` when
-    exactly one of ``i, j`` is 1; :math:`U_r^2 = 1`. It commutes with every rotor
-    Hamiltonian (only squares of generators) and with every :math:`D(g_s)`
-    (:math:`r g_s = g_s r`), but it is not in :math:`SO(N)`: with it the sectors of
-    even ``N`` become irreducible. In the GT basis it is monomial: :math:`\mathrm{Ad}(r)`
-    is an outer automorphism of every :math:`so(2p)` of the chain, so it negates the
-    last label of every even row :math:`M_{2p}` (``2p < N``; the top row ends in 0),
-    and it is inner on every odd :math:`so(2p+1)`; on the chain generators
-    :math:`\sigma_1 = -1`, all others ``+1``. Of the two extensions of the irrep to
-    :math:`O(N)` (they differ by the determinant) this is the one with
-    :math:`U_r e_0 = +e_{\pi(0)}` for the first GT pattern. ``None`` when the
-    intertwining check fails (not a GT irrep).
-    """
-    N = rep.N
-    sigma = {q: (-1.0 if q == 1 else 1.0) for q in chain}
-    U = gt_intertwiner(rep, P, chain, list(range(2, N, 2)), sigma, conj=False)
-    if U is None:
-        return None
-    sq = U.phase * U.phase[U.perm]
-    if np.any(U.perm[U.perm] != np.arange(len(U.perm))) or np.abs(sq - 1).max() > 1e-9:
-        return None  # pragma: no cover - U^2 = 1 holds whenever the intertwining check passes
-    return U
-
-
-def _commutes_conj(V: Monomial, U: Monomial) -> bool:
-    r""":math:`V \bar U = U V` for monomial matrices (U with entries in {+-1, +-i})."""
-    if np.any(V.perm[U.perm] != U.perm[V.perm]):
-        return False
-    # V conj(U) e_a = conj(u_a) v_{rho a} e_{pi rho a};  U V e_a = v_a u_{pi a} e_{rho pi a}
-    return bool(np.abs(np.conj(U.phase) * V.phase[U.perm] - V.phase * U.phase[V.perm]).max() <= 1e-9)
-
-
-def real_structure(rep, P: np.ndarray, chain: dict, *, cartan: list[int] | None, reflection: Monomial | None):
-    r"""A monomial V such that :math:`A = VK` is antiunitary, :math:`A^2 = 1`, commutes with every rotor
-    Hamiltonian and preserves every sector; ``None`` if no candidate passes.
-
-    Candidates: :math:`A = D(g_s)\,T` for sign vectors ``s`` (any determinant), i.e.
-    :math:`V \bar X_{(q,q+1)} V^{-1} = s_q s_{q+1} X_{(q,q+1)}`; in the GT basis V negates
-    the last label of the rows :math:`M_m` with :math:`m \equiv 2 \pmod 4` (complex
-    conjugation) and of the even rows with :math:`\prod_{i \le m} s_i = -1` (the sign
-    rotation), the two sets combined by symmetric difference. :math:`A H A^{-1} = H`
-    for every rotor Hamiltonian (it only has squares of generators). ``cartan``
-    (spinor irreps): the Cartan planes of the sectors, on which :math:`A` must
-    reverse the generator (:math:`s_k s_{k+1} = -1`): an antiunitary maps the
-    eigenvalue :math:`\pm i` of :math:`D(g_{(k,k+1)})` to :math:`\mp i` times that sign.
-    ``reflection``: :math:`A` must commute with it. Plain conjugation (``s = 1``) is
-    tried first.
-    """
-    N = rep.N
-    conj_rows = {m for m in range(2, N + 1, 2) if m % 4 == 2}
-    top_zero = rep.highest_weight[-1] == 0 if N % 2 == 0 else True
-    candidates = sorted(itertools.product((1, -1), repeat=N - 1), key=lambda t: (t.count(-1), t))
-    for tail in candidates:
-        s = np.array(tail + (1,))
-        sigma = {q: float(s[q - 1] * s[q]) for q in chain}
-        if cartan and any(sigma[k] != -1.0 for k in cartan):
-            continue
-        rows = conj_rows ^ {m for m in range(2, N + 1, 2) if np.prod(s[:m]) == -1}
-        if N in rows:
-            if not top_zero:
-                continue  # maps the irrep to the one with the last label negated
-            rows.discard(N)
-        V = gt_intertwiner(rep, P, chain, sorted(rows), sigma, conj=True)
-        if V is None or np.any(V.perm[V.perm] != np.arange(len(V.perm))):
-            continue
-        if np.abs(np.conj(V.phase) * V.phase[V.perm] - 1).max() > 1e-9:
-            continue  # A^2 = -1 (quaternionic for this s)
-        if reflection is not None and not _commutes_conj(V, reflection):
-            continue
-        return V
-    return None
-
-
 # ----------------------------------------------------------------------------
 # the group of a representation
 # ----------------------------------------------------------------------------
@@ -271,21 +173,13 @@ def group_of(rep) -> SignGroup:
 
 
 def _gt_group(rep, half: bool) -> SignGroup | None:
-    N = rep.N
-    ks, alphabet, degen = structure(N, half)
-    ops = gt_rotations(rep, sorted(set(ks) | ({1} if N > 1 else set())))
-    if ops is None:
+    ks, alphabet, degen = structure(rep.N, half)
+    sym = gt_symmetries(rep, ks, spinorial=half)
+    if sym is None:
         return None
-    U = V = None
-    if N >= 3:
-        P = gt_patterns_of(rep)
-        chain = {q: sps.csr_matrix(rep.generator((q, q + 1), format="csr")) for q in range(1, N)}
-        U = None
-        if has_reflection(rep, half):
-            U = gt_reflection(rep, P, chain)
-        V = real_structure(rep, P, chain, cartan=ks if half else None, reflection=U)
-    return SignGroup(N, half, ks, alphabet, degen, [ops[k] for k in ks] + ([U] if U is not None else []),
-                     monomial=True, centre=centre_scalar(ops, N, half), reflection=U is not None, antiunitary=V)
+    U = sym.reflection
+    return SignGroup(rep.N, half, ks, alphabet, degen, [sym.rotations[k] for k in ks] + ([U] if U is not None else []),
+                     monomial=True, centre=sym.centre, reflection=U is not None, antiunitary=sym.antiunitary)
 
 
 def _dense_group(rep) -> SignGroup:

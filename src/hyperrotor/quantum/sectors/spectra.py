@@ -295,15 +295,10 @@ def _cached_problem(spec):
 
         N, hw, moments, hbar = spec
         rep = irrep(N, [Fraction(x) for x in hw], max_dim=10**7)
-        H = rotor_csr(rep, np.array(moments), hbar)
+        H = rotor_matrix(rep.generators(format="csr"), np.array(moments), hbar)
         _PROBLEM_CACHE.clear()
         _PROBLEM_CACHE[spec] = (H, [(s.basis, s.real) for s in sectors_of(rep, False)])
     return _PROBLEM_CACHE[spec]
-
-
-def rotor_csr(rep, moments: np.ndarray, hbar) -> sps.csr_matrix:
-    r""":math:`-\hbar^2 \sum X^2/(2I)` as CSR (the matrix of ``rotor_hamiltonian``; checked inputs)."""
-    return rotor_matrix(rep.generators(format="csr"), moments, hbar)
 
 
 def sector_spectra(
@@ -387,7 +382,7 @@ def sector_spectra(
         lv = map_rows(_spec_task, idx, args=(spec, width), client=client, chunk_size=1,
                       progress=progress, desc="sectors")
     else:
-        H = rotor_csr(rep, moments, hbar)
+        H = rotor_matrix(rep.generators(format="csr"), moments, hbar)  # the matrix of rotor_hamiltonian
         bases = [(s.basis, s.real) for s in secs]
         lv = map_rows(_levels_task, idx, args=(H, bases, width, 1 if workers > 1 else None),
                       workers=workers, chunk_size=1, progress=progress, desc="sectors")
