@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from .. import _pricing, _validate
-from .hamiltonian import hermitian_matrix
+from .hamiltonian import hermitian_matrix, representation_of
 from .propagators import PROPAGATORS, propagator_class
 from .sector_propagator import SectorPropagator, e_ops_list, unit_state
 
@@ -109,32 +109,33 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
             raise ValueError(f"collapse operators need method 'mesolve' (or 'auto'), got method {method!r}")
         cls = PROPAGATORS["mesolve"]
     progress = _validate.flag("progress", progress, allow_none=True)
+    given = options.get("store_states") if isinstance(options, dict) else None
+    no_e_ops = e_ops is None or (isinstance(e_ops, (list, tuple, dict)) and not e_ops)
+    store = bool(given) if given is not None else no_e_ops
+    if hasattr(H, "shape") and len(H.shape) == 2:  # priced at the door, before any block or solver is built
+        _pricing.check("evolve", dim=int(H.shape[0]), n_times=int(np.size(t)), states=store)
+    mat, dims = hermitian_matrix(H)  # checked once here; the propagators take it as it is
     if not cls.native:
-        mat, dims = hermitian_matrix(H)
         vec = unit_state(psi0, mat.shape[0])
         t = _validate.time_grid(t, allow_decreasing=False)
         opts = cls.resolve_options(options)
         if progress or (progress is None and sys.stderr.isatty()):
             opts.setdefault("progress_bar", "tqdm")
         return cls(**opts).run(mat, dims, vec, t, e_ops_list(e_ops, dims), c_ops, hbar)
-    given = options.get("store_states") if isinstance(options, dict) else None
-    no_e_ops = e_ops is None or (isinstance(e_ops, (list, tuple, dict)) and not e_ops)
-    store = bool(given) if given is not None else no_e_ops
-    if hasattr(H, "shape") and len(H.shape) == 2:  # priced at the door, before the blocks are built
-        _pricing.check("evolve", dim=int(H.shape[0]), n_times=int(np.size(t)), states=store)
-    prop = _propagator_for(H, rep=rep, hbar=hbar, method=cls.name, options=options, workers=workers,
+    rep = rep if rep is not None else representation_of(H)
+    prop = _propagator_for(H, mat, dims, rep=rep, hbar=hbar, method=cls.name, options=options, workers=workers,
                            client=client, progress=progress)
     return prop.evolve(psi0, t, e_ops=e_ops, store_states=prop.options["store_states"],
                        store_final_state=prop.options["store_final_state"])
 
 
-#: id(H) -> (weak reference to H, parameters, SectorPropagator): the last propagator :func:`evolve` built for H
 _PROPAGATOR_CACHE: dict[int, tuple[Any, str, SectorPropagator]] = {}
 
 
-def _propagator_for(H: Any, *, rep: Any, hbar: float, method: str, options: dict | None, workers: Any, client: Any,
-                    progress: Any) -> SectorPropagator:
-    """The :class:`SectorPropagator` of ``H``: reused when the same ``H`` object comes back unchanged.
+def _propagator_for(H: Any, mat: Any, dims: list, *, rep: Any, hbar: float, method: str, options: dict | None,
+                    workers: Any, client: Any, progress: Any) -> SectorPropagator:
+    """The :class:`SectorPropagator` of ``H`` (``mat``, ``dims``: its checked matrix): reused when the same
+    ``H`` object comes back unchanged.
 
     :func:`evolve` keeps, while ``H`` lives (a weak reference), the propagator it built for it, with
     its blocks and eigendecompositions. It is reused only for the same method, options, ``hbar``
@@ -146,7 +147,6 @@ def _propagator_for(H: Any, *, rep: Any, hbar: float, method: str, options: dict
     hit = _PROPAGATOR_CACHE.get(id(H))
     if hit is not None and hit[0]() is H and hit[1] == params:
         prop = hit[2]
-        mat, _ = hermitian_matrix(H)
         old = prop.matrix
         if (mat.shape == old.shape and mat.dtype == old.dtype and np.array_equal(mat.indptr, old.indptr)
                 and np.array_equal(mat.indices, old.indices) and np.array_equal(mat.data, old.data)):
@@ -154,8 +154,8 @@ def _propagator_for(H: Any, *, rep: Any, hbar: float, method: str, options: dict
             prop.client = client
             prop.progress = progress
             return prop
-    prop = SectorPropagator.for_evolve(H, rep=rep, hbar=hbar, method=method, options=options, workers=workers,
-                                          client=client, progress=progress)
+    prop = SectorPropagator.for_evolve(mat, dims, rep=rep, hbar=hbar, method=method, options=options,
+                                       workers=workers, client=client, progress=progress)
     try:
         ref = weakref.ref(H, lambda _, key=id(H): _PROPAGATOR_CACHE.pop(key, None))
     except TypeError:  # objects without weak references (lists): no reuse

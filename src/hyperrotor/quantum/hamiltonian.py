@@ -93,8 +93,9 @@ def representation_of(H: Any) -> "Representation | None":
 
 def hermitian_matrix(H: Any, name: str = "H") -> tuple[sps.csr_matrix, list]:
     """``(csr, dims)`` of a Hermitian operator; refuses a non-Hermitian one (``options["quantum_hermiticity_rtol"]``)."""
+    trusted = representation_of(H) is not None  # rotor_hamiltonian's own H: Hermitian by construction
     mat, dims = operator_matrix_and_dims(H, name)
-    if representation_of(H) is not None:  # rotor_hamiltonian's own H: Hermitian by construction
+    if trusted:
         return mat, dims
     rtol = options["quantum_hermiticity_rtol"]
     diff = (mat - mat.conj().T).tocsr()

@@ -161,28 +161,30 @@ class SectorPropagator:
     def __init__(self, H: Any, *, rep: Any = None, hbar: float = 1, method: str = "auto",
                  options: dict | None = None, workers: int | None = None, client: Any = None,
                  progress: bool | None = None) -> None:
-        self._setup(H, rep, hbar, method, options, workers, client, progress, rent=False)
+        matrix, dims = hermitian_matrix(H)
+        self._setup(matrix, dims, rep if rep is not None else representation_of(H), hbar, method, options, workers,
+                    client, progress, rent=False)
 
     @classmethod
-    def for_evolve(cls, H: Any, *, rep: Any = None, hbar: float = 1, method: str = "auto",
+    def for_evolve(cls, matrix: Any, dims: list, *, rep: Any = None, hbar: float = 1, method: str = "auto",
                    options: dict | None = None, workers: int | None = None, client: Any = None,
                    progress: bool | None = None) -> "SectorPropagator":
-        """The propagator :func:`~.evolve.evolve` builds (the arguments of the constructor): it may rent
-        (Lanczos on the whole space) before it builds the sectors."""
+        """The propagator :func:`~.evolve.evolve` builds from the matrix it has checked (``hermitian_matrix``)
+        and the representation it has found (the other arguments: the constructor's): it may rent (Lanczos on
+        the whole space) before it builds the sectors."""
         self = cls.__new__(cls)
-        self._setup(H, rep, hbar, method, options, workers, client, progress, rent=True)
+        self._setup(matrix, dims, rep, hbar, method, options, workers, client, progress, rent=True)
         return self
 
-    def _setup(self, H: Any, rep: Any, hbar: Any, method: str, options: dict | None, workers: Any, client: Any,
-               progress: Any, *, rent: bool) -> None:
+    def _setup(self, matrix: Any, dims: list, rep: Any, hbar: Any, method: str, options: dict | None, workers: Any,
+               client: Any, progress: Any, *, rent: bool) -> None:
         cls = propagator_class(method)
         if not cls.native:
             raise ValueError(f"method {cls.name!r} is QuTiP's solver, not a native propagator; use evolve(..., "
                              f"method={cls.name!r}) or one of {', '.join(repr(k) for k, c in PROPAGATORS.items() if c.native)}")
         self.hbar = _validate.hbar(hbar)
-        self.matrix, self.dims = hermitian_matrix(H)
+        self.matrix, self.dims = matrix, dims
         self.dim = int(self.matrix.shape[0])
-        rep = rep if rep is not None else representation_of(H)
         if rep is not None:
             rep = _validate.representation("rep", rep, dim=self.dim)
         self.method = cls.name
