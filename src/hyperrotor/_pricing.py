@@ -17,6 +17,10 @@ format::
     over the budget hr.options['max_memory_bytes'] = 4294967296; raise it with
     hr.options(max_memory_bytes=...)
 
+A refusal that is not a cost model's (a number of bins, a step count, a fixed limit of a
+constructor) is built by :func:`refuse`, which :func:`check` uses too: one format, one
+exception type.
+
 The models describe the algorithms as they are implemented; the constants (bytes per
 entry, seconds per elementary operation) were measured on the reference machine (2 cores)
 by ``benchmarks/pricing.py``, which prints the estimate next to the measured time and peak
@@ -34,7 +38,7 @@ from typing import Any, Callable
 
 from ._options import options, register
 
-__all__ = ["BudgetError", "Cost", "MODELS", "check", "estimate", "model"]
+__all__ = ["BudgetError", "Cost", "MODELS", "check", "estimate", "model", "refuse"]
 
 
 class BudgetError(ValueError):
@@ -107,13 +111,46 @@ def check(entry: str, **sizes: Any) -> None:
     """
     fn, alternative = MODELS[entry]
     for c in fn(**sizes):
-        limit = options[c.key]
-        if not c.amount <= limit:  # also refuses NaN and inf
-            tail = f" or {alternative}" if alternative else ""
-            raise BudgetError(
-                f"{entry}: {c.what} would need ~{_amount(c.amount, c.unit)}, over the budget "
-                f"hr.options['{c.key}'] = {limit!r}; raise it with hr.options({c.key}=...){tail}"
-            )
+        if not c.amount <= options[c.key]:  # also refuses NaN and inf
+            raise refuse(entry, c.what, c.amount, c.key, c.unit, alternative)
+
+
+def refuse(entry: str, what: str, amount: float, key: str, unit: str, alternative: str = "", *,
+           limit: Any = None, raise_with: str | None = None, cls: type = BudgetError, **attributes: Any) -> BudgetError:
+    """The refusal of ``entry``: a :class:`BudgetError` with the one message format of the package.
+
+    ``{entry}: {what} would need ~{amount}, over the budget hr.options['{key}'] = {limit};
+    raise it with hr.options({key}=...)[ or {alternative}]``. Returned, not raised (``raise
+    _pricing.refuse(...)``), so that a caller can add a cause.
+
+    Parameters
+    ----------
+    entry : str
+        The public entry point (``"lyapunov"``, ``"sample_spectrum"``, ...).
+    what : str
+        What would be built or run, naming the argument and the size that set it.
+    amount, unit : float, str
+        The estimate and its unit (``"bytes"``, ``"seconds"``, ``"dimension"``, ``"steps"``, ...).
+    key : str
+        The budget: a key of :data:`hyperrotor.options`, or (with ``limit`` and ``raise_with``)
+        a fixed limit or an argument such as ``max_dim``.
+    alternative : str, optional
+        How to ask for less ("use method 'krylov'"), named after the way to raise the budget.
+    limit : optional
+        The budget's value (default ``options[key]``).
+    raise_with : str, optional
+        How to raise it (default ``hr.options(key=...)``).
+    cls : type, optional
+        :class:`BudgetError` or a subclass (``StepBudgetError``); ``attributes`` go to its constructor.
+    """
+    if limit is None:
+        limit, budget = options[key], f"hr.options['{key}']"
+    else:
+        budget = key
+    how = f"hr.options({key}=...)" if raise_with is None else raise_with
+    tail = f" or {alternative}" if alternative else ""
+    return cls(f"{entry}: {what} would need ~{_amount(amount, unit)}, over the budget {budget} = {limit!r}; "
+               f"raise it with {how}{tail}", **attributes)
 
 
 def _amount(x: float, unit: str) -> str:

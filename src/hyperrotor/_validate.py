@@ -131,14 +131,12 @@ def dimension(N: Any, *, minimum: int = 2, name: str = "N") -> int:
     """
     from hyperrotor._options import options
 
-    from hyperrotor._pricing import BudgetError
+    from hyperrotor._pricing import refuse
 
     N = integer(name, N, minimum=minimum)
     if N > options["max_dimension"]:
-        raise BudgetError(
-            f"{name} = {N} exceeds options['max_dimension'] = {options['max_dimension']} (so({N}) has "
-            f"{N * (N - 1) // 2} planes); raise it with hyperrotor.options(max_dimension=...) if you mean it"
-        )
+        raise refuse(f"so({N})", f"{name} = {N} (so({N}) has {N * (N - 1) // 2} planes)", N, "max_dimension",
+                     "dimension", f"ask for a smaller {name}")
     return N
 
 

@@ -170,23 +170,21 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     if not work_rows.sum() / threads <= budget:  # also refuses an infinite estimate
         with np.errstate(over="ignore"):
             w_top = float(np.max(rate_bound(moments_rows, Ls) * scale)) if B else 0.0
-        raise _pricing.BudgetError(
-            f"lyapunov: this run needs about {work_rows.sum():.3g} units of work (5D plane flows x (1 + {k} tangent vectors"
-            f"{f' x (N - 2) / 3 = {tangent:.4g}' if N > 5 else ''})), "
-            f"{work_rows.sum() / threads:.3g} per worker thread, over the budget options['lyapunov_max_work'] = "
-            f"{_validate.fmt(budget)} (~{budget / _WORK_RATE / 60:.0f} min per thread); the work grows with T "
-            f"(= {_validate.fmt(T)}), the number of orbits ({B}) and the angular velocities of omega0 (up to "
-            f"w_max = {w_top:.3g}); shorten T, use fewer orbits, add workers (client=) or raise the budget: "
-            f"hr.options(lyapunov_max_work=...)"
-        )
+        raise _pricing.refuse(
+            "lyapunov", f"this run ({work_rows.sum():.3g} units of work: 5D plane flows x (1 + {k} tangent vectors"
+            f"{f' x (N - 2) / 3 = {tangent:.4g}' if N > 5 else ''}), growing with T = {_validate.fmt(T)}, the "
+            f"{B} orbit(s) and the angular velocities of omega0, up to w_max = {w_top:.3g}; {threads} worker "
+            f"thread(s), a budget of ~{budget / _WORK_RATE / 60:.0f} min each)", work_rows.sum() / threads,
+            "lyapunov_max_work", "work units per worker thread",
+            "shorten T, use fewer orbits or add workers (client=)")
     nsub = nsub_f.astype(np.int64)
     h = tau * scale / nsub  # step in the scaled time of each orbit
     stride = 1 if history else nren
     nstore = nren if history else 1
     if B * nstore * k * 8 > options["max_output_bytes"]:
-        raise _pricing.BudgetError(f"lyapunov: history=True would store {B * nstore * k * 8 / 2**30:.3g} GiB of running exponents "
-                         f"({B} orbits x {nstore} renormalisations x {k}), over options['max_output_bytes'] = "
-                         f"{_validate.fmt(options['max_output_bytes'])}; use a larger renorm_interval or fewer orbits")
+        raise _pricing.refuse("lyapunov", f"history=True (the running exponents of {B} orbit(s) x {nstore} "
+                              f"renormalisations x {k})", B * nstore * k * 8.0, "max_output_bytes", "bytes",
+                              "use a larger renorm_interval or fewer orbits")
     if chunk_size is None and B:
         per_chunk = options["chunk_seconds"] * _WORK_RATE
         chunk_size = min(max(1, int(per_chunk // max(work_rows.max(), 1.0))), max(1, math.ceil(B / (4 * threads))))

@@ -130,10 +130,9 @@ def poincare_section(
         dt = min(dt, T)  # a (nearly) resting body: one step (lyapunov_step / wmax overflows for subnormal omega)
     steps = T / dt
     if not steps <= options["max_steps"]:
-        raise _pricing.BudgetError(f"poincare_section: this section (omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))}) needs about "
-                         f"{steps:.3g} steps of dt = {dt:.3g} over T = {_validate.fmt(T)}, "
-                         f"over the budget options['max_steps'] = {_validate.fmt(options['max_steps'])}; "
-                         f"shorten T, give a larger dt, or raise it: hr.options(max_steps=...)")
+        raise _pricing.refuse("poincare_section", f"the orbit over T = {_validate.fmt(T)} in steps of dt = {dt:.3g} "
+                              f"(omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))})", steps,
+                              "max_steps", "steps", "shorten T or give a larger dt")
 
     def crossing(_t, L):
         return L[a] - value

@@ -357,6 +357,7 @@ def perturbation_growth(body: Any, plane: Any, omega0: float, t: Any, *, eps: fl
     try:
         traj = simulate(I, w0, t, method=method, rtol=rtol)
     except StepBudgetError as exc:  # name the arguments that set the size of the run
-        raise StepBudgetError(f"perturbation_growth(omega0 = {_validate.fmt(omega0)}, t up to "
-                              f"{_validate.fmt(float(np.max(np.abs(_validate.time_grid(t)))))}): {exc}") from None
+        raise type(exc)(f"perturbation_growth(omega0 = {_validate.fmt(omega0)}, t up to "
+                        f"{_validate.fmt(float(np.max(np.abs(_validate.time_grid(t)))))}): {exc}",
+                        needed=exc.needed, budget=exc.budget, option=exc.option) from None
     return np.max(np.abs(np.delete(traj.omega, p, axis=-1)), axis=-1)

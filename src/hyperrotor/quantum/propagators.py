@@ -38,7 +38,7 @@ from scipy.sparse.linalg import expm_multiply
 
 from .. import _lazy, _validate
 from .._options import options as _options
-from .._pricing import BudgetError
+from .._pricing import refuse
 from ._krylov import krylov_propagator
 
 __all__ = ["EVOLVE_METHODS", "PROPAGATORS", "RESULT_OPTIONS", "Propagator", "evolve_options", "register_propagator"]
@@ -203,11 +203,8 @@ class Eigen(Propagator):
         limit = int(_options["quantum_max_dense_dim"])
         big = max((len(b) for b in blocks), default=0)
         if big > limit:
-            raise BudgetError(
-                f"method 'eigen' would diagonalize a dense block of dimension {big} > "
-                f"options['quantum_max_dense_dim'] = {limit}; use method 'krylov' or raise the limit "
-                f"(hyperrotor.options(quantum_max_dense_dim=...))"
-            )
+            raise refuse("evolve", f"method 'eigen' (a dense block of dimension {big} diagonalized)", big,
+                         "quantum_max_dense_dim", "dimension", "use method 'krylov'")
         return [(b, self) for b in blocks]
 
     def propagate(self, mat, v0, t, hbar, stats):

@@ -83,8 +83,10 @@ def jmat_generators(j: Any, *, form: str = "antihermitian", hbar: float = 1) -> 
     if jj.denominator not in (1, 2) or jj <= 0 or float(jj) != float(j):
         raise ValueError(f"spin j must be a positive integer or half-integer, got {_validate.fmt(j)}")
     if 2 * jj + 1 > DEFAULT_MAX_DIM:
-        raise _pricing.BudgetError(f"spin j = {_validate.fmt(float(jj))} has dimension 2j + 1 = {_validate.fmt(int(2 * jj + 1))} "
-                         f"> {DEFAULT_MAX_DIM} (DEFAULT_MAX_DIM, the limit of irrep(3, (j,)) too)")
+        raise _pricing.refuse("jmat_generators", f"spin j = {_validate.fmt(float(jj))} (matrices of dimension 2j + 1)",
+                              int(2 * jj + 1), "DEFAULT_MAX_DIM", "dimension", "ask for a smaller j",
+                              limit=DEFAULT_MAX_DIM, raise_with="irrep(3, (j,), max_dim=...) (the same spin, "
+                              "Gelfand-Tsetlin basis; DEFAULT_MAX_DIM is its default limit)")
     qutip = _lazy.qutip
     out = {}
     for p, (axis, sign) in JMAT_PLANES.items():

@@ -43,7 +43,7 @@ from scipy.integrate import trapezoid  # numpy's own is numpy >= 2 only
 
 from .. import _validate
 from .._options import options
-from .._pricing import BudgetError
+from .._pricing import refuse
 
 __all__ = [
     "ENSEMBLES",
@@ -348,16 +348,16 @@ def spacing_distribution(levels: Any, *, bins: Any = 30, s_max: float = 4.0, deg
     if isinstance(bins, (str, bytes, Mapping)) or not isinstance(bins, (Sequence, np.ndarray)):
         n_bins = _validate.integer("bins", bins, minimum=1)
         if n_bins > options["statistics_max_size"]:
-            raise BudgetError(f"bins = {n_bins} bins > options['statistics_max_size'] = "
-                              f"{options['statistics_max_size']}; raise it with hr.options(statistics_max_size=...)")
+            raise refuse("spacing_distribution", f"the histogram of bins = {n_bins}", n_bins, "statistics_max_size",
+                         "bins", "ask for fewer bins")
         edges = np.linspace(0.0, s_max, n_bins + 1)
     else:
         edges = _validate.finite_array("bins", bins, ndim=1)
         if edges.size < 2 or not np.all(np.diff(edges) > 0):
             raise ValueError(f"bins as edges must be at least 2 strictly increasing numbers, got {_validate.fmt(edges)}")
         if edges.size - 1 > options["statistics_max_size"]:
-            raise BudgetError(f"bins has {edges.size - 1} bins > options['statistics_max_size'] = "
-                             f"{options['statistics_max_size']}")
+            raise refuse("spacing_distribution", f"the histogram of bins ({edges.size} edges)", edges.size - 1,
+                         "statistics_max_size", "bins", "give fewer edges")
     s = spacings(levels, degree=degree)
     counts, edges = np.histogram(s, bins=edges)
     density = counts / (s.size * np.diff(edges))
@@ -392,11 +392,11 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
     n = _validate.integer("n", n, minimum=3)
     lim = int(options["quantum_max_dense_dim"])
     if ens != "poisson" and n > lim:
-        raise BudgetError(f"n = {n}: a {ens.upper()} spectrum diagonalizes a dense n x n matrix, and n > "
-                         f"options['quantum_max_dense_dim'] = {lim}; raise the option to run it anyway")
+        raise refuse("sample_spectrum", f"a {ens.upper()} spectrum of n = {n} levels (a dense n x n matrix diagonalized)",
+                     n, "quantum_max_dense_dim", "dimension", "ask for a smaller n or the 'poisson' ensemble")
     if n > options["statistics_max_size"]:
-        raise BudgetError(f"n = {n} levels > options['statistics_max_size'] = {options['statistics_max_size']}; "
-                         f"raise the option to run it anyway")
+        raise refuse("sample_spectrum", f"a spectrum of n = {n} levels", n, "statistics_max_size", "levels",
+                     "ask for a smaller n")
     bulk = _validate.positive("bulk", bulk)
     if bulk > 1:
         raise ValueError(f"bulk must be in (0, 1], got {_validate.fmt(bulk)}")
