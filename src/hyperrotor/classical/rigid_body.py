@@ -216,21 +216,35 @@ class RigidBody:
         self._signs = np.array(
             [(-1) ** (i + j) if convention == "paper" else 1 for i, j in self.planes], dtype=int
         )
-        self._build_tables()
+        # priced here, built on first use (rhs, the symbolic equations): a body that is only asked for its
+        # energy, Casimirs or moments (a Scene, simulate's input) never pays for the (n, N - 2) tables
+        _pricing.check("RigidBody", N=self.N)
+        self._tables: tuple | None = None
 
     # ------------------------------------------------------------------ tables
+    @property
+    def rhs_tables(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(left, right, sign)``, each ``(n_planes, N - 2)`` (built on first use; read-only)."""
+        if self._tables is None:
+            self._build_tables()
+        return self._tables[:3]
+
+    @property
+    def _coef(self) -> np.ndarray | None:
+        if self._tables is None:
+            self._build_tables()
+        return self._tables[3]
+
     def _build_tables(self) -> None:
         left, right, sign = _rhs_tables(self.N)
         for arr in (left, right, sign):
             arr.setflags(write=False)
-        self.rhs_tables = (left, right, sign)
+        coef = None
         if not self.inertia.is_symbolic:
             I = self.inertia.moments
             coef = sign * (I[right] - I[left]) / I[:, None]
             coef.setflags(write=False)
-            self._coef = coef
-        else:
-            self._coef = None
+        self._tables = (left, right, sign, coef)
 
     def _rhs_terms(self, w: Sequence, I: Sequence, overall: Sequence[int] | None = None) -> list:
         """SymPy ``overall_a * rhs_a`` with ``I_a w_a' = rhs_a + m_a`` (sums of (I - I) w w, as printed).

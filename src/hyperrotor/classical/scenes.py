@@ -282,20 +282,26 @@ def _interactive(scene: Scene, edges: Any, title: str | None, result: SceneResul
 
 
 def _check_inputs(body: Any, omega0: Any, t: Any):
-    """``(body, omega0, t)`` checked with :mod:`hyperrotor._validate` (messages name the argument)."""
+    """``(moments, N, omega0, t)`` checked with :mod:`hyperrotor._validate` (messages name the argument).
+
+    No :class:`RigidBody` is built here (for plain moments that takes ~1 s at N = 300): the body is
+    made once, in :func:`evaluate_scene`, after the run has been priced.
+    """
     try:
-        body_ = _as_body(body)
+        moments = _v.moments(body, name="body")
+        N = _v.dimension_from_count(moments.size, name="body", what="plane moments")
     except (TypeError, ValueError) as exc:
         raise type(exc)(
             f"body must be a RigidBody, an Inertia or plane moments, got {_v.fmt(body)} "
             f"of type {type(body).__name__}: {exc}"
         ) from None
-    n = len(body_.planes)
+    _v.dimension(N)  # the budget options['max_dimension'], as a RigidBody would check it
+    n = moments.size
     w0 = _v.finite_array("omega0", omega0, ndim=1)
     if w0.shape != (n,):
-        raise ValueError(f"omega0 must have shape ({n},) for N = {body_.N}, got shape {w0.shape}")
+        raise ValueError(f"omega0 must have shape ({n},) for N = {N}, got shape {w0.shape}")
     t_ = _v.time_grid(t, name="t", allow_decreasing=False)
-    return body_, w0, t_
+    return moments, N, w0, t_
 
 
 def _rtol(scene: Scene) -> float:
@@ -305,8 +311,7 @@ def _rtol(scene: Scene) -> float:
 def _validate(scene: Scene):
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a hyperrotor.Scene, got {_v.fmt(scene)} of type {type(scene).__name__}")
-    body, w0, t = _check_inputs(scene.body, scene.omega0, scene.t)
-    N = body.N
+    moments, N, w0, t = _check_inputs(scene.body, scene.omega0, scene.t)
     obs = tuple(scene.observables) if not isinstance(scene.observables, str) else (scene.observables,)
     bad = [o for o in obs if o not in SCENE_OBSERVABLES]
     if bad or not obs:
@@ -329,7 +334,7 @@ def _validate(scene: Scene):
         T0 = np.asarray(scene.attitude0, dtype=float)
         if T0.shape != (N, N) or np.max(np.abs(T0.T @ T0 - np.eye(N))) > 1e-8:
             raise ValueError(f"attitude0 must be an orthogonal {N} x {N} matrix")
-    return body, obs, w0, t, sel_planes, cols, pts, ax, T0
+    return moments, N, obs, w0, t, sel_planes, cols, pts, ax, T0
 
 
 def _fill(res: SceneResult, obs, body, omega_full, T, cols, pts, ax, invariants_from, w0):
@@ -366,14 +371,14 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     from .rigid_body import RigidBody
 
     wall = time.perf_counter()
-    body, obs, w0, t, sel_planes, cols, pts, ax, T0 = _validate(scene)
-    N = body.N
-    conv = body.convention
+    moments, N, obs, w0, t, sel_planes, cols, pts, ax, T0 = _validate(scene)
     res = SceneResult(t=t, planes=sel_planes)
     need_att = "attitude" in obs or "projection" in obs
     need_omega = "omega" in obs or "L" in obs
 
     if not minimal:
+        _pricing.check("simulate", N=N)  # before the body is built
+        body = _as_body(scene.body)
         traj = simulate(body, w0, t, method=scene.method, rtol=_rtol(scene), progress=scene.progress,
                         attitude=True if T0 is None else T0)
         res.path = "full"
@@ -383,6 +388,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
         return res
 
     if not need_att and not need_omega:
+        body = _as_body(scene.body)
         res.path = "invariants"
         _fill(res, obs, body, None, None, cols, pts, ax, "initial", w0)
         res.stats["wall_time"] = time.perf_counter() - wall
@@ -391,6 +397,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     steps = []
     Z = locked_axes(w0, N)
     if len(Z) == N:  # at rest
+        body = _as_body(scene.body)
         omega = np.zeros((t.size, w0.size))
         T = np.broadcast_to(np.eye(N) if T0 is None else T0, (t.size, N, N)).copy() if need_att else None
         res.path = "closed-form:rest"
@@ -404,7 +411,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     else:
         kept = np.arange(w0.size)
     M = len(keep_axes)
-    I_red = body.inertia.moments[kept]
+    I_red = moments[kept]
     w_red = w0[kept]
     tau = t - t[0]
     # solve the (reduced) body in the plain ("standard") convention, then embed and convert
@@ -423,6 +430,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
                 U = _quartet.quartet_attitude_standard(info["theta"], w_red, tau, info["axis"])
         steps.append("closed-form:" + info["kind"])
     else:
+        _pricing.check("simulate", N=M)  # the run's price, before any body is built
         red_body = RigidBody(I_red, convention="standard")
         traj = simulate(red_body, w_red, t, method=scene.method, rtol=_rtol(scene), attitude=need_att,
                         progress=scene.progress)
@@ -430,6 +438,8 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
         U = traj.attitude
         res.stats.update(traj.stats)
         steps.append("integrate")
+    body = _as_body(scene.body)
+    conv = body.convention
     omega = np.zeros((t.size, w0.size))
     omega[:, kept] = om_red
     T = None
