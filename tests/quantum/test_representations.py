@@ -339,7 +339,7 @@ def test_checking_generators_never_changes_them():
     zero imaginary part (its real part shared the caller's index arrays, and scipy canonicalizes in
     place) scrambled the caller's matrix; rotor_hamiltonian of irrep (8, 0)'s generators changed by 0.2."""
     from hyperrotor.quantum import rotor_hamiltonian
-    from hyperrotor.quantum.representation import as_csr, check_antihermitian
+    from hyperrotor.quantum.operator_input import as_csr, check_antihermitian
 
     # a non-canonical complex matrix with zero imaginary part: unsorted column indices in row 0
     M = sps.csr_matrix((np.array([2.0, 1.0, -1.0, -2.0], dtype=complex), np.array([2, 1, 0, 0]),

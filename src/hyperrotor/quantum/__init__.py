@@ -8,8 +8,8 @@ imports this one. The vocabulary (``form=``, keyword-only ``hbar``, ``t``,
 ``rtol``/``atol``, ``rng``) is documented in docs/conventions.md.
 """
 from . import (coherent, combine, differential_operator, equivalence, evolve as _evolve_module, gelfand_tsetlin,
-               hamiltonian, harmonic, normal_form, operator_products, operators, representation, sector_propagator,
-               sectors, spectrum as _spectrum_module, standard_reps, statistics, weights)
+               hamiltonian, harmonic, normal_form, operator_input, operator_products, operators, representation,
+               sector_propagator, sectors, spectrum as _spectrum_module, standard_reps, statistics, weights)
 from .coherent import *  # noqa: F401,F403
 from .combine import *  # noqa: F401,F403
 from .differential_operator import *  # noqa: F401,F403
@@ -20,6 +20,7 @@ from .gelfand_tsetlin import *  # noqa: F401,F403
 from .hamiltonian import *  # noqa: F401,F403
 from .harmonic import *  # noqa: F401,F403
 from .normal_form import *  # noqa: F401,F403
+from .operator_input import *  # noqa: F401,F403
 from .operator_products import *  # noqa: F401,F403
 from .operators import *  # noqa: F401,F403
 from .propagators import *  # noqa: F401,F403
@@ -39,6 +40,7 @@ __all__ = [
     *harmonic.__all__,
     *weights.__all__,
     *representation.__all__,
+    *operator_input.__all__,
     *standard_reps.__all__,
     *combine.__all__,
     *equivalence.__all__,

@@ -508,7 +508,8 @@ def irrep(
     >>> irrep(5, dynkin=[0, 1]).dim     # the spinor, highest weight (1/2, 1/2)
     4
     """
-    from .representation import FORMATS, Representation
+    from .operator_input import FORMATS
+    from .representation import Representation
 
     N = check_dimension(N)
     _validate.choice("format", format, FORMATS)

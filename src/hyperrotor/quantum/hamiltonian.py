@@ -69,7 +69,8 @@ from scipy.sparse.csgraph import connected_components
 
 from .. import _lazy, _validate
 from .._options import options
-from .representation import Representation, as_csr, check_antihermitian, operator_mapping
+from .operator_input import as_csr, check_antihermitian, operator_mapping
+from .representation import Representation
 
 __all__ = ["rotor_hamiltonian", "symmetry_blocks"]
 
