@@ -11,7 +11,7 @@ of estimate against measured is written to benchmarks/results/pricing.png.
 
     python benchmarks/pricing.py            # the table: every model (~10 min of CPU on the 2-core machine)
     python benchmarks/pricing.py --quick    # the smallest size of each entry only
-    python benchmarks/pricing.py --only otoc,scene   # these entries only
+    python benchmarks/pricing.py --only otoc,scene   # these entries only (no plot unless --plot)
     python benchmarks/pricing.py --list     # the priced entries without a case (none)
 
 Estimates of memory are bytes of working memory; estimates of time are single-core seconds
@@ -95,10 +95,10 @@ def cases():
     for N in (8, 16, 24):
         out.append(("casimir_operator", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hq.casimir_operator(N)))
     for N, l in ((3, 20), (3, 40), (4, 12)):
-        out.append(("harmonic_polynomial_basis", f"N={N} l={l}", dict(N=N, l=l), lambda: None,
+        out.append(("harmonic_polynomial_basis", f"N={N} l={l}", dict(N=N, l=l), _clear_harmonic_caches,
                     lambda _, N=N, l=l: hq.harmonic_polynomial_basis(N, l)))
     for N, l in ((3, 6), (3, 10), (4, 5)):
-        out.append(("orthonormal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), lambda: None,
+        out.append(("orthonormal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), _clear_harmonic_caches,
                     lambda _, N=N, l=l: hq.orthonormal_harmonic_basis(N, l)))
     for N in (40, 80, 120):
         out.append(("angular_momentum_operators", f"N={N}", dict(N=N), lambda: None,
@@ -123,7 +123,8 @@ def cases():
         out.append(("Inertia", f"N={N} (list of floats)", dict(n=N * (N - 1) // 2), lambda N=N: _moments(N).tolist(),
                     hr.Inertia))
     for N in (60, 100, 150):
-        out.append(("RigidBody", f"N={N}", dict(N=N), lambda N=N: _moments(N), hr.RigidBody))
+        out.append(("RigidBody", f"N={N} (and its Euler tables)", dict(N=N), lambda N=N: _moments(N),
+                    lambda m: hr.RigidBody(m).rhs_tables))
     for N in (40, 60, 80):
         out.append(("casimir_shift", f"N={N}", dict(n=N * (N - 1) // 2),
                     lambda N=N: (_shift_candidates.cache_clear(), _moments(N))[1], hr.casimir_shift))
@@ -166,7 +167,7 @@ def cases():
         out.append(("otoc", f"5 times, {S} samples, dim 5", dict(n_times=5, columns=S, dim=5), _otoc_inputs,
                     lambda x, S=S: hq.otoc(*x, samples=S)))
     for N, l in ((3, 6), (3, 10), (3, 14)):
-        out.append(("orthogonal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), lambda: None,
+        out.append(("orthogonal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), _clear_harmonic_caches,
                     lambda _, N=N, l=l: hq.orthogonal_harmonic_basis(N, l)))
     for e in (10**4, 2 * 10**4, 4 * 10**4):
         out.append(("sphere_integral", f"exponents ({e},) * 3", dict(degree=3 * e), lambda: None,
@@ -202,6 +203,15 @@ def _cli_scene(N):
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     return cpu
+
+
+def _clear_harmonic_caches():
+    """Forget the cached harmonic bases (the models price a first call; the bases of one (N, l) are shared by
+    harmonic_polynomial_basis, orthogonal_ and orthonormal_harmonic_basis)."""
+    from hyperrotor.quantum import harmonic
+
+    harmonic._harmonic_dicts.cache_clear()
+    harmonic._orthogonal.cache_clear()
 
 
 def _page_bytes(scene):
@@ -263,10 +273,13 @@ def measure(setup, run, memory, mode="memory"):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="the smallest size of each entry only")
-    ap.add_argument("--plot", default=os.path.join(os.path.dirname(__file__), "results", "pricing.png"))
+    ap.add_argument("--plot", default=None, help="where to write the plot (default: benchmarks/results/pricing.png "
+                    "for a full run; none with --only or --quick, which would replace it with a part)")
     ap.add_argument("--only", default="", help="comma-separated entry names: run these models only")
     ap.add_argument("--list", action="store_true", help="list the priced entries without a case and exit")
     args = ap.parse_args(argv)
+    if args.plot is None and not (args.only or args.quick):
+        args.plot = os.path.join(os.path.dirname(__file__), "results", "pricing.png")
     only = {x.strip() for x in args.only.split(",") if x.strip()}
     all_cases = cases()
     missing = sorted(set(_pricing.MODELS) - {c[0] for c in all_cases})
@@ -298,6 +311,8 @@ def main(argv=None):
         print(f"\n{len(ratios)} ratios: min {min(ratios):.2f}, max {max(ratios):.2f}, "
               f"within a factor 3: {sum(1 / 3 <= r <= 3 for r in ratios)}/{len(ratios)}")
     print(f"priced entries without a case: {', '.join(missing) or 'none'} ({len(_pricing.MODELS)} models)")
+    if not args.plot:
+        return 0
     try:
         import matplotlib
 

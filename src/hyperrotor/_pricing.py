@@ -206,8 +206,9 @@ _TABLE_S = 1.4e-8
 _DENSE_S = 2.0e-9
 #: seconds per dim^2 of real_form (measured: dominated by dim^2 work up to dim ~1000)
 _REAL_FORM_S = 7.0e-6
-#: seconds per dim^2 * monomials of the exact harmonic basis (measured for N = 3, l = 20..80)
-_HARMONIC_S = 1.5e-7
+#: seconds per term of the exact harmonic basis (a Fraction step and a SymPy monomial; measured
+#: N = 3..8, l = 4..60: 1.1e-4 to 2.9e-4, growing with l as the integer coefficients grow)
+_HARMONIC_TERM_S = 1.4e-4
 #: seconds per pure-Python integer tuple operation (Freudenthal's recursion)
 _PY_S = 3.0e-7
 #: seconds per dim^2 of the Lanczos highest-weight search
@@ -261,8 +262,9 @@ def _dense_diagonalization(dim: Any, complex: bool = True) -> tuple[Cost, ...]:
 def _highest_weight_state(dim: Any) -> tuple[Cost, ...]:
     # Lanczos (eigsh, tol 1e-14) for the top eigenvector of a Cartan combination whose eigenvalues are
     # equally spaced: the iterations grow like dim, each costs O(dim) (measured ~ dim^2 behaviour)
+    # plus ~0.05 s of set-up (ARPACK's start, the Cartan combination), measured: dim 2001 took 0.07-0.12 s
     d = _f(dim)
-    return (_seconds(f"the Lanczos search for the highest weight vector (dimension {dim})", _LANCZOS_S * d * d),)
+    return (_seconds(f"the Lanczos search for the highest weight vector (dimension {dim})", 0.05 + _LANCZOS_S * d * d),)
 
 
 @model("sectors_dense", "use irrep(N, highest_weight) (sparse sectors at any dimension)")
@@ -447,9 +449,9 @@ def _scene(shape: str, N: int, frames: Any, format: str = ".png", integrate: boo
 @model("casimir_operator")
 def _casimir_operator(N: Any) -> tuple[Cost, ...]:
     # sum over n planes of L_a^2 (each 2-term operator squared), merged into a total of O(N^2) terms:
-    # measured ~ n * N (N = 16..96)
+    # measured ~ n * N (N = 16..100: 3.6e-6 s per n * N) and ~0.01 s of set-up
     n = _n_planes(N)
-    return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", n * _f(N) * 0.12 * _SYMPY_S),)
+    return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", 0.01 + n * _f(N) * 0.18 * _SYMPY_S),)
 
 
 @model("angular_momentum_operators")
@@ -460,24 +462,29 @@ def _angular_momentum_operators(N: Any) -> tuple[Cost, ...]:
 
 @model("harmonic_polynomial_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
 def _harmonic_polynomial_basis(N: Any, l: Any) -> tuple[Cost, ...]:
-    monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
     dim = _harmonic_dim(N, l)
-    return (_harmonic_space(N, l, dim), _seconds(f"{dim:.6g} harmonic polynomials of degree {l} in {N} variables ({monomials:.6g} monomials)",
-                     dim * dim * monomials * _HARMONIC_S),)
+    terms = _harmonic_terms(N, l)
+    # every term of every polynomial is made once (exact Fractions, then a SymPy monomial): measured
+    # ~1.4e-4 s per term, a little more at high degree (larger integer coefficients)
+    return (_harmonic_space(N, l, dim),
+            _seconds(f"{dim:.6g} harmonic polynomials of degree {l} in {N} variables ({terms:.6g} terms)",
+                     terms * _HARMONIC_TERM_S * (1.0 + _f(l) / 80.0)))
 
 
 @model("orthonormal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
-def _orthonormal_harmonic_basis(N: Any, l: Any, per_term: float = 0.3) -> tuple[Cost, ...]:
+def _orthonormal_harmonic_basis(N: Any, l: Any, per_term: float = 0.3, fixed: float = 0.08) -> tuple[Cost, ...]:
     monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
     dim = _harmonic_dim(N, l)
+    # the Gram-Schmidt's pairs of polynomials over the monomials, and a fixed ~0.08 s of the first call
+    # (measured N = 3, l = 3..14: 0.08-0.09 s even at l = 3, against 0.003 s of the pairs)
     return (_harmonic_space(N, l, dim), _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
-                     f"({monomials:.6g} monomials)", dim * dim * monomials * per_term * _SYMPY_S),)
+                     f"({monomials:.6g} monomials)", fixed + dim * dim * monomials * per_term * _SYMPY_S),)
 
 
 @model("orthogonal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
 def _orthogonal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
-    # no normalisation: ~1/5 of the orthonormal basis's work (measured N = 3, l = 10, 14)
-    return _orthonormal_harmonic_basis(N, l, per_term=0.06)
+    # no normalisation: ~1/5 of the orthonormal basis's work and no fixed part (measured N = 3, l = 3..14)
+    return _orthonormal_harmonic_basis(N, l, per_term=0.06, fixed=0.0)
 
 
 @model("bivector_product_table")
@@ -488,9 +495,10 @@ def _bivector_product_table(N: Any) -> tuple[Cost, ...]:
 
 @model("euler_equations")
 def _euler_equations(N: Any) -> tuple[Cost, ...]:
-    # n equations, each a sum over the planes that share an axis with the plane (2(N-2) products)
+    # n equations, each a sum over the planes that share an axis with the plane (2(N-2) products), and the
+    # functions omega_ij(t): measured ~4.4e-5 s per n^2 (N = 6..14) and ~0.01 s of set-up
     n = _n_planes(N)
-    return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", n * n * _SYMPY_S),)
+    return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", 0.01 + n * n * 2.2 * _SYMPY_S),)
 
 
 @model("plane_symbols")
@@ -516,12 +524,30 @@ def _harmonic_space(N: Any, l: Any, dim: float) -> Cost:
 def _binomial(a: float, b: float) -> float:
     if not (math.isfinite(a) and math.isfinite(b)):
         return math.inf
-    if a < 1e5:  # exact (a dimension compared with a budget must not round up)
-        return float(math.comb(int(a), int(b))) if 0 <= b <= a else 0.0
     try:
+        if a < 1e5:  # exact (a dimension compared with a budget must not round up)
+            return float(math.comb(int(a), int(b))) if 0 <= b <= a else 0.0
         return math.exp(math.lgamma(a + 1) - math.lgamma(b + 1) - math.lgamma(a - b + 1))
-    except OverflowError:
+    except OverflowError:  # beyond a float (comb(1499, 999) of N = 1000, l = 500)
         return math.inf
+
+
+def _harmonic_terms(N: Any, l: Any) -> float:
+    """Number of terms of :func:`~hyperrotor.quantum.harmonic_polynomial_basis`: the polynomial seeded by
+    :math:`x'^a x_N^\\varepsilon` (``|a| = l - eps`` in ``m = N - 1`` variables) has one term per
+    ``b <= a/2``, :math:`\\prod_i (\\lfloor a_i/2 \\rfloor + 1)`; summed over ``a``, the coefficient of
+    :math:`x^d` in :math:`(1 - x)^{-m} (1 - x^2)^{-m}`, i.e. :math:`\\sum_j \\binom{j+m-1}{m-1}\\binom{d-2j+m-1}{m-1}`
+    (exact below degree 2000; above, its asymptote :math:`\\binom{d+2m-1}{2m-1} / 2^m`)."""
+    m, l = _f(N) - 1.0, _f(l)
+    total = 0.0
+    for d in (l, l - 1.0):
+        if d < 0:
+            continue
+        if d < 2000:
+            total += sum(_binomial(j + m - 1, m - 1) * _binomial(d - 2 * j + m - 1, m - 1) for j in range(int(d) // 2 + 1))
+        else:
+            total += _binomial(d + 2 * m - 1, 2 * m - 1) / 2.0 ** min(m, 1e4)
+    return total
 
 
 def _harmonic_dim(N: Any, l: Any) -> float:

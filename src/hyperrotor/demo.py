@@ -34,9 +34,13 @@ __all__ = ["DEMO_OMEGA", "DEMO_RUNS", "QuartetInvariants", "quartet_invariants",
 DEMO_OMEGA = tuple(round(0.1 * k, 1) for k in range(1, 11))
 #: The integrators compared with the closed form, with their tolerance.
 DEMO_RUNS = (("splitting8", 1e-12), ("DOP853", 1e-10))
-#: Wall seconds of the two runs per unit of simulated time and of the fastest rate (measured on the
-#: shared 2-core machine: t_end = 200 at rate 1.6 took 1.3 s warm), for :func:`quartet_motion_seconds`.
-_SECONDS_PER_TIME = 0.004
+#: Seconds of the two runs per unit of simulated time and of the fastest rate, and their fixed part
+#: (measured on the shared 2-core machine, warm kernels, one BLAS thread: t_end = 50-800 at rates 1.6,
+#: 2.5 and 7.5 took 0.11-3.5 s of CPU, 0.2-5.5 s wall; DOP853 is ~90% of it), for
+#: :func:`quartet_motion_seconds`. The first call of a process also loads (or compiles) the splitting
+#: kernel: ``QuartetMotion.warmup_time``, 1-3 s, not priced (it does not grow with a size).
+_SECONDS_PER_TIME = 7e-4
+_SECONDS_FIXED = 0.05
 
 
 class QuartetInvariants(NamedTuple):
@@ -110,7 +114,7 @@ def _fastest_rate(body, omega0: np.ndarray) -> float:
 def _motion_cost(t_end: float, rate: float) -> tuple:
     """Cost model of :func:`compare_quartet_motion`: seconds of the two runs (:func:`quartet_motion_seconds`)."""
     return (_pricing.Cost(f"the quartet motion over t_end = {t_end:.6g} (fastest rate {rate:.3g})",
-                          1.0 + _SECONDS_PER_TIME * float(t_end) * float(rate), "max_seconds", "seconds"),)
+                          _SECONDS_FIXED + _SECONDS_PER_TIME * float(t_end) * float(rate), "max_seconds", "seconds"),)
 
 
 class MotionCost(NamedTuple):
@@ -124,8 +128,9 @@ def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
                            axis: int = 5) -> MotionCost:
     """Estimated wall seconds of :func:`compare_quartet_motion` (warm kernels), without running it.
 
-    ``1 + c * t_end * rate``: the rate is the fastest of the motion, bounded by
-    :math:`\\max|\\omega_0| \\max I / \\min I`; ``c`` measured on the 2-core reference machine.
+    ``a + c * t_end * rate``: the rate is the fastest of the motion, bounded by
+    :math:`\\max|\\omega_0| \\max I / \\min I`; ``a`` and ``c`` measured on the 2-core reference
+    machine (``benchmarks/pricing.py``). The first call of a process adds the kernel's load (1-3 s).
     """
     body, axis = _body(kappa, axis)
     omega0 = _v.components("omega0", omega0, 10)
