@@ -456,19 +456,13 @@ def test_too_big_is_refused_or_done_within_a_second(results, name):
     assert rec["cpu"] <= CPU_LIMIT, f"{name}: {rec['outcome']} after {rec['cpu']:.2f} s of CPU: {rec['detail']}"
     if rec["outcome"] in ("TypeError", "ValueError"):
         assert rec["detail"], f"{name}: a {rec['outcome']} without a message"
-    if rec["outcome"] == "BudgetError" and not (name in FORMAT_PENDING and FORMAT_PENDING[name] in rec["detail"]):
-        # the one message format (hyperrotor._pricing.refuse)
+    if rec["outcome"] == "BudgetError":  # the one message format (hyperrotor._pricing.refuse)
         assert ONE_FORMAT.match(rec["detail"]), f"{name}: a refusal not in the one format: {rec['detail']}"
 
 
 #: ``{entry}: {what} would need ~{amount}, over the budget {budget} = {limit}; raise it with {how}[ or ...]``
 #: (hyperrotor._pricing.refuse, which hyperrotor._pricing.check uses too)
 ONE_FORMAT = re.compile(r"^[^\s:][^:]*: .+ would need ~.+, over the budget \S.* = \S+; raise it with \S.*", re.DOTALL)
-#: refusals still worded by quantum/gelfand_tsetlin.py (_check_max_dim: the max_dim of irrep; _gt_generators_exact:
-#: EXACT_MAX_DIM), name -> a phrase of that old wording; drop an entry once that file calls _pricing.refuse (issue #21)
-FORMAT_PENDING = {name: "> max_dim =" for name in ("irrep", "gt_patterns", "ehrenfest_time",
-                                                   "Representation.weight_multiplicities")}
-FORMAT_PENDING["Representation.exact_generators"] = "(EXACT_MAX_DIM)"
 
 
 if __name__ == "__main__":  # the worker
