@@ -246,7 +246,7 @@ def test_large_so5_irrep():
         (dict(N=1, highest_weight=(1,)), ValueError, "N must be an integer >= 2"),
         (dict(N=5), ValueError, "highest_weight"),
         (dict(N=5, highest_weight=(1, 0), dynkin=[1, 0]), ValueError, "either"),
-        (dict(N=5, highest_weight=(20, 10), max_dim=50_000), ValueError, r"dimension 52976 > max_dim = 50000.*MiB.*max_dim=52976"),
+        (dict(N=5, highest_weight=(20, 10), max_dim=50_000), ValueError, r"irrep: the so\(5\) irrep .*MiB.* would need ~52976 \(dimension\), over the budget max_dim = 50000; raise it with .*max_dim=52976"),
         (dict(N=5, highest_weight=(1, 0), max_dim=0), TypeError, "max_dim"),
     ],
 )

@@ -75,8 +75,7 @@ import numpy as np
 import scipy.sparse as sps
 import sympy as sp
 
-from hyperrotor import _validate
-from hyperrotor._pricing import BudgetError
+from hyperrotor import _pricing, _validate
 from hyperrotor.conventions import check_dimension
 
 from .weights import check_highest_weight, dynkin_to_orthogonal, format_weight, weyl_dim
@@ -235,7 +234,7 @@ def gt_patterns(N: int, highest_weight: Any = None, *, dynkin: Any = None, max_d
     """
     N = check_dimension(N)
     m = _resolve_weight(N, highest_weight, dynkin)
-    _check_max_dim(N, m, max_dim)
+    _check_max_dim(N, m, max_dim, entry="gt_patterns")
     return patterns(N, m)
 
 
@@ -327,7 +326,7 @@ def _chain_elements(P: np.ndarray, N: int, k: int, index: PatternIndex, Pf: np.n
     return rows, cols, vals, diag
 
 
-def _check_max_dim(N: int, m, max_dim):
+def _check_max_dim(N: int, m, max_dim, entry: str = "irrep"):
     dim = weyl_dim(N, m)
     if isinstance(max_dim, bool) or not isinstance(max_dim, (int, np.integer)) or max_dim < 1:
         raise TypeError(f"max_dim must be a positive integer, got {_validate.fmt(max_dim)}")
@@ -335,11 +334,10 @@ def _check_max_dim(N: int, m, max_dim):
         n_pl = N * (N - 1) // 2
         # rough nnz: each generator has O(N) non-zeros per row
         est_bytes = dim * n_pl * N * 20
-        raise BudgetError(
-            f"the so({N}) irrep {format_weight(m)} has dimension {dim} > max_dim = {max_dim}; "
-            f"its {n_pl} sparse generators need roughly {est_bytes / 2**20:.0f} MiB. "
-            f"Pass a larger max_dim (e.g. max_dim={dim}) to build it anyway."
-        )
+        raise _pricing.refuse(
+            entry, f"the so({N}) irrep {format_weight(m)} (its {n_pl} sparse generators: roughly "
+                   f"{est_bytes / 2**20:.0f} MiB)", dim, "max_dim", "dimension", limit=int(max_dim),
+            raise_with=f"a larger max_dim (e.g. max_dim={dim}) to build it anyway")
     return dim
 
 
@@ -412,10 +410,11 @@ def _gt_generators_float(N: int, m) -> dict:
 def _gt_generators_exact(N: int, m) -> dict:
     dim = weyl_dim(N, m)
     if dim > EXACT_MAX_DIM:
-        raise BudgetError(
-            f"exact (SymPy) generators are limited to dim <= {EXACT_MAX_DIM} (EXACT_MAX_DIM); "
-            f"the so({N}) irrep {format_weight(m)} has dim {dim}: use the float CSR generators"
-        )
+        raise _pricing.refuse(
+            "Representation.generators(exact=True)", f"exact (SymPy) generators of the so({N}) irrep "
+            f"{format_weight(m)}", dim, "EXACT_MAX_DIM", "dimension", "use the float CSR generators (exact=False)",
+            limit=EXACT_MAX_DIM, raise_with="hyperrotor.quantum.gelfand_tsetlin.EXACT_MAX_DIM = ... (SymPy arithmetic "
+            "on every entry: minutes beyond a few hundred)")
     P = patterns(N, m)
     index = PatternIndex(P, m)
     Pe = np.array([[Fraction(x).limit_denominator(2) for x in row] for row in P.tolist()], dtype=object).reshape(P.shape)
