@@ -305,7 +305,7 @@ def test_dense_output_between_and_at_the_output_times(method):
 def test_a_run_over_the_step_budget_is_refused_before_it_starts():
     body = RigidBody(Inertia.from_mass_tensor(J5))
     w0 = np.linspace(-1, 1, 10)
-    with pytest.raises(StepBudgetError, match=r"about [0-9.e+]+ integration steps .* max_steps = 100000000"):
+    with pytest.raises(StepBudgetError, match=r"would need ~[0-9.e+]+ \(integration steps\), over the budget max_steps = 100000000"):
         hr.simulate(body, w0, [0.0, 1e12], method="splitting8", rtol=1e-12)
     with pytest.raises(StepBudgetError, match="max_steps = 1000"):
         hr.simulate(body, w0, [0.0, 100.0], method="splitting4", dt=0.01, max_steps=1000)
@@ -324,7 +324,7 @@ def test_scipy_methods_stop_at_the_budget(method):
 
 def test_too_many_output_times_are_refused_not_a_memory_error():
     t = np.linspace(0.0, 1.0, 100_001)
-    with hr.options(max_output_bytes=10**6), pytest.raises(StepBudgetError, match=r"GiB .* 100001 output times"):
+    with hr.options(max_output_bytes=10**6), pytest.raises(StepBudgetError, match=r"100001 output times\) would need ~.* GiB\), over the budget max_output_bytes"):
         hr.simulate(MOM3, W3, t)
     # the estimate of the issue's example, 2e8 output times of a 3D body: 9.6 GB > 2 GiB default
     assert 8.0 * 2e8 * 2 * 3 > hr.options["max_output_bytes"]
@@ -461,11 +461,11 @@ def test_scipy_runs_projected_over_the_budget_are_refused_early(method):
     (before: it ran for hours up to max_steps evaluations), naming the projected count."""
     body = RigidBody(Inertia.from_mass_tensor([1.0, 2.0, 3.0, 4.0]))
     w0 = np.array([1e300, 1e-8, 2e-8, 3e-8, 1e-8, 2e-8])
-    with pytest.raises(StepBudgetError, match=r"would need about [0-9.]+e\+(2[0-9]{2}|30[0-8]) right-hand-side evaluations"):
+    with pytest.raises(StepBudgetError, match=r"would need ~[0-9.]+e\+(2[0-9]{2}|30[0-8]) \(right-hand-side evaluations\)"):
         hr.simulate(body, w0, np.linspace(0.0, 1.0, 5), method=method, rtol=1e-11)
     # an ensemble: the members still to run count too (2000 evaluations for one member, 50 members)
     one = hr.simulate(MOM3, W3, [0.0, 200.0], method=method, rtol=1e-10).stats["nfev"]
-    with pytest.raises(StepBudgetError, match="would need about"):
+    with pytest.raises(StepBudgetError, match="would need ~"):
         hr.simulate(MOM3, np.tile(W3, (50, 1)), [0.0, 200.0], method=method, rtol=1e-10, max_steps=10 * one)
 
 

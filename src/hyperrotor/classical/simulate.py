@@ -110,13 +110,11 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Probl
     K = int(np.size(t)) if isinstance(t, (np.ndarray, list, tuple)) else 1  # before any copy of a huge grid
     nbytes = 8.0 * B * K * (2 * n + (N * N if with_att else 0))
     if nbytes > max_output_bytes:
-        raise StepBudgetError(
-            f"the output of this run needs about {nbytes / 2**30:.3g} GiB ({B} member(s) x {K} output times), "
-            f"more than the budget max_output_bytes = {_validate.fmt(int(max_output_bytes))} bytes; ask for fewer "
-            f"output times (events= or Trajectory.sol give states between them) or raise "
-            f"hyperrotor.options['max_output_bytes']",
-            needed=nbytes, budget=max_output_bytes, option="max_output_bytes",
-        )
+        raise _pricing.refuse(
+            "simulate", f"the output of this run ({B} member(s) x {K} output times)", nbytes, "max_output_bytes",
+            "bytes", "ask for fewer output times (events= or Trajectory.sol give states between them)",
+            limit=int(max_output_bytes), cls=StepBudgetError, needed=nbytes, budget=max_output_bytes,
+            option="max_output_bytes")
     t_user = _validate.time_grid(t)
     s = max(power_of_two_scale(float(np.abs(w0).max()) if w0.size else 0.0), MIN_SCALE)
     tq = None

@@ -20,11 +20,12 @@ from typing import Any
 
 import numpy as np
 
+from hyperrotor import _pricing
 from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError
 
-__all__ = ["Work", "advance_chunked", "step_times", "check_finite", "cost_key", "learn", "seconds_per_flow",
+__all__ = ["Work", "advance_chunked", "refuse_steps", "step_times", "check_finite", "cost_key", "learn", "seconds_per_flow",
            "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
 
 #: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
@@ -79,12 +80,16 @@ class Work:
         total = self.done + float(planned)
         if total > self.max_steps:
             what = what() if callable(what) else what
-            raise StepBudgetError(
-                f"this run needs about {total:.3g} integration steps ({what}), more than the budget max_steps = "
-                f"{int(self.max_steps)}; raise it with simulate(..., max_steps=...) or "
-                f"hyperrotor.options(max_steps=...) if you mean it, or ask for less (shorter t, larger rtol/dt)",
-                needed=total, budget=self.max_steps, option="max_steps",
-            )
+            raise refuse_steps(f"this run ({what})", total, self.max_steps, "ask for less (shorter t, larger rtol/dt)")
+
+
+def refuse_steps(what: str, needed: float, budget: float, alternative: str, unit: str = "integration steps"
+                 ) -> StepBudgetError:
+    """The :class:`StepBudgetError` of a run over ``max_steps``, in the package's one refusal format
+    (:func:`hyperrotor._pricing.refuse`), with ``needed``, ``budget`` and ``option`` for the command line."""
+    return _pricing.refuse("simulate", what, needed, "max_steps", unit, alternative, limit=int(budget),
+                           raise_with="simulate(..., max_steps=...) or hr.options(max_steps=...)", cls=StepBudgetError,
+                           needed=needed, budget=budget, option="max_steps")
 
 
 def step_times(t: np.ndarray, cs: np.ndarray, nsub: np.ndarray, s: np.ndarray) -> np.ndarray:

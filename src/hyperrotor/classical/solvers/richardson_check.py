@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from .base import Problem, StepBudgetError, step_lengths
-from .chunks import Work, advance_chunked, step_times
+from .base import Problem, step_lengths
+from .chunks import Work, advance_chunked, refuse_steps, step_times
 
 __all__ = ["RichardsonCheck", "CheckFailed", "observed_order", "relative_difference", "SAFETY", "ACCEPT",
            "ASYMPTOTIC", "COMPANION_RATIO"]
@@ -317,12 +317,8 @@ class RichardsonCheck:
             h_budget = self.span * self.problem.B * (1.0 + 1.0 / COMPANION_RATIO) / max(
                 self.work.max_steps - self.work.done, 1.0)
             reachable = min(1.0, end * (h_budget / self.h) ** q)  # the order h_new assumed (1: no digit left)
-            raise StepBudgetError(
-                f"simulate: rtol = {rtol:g} needs about {self.work.done + steps_new:.3g} integration steps here "
-                f"({why}); reachable accuracy about {reachable:.2g} within the budget max_steps = "
-                f"{self.work.max_steps}; raise it with simulate(..., max_steps=...) or "
-                f"hyperrotor.options(max_steps=...), or ask for a larger rtol or a shorter run",
-                needed=self.work.done + steps_new, budget=self.work.max_steps, option="max_steps")
+            raise refuse_steps(f"rtol = {rtol:g} ({why}; reachable accuracy about {reachable:.2g} within the budget)",
+                               self.work.done + steps_new, self.work.max_steps, "ask for a larger rtol or a shorter run")
         return CheckFailed(h_new, why)
 
     def run_alone(self) -> None:

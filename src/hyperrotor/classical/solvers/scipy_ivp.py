@@ -43,6 +43,7 @@ from hyperrotor.conventions import structure_constants, to_matrix
 
 from .base import Problem, RunResult, Solver, power_of_two_scale
 from .driver import event_specs
+from .chunks import refuse_steps
 from .step_control import StepBudgetError
 
 __all__ = ["ScipyIVP", "DOP853", "RK45", "RK23", "LSODA", "Radau", "BDF"]
@@ -83,8 +84,7 @@ class _SparseRHS:
 
 
 #: how to get a larger run, in every budget message of this module
-_RAISE_BUDGET = ("raise it with simulate(..., max_steps=...) or hyperrotor.options(max_steps=...), or ask for "
-                 "less (shorter t, larger rtol)")
+_ASK_LESS = "ask for less (shorter t, larger rtol)"
 
 
 class _MemberRHS:
@@ -110,9 +110,8 @@ class _MemberRHS:
         self.count[0] += 1
         total = self.count[0]
         if total > self.budget:
-            raise StepBudgetError(f"scipy {self.name} stopped after {self.budget} right-hand-side evaluations (the "
-                                  f"budget max_steps = {self.budget}) at member {self.b}; {_RAISE_BUDGET}",
-                                  needed=total, budget=self.budget, option="max_steps")
+            raise refuse_steps(f"scipy {self.name} (stopped at the budget, at member {self.b})", total, self.budget,
+                               _ASK_LESS, unit="right-hand-side evaluations")
         self.far = max(self.far, abs(tt - self.t0))
         if total >= self.next:  # at EXTRAPOLATE_AFTER evaluations of this member, then at every doubling
             self.next = total + (total - self.start)
@@ -318,12 +317,9 @@ def _extrapolate(total: int, member: int, covered: float, span: float, members_l
     per_member = member * span / covered
     projected = total - member + per_member * (1 + members_left)
     if projected > budget:
-        raise StepBudgetError(
-            f"scipy {name} would need about {projected:.3g} right-hand-side evaluations for this run "
-            f"(extrapolated from {member} evaluations covering {covered / span:.3g} of the time span), more than "
-            f"the budget max_steps = {budget}; {_RAISE_BUDGET}",
-            needed=projected, budget=budget, option="max_steps",
-        )
+        raise refuse_steps(f"scipy {name} for this run (extrapolated from {member} evaluations covering "
+                           f"{covered / span:.3g} of the time span)", projected, budget, _ASK_LESS,
+                           unit="right-hand-side evaluations")
 
 
 class _ScaledEvent:
