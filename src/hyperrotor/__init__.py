@@ -16,6 +16,7 @@ from __future__ import annotations
 import importlib as _importlib
 from typing import Any as _Any
 
+from . import _cost_models  # noqa: F401  (registers the cost models of hyperrotor._pricing first)
 from . import conventions
 from .conventions import *  # noqa: F401,F403
 from . import classical

@@ -298,10 +298,10 @@ def test_sphere_inner_product_and_weyl_action_on_plain_symbols():
 
 
 def test_irrep_messages_print_weights_as_numbers():
-    with pytest.raises(ValueError, match=r"irrep \(200, 100\) has dimension") as exc:
+    with pytest.raises(ValueError, match=r"irrep \(200, 100\) \(its 10 sparse generators") as exc:
         hq.irrep(5, (200, 100))
     assert "'200'" not in str(exc.value)
-    with pytest.raises(ValueError, match=r"irrep \(401/2, 201/2\) has dimension"):
+    with pytest.raises(ValueError, match=r"irrep \(401/2, 201/2\) \(its 10 sparse generators"):
         hq.irrep(5, (200.5, 100.5))
     assert "(5/2, 1/2)" in hq.irrep(5, (2.5, 0.5)).name
 

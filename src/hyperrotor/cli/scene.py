@@ -13,7 +13,7 @@ import argparse
 
 import numpy as np
 
-from hyperrotor import BudgetError, _pricing, _validate
+from hyperrotor import BudgetError, _cost_models, _pricing, _validate
 from hyperrotor._options import options
 from hyperrotor.cli._common import (UsageError, add_common, bar, check_budget, check_common, choice_of,
                                     have_matplotlib, have_module, int_list, integer, num, number, number_list,
@@ -35,7 +35,7 @@ SCENE_FORMATS = (".png", ".gif", ".html")
 def configure(p: argparse.ArgumentParser) -> None:
     p.add_argument("--shape", default="cube", choices=SCENE_SHAPES, type=choice_of(SCENE_SHAPES),
                    help="body points: N-cube vertices (2^N), N-simplex vertices (N+1) or "
-                        f"{_pricing.SCENE_ELLIPSOID_POINTS} ellipsoid points (default cube)")
+                        f"{_cost_models.SCENE_ELLIPSOID_POINTS} ellipsoid points (default cube)")
     p.add_argument("--N", default=5, help="dimension of space, >= 3 (default 5)")
     p.add_argument("--inertia", default="quartet", choices=SCENE_INERTIAS, type=choice_of(SCENE_INERTIAS),
                    help="quartet: the paper's eqs. 84-85 (any N), equal: eq. 82, box: solid hyper-box of the "
@@ -101,7 +101,7 @@ def _scene_check(args: argparse.Namespace):
     memory, seconds = (c.amount for c in _pricing.estimate(
         "scene", shape=args.shape, N=N, frames=frames, format=fmt, integrate=args.inertia == "box" or bool(lock),
         colour=bool(colour_axis)))
-    P, E = _pricing.scene_size(args.shape, N)
+    P, E = _cost_models.scene_size(args.shape, N)
     count = f"2^{N} points, {N} x 2^{N - 1} edges" if args.shape == "cube" and N > 30 else f"{P:.4g} points, {E:.4g} edges"
     what = f"scene --N {N} --shape {args.shape} ({count}, {frames} frames)"
     hint = "use a smaller --N" + (", --shape simplex" if args.shape == "cube" else "") + " or fewer --frames"
@@ -142,7 +142,7 @@ def run(args: argparse.Namespace) -> int:
         # --- work ------------------------------------------------------------------
         points = {"cube": lambda: hypercube_vertices(N),
                   "simplex": lambda: simplex_vertices(N),
-                  "ellipsoid": lambda: ellipsoid_points(np.linspace(1.0, 0.4, N), _pricing.SCENE_ELLIPSOID_POINTS, rng=0)}[
+                  "ellipsoid": lambda: ellipsoid_points(np.linspace(1.0, 0.4, N), _cost_models.SCENE_ELLIPSOID_POINTS, rng=0)}[
             args.shape]()
         t = np.linspace(0.0, s["t_end"], s["frames"])
         proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())

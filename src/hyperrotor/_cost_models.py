@@ -1,0 +1,400 @@
+r"""The cost models of the size-driven entry points (registered in :data:`hyperrotor._pricing.MODELS`).
+
+Each model maps an entry point's sizes to its figures (:class:`~hyperrotor._pricing.Cost`: bytes of
+working memory, single-core seconds, output bytes, dense dimensions), which
+:func:`hyperrotor._pricing.check` compares with the named budgets. The constants were measured on
+the reference machine by ``benchmarks/pricing.py`` (estimates within a factor ~3, docs/safety.md).
+Imported by ``hyperrotor/__init__.py``, so every model is registered before any entry point runs.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ._pricing import Cost, as_float as _f, estimate, model
+
+__all__ = ["SCENE_COST", "GIF_FRAME_BYTES", "SCENE_ELLIPSOID_POINTS", "scene_size"]
+
+
+def _mul(*xs: Any) -> float:
+    out = 1.0
+    for x in xs:
+        out *= _f(x)
+    return out
+
+
+def _memory(what: str, nbytes: float) -> Cost:
+    return Cost(what, nbytes, "max_memory_bytes", "bytes")
+
+
+def _seconds(what: str, seconds: float) -> Cost:
+    return Cost(what, seconds, "max_seconds", "seconds")
+
+
+def _n_planes(N: Any) -> float:
+    N = _f(N)
+    return N * (N - 1) / 2
+
+
+# ---------------------------------------------------------------------------------------------
+# constants measured by benchmarks/pricing.py on the reference machine (2 cores, one thread)
+# ---------------------------------------------------------------------------------------------
+#: seconds per flop of a dense LAPACK eigh / eigvalsh (complex counts 4 real flops)
+_EIGH_S = 8.0e-11
+#: seconds per SymPy term operation (a product or sum of two monomials with rational coefficients)
+_SYMPY_S = 2.0e-5
+#: seconds per plane pair of the structure-constant table (a Python loop)
+_PAIR_S = 1.3e-6
+#: seconds per entry of an n^3 table converted and sliced (memory bound)
+_TABLE_S = 1.4e-8
+#: seconds per dim^3 of the dense products building the spinor generators
+_DENSE_S = 2.0e-9
+#: seconds per dim^2 of real_form (measured: dominated by dim^2 work up to dim ~1000)
+_REAL_FORM_S = 7.0e-6
+#: seconds per term of the exact harmonic basis (a Fraction step and a SymPy monomial; measured
+#: N = 3..8, l = 4..60: 1.1e-4 to 2.9e-4, growing with l as the integer coefficients grow)
+_HARMONIC_TERM_S = 1.4e-4
+#: seconds per pure-Python integer tuple operation (Freudenthal's recursion)
+_PY_S = 3.0e-7
+#: seconds per dim^2 of the Lanczos highest-weight search
+_LANCZOS_S = 6.0e-9
+#: seconds per output time of evolve (a state Qobj per time, expectation values)
+_EVOLVE_S = 2.6e-5
+#: bytes held per stored output time of evolve besides the state's entries (Qobj and its data object)
+_QOBJ_BYTES = 360.0
+
+
+# ---------------------------------------------------------------------------------------------
+# the models: one per size-driven entry point
+# ---------------------------------------------------------------------------------------------
+@model("structure_constants")
+def _structure_constants(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_memory(f"the structure-constant table of so({N}) ({n:.0f}^3 int8 entries)", n ** 3),
+            _seconds(f"the structure-constant table of so({N}) ({n:.0f}^2 plane pairs in Python)", n * n * _PAIR_S))
+
+
+@model("linearization")
+def _linearization(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_memory(f"the structure constants of so({N}) as floats ({n:.0f}^3 entries)", 9.0 * n ** 3),
+            _seconds(f"the structure constants of so({N}) as floats ({n:.0f}^3 entries)",
+                     n * n * _PAIR_S + n ** 3 * _TABLE_S))
+
+
+@model("casimir_shift", "use a body with fewer planes")
+@model("simulate", "use a body with fewer planes")
+def _simulate(N: Any = None, n: Any = None) -> tuple[Cost, ...]:
+    # the Casimir shift rule compares every rate with every candidate value (n x n floats, twice)
+    n = _n_planes(N) if n is None else _f(n)
+    return (_memory(f"the Casimir shift of {n:.0f} planes (n x n rate differences)", 16.0 * n * n),)
+
+
+@model("dense_diagonalization", "use a representation whose symmetry sectors are smaller (rep=)")
+def _dense_diagonalization(dim: Any, complex: bool = True) -> tuple[Cost, ...]:
+    d = _f(dim)
+    item = 16.0 if complex else 8.0
+    flops = (4.0 if complex else 1.0) * 4.0 / 3.0 * d ** 3
+    return (
+        Cost(f"a dense block of dimension {dim}", d, "quantum_max_dense_dim", "dimension"),
+        # sparse copies of the block (CSR: entry + index), the dense block and eigvalsh's copy
+        _memory(f"a dense {dim} x {dim} block (and its sparse and working copies)", 6 * item * d * d),
+        _seconds(f"diagonalizing a dense {dim} x {dim} block", flops * _EIGH_S),
+    )
+
+
+@model("highest_weight_state", "build the state from the Gelfand-Tsetlin basis directly")
+def _highest_weight_state(dim: Any) -> tuple[Cost, ...]:
+    # Lanczos (eigsh, tol 1e-14) for the top eigenvector of a Cartan combination whose eigenvalues are
+    # equally spaced: the iterations grow like dim, each costs O(dim) (measured ~ dim^2 behaviour)
+    # plus ~0.05 s of set-up (ARPACK's start, the Cartan combination), measured: dim 2001 took 0.07-0.12 s
+    d = _f(dim)
+    return (_seconds(f"the Lanczos search for the highest weight vector (dimension {dim})", 0.05 + _LANCZOS_S * d * d),)
+
+
+@model("sectors_dense", "use irrep(N, highest_weight) (sparse sectors at any dimension)")
+def _sectors_dense(dim: Any, N: Any = 3) -> tuple[Cost, ...]:
+    # exp(pi X) of each chain plane and the projectors: ~N dense dim x dim complex matrices
+    d = _f(dim)
+    return (Cost(f"the dense symmetry sectors of a representation of dimension {dim}", d,
+                 "sectors_dense_max_dim", "dimension"),
+            # measured (benchmarks/pricing.py, tensor products of so(3), dim 603-1803): ~190 bytes per d^2 at the
+            # peak and ~1.3e-8 s per d^3 (exponentials, projectors, their products), both scaling with N
+            _memory(f"dense {dim} x {dim} complex matrices ({N} rotations and projectors)", 64.0 * _f(N) * d * d),
+            _seconds(f"{N} dense matrix exponentials of dimension {dim}", _f(N) * 55.0 * d ** 3 * _EIGH_S))
+
+
+@model("sector_spectra", "use a smaller representation or a body with more symmetry")
+def _sector_spectra(dim: Any, real: bool = True) -> tuple[Cost, ...]:
+    d = _f(dim)
+    item = 8.0 if real else 16.0
+    flops = (1.0 if real else 4.0) * 4.0 / 3.0 * d ** 3
+    return (Cost(f"the largest sector (dimension {dim}) diagonalized densely", d, "sectors_max_block_dim", "dimension"),
+            _memory(f"the dense {dim} x {dim} sector block (two copies)", 2.0 * item * d * d),
+            # every sector is diagonalized, not only the largest: the real sectors of so(3) irreps are 4 of about
+            # equal size (measured: 4x one block's eigh, l = 2000..8000)
+            _seconds(f"diagonalizing the dense sector blocks (the largest {dim} x {dim})", 4.0 * flops * _EIGH_S))
+
+
+@model("real_form")
+def _real_form(dim: Any) -> tuple[Cost, ...]:
+    # a dense change of basis (dim x dim complex, a few copies) and a per-plane dense conjugation
+    d = _f(dim)
+    return (_memory(f"dense {dim} x {dim} complex matrices (the change of basis and its copies)", 128.0 * d * d),
+            _seconds(f"the real form of a representation of dimension {dim}", _REAL_FORM_S * d * d))
+
+
+@model("dense_representation", "use irrep(N, highest_weight) of a smaller dimension")
+def _dense_representation(dim: Any, copies: Any = 4) -> tuple[Cost, ...]:
+    # dense products, eigendecompositions or null spaces of dim x dim complex matrices
+    d = _f(dim)
+    return (
+        _memory(f"dense {dim} x {dim} complex matrices ({copies} of them)", 16.0 * _f(copies) * d * d),
+        _seconds(f"dense O(dim^3) linear algebra at dimension {dim}", 50.0 * d ** 3 * _EIGH_S),
+    )
+
+
+@model("spinor_rep")
+def _spinor_rep(N: Any) -> tuple[Cost, ...]:
+    # the gamma matrices are Kronecker products built densely: N of them, 2^(N//2) square
+    D = 2.0 ** (_f(N) // 2)
+    return (_memory(f"the {N} gamma matrices (dimension 2^{_f(N) // 2:.0f}, dense)", 16.0 * (_f(N) + 2) * D * D),
+            _seconds(f"the {N} gamma matrices and their products (dimension 2^{_f(N) // 2:.0f}, dense)",
+                     _f(N) * D ** 3 * _DENSE_S))
+
+
+@model("tensor")
+def _tensor(dim_a: Any, dim_b: Any, nnz_a: Any, nnz_b: Any) -> tuple[Cost, ...]:
+    # X_p (x) 1 + 1 (x) Y_p for every plane: nnz_a * dim_b + dim_a * nnz_b stored entries (complex + index),
+    # built through COO (three arrays) and converted to CSR (a copy)
+    entries = _mul(nnz_a, dim_b) + _mul(dim_a, nnz_b)
+    return (_memory(f"the generators of a tensor product of dimension {_mul(dim_a, dim_b):.6g} "
+                    f"({entries:.3g} nonzeros)", 30.0 * entries),)
+
+
+@model("evolve", "ask for fewer output times (t) or pass e_ops to keep expectation values only")
+def _evolve(dim: Any, n_times: Any, states: bool = True) -> tuple[Cost, ...]:
+    per = (16.0 * _f(dim) + _QOBJ_BYTES) if states else 8.0
+    return (
+        Cost(f"{n_times} output states of dimension {dim}" if states else f"{n_times} output values",
+             _f(n_times) * per, "max_output_bytes", "bytes"),
+        _seconds(f"{n_times} output times", _f(n_times) * _EVOLVE_S),
+    )
+
+
+@model("otoc", "use fewer times (t) or fewer samples")
+def _otoc(n_times: Any, columns: Any, dim: Any = 1) -> tuple[Cost, ...]:
+    # four propagations of `columns` state columns to every time (the evolve model, states not kept)
+    runs = 4.0 * _mul(n_times, columns)
+    # the columns are propagated together (a matrix of states, no Qobj per time): ~3e-6 s per column and
+    # time of each propagation and ~20 ms of set-up (measured, benchmarks/pricing.py, 100-4000 samples)
+    return (_seconds(f"{n_times} times (t) x {columns} state columns (samples or the exact trace) x 4 propagations",
+                     0.02 + runs * 3e-6),
+            Cost(f"{n_times} times (t) x {columns} state columns (samples or the exact trace)",
+                 runs * (16.0 * _f(dim) + _QOBJ_BYTES) / 4.0, "max_output_bytes", "bytes"))
+
+
+@model("lyapunov_sweep", "sweep fewer bodies per call")
+def _lyapunov_sweep(bodies: Any, orbits: Any, n: Any, k: Any = 1) -> tuple[Cost, ...]:
+    # per orbit: moments, rates, L0 (n each) and k orthonormal tangent vectors (n x k), a few copies
+    rows = _mul(bodies, orbits)
+    return (_memory(f"{rows:.6g} orbits ({bodies} bodies x {orbits} initial conditions)",
+                    rows * 8.0 * _f(n) * (15.0 + 8.0 * _f(k))),)
+
+
+@model("closed_form_output", "ask for fewer output times (t)")
+def _closed_form_output(n_times: Any, width: Any) -> tuple[Cost, ...]:
+    # the returned (K, width) float array and one temporary of the same size
+    return (Cost(f"{n_times} output times x {width} values", 22.0 * _mul(n_times, width), "max_output_bytes", "bytes"),)
+
+
+@model("ellipsoid_points", "ask for fewer points")
+def _ellipsoid_points(n: Any, N: Any) -> tuple[Cost, ...]:
+    return (Cost(f"{n} points in {N} dimensions", 24.0 * _mul(n, N), "max_output_bytes", "bytes"),)
+
+
+@model("inertia_tensor", "use second_moment_matrix (N x N) instead of the rank-4 tensor")
+def _inertia_tensor(N: Any, points: Any = 1) -> tuple[Cost, ...]:
+    return (_memory(f"the rank-4 inertia tensor of dimension {N} ({N}^4 entries)", 24.0 * _f(N) ** 4),
+            _seconds(f"the rank-4 inertia tensor of dimension {N} ({points} points)",
+                     _f(N) ** 4 * (1.0 + _f(points)) * 2e-9))
+
+
+@model("body_edges", "draw fewer points")
+def _body_edges(pairs: Any) -> tuple[Cost, ...]:
+    # a Python loop over the candidate pairs, each kept as a tuple in a list
+    return (_memory(f"{_f(pairs):.6g} candidate edges", 120.0 * _f(pairs)),
+            _seconds(f"{_f(pairs):.6g} candidate edges", 3e-7 * _f(pairs)))
+
+
+@model("dense_matrix", "use format='csr'")
+def _dense_matrix(dim: Any, count: Any = 1) -> tuple[Cost, ...]:
+    d = _f(dim)
+    return (_memory(f"{count} dense {dim} x {dim} complex matrices", 16.0 * _f(count) * d * d),)
+
+
+# --- the command line ----------------------------------------------------------------------
+#: Cost constants of ``hyperrotor scene`` (seconds, measured by the cli helper on the shared 2-core
+#: machine: --N 12 cube PNG 15.8 s wall against 13.7 s estimated; pages (.html) cube N = 5, 8, 10:
+#: 4.1, 9.1, 46 s against 6.4, 15.6, 55 s, 0.26, 0.32, 0.56 GB peak against 0.30, 0.35, 0.44 GB):
+#: start-up (imports), per drawn frame, per drawn edge and point of a frame, per frame-plane of the
+#: motion, per cube vertex and axis^2 (finding the edges), and ~14 copies of a page's text.
+SCENE_COST = {"start": 5.0, "frame_png": 0.35, "frame_gif": 0.1, "frame_html": 0.01, "edge": 3.5e-5,
+              "point": 1e-5, "html_edge": 1.5e-4, "html_point": 5e-5, "html_copies": 14,
+              "motion": 2e-7, "cube_edges": 2e-6}
+#: Pillow keeps every RGBA frame of a GIF until the file is written
+GIF_FRAME_BYTES = 540 * 480 * 4
+#: points of the ellipsoid body of ``hyperrotor scene --shape ellipsoid``
+SCENE_ELLIPSOID_POINTS = 400
+
+
+def scene_size(shape: str, N: int) -> tuple[float, float]:
+    """Number of body points and of drawn edges of ``hyperrotor scene`` (floats: 2^N may be huge)."""
+    if shape == "cube":
+        n = min(N, 200)  # past 2^200 nothing fits anyway; keeps every estimate a finite float
+        return 2.0**n, n * 2.0 ** (n - 1)
+    if shape == "simplex":
+        return N + 1.0, (N + 1.0) * N / 2
+    return float(SCENE_ELLIPSOID_POINTS), 0.0
+
+
+@model("scene", "use a smaller --N, --shape simplex or fewer --frames")
+def _scene(shape: str, N: int, frames: Any, format: str = ".png", integrate: bool = False,
+           colour: bool = True) -> tuple[Cost, ...]:
+    """Memory (bytes, budget ``cli_max_memory``) and wall time (s, ``cli_max_seconds``) of ``hyperrotor scene``.
+
+    Memory: body points ``P x N``, the edge list (about 120 bytes per edge as Python tuples, plus
+    the cube's grouping ``P x (60 + 40 N)``), the attitudes ``K x N^2`` (4 copies) and projections
+    ``K x P x 4`` (2 copies), the drawn segments of one frame, for a GIF every rendered frame, for a
+    page copies of its text (:func:`hyperrotor.classical.scene_html.scene_html_bytes`). Time:
+    :data:`SCENE_COST` (an integrated motion is priced by ``simulate``'s own estimate).
+    """
+    P, E = scene_size(shape, N)
+    K = _f(frames)
+    c = SCENE_COST
+    memory = (P * N * 8 + E * 120 + (P * (60 + 40 * N) if shape == "cube" else 0)
+              + 4 * K * N * N * 8 + 2 * K * P * 4 * 8)
+    seconds = (c["start"] + K * N * N * c["motion"] * (50 if integrate else 1)
+               + (P * N * N * c["cube_edges"] if shape == "cube" else 0))
+    if format == ".html":  # the page's bytes: the "Scene.to_html" model (registered by classical/scene_html.py)
+        page = sum(c.amount for c in estimate("Scene.to_html", n_times=int(min(K, 2**62)), n_points=int(min(P, 2**62)),
+                                              n_edges=int(min(E, 2**62)), colour=colour))
+        memory += c["html_copies"] * page
+        seconds += K * (c["frame_html"] + E * c["html_edge"] + P * c["html_point"])
+    else:
+        gif = format == ".gif"
+        drawn = K if gif else min(6.0, K)
+        memory += E * 500 + (K * GIF_FRAME_BYTES if gif else 0)
+        seconds += drawn * (c["frame_gif" if gif else "frame_png"] + E * c["edge"] + P * c["point"])
+    what = f"scene --N {N} --shape {shape} ({frames} frames)"
+    return (Cost(what, memory, "cli_max_memory", "bytes"), Cost(what, seconds, "cli_max_seconds", "seconds"))
+
+
+# --- SymPy and exact-arithmetic constructions ------------------------------------------------
+@model("casimir_operator")
+def _casimir_operator(N: Any) -> tuple[Cost, ...]:
+    # sum over n planes of L_a^2 (each 2-term operator squared), merged into a total of O(N^2) terms:
+    # measured ~ n * N (N = 16..100: 3.6e-6 s per n * N) and ~0.01 s of set-up
+    n = _n_planes(N)
+    return (_seconds(f"the symbolic Casimir of so({N}) ({n:.0f} squared generators)", 0.01 + n * _f(N) * 0.18 * _SYMPY_S),)
+
+
+@model("angular_momentum_operators")
+def _angular_momentum_operators(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_seconds(f"the {n:.0f} symbolic generators of so({N})", n * 3.0 * _SYMPY_S),)
+
+
+@model("harmonic_polynomial_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
+def _harmonic_polynomial_basis(N: Any, l: Any) -> tuple[Cost, ...]:
+    dim = _harmonic_dim(N, l)
+    terms = _harmonic_terms(N, l)
+    # every term of every polynomial is made once (exact Fractions, then a SymPy monomial): measured
+    # ~1.4e-4 s per term, a little more at high degree (larger integer coefficients)
+    return (_harmonic_space(N, l, dim),
+            _seconds(f"{dim:.6g} harmonic polynomials of degree {l} in {N} variables ({terms:.6g} terms)",
+                     terms * _HARMONIC_TERM_S * (1.0 + _f(l) / 80.0)))
+
+
+@model("orthonormal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
+def _orthonormal_harmonic_basis(N: Any, l: Any, per_term: float = 0.3, fixed: float = 0.08) -> tuple[Cost, ...]:
+    monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
+    dim = _harmonic_dim(N, l)
+    # the Gram-Schmidt's pairs of polynomials over the monomials, and a fixed ~0.08 s of the first call
+    # (measured N = 3, l = 3..14: 0.08-0.09 s even at l = 3, against 0.003 s of the pairs)
+    return (_harmonic_space(N, l, dim), _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
+                     f"({monomials:.6g} monomials)", fixed + dim * dim * monomials * per_term * _SYMPY_S),)
+
+
+@model("orthogonal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
+def _orthogonal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
+    # no normalisation: ~1/5 of the orthonormal basis's work and no fixed part (measured N = 3, l = 3..14)
+    return _orthonormal_harmonic_basis(N, l, per_term=0.06, fixed=0.0)
+
+
+@model("bivector_product_table")
+def _bivector_product_table(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_seconds(f"the {n:.0f} x {n:.0f} symbolic product table", n * n * 3.0 * _SYMPY_S),)
+
+
+@model("euler_equations")
+def _euler_equations(N: Any) -> tuple[Cost, ...]:
+    # n equations, each a sum over the planes that share an axis with the plane (2(N-2) products), and the
+    # functions omega_ij(t): measured ~4.4e-5 s per n^2 (N = 6..14) and ~0.01 s of set-up
+    n = _n_planes(N)
+    return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", 0.01 + n * n * 2.2 * _SYMPY_S),)
+
+
+@model("plane_symbols")
+def _plane_symbols(N: Any) -> tuple[Cost, ...]:
+    n = _n_planes(N)
+    return (_seconds(f"{n:.0f} SymPy symbols", n * 1.0e-5),)
+
+
+@model("weight_multiplicities", "use weyl_dimension for the dimension only")
+def _weight_multiplicities(rank: Any, n_roots: Any, dim: Any, bound: Any) -> tuple[Cost, ...]:
+    # Freudenthal: every distinct weight (at most min(dim, (2 bound + 1)^rank)) sums over the
+    # positive roots and the strings mu + k alpha inside the bounding box (k <= 2 bound)
+    weights = min(_f(dim), (2.0 * _f(bound) + 1.0) ** _f(rank))
+    ops = weights * _f(n_roots) * (2.0 * _f(bound) + 1.0)
+    return (_seconds(f"Freudenthal's recursion over ~{weights:.3g} weights", ops * _f(rank) * _PY_S),)
+
+
+def _harmonic_space(N: Any, l: Any, dim: float) -> Cost:
+    return Cost(f"the harmonic polynomials of degree {l} in {N} variables (exact rational construction)", dim,
+                "quantum_max_harmonic_dim", "dimension")
+
+
+def _binomial(a: float, b: float) -> float:
+    if not (math.isfinite(a) and math.isfinite(b)):
+        return math.inf
+    try:
+        if a < 1e5:  # exact (a dimension compared with a budget must not round up)
+            return float(math.comb(int(a), int(b))) if 0 <= b <= a else 0.0
+        return math.exp(math.lgamma(a + 1) - math.lgamma(b + 1) - math.lgamma(a - b + 1))
+    except OverflowError:  # beyond a float (comb(1499, 999) of N = 1000, l = 500)
+        return math.inf
+
+
+def _harmonic_terms(N: Any, l: Any) -> float:
+    """Number of terms of :func:`~hyperrotor.quantum.harmonic_polynomial_basis`: the polynomial seeded by
+    :math:`x'^a x_N^\\varepsilon` (``|a| = l - eps`` in ``m = N - 1`` variables) has one term per
+    ``b <= a/2``, :math:`\\prod_i (\\lfloor a_i/2 \\rfloor + 1)`; summed over ``a``, the coefficient of
+    :math:`x^d` in :math:`(1 - x)^{-m} (1 - x^2)^{-m}`, i.e. :math:`\\sum_j \\binom{j+m-1}{m-1}\\binom{d-2j+m-1}{m-1}`
+    (exact below degree 2000; above, its asymptote :math:`\\binom{d+2m-1}{2m-1} / 2^m`)."""
+    m, l = _f(N) - 1.0, _f(l)
+    total = 0.0
+    for d in (l, l - 1.0):
+        if d < 0:
+            continue
+        if d < 2000:
+            total += sum(_binomial(j + m - 1, m - 1) * _binomial(d - 2 * j + m - 1, m - 1) for j in range(int(d) // 2 + 1))
+        else:
+            total += _binomial(d + 2 * m - 1, 2 * m - 1) / 2.0 ** min(m, 1e4)
+    return total
+
+
+def _harmonic_dim(N: Any, l: Any) -> float:
+    N, l = _f(N), _f(l)
+    return _binomial(l + N - 1, N - 1) - (_binomial(l + N - 3, N - 1) if l >= 2 else 0.0)
