@@ -226,26 +226,25 @@ class RigidBody:
     @property
     def rhs_tables(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """``(left, right, sign)``, each ``(n_planes, N - 2)`` (built on first use; read-only)."""
-        if self._tables is None:
-            self._build_tables()
-        return self._tables[:3]
+        return self._built_tables()[:3]
 
     @property
     def _coef(self) -> np.ndarray | None:
-        if self._tables is None:
-            self._build_tables()
-        return self._tables[3]
+        return self._built_tables()[3]
 
-    def _build_tables(self) -> None:
-        left, right, sign = _rhs_tables(self.N)
-        for arr in (left, right, sign):
-            arr.setflags(write=False)
-        coef = None
-        if not self.inertia.is_symbolic:
-            I = self.inertia.moments
-            coef = sign * (I[right] - I[left]) / I[:, None]
-            coef.setflags(write=False)
-        self._tables = (left, right, sign, coef)
+    def _built_tables(self) -> tuple:
+        """``(left, right, sign, coef)``, built on the first call (``coef``: ``None`` for symbolic moments)."""
+        if self._tables is None:
+            left, right, sign = _rhs_tables(self.N)
+            for arr in (left, right, sign):
+                arr.setflags(write=False)
+            coef = None
+            if not self.inertia.is_symbolic:
+                I = self.inertia.moments
+                coef = sign * (I[right] - I[left]) / I[:, None]
+                coef.setflags(write=False)
+            self._tables = (left, right, sign, coef)
+        return self._tables
 
     def _rhs_terms(self, w: Sequence, I: Sequence, overall: Sequence[int] | None = None) -> list:
         """SymPy ``overall_a * rhs_a`` with ``I_a w_a' = rhs_a + m_a`` (sums of (I - I) w w, as printed).
