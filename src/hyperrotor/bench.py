@@ -38,6 +38,7 @@ _SETTINGS = {  # method -> (keyword, values): hyperrotor's integrators by step, 
     "splitting4": ("dt", (0.1, 0.03, 0.01, 0.003)),
     "splitting6": ("dt", (0.5, 0.3, 0.1, 0.05, 0.02)),
     "splitting8": ("dt", (1.0, 0.6, 0.4, 0.3, 0.2, 0.15, 0.1)),
+    "splitting10": ("dt", (2.0, 1.0, 0.67, 0.5, 0.4, 0.3)),
     "moser-veselov": ("dt", (0.03, 0.01, 0.003)),
     "DOP853": ("rtol", (1e-6, 1e-8, 1e-10, 1e-12, 1e-13)),
     "RK45": ("rtol", (1e-4, 1e-6, 1e-8)),
@@ -51,9 +52,9 @@ BENCH_METHODS = tuple(_SETTINGS)
 #: :func:`estimate_seconds` only, to refuse absurd runs before they start.
 _TYPICAL_SECONDS = {
     "quartet": {"splitting2": 0.15, "splitting4": 0.13, "splitting6": 0.06, "splitting8": 0.05,
-                "moser-veselov": 3.1, "DOP853": 2.5, "RK45": 1.1},
+                "splitting10": 0.06, "moser-veselov": 3.1, "DOP853": 2.5, "RK45": 1.1},
     "euler-poinsot": {"splitting2": 0.02, "splitting4": 0.02, "splitting6": 0.015, "splitting8": 0.01,
-                      "moser-veselov": 0.9, "DOP853": 1.6, "RK45": 0.45},
+                      "splitting10": 0.015, "moser-veselov": 0.9, "DOP853": 1.6, "RK45": 0.45},
 }
 
 
@@ -134,7 +135,7 @@ def work_precision(problem: str = "quartet", methods: Sequence[str] | None = Non
     Parameters
     ----------
     problem : one of :data:`BENCH_PROBLEMS`.
-    methods : subset of ``splitting2/4/6/8``, ``moser-veselov``, ``DOP853``, ``RK45`` (default all).
+    methods : subset of ``splitting2/4/6/8/10``, ``moser-veselov``, ``DOP853``, ``RK45`` (default all).
     repeats : each run is timed ``repeats`` times after one warm-up call; the best time is kept.
     progress : called after each setting with a short message (``"quartet: DOP853 rtol=1e-08"``),
         e.g. a progress bar's update; :func:`n_runs` gives the number of calls.

@@ -350,5 +350,5 @@ def test_sweep_on_client_equals_in_process(dask_client):
 def test_methods_come_from_the_solver_registry():
     """LYAPUNOV_METHODS is derived from hr.SOLVERS (the solvers with tangent maps), with their orders."""
     expected = tuple(name for name, cls in hr.SOLVERS.items() if cls.tangent)
-    assert chaos.LYAPUNOV_METHODS == expected == ("splitting2", "splitting4", "splitting6", "splitting8")
+    assert chaos.LYAPUNOV_METHODS == expected == ("splitting2", "splitting4", "splitting6", "splitting8", "splitting10")
     assert lyapunov(*generic_5d(0, 1), 1.0, method="SPLITTING4").method == "splitting4"  # any case

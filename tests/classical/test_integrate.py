@@ -17,7 +17,7 @@ from hyperrotor.classical.solvers.splitting import casimir_shift, splitting_coef
 from hyperrotor.classical.solvers.splitting import splitting_word as _splitting_word
 from hyperrotor.conventions import n_planes, structure_constants, to_matrix
 
-SPLITTINGS = ["splitting2", "splitting4", "splitting6", "splitting8"]
+SPLITTINGS = [m for m in SOLVERS if m.startswith("splitting")]
 SCIPY = ["DOP853", "RK45", "LSODA", "Radau"]
 
 MOM3 = np.array([2.0, 3.0, 4.0])  # I12, I13, I23
@@ -122,7 +122,7 @@ def test_ensemble_kernel_equals_per_body_kernel(use_py, compensated, rng):
 
 
 def test_coefficient_sets_are_symmetric_and_consistent():
-    for order, stages in [(2, 1), (4, 3), (6, 9), (8, 17)]:
+    for order, stages in [(2, 1), (4, 3), (6, 9), (8, 17), (10, 35)]:
         g = splitting_coefficients(order)
         assert g.size == stages
         np.testing.assert_array_equal(g, g[::-1])
@@ -132,7 +132,11 @@ def test_coefficient_sets_are_symmetric_and_consistent():
             assert abs(np.sum(g ** 3)) < 1e-14
         if order >= 6:  # and sum gamma^5 = 0
             assert abs(np.sum(g ** 5)) < 1e-14
-    with pytest.raises(ValueError, match="2, 4, 6, 8"):
+        if order >= 8:  # ... sum gamma^7 = 0
+            assert abs(np.sum(g ** 7)) < 1e-14
+        if order >= 10:  # ... sum gamma^9 = 0
+            assert abs(np.sum(g ** 9)) < 1e-14
+    with pytest.raises(ValueError, match="2, 4, 6, 8, 10"):
         splitting_coefficients(3)
 
 
@@ -244,19 +248,24 @@ def test_step_rule_catches_the_run_away_of_an_unstable_rotation():
 
 # ----------------------------------------------------------------------------- convergence order
 ORDER_CASES = {
-    # method: (nominal order, dts on the 3D case, dts on the 5D quartet); the quartet's dts
-    # divide the output spacing 1 (the step used is gap / ceil(gap / dt)) and keep the
-    # errors well above round-off (the Casimir shift drops six of its ten planes)
-    "splitting2": (2, [0.1, 0.05, 0.025, 0.0125], [0.1, 0.05, 0.025, 0.0125]),
-    "splitting4": (4, [0.2, 0.1, 0.05, 0.025], [0.2, 0.1, 0.05, 0.025]),
-    "splitting6": (6, [0.5, 0.25, 0.125, 0.0625], [0.5, 0.25, 0.125, 0.0625]),
-    "splitting8": (8, [1.0, 0.7, 0.5, 0.35], [0.5, 1 / 3, 0.25, 0.2]),
+    # method: (nominal order, dts on the 3D case, dts on the 5D quartet, the quartet's T); the
+    # quartet's dts divide the output spacing 1 (the step used is gap / ceil(gap / dt)) and keep
+    # the errors well above round-off (the Casimir shift drops six of its ten planes). Order 10
+    # goes from 3e-7 to round-off within a factor 2.5 of the step on the 3D top, before its error
+    # follows h^10 (fitted slopes 12-16): no 3D case; on the quartet over T = 40 the fit gives 10.1
+    "splitting2": (2, [0.1, 0.05, 0.025, 0.0125], [0.1, 0.05, 0.025, 0.0125], 10),
+    "splitting4": (4, [0.2, 0.1, 0.05, 0.025], [0.2, 0.1, 0.05, 0.025], 10),
+    "splitting6": (6, [0.5, 0.25, 0.125, 0.0625], [0.5, 0.25, 0.125, 0.0625], 10),
+    "splitting8": (8, [1.0, 0.7, 0.5, 0.35], [0.5, 1 / 3, 0.25, 0.2], 10),
+    "splitting10": (10, None, [0.5, 1 / 3, 0.25, 0.2], 40),
 }
 
 
 @pytest.mark.parametrize("method", SPLITTINGS)
 def test_empirical_order_3d_against_elliptic_solution(method):
-    p, dts, _ = ORDER_CASES[method]
+    p, dts, _, _ = ORDER_CASES[method]
+    if dts is None:
+        pytest.skip(f"{method}: round-off before the asymptotic regime on this 3D top (see ORDER_CASES)")
     t = np.linspace(0, 10, 11)
     exact = euler_poinsot(MOM3, W3, t)
     errs = [np.abs(simulate(MOM3, W3, t, method=method, dt=dt).omega - exact).max() for dt in dts]
@@ -267,10 +276,10 @@ def test_empirical_order_3d_against_elliptic_solution(method):
 
 @pytest.mark.parametrize("method", SPLITTINGS)
 def test_empirical_order_5d_quartet_against_closed_form(method, rng):
-    p, _, dts = ORDER_CASES[method]
+    p, _, dts, T = ORDER_CASES[method]
     kappa = 0.5
     w0 = np.random.default_rng(3).normal(size=10)
-    t = np.linspace(0, 10, 11)
+    t = np.linspace(0, T, T + 1)
     exact = quartet_solution(kappa, w0, t)
     body = RigidBody(Inertia.quartet(kappa))
     errs = [np.abs(simulate(body, w0, t, method=method, dt=dt).omega - exact).max() for dt in dts]
@@ -449,8 +458,9 @@ def test_step_rule_reaches_requested_accuracy(method, rtol):
     tr = simulate(MOM3, W3, t, method=method, rtol=rtol)
     err = np.abs(tr.omega - exact).max() / np.abs(W3).max()
     assert err <= 2 * rtol + 1e-13, (err, tr.stats)
-    # and the rule is not wastefully conservative: error within 1e-4 of the target, or at round-off
-    assert err >= 1e-4 * rtol or err < 1e-13, (err, tr.stats)
+    # and the rule is not wastefully conservative: error within 1e-4 of the target, or at round-off,
+    # or one step per output interval (no fewer are possible: order 10 at rtol 1e-5 gets 1e-10 there)
+    assert err >= 1e-4 * rtol or err < 1e-13 or tr.stats["steps"] == t.size - 1, (err, tr.stats)
 
 
 def test_auto_method_choice(rng):
@@ -458,9 +468,9 @@ def test_auto_method_choice(rng):
     t = [0.0, 1.0]
     assert simulate(inertia, w0, t, rtol=0.1).stats["method"] == "splitting2"
     assert simulate(inertia, w0, t, rtol=1e-3).stats["method"] == "splitting4"
-    assert simulate(inertia, w0, t, rtol=1e-6).stats["method"] == "splitting6"
-    assert simulate(inertia, w0, t, rtol=1e-9).stats["method"] == "splitting8"
-    assert simulate(inertia, w0, t).stats["method"] == "splitting8"  # default rtol 1e-9
+    assert simulate(inertia, w0, t, rtol=1e-6).stats["method"] == "splitting8"
+    assert simulate(inertia, w0, t, rtol=1e-9).stats["method"] == "splitting10"
+    assert simulate(inertia, w0, t).stats["method"] == "splitting10"  # default rtol 1e-9
     assert simulate(inertia, w0, t, dt=0.1).stats["method"] == "splitting4"
     tr = simulate(inertia, w0, t, torque=lambda tt, w: -0.1 * w)
     assert tr.stats["method"] == "DOP853"

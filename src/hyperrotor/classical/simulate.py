@@ -54,7 +54,7 @@ register(
 
 #: ``method="auto"``: ``(rtol at least, method)`` from the registry's ``auto_rtol`` (largest first): the
 #: first row whose bound ``rtol`` meets is chosen (from the work-precision benchmark: order 8 is the
-#: cheapest from ~1e-7 down, order 2 only above 1e-2)
+#: cheapest from ~1e-4 to 1e-7 on 5D bodies, order 10 below, order 2 only above 1e-2)
 AUTO_ORDER = tuple(sorted(((cls.auto_rtol, name) for name, cls in SOLVERS.items() if cls.auto_rtol is not None),
                           reverse=True))
 
@@ -242,10 +242,10 @@ def simulate(
         grid integrates backwards in time (the flows are reversible).
     method : str or Solver
         ``"auto"`` or a name of :data:`hyperrotor.classical.solvers.SOLVERS` (case-insensitive:
-        ``"splitting2"`` ... ``"splitting8"``, ``"moser-veselov"``, ``"DOP853"``, ``"RK45"``,
+        ``"splitting2"`` ... ``"splitting10"``, ``"moser-veselov"``, ``"DOP853"``, ``"RK45"``,
         ``"RK23"``, ``"LSODA"``, ``"Radau"``, ``"BDF"``), or a solver object such as
         ``Splitting8(compensated=True)``. ``"auto"``: a callable torque -> ``"DOP853"``;
-        only ``dt`` -> ``"splitting4"``; else the splitting of order 2, 4, 6 or 8 for
+        only ``dt`` -> ``"splitting4"``; else the splitting of order 2, 4, 8 or 10 for
         ``rtol >= 1e-2``, ``>= 1e-4``, ``>= 1e-7``, smaller.
     rtol : float, optional
         requested accuracy. Fixed-step methods (splittings, Moser-Veselov): a bound on the

@@ -1,4 +1,4 @@
-r"""Lie-Poisson splittings of order 2, 4, 6, 8 (``method="splitting2"`` ... ``"splitting8"``).
+r"""Lie-Poisson splittings of order 2, 4, 6, 8, 10 (``method="splitting2"`` ... ``"splitting10"``).
 
 The Hamiltonian, shifted by a multiple of the Casimir :math:`C_2 = \tfrac12\sum_a L_a^2`
 (same motion of ``L``, see :func:`casimir_shift`),
@@ -9,7 +9,7 @@ is split into one term per plane; the flow of :math:`\rho_a L_a^2/2` keeps
 Planes with :math:`\rho_a = 0` (those whose moment equals ``1/c``) drop out;
 the attitude is corrected for the shift exactly; with a torque there is no shift.
 The basic method :math:`S_2(h)` is Strang's symmetric product over the remaining
-planes in paper order followed by the reverse order (order 2). Orders 4, 6, 8 are
+planes in paper order followed by the reverse order (order 2). Orders 4, 6, 8, 10 are
 symmetric compositions :math:`S_2(\gamma_s h)\cdots S_2(\gamma_1 h)`
 (:func:`splitting_coefficients`):
 
@@ -17,7 +17,12 @@ symmetric compositions :math:`S_2(\gamma_s h)\cdots S_2(\gamma_1 h)`
 * order 6: Kahan & Li's 9-stage set ``s9odr6a``;
 * order 8: Kahan & Li's 17-stage set ``s17odr8a`` (W. Kahan and R.-C. Li,
   Math. Comp. 66, 1089 (1997); coefficients as tabulated in Hairer, Lubich,
-  Wanner, *Geometric Numerical Integration*, 2nd ed., Sec. V.3.2, p. 157).
+  Wanner, *Geometric Numerical Integration*, 2nd ed., Sec. V.3.2, p. 157);
+* order 10: Sofroniou & Spaletta's 35-stage set (M. Sofroniou and G. Spaletta,
+  Optim. Methods Softw. 20, 597 (2005); tabulated in the same section of Hairer,
+  Lubich & Wanner, p. 158, as "a significantly improved method for s = 35"). Twice
+  the flows of a step of order 8, but on the 5D bodies of the benchmark it reaches a
+  whole-run error of 1e-10 with a third of the steps (``benchmarks/step_control.py``).
 
 Every elementary flow is an exact coadjoint rotation, so the Casimirs
 (coefficients of the characteristic polynomial of ``L``, eq. 38) are kept
@@ -63,7 +68,7 @@ from . import _kernels
 from .base import Problem, step_lengths
 from .driver import FixedStepSolver
 
-__all__ = ["Splitting", "Splitting2", "Splitting4", "Splitting6", "Splitting8", "splitting_coefficients",
+__all__ = ["Splitting", "Splitting2", "Splitting4", "Splitting6", "Splitting8", "Splitting10", "splitting_coefficients",
            "casimir_shift"]
 
 _ENSEMBLE_CHUNK = 128  # bodies per chunk of the ensemble kernel (working set fits in L1/L2)
@@ -90,6 +95,25 @@ _KAHAN_LI_8 = (
     0.25837438768632204729397911,
     0.29501172360931029887096624,
 )
+_SOFRONIOU_SPALETTA_10 = (
+    0.07879572252168641926390768,
+    0.31309610341510852776481247,
+    0.02791838323507806610952027,
+    -0.22959284159390709415121340,
+    0.13096206107716486317465686,
+    -0.26973340565451071434460973,
+    0.07497334315589143566613711,
+    0.11199342399981020488957508,
+    0.36613344954622675119314812,
+    -0.39910563013603589787862981,
+    0.10308739852747107731580277,
+    0.41143087395589023782070412,
+    -0.00486636058313526176219566,
+    -0.39203335370863990644808194,
+    0.05194250296244964703718290,
+    0.05066509075992449633587434,
+    0.04967437063972987905456880,
+)
 
 
 def splitting_coefficients(order: int) -> np.ndarray:
@@ -106,6 +130,7 @@ def splitting_coefficients(order: int) -> np.ndarray:
     4      3      Yoshida / Suzuki triple jump
     6      9      Kahan & Li ``s9odr6a`` (Math. Comp. 66, 1089 (1997))
     8      17     Kahan & Li ``s17odr8a`` (same reference)
+    10     35     Sofroniou & Spaletta (Optim. Methods Softw. 20, 597 (2005))
     ====== ====== ==========================================================
     """
     if order == 2:
@@ -113,10 +138,10 @@ def splitting_coefficients(order: int) -> np.ndarray:
     if order == 4:
         g = 1.0 / (2.0 - 2.0 ** (1.0 / 3.0))
         return np.array([g, 1.0 - 2.0 * g, g])
-    if order in (6, 8):
-        half = np.array(_KAHAN_LI_6 if order == 6 else _KAHAN_LI_8)
+    if order in (6, 8, 10):
+        half = np.array({6: _KAHAN_LI_6, 8: _KAHAN_LI_8, 10: _SOFRONIOU_SPALETTA_10}[order])
         return np.concatenate([half, [1.0 - 2.0 * half.sum()], half[::-1]])
-    raise ValueError(f"splitting order must be one of 2, 4, 6, 8, got {order!r}")
+    raise ValueError(f"splitting order must be one of 2, 4, 6, 8, 10, got {order!r}")
 
 
 def casimir_shift(moments: Any, L: Any = None) -> float | np.ndarray:
@@ -298,7 +323,7 @@ def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, c
 
 
 class Splitting(FixedStepSolver):
-    """Lie-Poisson splitting of order 2, 4, 6 or 8 (see the module docstring).
+    """Lie-Poisson splitting of order 2, 4, 6, 8 or 10 (see the module docstring).
 
     Symplectic (Poisson) and time-reversible; keeps the Casimirs and the attitude's
     orthogonality to round-off, the energy error bounded (no drift). Fixed step.
@@ -411,7 +436,7 @@ class Splitting6(Splitting):
 
     name = "splitting6"
     order = 6
-    auto_rtol = 1e-7
+    auto_rtol = None  # order 8 costs no more from rtol 1e-4 down (benchmarks/README.md, "method=auto")
 
 
 class Splitting8(Splitting):
@@ -419,4 +444,12 @@ class Splitting8(Splitting):
 
     name = "splitting8"
     order = 8
+    auto_rtol = 1e-7
+
+
+class Splitting10(Splitting):
+    """Sofroniou & Spaletta's 35-stage composition of Strang steps, order 10."""
+
+    name = "splitting10"
+    order = 10
     auto_rtol = 0.0
