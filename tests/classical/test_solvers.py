@@ -546,6 +546,54 @@ def test_observed_order_inverts_the_three_run_ratio(r, r2):
     assert observed_order(-1.0, r, r2, 8) == 0.0 and observed_order(float("nan"), r, r2, 8) == 0.0
 
 
+def test_relative_difference_and_scales_match_their_formulas(rng):
+    """The compiled distance of two runs: max over rows and planes of max(|dL|/Lmax, |dL/I|/Wmax) per
+    sample, NaN when a difference is NaN; the running scales are the largest |L| and |L/I| per row."""
+    from hyperrotor.classical.solvers._kernels import raise_scales, relative_difference
+
+    La, Lb = rng.normal(size=(2, 3, 7, 10))
+    moments = rng.uniform(0.3, 3.0, size=10)
+    Lmax, Wmax = np.full(3, 1e-300), np.full(3, 1e-300)
+    raise_scales(La, moments, Lmax, Wmax)
+    assert np.array_equal(Lmax, np.abs(La).max(axis=(1, 2)))
+    assert np.array_equal(Wmax, np.abs(La / moments).max(axis=(1, 2)))
+    d = np.abs(La - Lb)
+    expected = np.maximum(d.max(axis=2) / Lmax[:, None], (d / moments).max(axis=2) / Wmax[:, None]).max(axis=0)
+    assert np.array_equal(relative_difference(La, Lb, moments, Lmax, Wmax), expected)
+    Lb[1, 4, 2] = np.nan
+    got = relative_difference(La, Lb, moments, Lmax, Wmax)
+    assert np.isnan(got[4]) and np.array_equal(np.delete(got, 4), np.delete(expected, 4))
+
+
+@pytest.mark.parametrize("method", FIXED)
+@pytest.mark.parametrize("compensated", [False, True], ids=["plain", "compensated"])
+def test_advance_pair_is_two_advance_calls(method, compensated, rng):
+    """The step control's pair of runs (one compiled call for the splittings) gives the numbers and the
+    carries of two separate calls, also when it continues earlier carries."""
+    from hyperrotor.classical.simulate import _problem
+    from hyperrotor.classical.solvers.driver import FixedStepSolver
+
+    opts = {"compensated": compensated} if "compensated" in SOLVERS[method].option_docs else {}
+    solver = solver_for(method, **opts)
+    body = RigidBody(Inertia.from_mass_tensor(J5))  # (Moser-Veselov needs a mass tensor)
+    t = np.linspace(0.0, 2.0, 5)
+    problem = _problem(body, 0.3 * rng.normal(size=(3, 10)), t, False, None, 1e9)[0]
+    solver.check(problem)
+    solver.prepare(problem)
+    solver.set_accuracy(problem, None, 100)
+    La, Lb = problem.L0, problem.L0[::-1].copy()
+    na, nb = np.array([8, 8, 9, 8]), np.array([4, 5, 4, 4])
+    carries = (None, None)
+    for _ in range(2):  # a fresh start, then continuing the carries of the first pair
+        a, b = solver.advance_pair(problem, La, Lb, problem.t, na, nb, carries=carries)
+        got_carries = solver.last_carries
+        a2, b2 = FixedStepSolver.advance_pair(solver, problem, La, Lb, problem.t, na, nb, carries=carries)
+        assert np.array_equal(a, a2) and np.array_equal(b, b2)
+        for c1, c2 in zip(got_carries, solver.last_carries):
+            assert (c1 is None and c2 is None) or np.array_equal(c1, c2)
+        carries, La, Lb = got_carries, a[:, -1], b[:, -1]
+
+
 def test_the_probe_extrapolates_steady_growth_only():
     """Linear growth (regular orbit) -> the run/window ratio; steady t^3 -> ratio^3; capped at t^4;
     an envelope flat in its first half (oscillating error), or at round-off, counts as linear."""

@@ -370,3 +370,66 @@ PARALLEL_MIN_BODIES = 32
 split_run_ensemble = jit(parallel=True)(_split_run_ensemble)
 split_run = jit(parallel=True)(_split_run)
 split_run_serial = jit(_split_run)
+
+
+def _split_run_pair(L0a, L0b, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j,
+                    ha, na, hb, nb, torque, compensated, outa, outb, carrya, carryb):  # pragma: no cover - jitted
+    """Two runs of the same bodies on one output grid in one call (no attitude): ``na[k]`` steps of
+    ``ha[k]`` per interval from ``L0a`` into ``outa``/``carrya``, and ``nb[k]`` steps of ``hb[k]`` from
+    ``L0b`` into ``outb``/``carryb`` (same arithmetic as two calls of :func:`split_run_serial`).
+    The step control's probes (steps ``h`` and ``2h``) and its check's two companion runs are such
+    pairs: one compiled call instead of two."""
+    T0 = np.zeros((1, 1, 1))  # (no attitude: never read)
+    outT = np.empty((L0a.shape[0], 1, 1, 1))
+    split_run_serial(L0a, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j, ha, na, torque,
+                     T0, False, compensated, outa, outT, carrya)
+    split_run_serial(L0b, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j, hb, nb, torque,
+                     T0, False, compensated, outb, outT, carryb)
+
+
+split_run_pair = jit(_split_run_pair)
+
+
+@jit
+def relative_difference(La, Lb, moments, Lmax, Wmax):  # pragma: no cover - jitted
+    """Per sample (axis 1 of ``La``, ``Lb``: rows, samples, n): the largest over rows and planes of
+    ``max(|dL| / Lmax[row], |dL / moments| / Wmax[row])`` (NaN if any difference is NaN).
+
+    The step control's measure of the distance of two runs (relative to the largest ``|L|`` and
+    ``|omega|`` of each row): Richardson's estimates compare runs at different steps with it.
+    """
+    rows, S, n = La.shape
+    out = np.empty(S)
+    for s in range(S):
+        best = 0.0
+        nan = False
+        for b in range(rows):
+            for a in range(n):
+                d = abs(La[b, s, a] - Lb[b, s, a])
+                x = max(d / Lmax[b], d / moments[a] / Wmax[b])
+                if x != x:
+                    nan = True
+                elif x > best:
+                    best = x
+        out[s] = math.nan if nan else best
+    return out
+
+
+@jit
+def raise_scales(L, moments, Lmax, Wmax):  # pragma: no cover - jitted
+    """``Lmax[b] = max(Lmax[b], max|L[b]|)``, ``Wmax[b] = max(Wmax[b], max|L[b] / moments|)`` in place, for
+    ``L (rows, samples, n)``: the running scales of :func:`relative_difference` (NaN is left to it)."""
+    rows, S, n = L.shape
+    for b in range(rows):
+        lm = Lmax[b]
+        wm = Wmax[b]
+        for s in range(S):
+            for a in range(n):
+                x = abs(L[b, s, a])
+                if x > lm:
+                    lm = x
+                w = x / moments[a]
+                if w > wm:
+                    wm = w
+        Lmax[b] = lm
+        Wmax[b] = wm

@@ -25,7 +25,7 @@ from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError
 
-__all__ = ["Work", "advance_chunked", "refuse_steps", "step_times", "check_finite", "cost_key", "learn", "seconds_per_flow",
+__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "refuse_steps", "step_times", "check_finite", "cost_key", "learn", "seconds_per_flow",
            "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
 
 #: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
@@ -112,6 +112,41 @@ def check_finite(Ls: np.ndarray, grid: np.ndarray, problem: Problem) -> None:
     )
 
 
+def _chunk_plan(solver, problem: Problem, rows: int) -> tuple:
+    """``(cost key, flows per step of all rows, steps of the first chunk, seconds per chunk)`` of a
+    call advancing ``rows`` members without attitude."""
+    key = cost_key(solver, problem, B=rows, with_attitude=False)
+    flows = max(1, rows * solver.flows_per_step(problem))
+    target = float(options["chunk_seconds"])
+    return key, flows, max(1, int(max(FIRST_CHUNK_FLOWS, target / seconds_per_flow(key)) // flows)), target
+
+
+def advance_pair_chunked(solver, problem: Problem, La: np.ndarray, Lb: np.ndarray, grid: np.ndarray,
+                         na: np.ndarray, nb: np.ndarray, *, members: np.ndarray | None = None,
+                         work: Work | None = None, bar: Any = None, carries: tuple = (None, None)) -> tuple:
+    """Two runs of the same members on ``grid`` (``na[k]``, ``nb[k]`` equal steps per interval, from
+    ``La`` and ``Lb``): ``(states a, states b, (carry a, carry b))``. Both together within one chunk:
+    one :meth:`~.driver.FixedStepSolver.advance_pair` call (counted, checked, on the bar); else each
+    through :func:`advance_chunked`."""
+    rows = La.shape[0]
+    key, flows, cap, _ = _chunk_plan(solver, problem, rows)
+    steps = int(na.sum()) + int(nb.sum())
+    if steps > cap:
+        a, ca = advance_chunked(solver, problem, La, grid, na, members=members, work=work, bar=bar, carry=carries[0])
+        b, cb = advance_chunked(solver, problem, Lb, grid, nb, members=members, work=work, bar=bar, carry=carries[1])
+        return a, b, (ca, cb)
+    t0 = time.perf_counter()
+    a, b = solver.advance_pair(problem, La, Lb, grid, na, nb, members=members, carries=carries)
+    learn(key, time.perf_counter() - t0, steps * flows)
+    check_finite(a, grid, problem)
+    check_finite(b, grid, problem)
+    if work is not None:
+        work.add(steps * rows)
+    if bar is not None:
+        bar.update(steps * rows)
+    return a, b, solver.last_carries
+
+
 def advance_chunked(solver, problem: Problem, L0: np.ndarray, grid: np.ndarray, nsub: np.ndarray,
                     h: np.ndarray | None = None, *, members: np.ndarray | None = None, work: Work | None = None,
                     bar: Any = None, carry: Any = None) -> tuple[np.ndarray, Any]:
@@ -125,10 +160,7 @@ def advance_chunked(solver, problem: Problem, L0: np.ndarray, grid: np.ndarray, 
     if h is None:
         h = (grid[1:] - grid[:-1]) / nsub
     rows = L0.shape[0]
-    key = cost_key(solver, problem, B=rows, with_attitude=False)
-    flows = max(1, rows * solver.flows_per_step(problem))
-    target = float(options["chunk_seconds"])
-    cap = max(1, int(max(FIRST_CHUNK_FLOWS, target / seconds_per_flow(key)) // flows))
+    key, flows, cap, target = _chunk_plan(solver, problem, rows)
     steps = int(nsub.sum())
 
     def advance(L, pts, ns, hs, carry):

@@ -82,6 +82,19 @@ class FixedStepSolver(Solver):
         """
         raise NotImplementedError
 
+    def advance_pair(self, problem: Problem, La: np.ndarray, Lb: np.ndarray, t: np.ndarray, na: np.ndarray,
+                     nb: np.ndarray, members: np.ndarray | None = None, carries: tuple = (None, None)
+                     ) -> tuple[np.ndarray, np.ndarray]:
+        """Two runs of the same members on grid ``t`` (no attitude): ``na[k]`` equal steps per interval
+        from ``La`` and ``nb[k]`` from ``Lb`` (the step control's probes and companions), each continuing
+        its entry of ``carries``; afterwards :attr:`last_carries` holds both carries. By default two
+        :meth:`advance` calls; a solver may do both in one compiled call."""
+        a, _ = self.advance(problem, La, None, t, na, members=members, carry=carries[0])
+        ca = self.last_carry
+        b, _ = self.advance(problem, Lb, None, t, nb, members=members, carry=carries[1])
+        self.last_carries = (ca, self.last_carry)
+        return a, b
+
     def flows_per_step(self, problem: Problem) -> int:
         """Rough cost unit per step and member (used for chunk sizes and budgets)."""
         return 1
@@ -161,7 +174,7 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
                                          + (", its check and the step control's probes" if check is not None else "")
                                          + after + _refusal_note(control, work, planned, solver))
             if check is not None and not check.control.retries:
-                control.announce(solver, problem, h)
+                control.announce(solver, problem, h, steps)
             hs = step_lengths(t, nsub)  # the run's steps, (K - 1,)
             stats = dict(steps=steps, nfev=None, dt=float(np.abs(hs).max()) if K > 1 else None, chunks=0)
             t_events = [[] for _ in specs]
@@ -229,7 +242,8 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
         cap = max(1, min(EVENT_CHUNK_STEPS, int(first // flows)))
     else:
         cap = steps if steps * flows <= first else max(1, int(first // flows))
-    if not specs and cap >= steps and check is None:  # one call, no chunk grid, no copies
+    if not specs and cap >= steps and (check is None or check.out_idx is not None):
+        # one call, no chunk grid, no copies (a check whose samples are output times reads them after it)
         t_start = time.perf_counter()
         Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
         if Ts is not None:  # the start exactly (the attitude's shift correction rounds at t[0] too), as in chunks
@@ -239,6 +253,8 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
         stats["chunks"] = 1
         if bar is not None:
             bar.update(steps * B)
+        if check is not None:
+            check.update(check.marks.size, Ls[check.members][:, check.out_idx])
         return Ls, Ts, t.size
     return _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key,
                    bar, stats, check)

@@ -44,7 +44,7 @@ class GivenStep:
     def checker(self, solver, problem, nsub, work, bar=None):
         return None
 
-    def announce(self, solver, problem, h):
+    def announce(self, solver, problem, h, steps=None):
         """Nothing: the ensemble's call announced the run."""
 
     def __repr__(self) -> str:

@@ -15,8 +15,11 @@ from typing import Any
 
 import numpy as np
 
+from hyperrotor._jit import jit
+
+from ._kernels import raise_scales, relative_difference
 from .base import Problem, step_lengths
-from .chunks import Work, advance_chunked, refuse_steps, step_times
+from .chunks import Work, advance_chunked, advance_pair_chunked, refuse_steps, step_times
 
 __all__ = ["RichardsonCheck", "CheckFailed", "observed_order", "relative_difference", "SAFETY", "ACCEPT",
            "ASYMPTOTIC", "COMPANION_RATIO"]
@@ -50,28 +53,34 @@ PROJECT_MARGIN = 4.0
 GROWTH_RATIO = 8.0
 
 
-def observed_order(rho: float, r: float, r2: float, p: float) -> float:
+@jit
+def _three_run_ratio(q, r, r2):  # pragma: no cover - jitted
+    """:math:`r^q (r_2^q - 1)/(r^q - 1)`: the ratio of the differences of three runs (errors :math:`C h^q`)."""
+    return r ** q * (r2 ** q - 1.0) / (r ** q - 1.0)
+
+
+@jit
+def observed_order(rho, r, r2, p):  # pragma: no cover - jitted
     r"""The order :math:`q \in [0, p]` with :math:`r^q (r_2^q - 1)/(r^q - 1) = \rho` (ratio of the
     differences of three runs at steps :math:`h`, :math:`rh`, :math:`r r_2 h`, errors :math:`C h^q`).
 
     The left side increases with :math:`q` (from :math:`\ln r_2/\ln r` at 0); below its value at
     :math:`q = 1/2` the answer is 0 (not asymptotic), above its value at ``p`` it is ``p``; bisection
-    in between. ``r == r2`` gives :math:`\log\rho / \log r`.
+    in between. ``r == r2`` gives :math:`\log\rho / \log r`. Compiled (called once per check update).
     """
     if not rho > 0.0 or r <= 1.0 or r2 <= 1.0:
         return 0.0
-
-    def f(q):
-        return r ** q * (r2 ** q - 1.0) / (r ** q - 1.0)
-
-    if rho < f(0.5):
+    if rho < _three_run_ratio(0.5, r, r2):
         return 0.0
-    if rho >= f(p):
+    if rho >= _three_run_ratio(float(p), r, r2):
         return float(p)
     lo, hi = 0.5, float(p)
     for _ in range(40):  # |hi - lo| < 1e-11
         mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if f(mid) < rho else (lo, mid)
+        if _three_run_ratio(mid, r, r2) < rho:
+            lo = mid
+        else:
+            hi = mid
     return 0.5 * (lo + hi)
 
 
@@ -82,15 +91,6 @@ class CheckFailed(Exception):
         super().__init__(why)
         self.h = h
         self.why = why
-
-
-def relative_difference(La: np.ndarray, Lb: np.ndarray, moments: np.ndarray, Lmax: np.ndarray,
-                         Wmax: np.ndarray) -> np.ndarray:
-    """Per sample (axis 1): max over members of max(|dL|/max|L|, |dW|/max|W|) (members on axis 0)."""
-    d = np.abs(La - Lb)
-    dL = d.max(axis=2) / Lmax[:, None]
-    dW = (d / moments).max(axis=2) / Wmax[:, None]
-    return np.maximum(dL, dW).max(axis=0)
 
 
 class RichardsonCheck:
@@ -111,7 +111,9 @@ class RichardsonCheck:
         p = solver.order
         self.p = p
         self.nsub = nsub
-        self.cs = cs = np.concatenate([[0], np.cumsum(nsub)])
+        self.cs = cs = np.empty(nsub.size + 1, dtype=np.int64)
+        cs[0] = 0
+        np.cumsum(nsub, out=cs[1:])
         steps = int(cs[-1])
         self.steps = steps
         hs = step_lengths(t, nsub)
@@ -127,30 +129,49 @@ class RichardsonCheck:
             spacing = max(1, int(math.ceil(steps / CHECK_SAMPLES)))
         else:
             spacing = max(int(math.ceil(2 * c * c2)), int(math.ceil(steps / CHECK_SAMPLES)))
-        marks = np.arange(spacing, steps, spacing, dtype=np.int64)
-        if marks.size and steps - marks[-1] < spacing // 2:
-            marks = marks[:-1]
-        self.marks = marks = np.append(marks, steps)
-        seg = np.diff(np.concatenate([[0], marks]))
+        n0 = int(nsub[0])
+        self.out_idx = None  # output indices of the samples, when every sample is an output time
+        if spacing % n0 == 0 and (nsub.size == 1 or int(nsub.min()) == int(nsub.max())):
+            # equal steps per output interval dividing the spacing: the samples below fall on every
+            # stride-th output time (the run needs no extra stops and gives them with its outputs)
+            stride = spacing // n0
+            idx = np.arange(stride, nsub.size, stride, dtype=np.int64)
+            if idx.size and (nsub.size - idx[-1]) * n0 < spacing // 2:
+                idx = idx[:-1]
+            self.out_idx = idx = np.append(idx, nsub.size)
+            marks = idx * n0
+            self.tm = t[idx]
+        else:
+            marks = np.arange(spacing, steps, spacing, dtype=np.int64)
+            if marks.size and steps - marks[-1] < spacing // 2:
+                marks = marks[:-1]
+            marks = np.append(marks, steps)
+            self.tm = step_times(t, cs, nsub, marks)
+        self.marks = marks
+        seg = marks.copy()
+        seg[1:] -= marks[:-1]
         if finer:
             self.nc, self.nc2 = seg * 2, seg * 4
         else:
-            self.nc = np.maximum(1, np.floor(seg / c).astype(np.int64))
-            self.nc2 = np.maximum(1, np.floor(self.nc / c2).astype(np.int64))
-        self.tm = step_times(t, cs, nsub, marks)
-        self.grid = np.concatenate([[t[0]], self.tm])
+            self.nc = np.maximum(1, (seg / c).astype(np.int64))
+            self.nc2 = np.maximum(1, (self.nc / c2).astype(np.int64))
+        self.grid = np.concatenate([t[:1], self.tm])
         lengths = np.abs(np.diff(self.grid))
         H, H2 = lengths / self.nc, lengths / self.nc2
         # largest and smallest run step in each segment (the run's step differs between output intervals)
-        first = np.searchsorted(cs, np.concatenate([[0], marks[:-1]]), side="right") - 1
-        last = np.searchsorted(cs, marks - 1, side="right") - 1
         ah = np.abs(hs)
-        if np.all(first == last):  # every segment inside one output interval (long intervals)
-            hmax = hmin = ah[first]
-        else:  # reductions over ah[first:last + 1] (a sentinel closes the last segment)
-            bounds = np.column_stack([first, last + 1]).ravel()
-            hmax = np.maximum.reduceat(np.append(ah, 0.0), bounds)[::2]
-            hmin = np.minimum.reduceat(np.append(ah, np.inf), bounds)[::2]
+        hmax_all, hmin_all = float(ah.max()), float(ah.min())
+        if hmax_all - hmin_all <= 8.0 * _EPS * hmax_all:  # one step length throughout (a uniform grid, to round-off)
+            hmax, hmin = hmax_all, hmin_all
+        else:
+            first = np.searchsorted(cs, marks - seg, side="right") - 1
+            last = np.searchsorted(cs, marks - 1, side="right") - 1
+            if np.all(first == last):  # every segment inside one output interval (long intervals)
+                hmax = hmin = ah[first]
+            else:  # reductions over ah[first:last + 1] (a sentinel closes the last segment)
+                bounds = np.column_stack([first, last + 1]).ravel()
+                hmax = np.maximum.reduceat(np.append(ah, 0.0), bounds)[::2]
+                hmin = np.minimum.reduceat(np.append(ah, np.inf), bounds)[::2]
         # step ratios (companion / run, second / first companion), the smallest over the segments,
         # or for the finer companions the ratios run / companion
         self.r = float(np.min(H / hmax)) if not finer else float(np.min(hmin / H))
@@ -161,8 +182,8 @@ class RichardsonCheck:
         self.Lc = self.Lc2 = problem.L0[members]
         self.carry = self.carry2 = None
         self.j = 0
-        self.Lmax = np.maximum(np.abs(self.Lc).max(axis=1), 1e-300)
-        self.Wmax = np.maximum(np.abs(self.Lc / self.moments).max(axis=1), 1e-300)
+        self.Lmax, self.Wmax = np.full(len(members), 1e-300), np.full(len(members), 1e-300)
+        raise_scales(self.Lc[:, None, :], self.moments, self.Lmax, self.Wmax)
         self.d1 = np.zeros(marks.size)  # run - first companion, relative, per sample
         self.d2 = np.zeros(marks.size)  # first - second companion
         self.err = np.zeros(marks.size)  # estimated error of the run at each sample
@@ -205,16 +226,14 @@ class RichardsonCheck:
         if upto <= j:
             return
         grid = self.grid[j:upto + 1]
-        L1, self.carry = advance_chunked(self.solver, self.problem, self.Lc, grid, self.nc[j:upto],
-                                         members=self.members, work=self.work, bar=self.bar, carry=self.carry)
-        L2, self.carry2 = advance_chunked(self.solver, self.problem, self.Lc2, grid, self.nc2[j:upto],
-                                          members=self.members, work=self.work, bar=self.bar, carry=self.carry2)
+        L1, L2, (self.carry, self.carry2) = advance_pair_chunked(
+            self.solver, self.problem, self.Lc, self.Lc2, grid, self.nc[j:upto], self.nc2[j:upto], members=self.members,
+            work=self.work, bar=self.bar, carries=(self.carry, self.carry2))
         self.Lc, self.Lc2 = L1[:, -1], L2[:, -1]
-        self.Lmax = np.maximum(self.Lmax, np.abs(Lf).max(axis=(1, 2)))
-        self.Wmax = np.maximum(self.Wmax, np.abs(Lf / self.moments).max(axis=(1, 2)))
+        raise_scales(Lf, self.moments, self.Lmax, self.Wmax)
         self.d1[j:upto] = relative_difference(Lf, L1[:, 1:], self.moments, self.Lmax, self.Wmax)
         self.d2[j:upto] = relative_difference(L1[:, 1:], L2[:, 1:], self.moments, self.Lmax, self.Wmax)
-        if not (np.all(np.isfinite(self.d1[j:upto])) and np.all(np.isfinite(self.d2[j:upto]))):
+        if not (np.isfinite(self.d1[j:upto]).all() and np.isfinite(self.d2[j:upto]).all()):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
         self.j = upto
         self.err[:upto] = self.d1[:upto] / self._divisor()

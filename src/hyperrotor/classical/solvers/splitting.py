@@ -407,6 +407,30 @@ class Splitting(FixedStepSolver):
             outT = unshift_attitude(outT, L, T, t, shift)
         return outL, outT
 
+    def advance_pair(self, problem, La, Lb, t, na, nb, members=None, carries=(None, None)):
+        """Both runs in one compiled call (:func:`~._kernels.split_run_pair`) for up to
+        ``PARALLEL_MIN_BODIES`` rows (the step control's members); more rows: two calls."""
+        if La.shape[0] >= _kernels.PARALLEL_MIN_BODIES:
+            return super().advance_pair(problem, La, Lb, t, na, nb, members, carries)
+        st = self._state
+        rates, torque, _ = self._rows(members)
+        comp = bool(st["compensated"])
+        word, tables = st["word"], st["tables"]
+        starts = []
+        for L, carry in ((La, carries[0]), (Lb, carries[1])):
+            if carry is None:
+                starts.append((np.ascontiguousarray(L), np.zeros((L.shape[0], 2, L.shape[1]))))
+            else:
+                starts.append((np.ascontiguousarray(carry[:, 0]), carry.copy()))
+        (L0a, ca), (L0b, cb) = starts
+        outa = np.empty((La.shape[0], t.size, La.shape[1]))
+        outb = np.empty_like(outa)
+        _kernels.split_run_pair(L0a, L0b, np.ascontiguousarray(rates), word[0], word[1], *tables,
+                                step_lengths(t, na), na, step_lengths(t, nb), nb, np.ascontiguousarray(torque), comp,
+                                outa, outb, ca, cb)
+        self.last_carries = (ca, cb)
+        return outa, outb
+
     def stats(self, problem: Problem) -> dict:
         st = self._state
         shift = st["shift"]

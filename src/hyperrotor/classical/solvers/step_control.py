@@ -83,8 +83,9 @@ from hyperrotor import _validate
 from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError, nsub_for
-from .chunks import Work, advance_chunked, cost_key, seconds_per_flow
-from .richardson_check import ASYMPTOTIC, COMPANION_RATIO, SAFETY, CheckFailed, RichardsonCheck, relative_difference
+from .chunks import Work, advance_pair_chunked, cost_key, seconds_per_flow
+from ._kernels import raise_scales, relative_difference
+from .richardson_check import ASYMPTOTIC, COMPANION_RATIO, SAFETY, CheckFailed, RichardsonCheck
 
 __all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "UnreachableAccuracyError", "rate_bound", "growth_to_end"]
 
@@ -106,24 +107,29 @@ class UnreachableAccuracyError(ValueError):
     or sits at round-off. The message names the estimated growth and the reachable accuracy."""
 
 
+def _plane_rate_bounds(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
+    r""":math:`\min(|L|, \sqrt{2EI_a})/I_a` per row of ``L0`` (rows, n) and plane ``a``: no rate of plane
+    ``a`` on the orbit exceeds it (from the Casimir :math:`|L|^2` and the energy)."""
+    L2 = L0 * L0
+    C = np.sqrt(L2.sum(axis=1, keepdims=True))
+    E2 = (L2 / moments).sum(axis=1, keepdims=True)
+    return np.minimum(C, np.sqrt(E2 * moments)) / moments
+
+
 def rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
     r"""Per row of ``L0`` (rows, n): :math:`\max_a \min(|L|, \sqrt{2EI_a})/I_a`, a bound on every
     angular velocity on the orbit (from the Casimir :math:`|L|^2` and the energy)."""
-    C = np.sqrt(np.sum(L0 * L0, axis=1, keepdims=True))
-    E2 = np.sum(L0 * L0 / moments, axis=1, keepdims=True)
-    W = np.minimum(C, np.sqrt(E2 * moments)) / moments
+    W = _plane_rate_bounds(moments, L0)
     return W.max(axis=1) if W.size else np.zeros(L0.shape[0])
 
 
 def _orbit_rates(problem: Problem) -> np.ndarray:
     """Per-member bound on the rates reachable on the orbit (module docstring, step 1)."""
     L0, m = problem.L0, problem.moments
-    wmax_b = rate_bound(m, L0)
+    W = _plane_rate_bounds(m, L0)  # (B, n)
+    wmax_b = W.max(axis=1) if W.size else np.zeros(L0.shape[0])
     tc, ta, tb = _triples(problem.N)
     if tc.size and L0.size:
-        C = np.sqrt(np.sum(L0 * L0, axis=1, keepdims=True))
-        E2 = np.sum(L0 * L0 / m, axis=1, keepdims=True)
-        W = np.minimum(C, np.sqrt(E2 * m)) / m  # (B, n)
         Ic, Ia, Ib = m[tc], m[ta], m[tb]
         lam = W[:, tc] * np.sqrt(np.abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib))
         wmax_b = np.maximum(wmax_b, lam.max(axis=1))
@@ -192,7 +198,7 @@ class FixedStep:
 
     verified_step = first_step
 
-    def announce(self, solver, problem: Problem, h: float) -> None:
+    def announce(self, solver, problem: Problem, h: float, steps: int | None = None) -> None:
         """Nothing: a given step is the caller's choice."""
 
     def __repr__(self) -> str:
@@ -256,13 +262,12 @@ class ErrorTarget:
             tg = direction * np.linspace(0.0, Pv, k + 1) + problem.t[0]
             work.refuse(1.5 * k * ms * len(sel), lambda: f"the step control's probe of {1.5 * k * ms:.0f} steps")
             try:
-                y1 = advance_chunked(solver, problem, L0s, tg, np.full(k, ms), members=sel, work=work, bar=bar)[0]
-                y2 = advance_chunked(solver, problem, L0s, tg, np.full(k, ms // 2), members=sel, work=work,
-                                     bar=bar)[0]
+                y1, y2, _ = advance_pair_chunked(solver, problem, L0s, L0s, tg, np.full(k, ms), np.full(k, ms // 2),
+                                                 members=sel, work=work, bar=bar)
             except (RuntimeError, FloatingPointError):  # no implicit step / an overflow at this h
                 return None, Pv / (k * ms)
-            Lmax = np.maximum(np.abs(y1).max(axis=(1, 2)), 1e-300)
-            Wmax = np.maximum(np.abs(y1 / Ms).max(axis=(1, 2)), 1e-300)
+            Lmax, Wmax = np.full(len(sel), 1e-300), np.full(len(sel), 1e-300)
+            raise_scales(y1, Ms, Lmax, Wmax)
             d = relative_difference(y1, y2, Ms, Lmax, Wmax)  # per sample
             # the estimate's envelope at (about) half the window and at its end (d[i]: at grid point i)
             env = np.maximum.accumulate(d) / (2.0 ** p - 1.0)
@@ -320,11 +325,12 @@ class ErrorTarget:
         return (f"; reachable accuracy about {reach:.2g} within the budget (the probe's estimate from a leading "
                 f"window; faster error growth later, e.g. on a chaotic orbit, makes it worse)")
 
-    def announce(self, solver, problem: Problem, h: float) -> None:
-        """The slow-run warning (once the budget is checked), from the cost per flow learned by the probes."""
+    def announce(self, solver, problem: Problem, h: float, steps: int | None = None) -> None:
+        """The slow-run warning (once the budget is checked), from the cost per flow learned by the probes
+        (``steps``: the run's steps per member at ``h``, when the caller has counted them)."""
         key = cost_key(solver, problem)
         spf = seconds_per_flow(key)
-        steps = float(nsub_for(problem.t, h).sum())
+        steps = float(nsub_for(problem.t, h).sum() if steps is None else steps)
         self.seconds_per_step = spf * solver.flows_per_step(problem)
         seconds = self.seconds_per_step * steps * problem.B * (1.0 + 1.0 / COMPANION_RATIO)
         limit = options["slow_run_warning_seconds"]
