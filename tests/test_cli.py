@@ -291,9 +291,9 @@ MORE = [
     (["scene", "--N", "1000000000"], ["2^1000000000 points", "budget of 2 GiB"]),
     # an integrated motion is priced before it runs (#22: this ran 506 s with --max-seconds 10)
     (["scene", "--inertia", "box", "--t-end", "1e6", "--max-seconds", "10"],
-     ["scene --t-end 1000000 (", "integration steps of splitting10", "over the budget of 10 s (--max-seconds"]),
+     ["scene --t-end 1000000 (", "integration steps of splitting8", "over the budget of 10 s (--max-seconds"]),
     (["scene", "--inertia", "box", "--t-end", "1e6", "--max-steps", "1000"],
-     ["integration steps (splitting10), over the budget of 1000 (--max-steps", "raise --max-steps"]),
+     ["integration steps (splitting8), over the budget of 1000 (--max-steps", "raise --max-steps"]),
     (["scene", "--inertia", "box", "--max-steps", "5"], ["over the budget of 5 (--max-steps"]),
     (["demo", "--omega=1e100,1e100,1,1,1,1,1,1,1,1"], ["fastest rate 1.6e+100", "budget of 10 min"]),
     (["demo", "--kappa", "1e50"], ["fastest rate 5e+99", "budget"]),

@@ -469,8 +469,9 @@ def test_auto_method_choice(rng):
     assert simulate(inertia, w0, t, rtol=0.1).stats["method"] == "splitting2"
     assert simulate(inertia, w0, t, rtol=1e-3).stats["method"] == "splitting4"
     assert simulate(inertia, w0, t, rtol=1e-6).stats["method"] == "splitting8"
-    assert simulate(inertia, w0, t, rtol=1e-9).stats["method"] == "splitting10"
-    assert simulate(inertia, w0, t).stats["method"] == "splitting10"  # default rtol 1e-9
+    assert simulate(inertia, w0, t, rtol=1e-9).stats["method"] == "splitting8"
+    assert simulate(inertia, w0, t).stats["method"] == "splitting8"  # default rtol 1e-9
+    assert simulate(inertia, w0, t, rtol=1e-11).stats["method"] == "splitting10"
     assert simulate(inertia, w0, t, dt=0.1).stats["method"] == "splitting4"
     tr = simulate(inertia, w0, t, torque=lambda tt, w: -0.1 * w)
     assert tr.stats["method"] == "DOP853"

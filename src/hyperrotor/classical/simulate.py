@@ -53,8 +53,8 @@ register(
 )
 
 #: ``method="auto"``: ``(rtol at least, method)`` from the registry's ``auto_rtol`` (largest first): the
-#: first row whose bound ``rtol`` meets is chosen (from the work-precision benchmark: order 8 is the
-#: cheapest from ~1e-4 to 1e-7 on 5D bodies, order 10 below, order 2 only above 1e-2)
+#: first row whose bound ``rtol`` meets is chosen (from the rtol calls of ``benchmarks/step_control.py``: order 8
+#: is the cheapest from ~1e-4 to 1e-10, order 10 below, order 2 only above 1e-2)
 AUTO_ORDER = tuple(sorted(((cls.auto_rtol, name) for name, cls in SOLVERS.items() if cls.auto_rtol is not None),
                           reverse=True))
 
@@ -246,7 +246,7 @@ def simulate(
         ``"RK23"``, ``"LSODA"``, ``"Radau"``, ``"BDF"``), or a solver object such as
         ``Splitting8(compensated=True)``. ``"auto"``: a callable torque -> ``"DOP853"``;
         only ``dt`` -> ``"splitting4"``; else the splitting of order 2, 4, 8 or 10 for
-        ``rtol >= 1e-2``, ``>= 1e-4``, ``>= 1e-7``, smaller.
+        ``rtol >= 1e-2``, ``>= 1e-4``, ``>= 1e-10``, smaller.
     rtol : float, optional
         requested accuracy. Fixed-step methods (splittings, Moser-Veselov): a bound on the
         whole-run error, :math:`\max_t\|L - L_\text{exact}\|_\infty \le \mathrm{rtol}\max_t\|L\|_\infty`

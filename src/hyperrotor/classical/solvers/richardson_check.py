@@ -161,8 +161,8 @@ class RichardsonCheck:
         # largest and smallest run step in each segment (the run's step differs between output intervals)
         ah = np.abs(hs)
         hmax_all, hmin_all = float(ah.max()), float(ah.min())
-        if hmax_all - hmin_all <= 8.0 * _EPS * hmax_all:  # one step length throughout (a uniform grid, to round-off)
-            hmax, hmin = hmax_all, hmin_all
+        if hmax_all - hmin_all <= 1e-12 * hmax_all:  # one step length (a uniform grid; its round-off): the
+            hmax, hmin = hmax_all, hmin_all  # ratios below then err on the safe side by at most 1e-12
         else:
             first = np.searchsorted(cs, marks - seg, side="right") - 1
             last = np.searchsorted(cs, marks - 1, side="right") - 1

@@ -460,7 +460,7 @@ class Splitting6(Splitting):
 
     name = "splitting6"
     order = 6
-    auto_rtol = None  # order 8 costs no more from rtol 1e-4 down (benchmarks/README.md, "method=auto")
+    auto_rtol = None  # order 8 costs no more from rtol 1e-4 down (benchmarks/README.md, step_control.py)
 
 
 class Splitting8(Splitting):
@@ -468,7 +468,7 @@ class Splitting8(Splitting):
 
     name = "splitting8"
     order = 8
-    auto_rtol = 1e-7
+    auto_rtol = 1e-10
 
 
 class Splitting10(Splitting):
