@@ -3,6 +3,8 @@
 The build executes every notebook once (myst-nb, ``nb_execution_mode=force``)
 and writes the executed copies to ``<basetemp>/docs-build/jupyter_execute``;
 ``tests/test_notebooks.py`` checks those copies instead of executing again.
+``.ci/run`` sets ``HYPERROTOR_SKIP_DOCS_BUILD`` (its value is the reason) in its lowest-versions
+job: there the build and the notebooks are skipped, the newest job runs them.
 """
 from __future__ import annotations
 
@@ -75,6 +77,18 @@ def test_notebooks_that_plot_draw_on_the_page():
         assert not _plots(path) or "%matplotlib inline" in "".join(first["source"]).splitlines(), path.name
 
 
+#: Set by ``.ci/run`` for its lowest-versions job, with the reason as its value: that job skips the
+#: documentation build and the notebooks' execution (the newest job does both); unset, as in a
+#: plain ``python -m pytest``, the docs are built.
+SKIP_DOCS_BUILD_ENV = "HYPERROTOR_SKIP_DOCS_BUILD"
+
+
+def docs_build_skipped() -> str | None:
+    """Why this session does not build the docs (and execute the notebooks), or None when it does."""
+    reason = os.environ.get(SKIP_DOCS_BUILD_ENV, "").strip()
+    return f"{SKIP_DOCS_BUILD_ENV} is set: {reason}" if reason else None
+
+
 def build_docs(basetemp: Path) -> tuple[Path, subprocess.CompletedProcess]:
     """The session's one documentation build (it executes every notebook), run on first use.
 
@@ -111,6 +125,8 @@ def build_docs(basetemp: Path) -> tuple[Path, subprocess.CompletedProcess]:
 
 @pytest.fixture(scope="session")
 def docs_build(tmp_path_factory):
+    if docs_build_skipped():
+        pytest.skip(docs_build_skipped())
     pytest.importorskip("sphinx")
     pytest.importorskip("myst_nb")
     pytest.importorskip("ipykernel")
