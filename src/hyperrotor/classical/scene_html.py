@@ -219,27 +219,45 @@ def projection_figure(t: Any, projection: Any, *, edges: Any = (), axes: Sequenc
     )
 
 
-#: Autoplay of the page: the next frame 80 ms after the previous one is drawn (plotly's own player is
-#: driven by requestAnimationFrame, which a hidden tab or a headless browser does not run), looping,
-#: until the reader presses Play / Pause or moves the slider (then plotly's controls take over).
-#: Waiting for each frame keeps the view, the time panel and the slider on the same time where
-#: drawing a frame takes longer than the interval (a software-rendered WebGL: a fixed timer with
-#: 'immediate' frames interrupted the drawing, and the slider ran ahead of the picture).
+#: Autoplay of the page: every 80 ms of the page's clock the next frame, looping, until the reader
+#: presses Play / Pause or moves the slider (then plotly's controls take over). Each frame is one
+#: ``Plotly.update`` (the frame's coordinates, its time panel and the slider's position together), so
+#: the view, the panel and the slider always show the same time, and the next frame is timed from
+#: the end of the drawing (a slow software-rendered WebGL plays slower, never out of step). It is
+#: driven by the page's timer only, not by plotly's player, which waits for requestAnimationFrame:
+#: a hidden tab or a headless browser does not run that, and there the page stood still. The graph
+#: div carries the frame shown as ``data-frame`` (read by the browser test).
 _AUTOPLAY = """
 (function () {
   var gd = document.getElementById('{plot_id}');
-  var names = (gd._transitionData && gd._transitionData._frames || []).map(function (f) { return f.name; });
-  if (names.length < 2) { return; }
+  var frames = gd._transitionData && gd._transitionData._frames || [];
+  if (frames.length < 2) { return; }
   var k = 0, stopped = false;
+  gd.setAttribute('data-frame', '0');
+  function show(f) {
+    // the frame's traces: coordinates and point colours (one restyle, trace by trace)
+    var data = {x: [], y: [], z: [], 'marker.color': []};
+    (f.data || []).forEach(function (d) {
+      data.x.push(d.x); data.y.push(d.y); data.z.push(d.z);
+      data['marker.color'].push(d.marker ? d.marker.color : undefined);
+    });
+    var layout = {'sliders[0].active': k};
+    if (f.layout && f.layout.annotations) { layout.annotations = f.layout.annotations; }
+    return Plotly.update(gd, data, layout, f.traces);
+  }
   function later() { if (!stopped) { setTimeout(next, 80); } }
   function next() {
     if (stopped) { return; }
-    k = (k + 1) % names.length;
-    // a frame interrupted by the reader's Play or slider is rejected with no reason (then the
-    // autoplay has stopped); any other rejection is a real error and is rethrown
-    Plotly.animate(gd, [names[k]], {mode: 'immediate', frame: {duration: 0, redraw: true},
-                                    transition: {duration: 0}})
-      .then(later, function (e) { if (e !== undefined) { throw e; } later(); });
+    k = (k + 1) % frames.length;
+    var f = frames[k];
+    // the current frame first: the slider's observer reads it on the update (else it sets the slider
+    // back to the previous frame), and Play continues from it
+    gd._fullLayout._currentFrame = f.name;
+    show(f).then(function () {
+      if (stopped) { return; }
+      gd.setAttribute('data-frame', String(k));
+      later();
+    });
   }
   function stop() { stopped = true; }
   gd.on('plotly_buttonclicked', stop);
