@@ -30,7 +30,10 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    window (:func:`growth_to_end`: like :math:`t` on a regular orbit, Hairer, Lubich & Wanner,
    *Geometric Numerical Integration*, ch. X; like :math:`t^a`, :math:`a \le` :data:`PROBE_MAX_POWER`,
    when the window shows faster growth, e.g. a chaotic orbit), which gives the step :math:`h^*`
-   for the target ``SAFETY * rtol``.
+   for the target ``SAFETY * rtol``, and no longer than :data:`MAX_TURN` :math:`/\omega_\text{max}` (half a
+   turn of the fastest reachable rate per step: on stiff bodies, moments over 12 decades, longer steps
+   put the fast planes' flows in resonance with the step and the Richardson estimates below missed the
+   bound 4-100-fold).
 3. *Budget.* All planned work (probes, run, check) above ``max_steps`` is refused here,
    before the run starts (:class:`~.chunks.Work`).
 4. *Check inside the run* (:class:`~.richardson_check.RichardsonCheck`, costing :math:`1/c + 1/(c c_2)` of the run for
@@ -64,6 +67,13 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    (round-off, or exponential growth that outruns the order of the method) the call stops with
    :class:`UnreachableAccuracyError` naming the reachable accuracy, instead of grinding or
    returning a result that misses the bound.
+
+Cost. The probe's two runs (steps ``h`` and ``2h``) and the check's two companions each advance in one
+compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run both in
+:func:`~._kernels.split_run_pair`), the distances of the runs and the observed order are compiled, and when
+the run's steps per output interval divide the check's sample spacing the samples are output times, so the
+run itself is the one call of a fixed-step run. What remains is Python: about 0.3-0.5 ms per call
+(``benchmarks/README.md``, step_control.py).
 
 The timed probes also give the cost per step: a run estimated to take longer than
 ``options["slow_run_warning_seconds"]`` gives a ``UserWarning`` before it starts
@@ -100,6 +110,8 @@ PROBE_MAX_POWER = 4.0
 MAX_STEP_GROWTH = 8.0
 #: re-runs at a shorter step before the call gives up with UnreachableAccuracyError
 MAX_RETRIES = 3
+#: no step turns the fastest reachable rate (the rate bound) by more than this angle (radians)
+MAX_TURN = math.pi
 
 
 class UnreachableAccuracyError(ValueError):
@@ -314,7 +326,7 @@ class ErrorTarget:
                     f"; the probe's error grows faster than t^{PROBE_MAX_POWER:g}, like exp(lambda t) with lambda ~ "
                     f"{lam * problem.scale:.3g} (a chaotic orbit? exp(lambda T) ~ "
                     f"{math.exp(min(lam * span, 700.0)):.3g} over the run)")
-        return h_star
+        return min(h_star, MAX_TURN / wmax)
 
     def refusal_note(self, needed: float, budget: float, order: int) -> str:
         """What a refusal before the run adds: the growth the probe saw (if fast) and the accuracy
