@@ -16,6 +16,7 @@ Three tables, each measured side by side in one run (ratios are load-robust):
    a larger rtol can cost more when its check asks for a re-run).
 3. Bound held: over many random generic 5D bodies (T = 20), the fraction of runs whose whole-run
    error stays <= rtol, rtol = 1e-6 ... 1e-10.
+4. Where ``method="auto"`` switches from splitting8 to splitting10: wall time of rtol calls of both.
 
 Usage: python benchmarks/step_control.py [--quick]  (run with PYTHONPATH=<other tree>/src for "before")
 Writes benchmarks/results/step_control*.csv.
@@ -29,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from hyperrotor import Inertia, RigidBody, simulate
+from hyperrotor.classical.simulate import SIMULATION_METHODS
 from hyperrotor.bench import best_of, write_csv
 from hyperrotor.classical import euler_poinsot, quartet_solution
 
@@ -77,7 +79,9 @@ def overhead_table(probs, quick, repeats):
     rows = []
     rtols = (1e-6, 1e-9, 1e-12) if quick else (1e-6, 1e-8, 1e-10, 1e-12)
     for name, body, w0, t, ref in probs:
-        simulate(body, w0, t[:2], method="splitting8", dt=0.1)  # JIT
+        for warm in ("splitting8", "splitting10"):  # JIT (the kernels and the step control's compiled parts)
+            if warm in SIMULATION_METHODS:
+                simulate(body, w0, t[:3], method=warm, rtol=1e-6)
         moments = np.asarray(getattr(getattr(body, "inertia", None), "moments", body), dtype=float)
         for rtol in rtols:
             try:
@@ -119,6 +123,8 @@ def headline(quick, repeats, target=1e-10):
         scale = np.abs(w0).max()
         ours = None
         for method in ("auto", "splitting8", "splitting10"):  # the fastest call of a hyperrotor method reaching it
+            if method != "auto" and method not in SIMULATION_METHODS:  # (an older tree, run for "before")
+                continue
             for rtol in (1e-8, 3e-9, 1e-9, 3e-10, 1e-10, 3e-11, 1e-11):
                 el, tr = best_of(lambda: simulate(body, w0, t, rtol=rtol, method=method), repeats)
                 err = np.abs(tr.omega - ref).max() / scale
@@ -168,6 +174,28 @@ def bound_table(quick):
     return rows
 
 
+def auto_table(quick, repeats):
+    """Wall time of rtol calls of splitting8 and splitting10 (step choice included): where method="auto"
+    switches from order 8 to order 10 (``Splitting8.auto_rtol``)."""
+    print("\n== 4. rtol calls of splitting8 / splitting10 (ms): the threshold of method='auto' ==")
+    q = Inertia.quartet(0.5)
+    wq = np.random.default_rng(2026).normal(size=10)
+    wq /= np.abs(wq).max()
+    cases = [("top3d T=20", RigidBody(MOM3), W3, np.linspace(0.0, 20.0, 101)),
+             ("quartet T=200", RigidBody(q), wq, np.linspace(0.0, 200.0, 101))]
+    cases += [(f"generic5#{s} T=20", *generic_body(s), np.linspace(0.0, 20.0, 101)) for s in ((1,) if quick else (1, 2, 3))]
+    rows = []
+    for rtol in (1e-7, 1e-9, 1e-10, 1e-11, 1e-12):
+        line = []
+        for name, body, w0, t in cases:
+            el8 = best_of(lambda: simulate(body, w0, t, rtol=rtol, method="splitting8"), repeats)[0]
+            el10 = best_of(lambda: simulate(body, w0, t, rtol=rtol, method="splitting10"), repeats)[0]
+            rows.append(dict(problem=name, rtol=rtol, splitting8=el8, splitting10=el10))
+            line.append(f"{name} {el8 * 1e3:.2f}/{el10 * 1e3:.2f}")
+        print(f"rtol {rtol:.0e}: " + " | ".join(line))
+    return rows
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer problems and tolerances")
@@ -180,9 +208,12 @@ def main(argv=None):
     rows = overhead_table(probs, args.quick, repeats)
     head = headline(args.quick, repeats)
     bound = bound_table(args.quick)
+    auto = auto_table(args.quick, repeats) if "splitting10" in SIMULATION_METHODS else []
     write_csv(rows, RESULTS / f"step_control_overhead{args.tag}.csv")
     write_csv(head, RESULTS / f"step_control_headline{args.tag}.csv")
     write_csv(bound, RESULTS / f"step_control_bound{args.tag}.csv")
+    if auto:
+        write_csv(auto, RESULTS / f"step_control_auto{args.tag}.csv")
     print(f"\nwrote {RESULTS}/step_control*{args.tag}.csv (total {time.perf_counter() - t0:.0f} s)")
 
 
