@@ -23,7 +23,8 @@ from .base import Problem, Solver
 from .driver import FixedStepSolver
 from .moser_veselov import MoserVeselov
 from .scipy_ivp import BDF, DOP853, LSODA, RK23, RK45, Radau, ScipyIVP
-from .splitting import Splitting, Splitting2, Splitting4, Splitting6, Splitting8, Splitting10, casimir_shift, splitting_coefficients
+from .splitting import (Splitting, Splitting2, Splitting4, Splitting6, Splitting8, Splitting10, casimir_shift,
+                        splitting_coefficients)
 from .step_control import ErrorTarget, FixedStep, StepBudgetError, UnreachableAccuracyError
 
 __all__ = ["SOLVERS", "solver_for", "Solver", "FixedStepSolver", "ScipyIVP", "Splitting", "Splitting2", "Splitting4",
@@ -34,7 +35,8 @@ __all__ = ["SOLVERS", "solver_for", "Solver", "FixedStepSolver", "ScipyIVP", "Sp
 #: The registry: method name -> Solver class (the one list of methods; docs and tests loop over it).
 SOLVERS: dict[str, type[Solver]] = {
     cls.name: cls
-    for cls in (Splitting2, Splitting4, Splitting6, Splitting8, Splitting10, MoserVeselov, DOP853, RK45, RK23, LSODA, Radau, BDF)
+    for cls in (Splitting2, Splitting4, Splitting6, Splitting8, Splitting10, MoserVeselov, DOP853, RK45, RK23, LSODA,
+                Radau, BDF)
 }
 
 

@@ -25,8 +25,8 @@ from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError
 
-__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "refuse_steps", "step_times", "check_finite", "cost_key", "learn", "seconds_per_flow",
-           "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
+__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "refuse_steps", "step_times", "check_finite", "cost_key",
+           "learn", "seconds_per_flow", "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
 
 #: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
 #: are sized from its measured time to last ``options["chunk_seconds"]``

@@ -64,6 +64,8 @@ class FixedStepSolver(Solver):
     #: what :meth:`advance` needs to continue its last call exactly (the low parts of a compensated
     #: state, a Newton predictor), or ``None``; the driver hands it back as ``carry=`` for the next chunk
     last_carry: Any = None
+    #: the two carries of the last :meth:`advance_pair` call
+    last_carries: tuple = (None, None)
 
     def prepare(self, problem: Problem) -> None:
         """Precompute what :meth:`advance` needs for ``problem`` (tables, words, shifts)."""
