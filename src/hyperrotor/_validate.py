@@ -515,8 +515,10 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
             f"{name} has {arr.size} plane moments (so({n})) but so({N}) needs {N * (N - 1) // 2}; "
             f"they must act on the same dimension"
         )
-    bad = {f"I_{i}{j}": float(m) for (i, j), m in zip(plane_table(n), arr) if not (math.isfinite(m) and m > 0)}
-    if bad:
+    ok = np.isfinite(arr) & (arr > 0)
+    if not ok.all():  # (one vectorised test: a loop over the planes costs ~0.3 s at N = 1000)
+        table = plane_table(n)
+        bad = {f"I_{table[k][0]}{table[k][1]}": float(arr[k]) for k in np.flatnonzero(~ok)}
         raise ValueError(f"{name}: moments of inertia must be finite and > 0, got {fmt(bad)}")
     return arr
 
