@@ -442,7 +442,7 @@ INVALID_SIZE = {
     "dimension_from_count": "10^40 is not a count N(N-1)/2 of any so(N)",
     "gt_index": "the pattern given does not fit the highest weight",
     "quartet_polynomial_coefficients": "omega0 of the wrong length for the quartet body",
-    "splitting_coefficients": "no splitting of order 10^6 exists (orders 2, 4, 6, 8)",
+    "splitting_coefficients": "no splitting of order 10^6 exists (orders 2, 4, 6, 8, 10)",
     "hypercube_vertices": "N is in 1..24 by definition of the table (2^N rows)",
 }
 
