@@ -73,6 +73,7 @@ def work_precision(quick, probs):
         "splitting4": [0.2, 0.1, 0.05, 0.02, 0.01, 0.005] + ([] if quick else [0.002, 0.001]),
         "splitting6": [0.5, 0.3, 0.2, 0.1, 0.05, 0.03, 0.02] + ([] if quick else [0.01]),
         "splitting8": [1.0, 0.6, 0.4, 0.3, 0.2, 0.15, 0.1, 0.07, 0.05] + ([] if quick else [0.03]),
+        "splitting10": [2.0, 1.0, 0.6, 0.4, 0.3, 0.2, 0.15, 0.1] + ([] if quick else [0.07]),
         "moser-veselov": [0.1, 0.03, 0.01, 0.003] + ([] if quick else [0.001]),
     }
     rtols = {
