@@ -551,12 +551,12 @@ def test_observed_order_inverts_the_three_run_ratio(r, r2):
 def test_relative_difference_and_scales_match_their_formulas(rng):
     """The compiled distance of two runs: max over rows and planes of max(|dL|/Lmax, |dL/I|/Wmax) per
     sample, NaN when a difference is NaN; the running scales are the largest |L| and |L/I| per row."""
-    from hyperrotor.classical.solvers._kernels import raise_scales, relative_difference
+    from hyperrotor.classical.solvers._kernels import raise_scales, relative_difference, row_scales
 
     La, Lb = rng.normal(size=(2, 3, 7, 10))
     moments = rng.uniform(0.3, 3.0, size=10)
-    Lmax, Wmax = np.full(3, 1e-300), np.full(3, 1e-300)
-    raise_scales(La, moments, Lmax, Wmax)
+    Lmax, Wmax = row_scales(La[:, :3], moments)  # the first samples, then raised by the rest
+    raise_scales(La[:, 3:], moments, Lmax, Wmax)
     assert np.array_equal(Lmax, np.abs(La).max(axis=(1, 2)))
     assert np.array_equal(Wmax, np.abs(La / moments).max(axis=(1, 2)))
     d = np.abs(La - Lb)

@@ -433,3 +433,14 @@ def raise_scales(L, moments, Lmax, Wmax):  # pragma: no cover - jitted
                     wm = w
         Lmax[b] = lm
         Wmax[b] = wm
+
+
+@jit
+def row_scales(L, moments):  # pragma: no cover - jitted
+    """``(Lmax, Wmax)``: per row of ``L (rows, samples, n)`` the largest ``|L|`` and ``|L / moments|``, at
+    least 1e-300 (fresh arrays, to be raised by :func:`raise_scales` as a run goes on)."""
+    Lmax = np.full(L.shape[0], 1e-300)
+    Wmax = np.full(L.shape[0], 1e-300)
+    raise_scales(L, moments, Lmax, Wmax)
+    return Lmax, Wmax
+

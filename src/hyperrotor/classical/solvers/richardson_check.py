@@ -17,7 +17,7 @@ import numpy as np
 
 from hyperrotor._jit import jit
 
-from ._kernels import raise_scales, relative_difference
+from ._kernels import raise_scales, relative_difference, row_scales
 from .base import Problem, step_lengths
 from .chunks import Work, advance_chunked, advance_pair_chunked, refuse_steps, step_times
 
@@ -182,8 +182,7 @@ class RichardsonCheck:
         self.Lc = self.Lc2 = problem.L0[members]
         self.carry = self.carry2 = None
         self.j = 0
-        self.Lmax, self.Wmax = np.full(len(members), 1e-300), np.full(len(members), 1e-300)
-        raise_scales(self.Lc[:, None, :], self.moments, self.Lmax, self.Wmax)
+        self.Lmax, self.Wmax = row_scales(self.Lc[:, None, :], self.moments)
         self.d1 = np.zeros(marks.size)  # run - first companion, relative, per sample
         self.d2 = np.zeros(marks.size)  # first - second companion
         self.err = np.zeros(marks.size)  # estimated error of the run at each sample

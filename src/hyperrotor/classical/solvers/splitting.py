@@ -290,6 +290,14 @@ def rotation_tables(N: int):
     return tables
 
 
+def _start(L0: np.ndarray, carry: Any) -> tuple[np.ndarray, np.ndarray]:
+    """A kernel's start ``(L0, carry)``: a new run from ``L0`` (zero low parts), or the exact state
+    ``(high, low)`` a previous call ended with (a copy: the kernels write their last state into it)."""
+    if carry is None:
+        return np.ascontiguousarray(L0), np.zeros((L0.shape[0], 2, L0.shape[1]))
+    return np.ascontiguousarray(carry[:, 0]), carry.copy()
+
+
 def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, compensated, carry=None):
     """Dispatch to a kernel: one body or a few -> serial; an ensemble without attitude ->
     bodies-innermost chunks over threads; an ensemble with attitude -> threads over bodies.
@@ -301,12 +309,7 @@ def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, c
     N = T0.shape[-1]
     K = hstep.size + 1
     outL = np.empty((B, K, n))
-    if carry is None:
-        L0 = np.ascontiguousarray(L0)
-        carry = np.zeros((B, 2, n))
-    else:
-        L0 = np.ascontiguousarray(carry[:, 0])
-        carry = carry.copy()
+    L0, carry = _start(L0, carry)
     rates_b = np.ascontiguousarray(rates_b)
     torque_b = np.ascontiguousarray(torque_b)
     hstep = np.ascontiguousarray(hstep, dtype=np.float64)
@@ -416,13 +419,7 @@ class Splitting(FixedStepSolver):
         rates, torque, _ = self._rows(members)
         comp = bool(st["compensated"])
         word, tables = st["word"], st["tables"]
-        starts = []
-        for L, carry in ((La, carries[0]), (Lb, carries[1])):
-            if carry is None:
-                starts.append((np.ascontiguousarray(L), np.zeros((L.shape[0], 2, L.shape[1]))))
-            else:
-                starts.append((np.ascontiguousarray(carry[:, 0]), carry.copy()))
-        (L0a, ca), (L0b, cb) = starts
+        (L0a, ca), (L0b, cb) = _start(La, carries[0]), _start(Lb, carries[1])
         outa = np.empty((La.shape[0], t.size, La.shape[1]))
         outb = np.empty_like(outa)
         _kernels.split_run_pair(L0a, L0b, np.ascontiguousarray(rates), word[0], word[1], *tables,

@@ -94,7 +94,7 @@ from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError, nsub_for
 from .chunks import Work, advance_pair_chunked, cost_key, seconds_per_flow
-from ._kernels import raise_scales, relative_difference
+from ._kernels import relative_difference, row_scales
 from .richardson_check import ASYMPTOTIC, COMPANION_RATIO, SAFETY, CheckFailed, RichardsonCheck
 
 __all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "UnreachableAccuracyError", "rate_bound", "growth_to_end"]
@@ -278,9 +278,7 @@ class ErrorTarget:
                                                  members=sel, work=work, bar=bar)
             except (RuntimeError, FloatingPointError):  # no implicit step / an overflow at this h
                 return None, Pv / (k * ms)
-            Lmax, Wmax = np.full(len(sel), 1e-300), np.full(len(sel), 1e-300)
-            raise_scales(y1, Ms, Lmax, Wmax)
-            d = relative_difference(y1, y2, Ms, Lmax, Wmax)  # per sample
+            d = relative_difference(y1, y2, Ms, *row_scales(y1, Ms))  # per sample
             # the estimate's envelope at (about) half the window and at its end (d[i]: at grid point i)
             env = np.maximum.accumulate(d) / (2.0 ** p - 1.0)
             samples_e[:] = [(i / k, float(env[i])) for i in (k // 4, k // 2, k) if i > 0]
