@@ -97,6 +97,17 @@ class FixedStepSolver(Solver):
         self.last_carries = (ca, self.last_carry)
         return a, b
 
+    def advance_checked(self, problem: Problem, t: np.ndarray, nsub: np.ndarray, h: np.ndarray, members: np.ndarray,
+                        tc: np.ndarray, nc: np.ndarray, nc2: np.ndarray) -> tuple:
+        """A whole run without attitude and the step control's check beside it: ``(L (B, K, n), L1, L2)``,
+        the run of every member from ``problem.L0`` on grid ``t`` (``nsub[k]`` steps of ``h[k]``) and
+        the two companion runs of ``members`` on grid ``tc`` (``nc[k]``, ``nc2[k]`` equal steps).
+        By default :meth:`advance` and :meth:`advance_pair`; a solver may run all in one compiled call."""
+        L, _ = self.advance(problem, problem.L0, None, t, nsub, h=h)
+        L0 = problem.L0[members]
+        L1, L2 = self.advance_pair(problem, L0, L0, tc, nc, nc2, members=members)
+        return L, L1, L2
+
     def flows_per_step(self, problem: Problem) -> int:
         """Rough cost unit per step and member (used for chunk sizes and budgets)."""
         return 1
@@ -244,22 +255,51 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
         cap = max(1, min(EVENT_CHUNK_STEPS, int(first // flows)))
     else:
         cap = steps if steps * flows <= first else max(1, int(first // flows))
-    if not specs and cap >= steps and (check is None or check.out_idx is not None):
-        # one call, no chunk grid, no copies (a check whose samples are output times reads them after it)
+    if not specs and cap >= steps and (check is None or check.out_idx is not None or not problem.with_attitude):
+        # one call, no chunk grid: the run (and the check's companions beside it, their flows in its idle time)
         t_start = time.perf_counter()
-        Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
-        if Ts is not None:  # the start exactly (the attitude's shift correction rounds at t[0] too), as in chunks
-            Ts[:, 0] = problem.T0
+        if check is not None and not problem.with_attitude:
+            Ls, Lf = _checked_run(solver, problem, t, nsub, hs, check)
+            Ts = None
+        else:
+            Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
+            if Ts is not None:  # the start exactly (the attitude's shift correction rounds at t[0] too), as in chunks
+                Ts[:, 0] = problem.T0
         learn(key, time.perf_counter() - t_start, steps * flows)
         check_finite(Ls, t, problem)
         stats["chunks"] = 1
         if bar is not None:
             bar.update(steps * B)
         if check is not None:
-            check.update(check.marks.size, Ls[check.members][:, check.out_idx])
+            if Ts is None:
+                check.judge(check.marks.size, *Lf)
+            else:  # (samples at output times)
+                check.update(check.marks.size, Ls[check.members][:, check.out_idx])
         return Ls, Ts, t.size
     return _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key,
                    bar, stats, check)
+
+
+def _checked_run(solver, problem, t, nsub, hs, check):
+    """The whole run and the check's companions in one call (:meth:`FixedStepSolver.advance_checked`):
+    ``(states at the output times, (run, first and second companion at the samples))``. The run stops at the
+    output times and at the samples between them."""
+    cs = check.cs
+    if check.out_idx is not None:
+        grid, ns, h, at_out, at_samples = t, nsub, hs, None, check.out_idx
+    else:
+        points = np.union1d(cs, check.marks)
+        grid = step_times(t, cs, nsub, points)
+        ns = np.diff(points)
+        h = hs[np.searchsorted(cs, points[:-1], side="right") - 1]
+        at_out, at_samples = np.searchsorted(points, cs), np.searchsorted(points, check.marks)
+    L, L1, L2 = solver.advance_checked(problem, grid, ns, h, check.members, check.grid, check.nc, check.nc2)
+    companion_steps = int(check.nc.sum() + check.nc2.sum()) * check.members.size
+    check.work.add(companion_steps)
+    if check.bar is not None:
+        check.bar.update(companion_steps)
+    Lf = L[check.members][:, at_samples]
+    return (L if at_out is None else L[:, at_out]), (Lf, L1[:, 1:], L2[:, 1:])
 
 
 def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key, bar, stats,

@@ -84,6 +84,168 @@ def observed_order(rho, r, r2, p):  # pragma: no cover - jitted
     return 0.5 * (lo + hi)
 
 
+@jit
+def check_plan(t, nsub, cs, ah, spacing, finer, c, c2):  # pragma: no cover - jitted
+    """Where :class:`RichardsonCheck` samples a run of ``nsub[k]`` steps per output interval (step lengths
+    ``ah``, ``cs`` their cumulative counts) and how its companions step there:
+    ``(marks, out_idx, tm, nc, nc2, r, r2)``.
+
+    ``marks``: global step indices of the samples, every ``spacing`` steps and the run's end (a last gap
+    shorter than half a spacing is merged). When the steps per interval are equal and divide ``spacing``,
+    the samples are every stride-th output time instead (``out_idx`` their output indices, else empty: the
+    run needs no extra stops and gives them with its outputs). ``tm``: their times. ``nc``, ``nc2``: the
+    companions' steps per segment between samples (``finer``: twice and four times the run's; else the
+    run's divided by ``c``, and that by ``c2``). ``r``, ``r2``: the smallest step ratios over the segments
+    (companion / largest run step, second / first companion; ``finer``: smallest run step / companion, first
+    / second companion), so that the estimate errs on the safe side. Compiled (one call per checked run).
+    """
+    K1 = nsub.size
+    steps = cs[K1]
+    n0 = nsub[0]
+    uniform = True
+    for k in range(K1):
+        if nsub[k] != n0:
+            uniform = False
+    if uniform and spacing % n0 == 0:
+        stride = spacing // n0
+        count = (K1 - 1) // stride if K1 > stride else 0
+        if count and (K1 - count * stride) * n0 < spacing // 2:
+            count -= 1
+        out_idx = np.empty(count + 1, dtype=np.int64)
+        for i in range(count):
+            out_idx[i] = (i + 1) * stride
+        out_idx[count] = K1
+        marks = out_idx * n0
+        tm = t[out_idx]
+    else:
+        count = (steps - 1) // spacing if steps > spacing else 0
+        if count and steps - count * spacing < spacing // 2:
+            count -= 1
+        marks = np.empty(count + 1, dtype=np.int64)
+        for i in range(count):
+            marks[i] = (i + 1) * spacing
+        marks[count] = steps
+        out_idx = np.empty(0, dtype=np.int64)
+        tm = np.empty(count + 1)
+        for i in range(count + 1):  # (step_times of the marks)
+            k = min(max(np.searchsorted(cs, marks[i], side="right") - 1, 0), K1 - 1)
+            tm[i] = t[k + 1] if marks[i] == cs[k + 1] else t[k] + (t[k + 1] - t[k]) * ((marks[i] - cs[k]) / nsub[k])
+    S = marks.size
+    nc = np.empty(S, dtype=np.int64)
+    nc2 = np.empty(S, dtype=np.int64)
+    hmax_all, hmin_all = ah.max(), ah.min()
+    one_step = hmax_all - hmin_all <= 1e-12 * hmax_all  # one step length (a uniform grid; its round-off): the
+    r = math.inf  # ratios then err on the safe side by at most 1e-12
+    r2 = math.inf
+    prev = 0
+    t_prev = t[0]
+    for i in range(S):
+        seg = marks[i] - prev
+        if finer:
+            nc[i], nc2[i] = 2 * seg, 4 * seg
+        else:
+            nc[i] = max(1, int(seg / c))
+            nc2[i] = max(1, int(nc[i] / c2))
+        length = abs(tm[i] - t_prev)
+        H, H2 = length / nc[i], length / nc2[i]
+        if one_step:
+            hmax, hmin = hmax_all, hmin_all
+        else:  # the largest and smallest run step in the segment (it may cross output intervals)
+            first = np.searchsorted(cs, prev, side="right") - 1
+            last = np.searchsorted(cs, marks[i] - 1, side="right") - 1
+            hmax, hmin = ah[first], ah[first]
+            for k in range(first + 1, last + 1):
+                hmax, hmin = max(hmax, ah[k]), min(hmin, ah[k])
+        if finer:
+            r, r2 = min(r, hmin / H), min(r2, H / H2)
+        else:
+            r, r2 = min(r, H / hmax), min(r2, H2 / H)
+        prev = marks[i]
+        t_prev = tm[i]
+    return marks, out_idx, tm, nc, nc2, r, r2
+
+
+@jit
+def sample_differences(Lf, L1, L2, moments, Lmax, Wmax, d1, d2, j):  # pragma: no cover - jitted
+    """``d1[j:j + S]``, ``d2[j:j + S]``: the distances run - first companion and first - second companion at
+    ``S`` new samples (``(members, S, n)`` each), after raising the running scales with the run's states;
+    ``False`` when a distance is not finite (a companion overflowed). Compiled."""
+    raise_scales(Lf, moments, Lmax, Wmax)
+    a = relative_difference(Lf, L1, moments, Lmax, Wmax)
+    b = relative_difference(L1, L2, moments, Lmax, Wmax)
+    finite = True
+    for i in range(a.size):
+        d1[j + i] = a[i]
+        d2[j + i] = b[i]
+        if not (math.isfinite(a[i]) and math.isfinite(b[i])):
+            finite = False
+    return finite
+
+
+@jit
+def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
+    r"""``err[:upto] = d1[:upto] / divisor`` (the run's estimated error at each sample) and ``(q, max err)``.
+
+    With errors :math:`C h^q`: :math:`\rho = |y_1 - y_2| / |y_{run} - y_1| = r^q (r_2^q - 1)/(r^q - 1)`
+    (:func:`observed_order` solves it for :math:`q`), which gives the observed order :math:`q \le p`
+    (never more than the method's order); the run's error is then :math:`|y_{run} - y_1| / (r^q - 1)`
+    (run vs coarser companion) or :math:`|y_{run} - y_1| / (1 - r^{-q})` (``finer`` companions: the run
+    is the coarsest, :math:`D_2 \approx D_1 / r_2^q`). Outside the asymptotic regime (:math:`q < 1/2`)
+    the difference itself is the estimate. The order comes from the samples where the coarser companion
+    is still in its linear regime (:data:`LINEAR_REGIME`: an error grown to order one, e.g. on a chaotic
+    orbit, stops following :math:`C h^q` and would show a low order) and the run's difference is above
+    round-off, when there are such samples. ``q = -1``: no difference at all (the estimate is 0).
+    """
+    D1 = 0.0
+    D2 = 0.0
+    L1m = 0.0
+    L2m = 0.0
+    linear = False
+    for i in range(upto):
+        D1 = max(D1, d1[i])
+        D2 = max(D2, d2[i])
+        if not finer and d2[i] <= LINEAR_REGIME and d1[i] >= 100.0 * _EPS:
+            linear = True
+            L1m = max(L1m, d1[i])
+            L2m = max(L2m, d2[i])
+    if D1 <= 0.0:
+        for i in range(upto):
+            err[i] = 0.0
+        return -1.0, 0.0
+    rho = L2m / L1m if linear else D2 / D1
+    if finer:
+        q = min(float(p), math.log(max(rho, 1e-300)) / -math.log(r2)) if rho < 1.0 else 0.0
+        div = max(1.0 - r ** -q, 1e-300) if q >= 0.5 else 1.0
+    else:
+        q = observed_order(rho, r, r2, p)
+        div = max(r ** q - 1.0, 1.0) if q >= 0.5 else 1.0
+    e = 0.0
+    for i in range(upto):
+        err[i] = d1[i] / div
+        e = max(e, err[i])
+    return q, e
+
+
+@jit
+def roundoff_amplification(t, d1, flows):  # pragma: no cover - jitted
+    """How much the orbit amplified the differences to the first companion beyond linear growth
+    (:meth:`RichardsonCheck._check_roundoff`): from the first sample after an eighth of the run
+    (times ``t`` from the start) where their envelope is above round-off, to the end; 0.0 when no
+    sample qualifies."""
+    S = t.size
+    tend = t[S - 1]
+    env = 0.0
+    i0 = -1
+    e0 = 0.0
+    for i in range(S):
+        env = max(env, d1[i])
+        if i0 < 0 and t[i] >= tend / 8.0 and env > 10.0 * _EPS * math.sqrt(flows * t[i] / max(tend, 1e-300)):
+            i0, e0 = i, env
+    if i0 < 0 or i0 >= S - 1 or t[i0] <= 0.0:
+        return 0.0
+    return max(1.0, env / e0 / (tend / t[i0]))
+
+
 class CheckFailed(Exception):
     """Raised by :class:`RichardsonCheck` inside a run: re-run at step ``h`` (scaled units)."""
 
@@ -129,53 +291,11 @@ class RichardsonCheck:
             spacing = max(1, int(math.ceil(steps / CHECK_SAMPLES)))
         else:
             spacing = max(int(math.ceil(2 * c * c2)), int(math.ceil(steps / CHECK_SAMPLES)))
-        n0 = int(nsub[0])
-        self.out_idx = None  # output indices of the samples, when every sample is an output time
-        if spacing % n0 == 0 and (nsub.size == 1 or int(nsub.min()) == int(nsub.max())):
-            # equal steps per output interval dividing the spacing: the samples below fall on every
-            # stride-th output time (the run needs no extra stops and gives them with its outputs)
-            stride = spacing // n0
-            idx = np.arange(stride, nsub.size, stride, dtype=np.int64)
-            if idx.size and (nsub.size - idx[-1]) * n0 < spacing // 2:
-                idx = idx[:-1]
-            self.out_idx = idx = np.append(idx, nsub.size)
-            marks = idx * n0
-            self.tm = t[idx]
-        else:
-            marks = np.arange(spacing, steps, spacing, dtype=np.int64)
-            if marks.size and steps - marks[-1] < spacing // 2:
-                marks = marks[:-1]
-            marks = np.append(marks, steps)
-            self.tm = step_times(t, cs, nsub, marks)
+        marks, out_idx, self.tm, self.nc, self.nc2, self.r, self.r2 = check_plan(
+            t, nsub, cs, np.abs(hs), spacing, finer, c, c2)
         self.marks = marks
-        seg = marks.copy()
-        seg[1:] -= marks[:-1]
-        if finer:
-            self.nc, self.nc2 = seg * 2, seg * 4
-        else:
-            self.nc = np.maximum(1, (seg / c).astype(np.int64))
-            self.nc2 = np.maximum(1, (self.nc / c2).astype(np.int64))
+        self.out_idx = out_idx if out_idx.size else None  # output indices of the samples, if all are output times
         self.grid = np.concatenate([t[:1], self.tm])
-        lengths = np.abs(np.diff(self.grid))
-        H, H2 = lengths / self.nc, lengths / self.nc2
-        # largest and smallest run step in each segment (the run's step differs between output intervals)
-        ah = np.abs(hs)
-        hmax_all, hmin_all = float(ah.max()), float(ah.min())
-        if hmax_all - hmin_all <= 1e-12 * hmax_all:  # one step length (a uniform grid; its round-off): the
-            hmax, hmin = hmax_all, hmin_all  # ratios below then err on the safe side by at most 1e-12
-        else:
-            first = np.searchsorted(cs, marks - seg, side="right") - 1
-            last = np.searchsorted(cs, marks - 1, side="right") - 1
-            if np.all(first == last):  # every segment inside one output interval (long intervals)
-                hmax = hmin = ah[first]
-            else:  # reductions over ah[first:last + 1] (a sentinel closes the last segment)
-                bounds = np.column_stack([first, last + 1]).ravel()
-                hmax = np.maximum.reduceat(np.append(ah, 0.0), bounds)[::2]
-                hmin = np.minimum.reduceat(np.append(ah, np.inf), bounds)[::2]
-        # step ratios (companion / run, second / first companion), the smallest over the segments,
-        # or for the finer companions the ratios run / companion
-        self.r = float(np.min(H / hmax)) if not finer else float(np.min(hmin / H))
-        self.r2 = float(np.min(H2 / H)) if not finer else float(np.min(H / H2))
         self.finer = finer
         self.planned_steps = int(self.nc.sum() + self.nc2.sum()) * len(members)
         self.moments = problem.moments
@@ -188,37 +308,6 @@ class RichardsonCheck:
         self.err = np.zeros(marks.size)  # estimated error of the run at each sample
         self.span = problem.span
 
-    def _divisor(self) -> float:
-        r"""``e_run = |y_run - y_1| / divisor`` from the observed convergence of the three runs.
-
-        With errors :math:`C h^q`: :math:`\rho = |y_1 - y_2| / |y_{run} - y_1| = r^q (r_2^q - 1)/(r^q - 1)`
-        (:func:`observed_order` solves it for :math:`q`; :math:`r_2^q` when :math:`r_2 = r`), which gives
-        the observed order :math:`q \le p` (never more than the method's order); the run's error is then
-        :math:`|y_{run} - y_1| / (r^q - 1)` (run vs coarser companion) or
-        :math:`|y_{run} - y_1|\,r^q/(1 - r^q)`... (finer companions: the run is the coarsest).
-        Outside the asymptotic regime (:math:`q < 1/2`) the difference itself is the estimate.
-        """
-        d1, d2 = self.d1[:self.j], self.d2[:self.j]
-        D1 = float(d1.max())
-        p = self.p
-        if D1 <= 0.0:
-            return math.inf
-        rho = float(d2.max()) / D1
-        if not self.finer:
-            # the order from the samples where the coarser companion is still in its linear regime (an
-            # error that has grown to order one, e.g. on a chaotic orbit, stops following C h^q and would
-            # show a low order) and the run's difference is above round-off
-            linear = (d2 <= LINEAR_REGIME) & (d1 >= 100.0 * _EPS)
-            if linear.any():
-                rho = float(d2[linear].max()) / float(d1[linear].max())
-        if self.finer:  # the run is the coarsest: D1 ~ e_run (1 - r^-q), D2 ~ D1 / r2^q (r, r2 > 1)
-            q = min(p, math.log(max(rho, 1e-300)) / -math.log(self.r2)) if rho < 1.0 else 0.0
-            self.q = q
-            return max(1.0 - self.r ** -q, 1e-300) if q >= 0.5 else 1.0
-        q = observed_order(rho, self.r, self.r2, p)
-        self.q = q
-        return max(self.r ** q - 1.0, 1.0) if q >= 0.5 else 1.0
-
     def update(self, upto: int, Lf: np.ndarray) -> None:
         """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones."""
         j = self.j
@@ -229,15 +318,20 @@ class RichardsonCheck:
             self.solver, self.problem, self.Lc, self.Lc2, grid, self.nc[j:upto], self.nc2[j:upto], members=self.members,
             work=self.work, bar=self.bar, carries=(self.carry, self.carry2))
         self.Lc, self.Lc2 = L1[:, -1], L2[:, -1]
-        raise_scales(Lf, self.moments, self.Lmax, self.Wmax)
-        self.d1[j:upto] = relative_difference(Lf, L1[:, 1:], self.moments, self.Lmax, self.Wmax)
-        self.d2[j:upto] = relative_difference(L1[:, 1:], L2[:, 1:], self.moments, self.Lmax, self.Wmax)
-        if not (np.isfinite(self.d1[j:upto]).all() and np.isfinite(self.d2[j:upto]).all()):
+        self.judge(upto, Lf, L1[:, 1:], L2[:, 1:])
+
+    def judge(self, upto: int, Lf: np.ndarray, L1: np.ndarray, L2: np.ndarray) -> None:
+        """The samples ``marks[j:upto]`` reached by the run (``Lf``) and its two companions (``L1``, ``L2``;
+        all ``(members, upto - j, n)``): the estimate, and :class:`CheckFailed` when it is over the target
+        (:meth:`update` advances the companions itself; the driver's one-call runs advance them beside the
+        run, :meth:`~.driver.FixedStepSolver.advance_checked`)."""
+        if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
         self.j = upto
-        self.err[:upto] = self.d1[:upto] / self._divisor()
+        q, e = estimate(self.d1, self.d2, self.err, upto, self.finer, self.r, self.r2, self.p)
+        if q >= 0.0:
+            self.q = q
         accept = ACCEPT * self.control.rtol
-        e = float(self.err[:upto].max())
         done = abs(self.tm[upto - 1] - self.problem.t[0]) / self.span
         if e > accept:
             raise self._failure(e, self._project(upto, e, done), done)
@@ -264,15 +358,10 @@ class RichardsonCheck:
         """
         if not self.solver.can_compensate() or self.j < 8:
             return
-        t = np.abs(self.tm[:self.j] - self.problem.t[0])
-        env = np.maximum.accumulate(self.d1[:self.j])  # (the companion's error, above round-off, grows alike)
         flows = self.steps * self.solver.flows_per_step(self.problem)
-        # from the first sample after an eighth of the run where the difference is above round-off
-        above = np.flatnonzero((t >= t[-1] / 8.0) & (env > 10.0 * _EPS * np.sqrt(flows * t / max(t[-1], 1e-300))))
-        if above.size == 0 or above[0] >= self.j - 1 or t[above[0]] <= 0.0:
+        amplification = roundoff_amplification(np.abs(self.tm[:self.j] - self.problem.t[0]), self.d1[:self.j], flows)
+        if amplification == 0.0:
             return
-        i = int(above[0])
-        amplification = max(1.0, env[-1] / env[i] / (t[-1] / t[i]))
         roundoff = ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification
         if roundoff > ROUNDOFF_SHARE * ACCEPT * self.control.rtol:
             self.control.roundoff_amplified = True

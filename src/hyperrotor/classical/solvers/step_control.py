@@ -90,6 +90,7 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _validate
+from hyperrotor._jit import jit
 from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError, nsub_for
@@ -137,18 +138,39 @@ def rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
 
 def _orbit_rates(problem: Problem) -> np.ndarray:
     """Per-member bound on the rates reachable on the orbit (module docstring, step 1)."""
-    L0, m = problem.L0, problem.moments
-    W = _plane_rate_bounds(m, L0)  # (B, n)
-    wmax_b = W.max(axis=1) if W.size else np.zeros(L0.shape[0])
-    tc, ta, tb = _triples(problem.N)
-    if tc.size and L0.size:
-        Ic, Ia, Ib = m[tc], m[ta], m[tb]
-        lam = W[:, tc] * np.sqrt(np.abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib))
-        wmax_b = np.maximum(wmax_b, lam.max(axis=1))
+    m = problem.moments
+    wmax_b = _free_orbit_rates(m, problem.L0, *_triples(problem.N))
     if problem.kick:
         tq = float(np.max(np.abs(problem.torque) / m))
         wmax_b = np.maximum(wmax_b, max(tq * problem.span, tq ** 0.5))
     return wmax_b
+
+
+@jit
+def _free_orbit_rates(moments, L0, tc, ta, tb):  # pragma: no cover - jitted
+    r"""Per row of ``L0``: the largest of the plane rate bounds :math:`W_a = \min(|L|, \sqrt{2EI_a})/I_a`
+    (:func:`rate_bound`) and the linearised frequencies :math:`W_c\sqrt{|(I_c-I_a)(I_c-I_b)|/(I_aI_b)}` of
+    the coupled triples ``(tc, ta, tb)`` (:func:`_triples`). Compiled (once per call of the step control)."""
+    B, n = L0.shape
+    out = np.zeros(B)
+    W = np.empty(n)
+    for b in range(B):
+        C2 = 0.0
+        E2 = 0.0
+        for a in range(n):
+            x = L0[b, a] * L0[b, a]
+            C2 += x
+            E2 += x / moments[a]
+        C = math.sqrt(C2)
+        w = 0.0
+        for a in range(n):
+            W[a] = min(C, math.sqrt(E2 * moments[a])) / moments[a]
+            w = max(w, W[a])
+        for i in range(tc.size):
+            Ic, Ia, Ib = moments[tc[i]], moments[ta[i]], moments[tb[i]]
+            w = max(w, W[tc[i]] * math.sqrt(abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib)))
+        out[b] = w
+    return out
 
 
 @lru_cache(maxsize=32)
@@ -271,7 +293,9 @@ class ErrorTarget:
             step (1.5x the work of the m steps); ``(None, h)`` if a run failed."""
             k = max(1, min(m // 2, samples))
             ms = 2 * max(1, int(math.ceil(m / (2 * k))))
-            tg = direction * np.linspace(0.0, Pv, k + 1) + problem.t[0]
+            tg = np.arange(k + 1.0) * (Pv / k)  # (np.linspace(0, Pv, k + 1), without its overhead)
+            tg[k] = Pv
+            tg = direction * tg + problem.t[0]
             work.refuse(1.5 * k * ms * len(sel), lambda: f"the step control's probe of {1.5 * k * ms:.0f} steps")
             try:
                 y1, y2, _ = advance_pair_chunked(solver, problem, L0s, L0s, tg, np.full(k, ms), np.full(k, ms // 2),
