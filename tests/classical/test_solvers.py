@@ -7,6 +7,8 @@ tolerances that scale with the requested rtol, the run length and the norm of th
 """
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import special
 
 import hyperrotor as hr
@@ -546,6 +548,131 @@ def test_observed_order_inverts_the_three_run_ratio(r, r2):
     assert observed_order(rho(9.0), r, r2, 8) == 8.0  # never above the method's order
     assert observed_order(rho(0.3), r, r2, 8) == 0.0  # not asymptotic
     assert observed_order(-1.0, r, r2, 8) == 0.0 and observed_order(float("nan"), r, r2, 8) == 0.0
+
+
+@settings(max_examples=300, deadline=None)
+@given(K=st.integers(2, 120), uneven=st.booleans(), steps_per=st.floats(0.3, 40.0), spacing=st.integers(1, 90),
+       finer=st.booleans(), c=st.floats(2.0, 4.0), c2=st.floats(2.0, 4.0), seed=st.integers(0, 2**31))
+def test_check_plan_samples_the_run_and_errs_on_the_safe_side(K, uneven, steps_per, spacing, finer, c, c2, seed):
+    """Where the check samples a run and how its companions step there (compiled plan), from its definition:
+    the samples are run step points every ``spacing`` steps ending at the last (output times when the steps
+    per interval are equal and divide the spacing), their times are the run's, every segment's companions
+    take max(1, floor(seg / c)) and max(1, floor(nc / c2)) steps (twice and four times the run's when
+    ``finer``), and the ratios r, r2 are the smallest over the segments (each segment's ratio >= them)."""
+    from hyperrotor.classical.solvers.base import nsub_for
+    from hyperrotor.classical.solvers.chunks import step_times
+    from hyperrotor.classical.solvers.richardson_check import check_plan, run_steps
+
+    rng = np.random.default_rng(seed)
+    t = np.cumsum(np.concatenate([[0.0], rng.uniform(0.2, 2.0, K - 1) if uneven else np.full(K - 1, 0.7)]))
+    nsub = nsub_for(t, 0.7 / steps_per)
+    cs, steps, h = run_steps(t, nsub)
+    hs = np.abs(np.diff(t) / nsub)
+    assert np.array_equal(cs, np.concatenate([[0], np.cumsum(nsub)])) and steps == cs[-1] and h == hs.max()
+    marks, out_idx, grid, nc, nc2, r, r2, total = check_plan(t, nsub, cs, spacing, finer, c, c2)
+    assert marks[-1] == steps and np.all(np.diff(marks) > 0) and np.all(np.diff(marks)[:-1] == spacing)
+    assert steps - (marks[-2] if marks.size > 1 else 0) >= min(steps, spacing // 2)  # (a short last gap merged)
+    aligned = np.all(nsub == nsub[0]) and spacing % nsub[0] == 0
+    assert (out_idx.size > 0) == aligned
+    if aligned:
+        assert np.array_equal(cs[out_idx], marks)
+    assert grid[0] == t[0] and np.array_equal(grid[1:], step_times(t, cs, nsub, marks))
+    seg = np.diff(np.concatenate([[0], marks]))
+    if finer:
+        assert np.array_equal(nc, 2 * seg) and np.array_equal(nc2, 4 * seg)
+    else:
+        assert np.array_equal(nc, np.maximum(1, np.trunc(seg / c)))
+        assert np.array_equal(nc2, np.maximum(1, np.trunc(nc / c2)))
+    assert total == nc.sum() + nc2.sum()
+    lengths = np.abs(np.diff(grid))
+    ratios, ratios2 = [], []
+    for i in range(marks.size):  # the run's steps inside segment i
+        inside = hs[np.searchsorted(cs, marks[i] - seg[i], side="right") - 1:np.searchsorted(cs, marks[i] - 1,
+                                                                                          side="right")]
+        H, H2 = lengths[i] / nc[i], lengths[i] / nc2[i]
+        ratios.append(inside.min() / H if finer else H / inside.max())
+        ratios2.append(H / H2 if finer else H2 / H)
+    tol = 1e-12 if hs.max() - hs.min() <= 1e-12 * hs.max() else 0.0  # (one step length: its round-off)
+    assert r <= min(ratios) * (1 + tol) and r2 <= min(ratios2) * (1 + tol)
+    assert r == pytest.approx(min(ratios), rel=1e-11) and r2 == pytest.approx(min(ratios2), rel=1e-11)
+
+
+@pytest.mark.parametrize("finer", [False, True], ids=["coarser", "finer"])
+@pytest.mark.parametrize("q", [2.0, 5.5, 8.0])
+def test_the_check_estimates_the_run_error_of_three_runs(finer, q):
+    """Three runs with errors C h^q (steps h, r h, r r2 h; finer companions, as the check runs them:
+    h, h / 2, h / 4): the estimate gives back the run's error C h^q at every sample and the observed
+    order q; with no difference at all the estimate is 0 (order not set)."""
+    from hyperrotor.classical.solvers.richardson_check import estimate
+
+    r, r2 = (2.0, 2.0) if finer else (3.0, 2.0)
+    C = np.array([1e-9, 3e-9, 2e-9, 5e-9])  # per sample
+    f = (1.0 / r, 1.0 / (r * r2)) if finer else (r, r * r2)
+    e_run, e1, e2 = C, C * f[0] ** q, C * f[1] ** q
+    d1, d2, err = np.abs(e_run - e1), np.abs(e1 - e2), np.zeros(4)
+    q_got, e = estimate(d1, d2, err, 4, finer, r, r2, 8)
+    assert q_got == pytest.approx(q, rel=1e-9)
+    np.testing.assert_allclose(err, C, rtol=1e-9)
+    assert e == err.max()
+    assert estimate(np.zeros(4), np.zeros(4), err, 4, finer, r, r2, 8) == (-1.0, 0.0) and not err.any()
+
+
+def test_roundoff_amplification_is_the_growth_beyond_linear():
+    """The differences' envelope growing like t^3 from the first sample after an eighth of the run where it is
+    above round-off: amplified (t_end / t_i)^2 beyond linear; linear growth: 1; all at round-off: 0."""
+    from hyperrotor.classical.solvers.richardson_check import roundoff_amplification
+
+    t = np.linspace(0.1, 10.0, 100)
+    i = int(np.searchsorted(t, 10.0 / 8.0))  # the first sample after an eighth of the run
+    got = roundoff_amplification(t, 1e-9 * t ** 3, 1e6)
+    assert got == pytest.approx((t[-1] / t[i]) ** 2, rel=1e-12)
+    assert roundoff_amplification(t, 1e-9 * t, 1e6) == pytest.approx(1.0, rel=1e-12)
+    assert roundoff_amplification(t, np.full(100, 1e-17), 1e6) == 0.0
+
+
+@pytest.mark.parametrize("method, members", [("splitting8", ()), ("splitting8", (3,)), ("splitting8", (11,)),
+                                             ("moser-veselov", ())])
+@pytest.mark.parametrize("grid", ["even", "uneven"])
+def test_rtol_runs_in_one_call_and_in_chunks_agree(method, grid, members, rng, monkeypatch):
+    """An rtol run whose work fits in one call runs with its check's companions in that call (samples at
+    output times, or between them with the run stopping there); cut into chunks, the check follows the
+    run chunk by chunk. Same step, same numbers (bit for bit), same work and the same decision (the
+    estimates differ by the scales of the distances only, which grow with the samples seen)."""
+    from hyperrotor.classical.solvers import richardson_check
+
+    seen = []
+    init = richardson_check.RichardsonCheck.__init__
+
+    def spy(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        seen.append(self)
+
+    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
+    from hyperrotor.classical.solvers import chunks, driver
+    body = RigidBody(Inertia.from_mass_tensor(J5))
+    w0 = 0.6 * rng.normal(size=members + (10,))
+    t = np.linspace(0.0, 6.0, 13) if grid == "even" else np.cumsum(np.r_[0.0, rng.uniform(0.2, 1.0, 12)])
+    runs = []
+    rtol = 1e-7 if method != "moser-veselov" else 1e-4  # (order 2: fewer steps)
+    for seconds, first in ((1e3, chunks.FIRST_CHUNK_FLOWS), (1e-6, 2000)):  # (a short first chunk: chunks)
+        seen.clear()
+        monkeypatch.setattr(driver, "FIRST_CHUNK_FLOWS", first)
+        monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", first)
+        with hr.options(chunk_seconds=seconds):
+            tr = hr.simulate(body, w0, t, method=method, rtol=rtol)
+        runs.append((tr, seen[-1]))
+    (one, c1), (many, c2) = runs
+    assert one.stats["chunks"] == 1 and many.stats["chunks"] > 1
+    if grid == "uneven":
+        assert c1.out_idx is None  # samples between output times
+    np.testing.assert_array_equal(one.L, many.L)
+    for key in ("steps", "dt", "reruns"):
+        assert one.stats[key] == many.stats[key], key
+    # (Moser-Veselov: a probe step too long for its implicit equation fails; cut into chunks, the chunks it
+    # finished before failing are work done and counted)
+    assert one.stats["work"] == many.stats["work"] if method != "moser-veselov" else (
+        0 <= many.stats["work"] - one.stats["work"] < one.stats["work"] - one.stats["steps"])
+    assert max(c1.err.max(), c2.err.max()) <= richardson_check.ACCEPT * rtol
 
 
 def test_relative_difference_and_scales_match_their_formulas(rng):

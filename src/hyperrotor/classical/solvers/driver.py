@@ -6,7 +6,8 @@ Chunks
     The steps of the run are cut into chunks of about ``options["chunk_seconds"]`` of
     compiled work (the chunk size adapts to the measured time of the previous chunk; the
     first one is sized from the measured cost per flow of the previous run of the same
-    kind, so a run expected to be shorter than one chunk is one call, without copies).
+    kind, so a run expected to be shorter than one chunk is one call, without copies; with
+    ``rtol`` that call also advances the check's companions, :meth:`FixedStepSolver.advance_checked`).
     Between chunks Python runs its signal handlers, so Ctrl-C raises
     :class:`KeyboardInterrupt` within about a chunk's time, updates the progress bar
     (tqdm) and checks that the state is finite. Every chunk takes the run's own step

@@ -85,21 +85,37 @@ def observed_order(rho, r, r2, p):  # pragma: no cover - jitted
 
 
 @jit
-def check_plan(t, nsub, cs, ah, spacing, finer, c, c2):  # pragma: no cover - jitted
-    """Where :class:`RichardsonCheck` samples a run of ``nsub[k]`` steps per output interval (step lengths
-    ``ah``, ``cs`` their cumulative counts) and how its companions step there:
-    ``(marks, out_idx, tm, nc, nc2, r, r2)``.
+def run_steps(t, nsub):  # pragma: no cover - jitted
+    """``(cs, steps, h)`` of a run of ``nsub[k]`` equal steps per interval of ``t``: the cumulative step
+    counts ``[0, nsub[0], nsub[0] + nsub[1], ...]``, their total and the longest step (compiled)."""
+    cs = np.empty(nsub.size + 1, dtype=np.int64)
+    cs[0] = 0
+    h = 0.0
+    for k in range(nsub.size):
+        cs[k + 1] = cs[k] + nsub[k]
+        h = max(h, abs((t[k + 1] - t[k]) / nsub[k]))
+    return cs, cs[nsub.size], h
+
+
+@jit
+def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
+    """Where :class:`RichardsonCheck` samples a run of ``nsub[k]`` steps per output interval (``cs`` their
+    cumulative counts) and how its companions step there: ``(marks, out_idx, grid, nc, nc2, r, r2, steps)``.
 
     ``marks``: global step indices of the samples, every ``spacing`` steps and the run's end (a last gap
     shorter than half a spacing is merged). When the steps per interval are equal and divide ``spacing``,
     the samples are every stride-th output time instead (``out_idx`` their output indices, else empty: the
-    run needs no extra stops and gives them with its outputs). ``tm``: their times. ``nc``, ``nc2``: the
+    run needs no extra stops and gives them with its outputs). ``grid``: the start and their times. ``nc``, ``nc2``: the
     companions' steps per segment between samples (``finer``: twice and four times the run's; else the
     run's divided by ``c``, and that by ``c2``). ``r``, ``r2``: the smallest step ratios over the segments
     (companion / largest run step, second / first companion; ``finer``: smallest run step / companion, first
-    / second companion), so that the estimate errs on the safe side. Compiled (one call per checked run).
+    / second companion), so that the estimate errs on the safe side. ``steps``: the companions' steps together
+    (per member). Compiled (one call per checked run).
     """
     K1 = nsub.size
+    ah = np.empty(K1)
+    for k in range(K1):
+        ah[k] = abs((t[k + 1] - t[k]) / nsub[k])
     steps = cs[K1]
     n0 = nsub[0]
     uniform = True
@@ -116,7 +132,9 @@ def check_plan(t, nsub, cs, ah, spacing, finer, c, c2):  # pragma: no cover - ji
             out_idx[i] = (i + 1) * stride
         out_idx[count] = K1
         marks = out_idx * n0
-        tm = t[out_idx]
+        grid = np.empty(count + 2)
+        for i in range(count + 1):
+            grid[i + 1] = t[out_idx[i]]
     else:
         count = (steps - 1) // spacing if steps > spacing else 0
         if count and steps - count * spacing < spacing // 2:
@@ -126,11 +144,14 @@ def check_plan(t, nsub, cs, ah, spacing, finer, c, c2):  # pragma: no cover - ji
             marks[i] = (i + 1) * spacing
         marks[count] = steps
         out_idx = np.empty(0, dtype=np.int64)
-        tm = np.empty(count + 1)
+        grid = np.empty(count + 2)
         for i in range(count + 1):  # (step_times of the marks)
             k = min(max(np.searchsorted(cs, marks[i], side="right") - 1, 0), K1 - 1)
-            tm[i] = t[k + 1] if marks[i] == cs[k + 1] else t[k] + (t[k + 1] - t[k]) * ((marks[i] - cs[k]) / nsub[k])
+            grid[i + 1] = (t[k + 1] if marks[i] == cs[k + 1]
+                           else t[k] + (t[k + 1] - t[k]) * ((marks[i] - cs[k]) / nsub[k]))
+    grid[0] = t[0]
     S = marks.size
+    total = 0
     nc = np.empty(S, dtype=np.int64)
     nc2 = np.empty(S, dtype=np.int64)
     hmax_all, hmin_all = ah.max(), ah.min()
@@ -138,7 +159,6 @@ def check_plan(t, nsub, cs, ah, spacing, finer, c, c2):  # pragma: no cover - ji
     r = math.inf  # ratios then err on the safe side by at most 1e-12
     r2 = math.inf
     prev = 0
-    t_prev = t[0]
     for i in range(S):
         seg = marks[i] - prev
         if finer:
@@ -146,7 +166,8 @@ def check_plan(t, nsub, cs, ah, spacing, finer, c, c2):  # pragma: no cover - ji
         else:
             nc[i] = max(1, int(seg / c))
             nc2[i] = max(1, int(nc[i] / c2))
-        length = abs(tm[i] - t_prev)
+        total += nc[i] + nc2[i]
+        length = abs(grid[i + 1] - grid[i])
         H, H2 = length / nc[i], length / nc2[i]
         if one_step:
             hmax, hmin = hmax_all, hmin_all
@@ -161,8 +182,7 @@ def check_plan(t, nsub, cs, ah, spacing, finer, c, c2):  # pragma: no cover - ji
         else:
             r, r2 = min(r, H / hmax), min(r2, H2 / H)
         prev = marks[i]
-        t_prev = tm[i]
-    return marks, out_idx, tm, nc, nc2, r, r2
+    return marks, out_idx, grid, nc, nc2, r, r2, total
 
 
 @jit
@@ -273,13 +293,9 @@ class RichardsonCheck:
         p = solver.order
         self.p = p
         self.nsub = nsub
-        self.cs = cs = np.empty(nsub.size + 1, dtype=np.int64)
-        cs[0] = 0
-        np.cumsum(nsub, out=cs[1:])
-        steps = int(cs[-1])
+        self.cs, steps, h = run_steps(t, nsub)
         self.steps = steps
-        hs = step_lengths(t, nsub)
-        self.h = float(np.abs(hs).max())
+        self.h = h
         # the companion's ratio: as long as its own error stays asymptotic
         c = (COMPANION_ASYMPTOTIC / (SAFETY * control.rtol)) ** (1.0 / p)
         c = float(min(COMPANION_RATIO, max(2.0, c), max(2.0, math.sqrt(steps / 8.0))))  # short runs: smaller c
@@ -291,13 +307,13 @@ class RichardsonCheck:
             spacing = max(1, int(math.ceil(steps / CHECK_SAMPLES)))
         else:
             spacing = max(int(math.ceil(2 * c * c2)), int(math.ceil(steps / CHECK_SAMPLES)))
-        marks, out_idx, self.tm, self.nc, self.nc2, self.r, self.r2 = check_plan(
-            t, nsub, cs, np.abs(hs), spacing, finer, c, c2)
+        marks, out_idx, self.grid, self.nc, self.nc2, self.r, self.r2, companion_steps = check_plan(
+            t, nsub, self.cs, spacing, finer, c, c2)
+        self.tm = self.grid[1:]
         self.marks = marks
         self.out_idx = out_idx if out_idx.size else None  # output indices of the samples, if all are output times
-        self.grid = np.concatenate([t[:1], self.tm])
         self.finer = finer
-        self.planned_steps = int(self.nc.sum() + self.nc2.sum()) * len(members)
+        self.planned_steps = companion_steps * len(members)
         self.moments = problem.moments
         self.Lc = self.Lc2 = problem.L0[members]
         self.carry = self.carry2 = None

@@ -70,10 +70,13 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
 
 Cost. The probe's two runs (steps ``h`` and ``2h``) and the check's two companions each advance in one
 compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run both in
-:func:`~._kernels.split_run_pair`), the distances of the runs and the observed order are compiled, and when
-the run's steps per output interval divide the check's sample spacing the samples are output times, so the
-run itself is the one call of a fixed-step run. What remains is Python: about 0.3-0.5 ms per call
-(``benchmarks/README.md``, step_control.py).
+:func:`~._kernels.split_run_pair`), and a run that fits in one chunk takes its companions in the same call
+(:meth:`~.driver.FixedStepSolver.advance_checked`), stopping at the samples between output times when they are
+not output times. The bookkeeping is compiled too: the rate bound, the check's plan (its samples, the
+companions' steps and ratios: :func:`~.richardson_check.check_plan`), the distances of the runs, the estimate
+with its observed order and the round-off test. What remains is about 0.2 ms of Python per call; the compiled
+work of the probe (0.06-0.4 of the run's steps) and of the companions (:math:`1/c + 1/(c c_2)`, 0.3-0.55) is the
+price of the promise (``benchmarks/README.md``, step_control.py).
 
 The timed probes also give the cost per step: a run estimated to take longer than
 ``options["slow_run_warning_seconds"]`` gives a ``UserWarning`` before it starts
@@ -260,7 +263,8 @@ class ErrorTarget:
         cached = getattr(self, "_rates_of", None)
         if cached is None or cached[0] is not problem:
             wmax_b = _orbit_rates(problem)
-            members = np.sort(np.argsort(wmax_b)[::-1][: min(PROBE_MEMBERS, problem.B)])
+            members = (np.arange(problem.B) if problem.B <= PROBE_MEMBERS
+                       else np.sort(np.argsort(wmax_b)[::-1][:PROBE_MEMBERS]))
             cached = self._rates_of = (problem, wmax_b, members)
         return cached[1:]
 
