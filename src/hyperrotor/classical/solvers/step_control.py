@@ -74,7 +74,7 @@ compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run
 (:meth:`~.driver.FixedStepSolver.advance_checked`), stopping at the samples between output times when they are
 not output times. The bookkeeping is compiled too: the rate bound, the check's plan (its samples, the
 companions' steps and ratios: :func:`~.richardson_check.check_plan`), the distances of the runs, the estimate
-with its observed order and the round-off test. What remains is about 0.2 ms of Python per call; the compiled
+with its observed order and the round-off test. What remains is 0.2-0.3 ms of Python per call; the compiled
 work of the probe (0.06-0.4 of the run's steps) and of the companions (:math:`1/c + 1/(c c_2)`, 0.3-0.55) is the
 price of the promise (``benchmarks/README.md``, step_control.py).
 
