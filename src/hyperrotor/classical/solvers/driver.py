@@ -252,30 +252,32 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
     flows = max(1, B * fps)  # elementary flows per step, whole ensemble
     rate = SECONDS_PER_FLOW.get(key)
     first = FIRST_CHUNK_FLOWS if rate is None else max(FIRST_CHUNK_FLOWS, target / rate)
+    # (one call when the run, and the companions that call would advance too, fit in one chunk)
+    beside = check.planned_steps * fps if check is not None and not problem.with_attitude else 0
     if specs:
         cap = max(1, min(EVENT_CHUNK_STEPS, int(first // flows)))
     else:
-        cap = steps if steps * flows <= first else max(1, int(first // flows))
+        cap = steps if steps * flows + beside <= first else max(1, int(first // flows))
     if not specs and cap >= steps and (check is None or check.out_idx is not None or not problem.with_attitude):
-        # one call, no chunk grid: the run (and the check's companions beside it, their flows in its idle time)
+        # one call, no chunk grid: the run (without attitude, the check's companions in the same call)
         t_start = time.perf_counter()
+        samples = None  # the run's and the companions' states at the check's samples
         if check is not None and not problem.with_attitude:
-            Ls, Lf = _checked_run(solver, problem, t, nsub, hs, check)
+            Ls, samples = _checked_run(solver, problem, t, nsub, hs, check)
             Ts = None
         else:
             Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
             if Ts is not None:  # the start exactly (the attitude's shift correction rounds at t[0] too), as in chunks
                 Ts[:, 0] = problem.T0
-        learn(key, time.perf_counter() - t_start, steps * flows)
+        learn(key, time.perf_counter() - t_start, steps * flows + (beside if samples is not None else 0))
         check_finite(Ls, t, problem)
         stats["chunks"] = 1
         if bar is not None:
             bar.update(steps * B)
-        if check is not None:
-            if Ts is None:
-                check.judge(check.marks.size, *Lf)
-            else:  # (samples at output times)
-                check.update(check.marks.size, Ls[check.members][:, check.out_idx])
+        if samples is not None:
+            check.judge(check.marks.size, *samples)
+        elif check is not None:  # (with attitude: samples at output times, companions after the run)
+            check.update(check.marks.size, Ls[check.members][:, check.out_idx])
         return Ls, Ts, t.size
     return _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key,
                    bar, stats, check)

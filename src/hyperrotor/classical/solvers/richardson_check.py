@@ -105,9 +105,9 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
     ``marks``: global step indices of the samples, every ``spacing`` steps and the run's end (a last gap
     shorter than half a spacing is merged). When the steps per interval are equal and divide ``spacing``,
     the samples are every stride-th output time instead (``out_idx`` their output indices, else empty: the
-    run needs no extra stops and gives them with its outputs). ``grid``: the start and their times. ``nc``, ``nc2``: the
-    companions' steps per segment between samples (``finer``: twice and four times the run's; else the
-    run's divided by ``c``, and that by ``c2``). ``r``, ``r2``: the smallest step ratios over the segments
+    run needs no extra stops and gives them with its outputs). ``grid``: the start and their times. ``nc``,
+    ``nc2``: the companions' steps per segment between samples (``finer``: twice and four times the run's;
+    else the run's divided by ``c``, and that by ``c2``). ``r``, ``r2``: the smallest step ratios over the segments
     (companion / largest run step, second / first companion; ``finer``: smallest run step / companion, first
     / second companion), so that the estimate errs on the safe side. ``steps``: the companions' steps together
     (per member). Compiled (one call per checked run).
