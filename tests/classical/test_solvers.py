@@ -634,7 +634,7 @@ def test_roundoff_amplification_is_the_growth_beyond_linear():
                                              ("moser-veselov", ())])
 @pytest.mark.parametrize("grid", ["even", "uneven"])
 def test_rtol_runs_in_one_call_and_in_chunks_agree(method, grid, members, rng, monkeypatch):
-    """An rtol run whose work fits in one call runs with its check's companions in that call (samples at
+    """An rtol run whose work fits in one chunk is one call, its check's companions the next (samples at
     output times, or between them with the run stopping there); cut into chunks, the check follows the
     run chunk by chunk. Same step, same numbers (bit for bit), same work and the same decision (the
     estimates differ by the scales of the distances only, which grow with the samples seen)."""

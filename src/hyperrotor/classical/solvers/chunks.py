@@ -25,7 +25,7 @@ from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError
 
-__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "refuse_steps", "step_times", "check_finite", "cost_key",
+__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "refuse_steps", "step_times", "stops", "check_finite", "cost_key",
            "learn", "seconds_per_flow", "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
 
 #: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
@@ -98,6 +98,15 @@ def step_times(t: np.ndarray, cs: np.ndarray, nsub: np.ndarray, s: np.ndarray) -
     k = np.clip(np.searchsorted(cs, s, side="right") - 1, 0, nsub.size - 1)
     out = t[k] + (t[k + 1] - t[k]) * ((s - cs[k]) / nsub[k])
     return np.where(s == cs[k + 1], t[k + 1], out)
+
+
+def stops(t: np.ndarray, cs: np.ndarray, nsub: np.ndarray, h: np.ndarray, points: np.ndarray) -> tuple:
+    """A run of ``nsub[k]`` steps of ``h[k]`` per interval of ``t`` (``cs``: cumulative step counts) that stops at
+    the global step indices ``points`` (increasing, its start first): ``(times of the points, steps between
+    them, their step lengths)``. Every piece lies inside one interval and takes that interval's step, so the
+    pieces do the run's arithmetic (output times among the points are hit exactly)."""
+    return (step_times(t, cs, nsub, points), np.diff(points).astype(np.int64),
+            h[np.searchsorted(cs, points[:-1], side="right") - 1])
 
 
 def check_finite(Ls: np.ndarray, grid: np.ndarray, problem: Problem) -> None:
@@ -191,9 +200,7 @@ def advance_chunked(solver, problem: Problem, L0: np.ndarray, grid: np.ndarray, 
         marks = cs[outs]
         if marks.size == 0 or marks[-1] != s1:
             marks = np.append(marks, s1)
-        points = np.concatenate([[s0], marks])
-        Ls, carry, elapsed = advance(Lc, step_times(grid, cs, nsub, points), np.diff(points).astype(np.int64),
-                                     h[np.searchsorted(cs, points[:-1], side="right") - 1], carry)
+        Ls, carry, elapsed = advance(Lc, *stops(grid, cs, nsub, h, np.concatenate([[s0], marks])), carry)
         out[:, outs] = Ls[:, 1:outs.size + 1]
         Lc = Ls[:, -1]
         s0 = s1

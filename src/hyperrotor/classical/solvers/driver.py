@@ -7,7 +7,7 @@ Chunks
     compiled work (the chunk size adapts to the measured time of the previous chunk; the
     first one is sized from the measured cost per flow of the previous run of the same
     kind, so a run expected to be shorter than one chunk is one call, without copies; with
-    ``rtol`` that call also advances the check's companions, :meth:`FixedStepSolver.advance_checked`).
+    ``rtol`` and no attitude the check's companions follow right after it, before Python looks at the run).
     Between chunks Python runs its signal handlers, so Ctrl-C raises
     :class:`KeyboardInterrupt` within about a chunk's time, updates the progress bar
     (tqdm) and checks that the state is finite. Every chunk takes the run's own step
@@ -43,7 +43,7 @@ from hyperrotor._options import options
 from hyperrotor._parallel import progress_bar
 
 from .base import Problem, RunResult, Solver, nsub_for, step_lengths
-from .chunks import FIRST_CHUNK_FLOWS, SECONDS_PER_FLOW, Work, check_finite, cost_key, learn, step_times
+from .chunks import FIRST_CHUNK_FLOWS, SECONDS_PER_FLOW, Work, check_finite, cost_key, learn, stops
 from .richardson_check import CheckFailed
 
 __all__ = ["FixedStepSolver", "run_fixed_step", "EventSpec", "event_specs", "DenseOutput", "dense_states"]
@@ -97,17 +97,6 @@ class FixedStepSolver(Solver):
         b, _ = self.advance(problem, Lb, None, t, nb, members=members, carry=carries[1])
         self.last_carries = (ca, self.last_carry)
         return a, b
-
-    def advance_checked(self, problem: Problem, t: np.ndarray, nsub: np.ndarray, h: np.ndarray, members: np.ndarray,
-                        tc: np.ndarray, nc: np.ndarray, nc2: np.ndarray) -> tuple:
-        """A whole run without attitude and the step control's check beside it: ``(L (B, K, n), L1, L2)``,
-        the run of every member from ``problem.L0`` on grid ``t`` (``nsub[k]`` steps of ``h[k]``) and
-        the two companion runs of ``members`` on grid ``tc`` (``nc[k]``, ``nc2[k]`` equal steps).
-        By default :meth:`advance` and :meth:`advance_pair`; a solver may run all in one compiled call."""
-        L, _ = self.advance(problem, problem.L0, None, t, nsub, h=h)
-        L0 = problem.L0[members]
-        L1, L2 = self.advance_pair(problem, L0, L0, tc, nc, nc2, members=members)
-        return L, L1, L2
 
     def flows_per_step(self, problem: Problem) -> int:
         """Rough cost unit per step and member (used for chunk sizes and budgets)."""
@@ -284,19 +273,19 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
 
 
 def _checked_run(solver, problem, t, nsub, hs, check):
-    """The whole run and the check's companions in one call (:meth:`FixedStepSolver.advance_checked`):
-    ``(states at the output times, (run, first and second companion at the samples))``. The run stops at the
-    output times and at the samples between them."""
+    """The whole run (no attitude) in one call, then the check's two companions in one call
+    (:meth:`FixedStepSolver.advance_pair`): ``(states at the output times, (run, first and second companion at
+    the samples))``. The run stops at the output times and at the samples between them."""
     cs = check.cs
     if check.out_idx is not None:
         grid, ns, h, at_out, at_samples = t, nsub, hs, None, check.out_idx
     else:
         points = np.union1d(cs, check.marks)
-        grid = step_times(t, cs, nsub, points)
-        ns = np.diff(points)
-        h = hs[np.searchsorted(cs, points[:-1], side="right") - 1]
+        grid, ns, h = stops(t, cs, nsub, hs, points)
         at_out, at_samples = np.searchsorted(points, cs), np.searchsorted(points, check.marks)
-    L, L1, L2 = solver.advance_checked(problem, grid, ns, h, check.members, check.grid, check.nc, check.nc2)
+    L, _ = solver.advance(problem, problem.L0, None, grid, ns, h=h)
+    L0 = problem.L0[check.members]
+    L1, L2 = solver.advance_pair(problem, L0, L0, check.grid, check.nc, check.nc2, members=check.members)
     companion_steps = int(check.nc.sum() + check.nc2.sum()) * check.members.size
     check.work.add(companion_steps)
     if check.bar is not None:
@@ -329,10 +318,7 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
         outs = np.arange(np.searchsorted(cs, s0, side="right"), np.searchsorted(cs, s1, side="right"))
         new = np.arange(np.searchsorted(samples, s0, side="right"), np.searchsorted(samples, s1, side="right"))
         if specs:  # every step point
-            svals = np.arange(s0, s1 + 1)
-            grid = step_times(t, cs, nsub, svals)
-            ns = np.ones(grid.size - 1, dtype=np.int64)
-            starts = svals[:-1]
+            grid, ns, h = stops(t, cs, nsub, hs, np.arange(s0, s1 + 1))
             out_pos = cs[outs] - s0
             sample_pos = samples[new] - s0
         else:  # the chunk's start, the output times and samples inside it, and its end
@@ -340,13 +326,10 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
             if marks.size == 0 or marks[-1] != s1:
                 marks = np.append(marks, s1)
             points = np.concatenate([[s0], marks])
-            grid = step_times(t, cs, nsub, points)
-            ns = np.diff(points).astype(np.int64)
-            starts = points[:-1]
+            grid, ns, h = stops(t, cs, nsub, hs, points)
             out_pos = np.searchsorted(points, cs[outs])
             sample_pos = np.searchsorted(points, samples[new])
-        Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=hs[np.searchsorted(cs, starts, side="right") - 1],
-                                carry=carry)
+        Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=h, carry=carry)
         carry = solver.last_carry
         check_finite(Ls, grid, problem)
         if outs.size:

@@ -19,7 +19,7 @@ from hyperrotor._jit import jit
 
 from ._kernels import raise_scales, relative_difference, row_scales
 from .base import Problem, step_lengths
-from .chunks import Work, advance_chunked, advance_pair_chunked, refuse_steps, step_times
+from .chunks import Work, advance_chunked, advance_pair_chunked, refuse_steps, stops
 
 __all__ = ["RichardsonCheck", "CheckFailed", "observed_order", "relative_difference", "SAFETY", "ACCEPT",
            "ASYMPTOTIC", "COMPANION_RATIO"]
@@ -339,8 +339,8 @@ class RichardsonCheck:
     def judge(self, upto: int, Lf: np.ndarray, L1: np.ndarray, L2: np.ndarray) -> None:
         """The samples ``marks[j:upto]`` reached by the run (``Lf``) and its two companions (``L1``, ``L2``;
         all ``(members, upto - j, n)``): the estimate, and :class:`CheckFailed` when it is over the target
-        (:meth:`update` advances the companions itself; the driver's one-call runs advance them beside the
-        run, :meth:`~.driver.FixedStepSolver.advance_checked`)."""
+        (:meth:`update` advances the companions itself; the driver's one-call runs advance them right after
+        the run)."""
         if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
         self.j = upto
@@ -448,10 +448,8 @@ class RichardsonCheck:
         """The check without the run: the checked members advance on their own to every sample."""
         problem, t, cs, nsub = self.problem, self.problem.t, self.cs, self.nsub
         points = np.union1d(cs, np.concatenate([[0], self.marks]))
-        grid = step_times(t, cs, nsub, points)
-        hs = step_lengths(t, nsub)
-        h = hs[np.clip(np.searchsorted(cs, points[:-1], side="right") - 1, 0, nsub.size - 1)]
-        L, _ = advance_chunked(self.solver, problem, problem.L0[self.members], grid, np.diff(points), h,
+        grid, ns, h = stops(t, cs, nsub, step_lengths(t, nsub), points)
+        L, _ = advance_chunked(self.solver, problem, problem.L0[self.members], grid, ns, h,
                                members=self.members, work=self.work, bar=self.bar)
         pos = np.searchsorted(points, self.marks)
         self.update(self.marks.size, L[:, pos])

@@ -71,8 +71,7 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
 Cost. The probe's two runs (steps ``h`` and ``2h``) and the check's two companions each advance in one
 compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run both in
 :func:`~._kernels.split_run_pair`), and a run that fits in one chunk takes its companions in the same call
-(:meth:`~.driver.FixedStepSolver.advance_checked`), stopping at the samples between output times when they are
-not output times. The bookkeeping is compiled too: the rate bound, the check's plan (its samples, the
+(right after it, the run stopping at the samples between output times when they are not output times). The bookkeeping is compiled too: the rate bound, the check's plan (its samples, the
 companions' steps and ratios: :func:`~.richardson_check.check_plan`), the distances of the runs, the estimate
 with its observed order and the round-off test. What remains is 0.2-0.3 ms of Python per call; the compiled
 work of the probe (0.06-0.4 of the run's steps) and of the companions (:math:`1/c + 1/(c c_2)`, 0.3-0.55) is the
@@ -142,7 +141,7 @@ def rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
 def _orbit_rates(problem: Problem) -> np.ndarray:
     """Per-member bound on the rates reachable on the orbit (module docstring, step 1)."""
     m = problem.moments
-    wmax_b = _free_orbit_rates(m, problem.L0, *_triples(problem.N))
+    wmax_b = _coupled_rates(_plane_rate_bounds(m, problem.L0), m, *_triples(problem.N))
     if problem.kick:
         tq = float(np.max(np.abs(problem.torque) / m))
         wmax_b = np.maximum(wmax_b, max(tq * problem.span, tq ** 0.5))
@@ -150,28 +149,19 @@ def _orbit_rates(problem: Problem) -> np.ndarray:
 
 
 @jit
-def _free_orbit_rates(moments, L0, tc, ta, tb):  # pragma: no cover - jitted
-    r"""Per row of ``L0``: the largest of the plane rate bounds :math:`W_a = \min(|L|, \sqrt{2EI_a})/I_a`
-    (:func:`rate_bound`) and the linearised frequencies :math:`W_c\sqrt{|(I_c-I_a)(I_c-I_b)|/(I_aI_b)}` of
-    the coupled triples ``(tc, ta, tb)`` (:func:`_triples`). Compiled (once per call of the step control)."""
-    B, n = L0.shape
+def _coupled_rates(W, moments, tc, ta, tb):  # pragma: no cover - jitted
+    r"""Per row of the plane rate bounds ``W (rows, n)`` (:func:`_plane_rate_bounds`): the largest of them and of
+    the linearised frequencies :math:`W_c\sqrt{|(I_c-I_a)(I_c-I_b)|/(I_aI_b)}` of the coupled triples
+    ``(tc, ta, tb)`` (:func:`_triples`). Compiled (once per call of the step control)."""
+    B, n = W.shape
     out = np.zeros(B)
-    W = np.empty(n)
     for b in range(B):
-        C2 = 0.0
-        E2 = 0.0
-        for a in range(n):
-            x = L0[b, a] * L0[b, a]
-            C2 += x
-            E2 += x / moments[a]
-        C = math.sqrt(C2)
         w = 0.0
         for a in range(n):
-            W[a] = min(C, math.sqrt(E2 * moments[a])) / moments[a]
-            w = max(w, W[a])
+            w = max(w, W[b, a])
         for i in range(tc.size):
             Ic, Ia, Ib = moments[tc[i]], moments[ta[i]], moments[tb[i]]
-            w = max(w, W[tc[i]] * math.sqrt(abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib)))
+            w = max(w, W[b, tc[i]] * math.sqrt(abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib)))
         out[b] = w
     return out
 
