@@ -124,11 +124,28 @@ class UnreachableAccuracyError(ValueError):
 
 def _plane_rate_bounds(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
     r""":math:`\min(|L|, \sqrt{2EI_a})/I_a` per row of ``L0`` (rows, n) and plane ``a``: no rate of plane
-    ``a`` on the orbit exceeds it (from the Casimir :math:`|L|^2` and the energy)."""
-    L2 = L0 * L0
-    C = np.sqrt(L2.sum(axis=1, keepdims=True))
-    E2 = (L2 / moments).sum(axis=1, keepdims=True)
-    return np.minimum(C, np.sqrt(E2 * moments)) / moments
+    ``a`` on the orbit exceeds it (from the Casimir :math:`|L|^2` and the energy). ``moments``: ``(n,)`` or one
+    row per row of ``L0``."""
+    return _plane_rate_bound_rows(np.broadcast_to(moments, L0.shape), L0)
+
+
+@jit
+def _plane_rate_bound_rows(moments, L0):  # pragma: no cover - jitted
+    """:func:`_plane_rate_bounds` with one row of moments per row of ``L0`` (compiled: the step control asks
+    for it on every call)."""
+    B, n = L0.shape
+    W = np.empty((B, n))
+    for b in range(B):
+        C2 = 0.0
+        E2 = 0.0
+        for a in range(n):
+            x = L0[b, a] * L0[b, a]
+            C2 += x
+            E2 += x / moments[b, a]
+        C = math.sqrt(C2)
+        for a in range(n):
+            W[b, a] = min(C, math.sqrt(E2 * moments[b, a])) / moments[b, a]
+    return W
 
 
 def rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
