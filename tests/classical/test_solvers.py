@@ -487,18 +487,32 @@ def _random_generic5(seed):
     return moments, w0 / np.abs(w0).max()
 
 
+@pytest.mark.parametrize("spin", [1.0, 0.2], ids=["max-omega-1", "max-omega-0.2"])
 @pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-10])
-def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol):
+def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol, spin, monkeypatch):
     """The whole-run bound over random generic 5D bodies, T = 20, against the same splitting at a
-    step 40x shorter, compensated (its own error is ~1e-13 relative, far below the rtols here)."""
+    step 40x shorter, compensated (its own error is ~1e-13 relative, far below the rtols here). Spinning
+    five times slower, the probe covers the whole run, and checks take its two runs as companions."""
+    from hyperrotor.classical.solvers import richardson_check
+
+    given = []
+    init = richardson_check.RichardsonCheck.__init__
+
+    def spy(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        given.append(self.given is not None)
+
+    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
     t = np.linspace(0.0, 20.0, 41)
     worst = 0.0
     for seed in range(20):
         moments, w0 = _random_generic5(1000 + seed)
+        w0 = spin * w0
         Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, options={"compensated": True}).L
         tr = hr.simulate(moments, w0, t, rtol=rtol)
         worst = max(worst, np.abs(tr.L - Lref).max() / np.abs(Lref).max() / rtol)
     assert worst <= 1.0, worst
+    assert any(given) or spin == 1.0, given
 
 
 def test_a_chaotic_orbit_that_amplifies_round_off_is_rerun_in_compensated_storage():
@@ -595,6 +609,117 @@ def test_check_plan_samples_the_run_and_errs_on_the_safe_side(K, uneven, steps_p
     tol = 1e-12 if hs.max() - hs.min() <= 1e-12 * hs.max() else 0.0  # (one step length: its round-off)
     assert r <= min(ratios) * (1 + tol) and r2 <= min(ratios2) * (1 + tol)
     assert r == pytest.approx(min(ratios), rel=1e-11) and r2 == pytest.approx(min(ratios2), rel=1e-11)
+
+
+@settings(max_examples=300, deadline=None)
+@given(K=st.integers(2, 150), uneven=st.booleans(), spacing=st.floats(0.05, 30.0), h=st.floats(0.01, 10.0),
+       backwards=st.booleans(), seed=st.integers(0, 2**31))
+def test_probe_samples_cover_the_run_at_output_times(K, uneven, spacing, h, backwards, seed):
+    """Where a probe of the whole run samples it (compiled), from its definition: increasing output indices
+    ending at the last; each segment the longest stretch of output intervals within ``spacing`` (or one longer
+    interval), the last one possibly with a tail shorter than ``spacing / 2`` merged in; the fewest even number
+    of steps of at most ``h`` per segment, and the longest of those steps."""
+    from hyperrotor.classical.solvers.step_control import probe_samples
+
+    rng = np.random.default_rng(seed)
+    t = np.cumsum(np.concatenate([[0.0], rng.uniform(0.05, 3.0, K - 1) if uneven else np.full(K - 1, 0.7)]))
+    t = -t if backwards else t
+    idx, grid, ms, longest = probe_samples(t, spacing, h)
+    assert idx[-1] == K - 1 and idx[0] >= 1 and np.all(np.diff(idx) > 0)
+    assert grid[0] == t[0] and np.array_equal(grid[1:], t[idx])
+    lengths = np.abs(np.diff(grid))
+    starts = np.concatenate([[0], idx[:-1]])
+    for i, (a, b) in enumerate(zip(starts, idx)):
+        first = abs(t[a + 1] - t[a])
+        if i < idx.size - 1:
+            assert lengths[i] <= spacing or b == a + 1
+            assert abs(t[b + 1] - t[a]) > spacing  # (the longest stretch)
+        else:
+            assert lengths[i] < max(spacing, first) + 0.5 * spacing * (1 + 1e-12)
+    assert np.all(ms % 2 == 0) and np.all(ms >= 2)
+    assert np.all(lengths / ms <= h * (1 + 1e-9))
+    assert np.all((ms == 2) | (lengths / np.maximum(ms - 2, 1) > h * (1 - 1e-9)))  # the fewest such steps
+    assert longest == pytest.approx((lengths / ms).max(), rel=1e-15)
+
+
+@settings(max_examples=200, deadline=None)
+@given(K=st.integers(3, 80), steps_per=st.floats(0.3, 20.0), stride=st.integers(1, 9), seed=st.integers(0, 2**31))
+def test_probe_ratio_is_the_smallest_step_ratio_over_the_segments(K, steps_per, stride, seed):
+    """The ratio of the probe's step to the run's longest step, per segment between the probe's samples
+    (compiled), against its definition with NumPy."""
+    from hyperrotor.classical.solvers.base import nsub_for
+    from hyperrotor.classical.solvers.richardson_check import probe_ratio
+
+    rng = np.random.default_rng(seed)
+    t = np.cumsum(np.concatenate([[0.0], rng.uniform(0.2, 2.0, K - 1)]))
+    nsub = nsub_for(t, 0.7 / steps_per)
+    idx = np.unique(np.append(np.arange(stride, K, stride), K - 1))
+    ms = 2 * rng.integers(1, 6, idx.size)
+    hs = np.diff(t) / nsub
+    expected = min((t[b] - t[a]) / m / hs[a:b].max() for a, b, m in zip(np.r_[0, idx[:-1]], idx, ms))
+    assert probe_ratio(t, nsub, idx, ms) == pytest.approx(expected, rel=1e-14)
+
+
+@pytest.mark.parametrize("case, T", [("top", 20.0), ("quartet", 20.0), ("top", 5.0)])
+@pytest.mark.parametrize("rtol", [1e-6, 1e-9, 1e-12])
+def test_a_probe_of_the_whole_run_is_the_checks_companions(case, T, rtol, monkeypatch):
+    """A run short enough for the probe to cover it (100 output intervals; T = 20: 20 radians of the fastest
+    rate or less) is probed at output times, and the check takes the probe's two runs as its companions when
+    their steps are 2 to PROBE_RATIO times the run's: no companion step (work: the run and the probes), the
+    companions are the runs the check would advance (bit for bit, same steps, same arithmetic), and the bound
+    holds against the closed form. At T = 5 the run's steps are too short for them: companions of its own."""
+    from hyperrotor.classical.solvers import richardson_check, step_control
+    from hyperrotor.classical.solvers.richardson_check import ACCEPT, PROBE_RATIO
+
+    seen, probe_work = [], []
+    init, pair = richardson_check.RichardsonCheck.__init__, step_control.advance_pair_chunked
+
+    def spy(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        seen.append(self)
+
+    def counted(solver, problem, La, Lb, grid, na, nb, **kwargs):
+        probe_work.append((int(na.sum()) + int(nb.sum())) * La.shape[0])
+        return pair(solver, problem, La, Lb, grid, na, nb, **kwargs)
+
+    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
+    monkeypatch.setattr(step_control, "advance_pair_chunked", counted)
+    t = np.linspace(0.0, T, 101)
+    if case == "top":
+        body, w0 = RigidBody(MOM3), W3
+        ref = euler_poinsot(MOM3, W3, t)
+    else:
+        w0 = np.random.default_rng(2026).normal(size=10)
+        w0 /= np.abs(w0).max()
+        body, ref = RigidBody(Inertia.quartet(0.5)), quartet_solution(0.5, w0, t)
+    tr = hr.simulate(body, w0, t, rtol=rtol)
+    assert np.abs(tr.omega - ref).max() <= rtol * np.abs(ref).max()
+    check = seen[-1]
+    assert check.err.max() <= ACCEPT * rtol and tr.stats["reruns"] == 0
+    if T == 5.0:
+        assert check.given is None and check.planned_steps > 0
+        return
+    assert check.given is not None and check.planned_steps == 0 and 2.0 <= check.r <= PROBE_RATIO
+    assert check.out_idx is not None and check.r2 == 2.0
+    assert tr.stats["work"] == tr.stats["steps"] + sum(probe_work)
+    L0 = check.problem.L0[check.members]
+    solver = check.solver
+    comp = solver._state["compensated"]
+    solver._state["compensated"] = False  # (the probe's arithmetic: plain until the run's step is known)
+    y1, y2 = solver.advance_pair(check.problem, L0, L0, check.grid, check.nc, check.nc2, members=check.members)
+    solver._state["compensated"] = comp
+    assert np.array_equal(y1, check.given[0]) and np.array_equal(y2, check.given[1])
+    hs = np.diff(check.grid) / check.nc
+    assert check.r == pytest.approx(min(hs[i] / tr.stats["dt"] for i in range(hs.size)), rel=1e-12)
+    from hyperrotor.classical.solvers import chunks, driver  # the same run cut into chunks: the same check
+    monkeypatch.setattr(driver, "FIRST_CHUNK_FLOWS", 2000)
+    monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", 2000)
+    probe_work.clear()
+    with hr.options(chunk_seconds=1e-6):
+        cut = hr.simulate(body, w0, t, rtol=rtol)
+    assert cut.stats["chunks"] > 1 and seen[-1].given is not None
+    np.testing.assert_array_equal(cut.L, tr.L)
+    assert cut.stats["work"] == tr.stats["work"] == tr.stats["steps"] + sum(probe_work)
 
 
 @pytest.mark.parametrize("finer", [False, True], ids=["coarser", "finer"])

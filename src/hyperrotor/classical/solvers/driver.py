@@ -7,7 +7,7 @@ Chunks
     compiled work (the chunk size adapts to the measured time of the previous chunk; the
     first one is sized from the measured cost per flow of the previous run of the same
     kind, so a run expected to be shorter than one chunk is one call, without copies; with
-    ``rtol`` and no attitude the check's companions follow right after it, before Python looks at the run).
+    ``rtol`` it stops at the check's samples too, and the check follows).
     Between chunks Python runs its signal handlers, so Ctrl-C raises
     :class:`KeyboardInterrupt` within about a chunk's time, updates the progress bar
     (tqdm) and checks that the state is finite. Every chunk takes the run's own step
@@ -241,57 +241,41 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
     flows = max(1, B * fps)  # elementary flows per step, whole ensemble
     rate = SECONDS_PER_FLOW.get(key)
     first = FIRST_CHUNK_FLOWS if rate is None else max(FIRST_CHUNK_FLOWS, target / rate)
-    # (one call when the run, and the companions that call would advance too, fit in one chunk)
-    beside = check.planned_steps * fps if check is not None and not problem.with_attitude else 0
     if specs:
         cap = max(1, min(EVENT_CHUNK_STEPS, int(first // flows)))
     else:
-        cap = steps if steps * flows + beside <= first else max(1, int(first // flows))
+        cap = steps if steps * flows <= first else max(1, int(first // flows))
     if not specs and cap >= steps and (check is None or check.out_idx is not None or not problem.with_attitude):
-        # one call, no chunk grid: the run (without attitude, the check's companions in the same call)
+        # one call, no chunk grid: the run (stopping at the check's samples between output times), then the check
         t_start = time.perf_counter()
-        samples = None  # the run's and the companions' states at the check's samples
-        if check is not None and not problem.with_attitude:
-            Ls, samples = _checked_run(solver, problem, t, nsub, hs, check)
+        if check is not None and check.out_idx is None:
+            Ls, Lf = _sampled_run(solver, problem, t, nsub, hs, check)
             Ts = None
         else:
             Ls, Ts = solver.advance(problem, problem.L0, problem.T0, t, nsub, h=hs)
             if Ts is not None:  # the start exactly (the attitude's shift correction rounds at t[0] too), as in chunks
                 Ts[:, 0] = problem.T0
-        learn(key, time.perf_counter() - t_start, steps * flows + (beside if samples is not None else 0))
+            Lf = Ls[check.members][:, check.out_idx] if check is not None else None
+        learn(key, time.perf_counter() - t_start, steps * flows)
         check_finite(Ls, t, problem)
         stats["chunks"] = 1
         if bar is not None:
             bar.update(steps * B)
-        if samples is not None:
-            check.judge(check.marks.size, *samples)
-        elif check is not None:  # (with attitude: samples at output times, companions after the run)
-            check.update(check.marks.size, Ls[check.members][:, check.out_idx])
+        if check is not None:
+            check.update(check.marks.size, Lf)
         return Ls, Ts, t.size
     return _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key,
                    bar, stats, check)
 
 
-def _checked_run(solver, problem, t, nsub, hs, check):
-    """The whole run (no attitude) in one call, then the check's two companions in one call
-    (:meth:`FixedStepSolver.advance_pair`): ``(states at the output times, (run, first and second companion at
-    the samples))``. The run stops at the output times and at the samples between them."""
+def _sampled_run(solver, problem, t, nsub, hs, check):
+    """The whole run (no attitude) in one call that stops at the output times and at the check's samples
+    between them: ``(states at the output times, the checked members' states at the samples)``."""
     cs = check.cs
-    if check.out_idx is not None:
-        grid, ns, h, at_out, at_samples = t, nsub, hs, None, check.out_idx
-    else:
-        points = np.union1d(cs, check.marks)
-        grid, ns, h = stops(t, cs, nsub, hs, points)
-        at_out, at_samples = np.searchsorted(points, cs), np.searchsorted(points, check.marks)
+    points = np.union1d(cs, check.marks)
+    grid, ns, h = stops(t, cs, nsub, hs, points)
     L, _ = solver.advance(problem, problem.L0, None, grid, ns, h=h)
-    L0 = problem.L0[check.members]
-    L1, L2 = solver.advance_pair(problem, L0, L0, check.grid, check.nc, check.nc2, members=check.members)
-    companion_steps = int(check.nc.sum() + check.nc2.sum()) * check.members.size
-    check.work.add(companion_steps)
-    if check.bar is not None:
-        check.bar.update(companion_steps)
-    Lf = L[check.members][:, at_samples]
-    return (L if at_out is None else L[:, at_out]), (Lf, L1[:, 1:], L2[:, 1:])
+    return L[:, np.searchsorted(points, cs)], L[check.members][:, np.searchsorted(points, check.marks)]
 
 
 def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key, bar, stats,

@@ -11,7 +11,7 @@ amplifies round-off towards ``rtol`` (:meth:`RichardsonCheck._check_roundoff`).
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -21,7 +21,7 @@ from ._kernels import raise_scales, relative_difference, row_scales
 from .base import Problem, step_lengths
 from .chunks import Work, advance_chunked, advance_pair_chunked, refuse_steps, stops
 
-__all__ = ["RichardsonCheck", "CheckFailed", "observed_order", "relative_difference", "SAFETY", "ACCEPT",
+__all__ = ["RichardsonCheck", "CheckFailed", "ProbeRuns", "observed_order", "relative_difference", "SAFETY", "ACCEPT",
            "ASYMPTOTIC", "COMPANION_RATIO"]
 
 _EPS = float(np.finfo(float).eps)
@@ -37,6 +37,8 @@ COMPANION_ASYMPTOTIC = 1e-3
 COMPANION_RATIO = 4.0
 #: the second companion's step is c2 >= 2 times the first's, as long as its own error stays below this
 SECOND_COMPANION_ASYMPTOTIC = 3e-2
+#: the probe's two runs of the whole run are the companions when their steps are 2 to this many times the run's
+PROBE_RATIO = 8.0
 #: round-off of plain arithmetic per run: this times eps sqrt(flows) times the orbit's amplification ...
 ROUNDOFF_FACTOR = 4.0
 #: ... above this share of the accepted error switches the run to compensated storage
@@ -266,6 +268,41 @@ def roundoff_amplification(t, d1, flows):  # pragma: no cover - jitted
     return max(1.0, env / e0 / (tend / t[i0]))
 
 
+@jit
+def probe_ratio(t, nsub, idx, ms):  # pragma: no cover - jitted
+    """The smallest ratio, over the segments between the output times ``t[idx]`` (``t[0]`` first), of the
+    probe's step there (``ms[i]`` equal steps) to the longest step of a run of ``nsub[k]`` steps per interval
+    (compiled)."""
+    r = math.inf
+    prev = 0
+    for i in range(idx.size):
+        hmax = 0.0
+        for k in range(prev, idx[i]):
+            hmax = max(hmax, abs((t[k + 1] - t[k]) / nsub[k]))
+        r = min(r, abs(t[idx[i]] - t[prev]) / ms[i] / hmax)
+        prev = idx[i]
+    return r
+
+
+class ProbeRuns(NamedTuple):
+    """The step control's probe of the whole run, sampled at the output times ``problem.t[idx]``: ``y1`` with
+    ``ms[i]`` equal steps per segment, ``y2`` with half as many (``(members, idx.size + 1, n)``, the start
+    first). A run whose steps are 2 to :data:`PROBE_RATIO` times shorter than ``y1``'s takes them as its check's
+    companions (:class:`RichardsonCheck`): the check then costs no integration step."""
+
+    problem: Any
+    idx: np.ndarray
+    ms: np.ndarray
+    y1: np.ndarray
+    y2: np.ndarray
+
+    @staticmethod
+    def usable(err: float, p: int) -> bool:
+        """Whether runs whose Richardson estimate was ``err`` (of ``y1``; order ``p``) are asymptotic enough
+        to be companions (the limits of the companions the check would choose itself; round-off is fine)."""
+        return err <= COMPANION_ASYMPTOTIC and err * (2.0 ** p - 1.0) <= SECOND_COMPANION_ASYMPTOTIC
+
+
 class CheckFailed(Exception):
     """Raised by :class:`RichardsonCheck` inside a run: re-run at step ``h`` (scaled units)."""
 
@@ -286,7 +323,7 @@ class RichardsonCheck:
     """
 
     def __init__(self, solver, problem: Problem, nsub: np.ndarray, control: Any, members: np.ndarray,
-                 work: Work, bar=None):
+                 work: Work, bar=None, probes: tuple = ()):
         self.solver, self.problem, self.control, self.members, self.work, self.bar = (
             solver, problem, control, members, work, bar)
         t = problem.t
@@ -296,6 +333,23 @@ class RichardsonCheck:
         self.cs, steps, h = run_steps(t, nsub)
         self.steps = steps
         self.h = h
+        self.moments = problem.moments
+        self.span = problem.span
+        self.j = 0
+        self.finer = False
+        self.given = None  # the companions' states at the samples (the start first), when the probe's runs
+        best, r = None, 0.0
+        for probe in probes:  # (the coarsest with steps 2 to PROBE_RATIO times the run's)
+            if probe.problem is problem:
+                rp = probe_ratio(t, nsub, probe.idx, probe.ms)
+                if r < rp <= PROBE_RATIO and rp >= 2.0:
+                    best, r = probe, rp
+        if best is not None:
+            self._samples(best.idx, t[np.concatenate(([0], best.idx))], r, 2.0)
+            self.nc, self.nc2 = best.ms, best.ms // 2
+            self.given = (best.y1, best.y2)
+            self.planned_steps = 0
+            return
         # the companion's ratio: as long as its own error stays asymptotic
         c = (COMPANION_ASYMPTOTIC / (SAFETY * control.rtol)) ** (1.0 / p)
         c = float(min(COMPANION_RATIO, max(2.0, c), max(2.0, math.sqrt(steps / 8.0))))  # short runs: smaller c
@@ -307,27 +361,33 @@ class RichardsonCheck:
             spacing = max(1, int(math.ceil(steps / CHECK_SAMPLES)))
         else:
             spacing = max(int(math.ceil(2 * c * c2)), int(math.ceil(steps / CHECK_SAMPLES)))
-        marks, out_idx, self.grid, self.nc, self.nc2, self.r, self.r2, companion_steps = check_plan(
+        marks, out_idx, grid, self.nc, self.nc2, r, r2, companion_steps = check_plan(
             t, nsub, self.cs, spacing, finer, c, c2)
-        self.tm = self.grid[1:]
-        self.marks = marks
-        self.out_idx = out_idx if out_idx.size else None  # output indices of the samples, if all are output times
+        self._samples(out_idx, grid, r, r2, marks)
         self.finer = finer
         self.planned_steps = companion_steps * len(members)
-        self.moments = problem.moments
         self.Lc = self.Lc2 = problem.L0[members]
         self.carry = self.carry2 = None
-        self.j = 0
-        self.Lmax, self.Wmax = row_scales(self.Lc[:, None, :], self.moments)
-        self.d1 = np.zeros(marks.size)  # run - first companion, relative, per sample
-        self.d2 = np.zeros(marks.size)  # first - second companion
-        self.err = np.zeros(marks.size)  # estimated error of the run at each sample
-        self.span = problem.span
+
+    def _samples(self, out_idx, grid, r, r2, marks=None) -> None:
+        """The samples (at the output times ``out_idx``, or at the run's steps ``marks``; ``grid``: their times,
+        the start first), the step ratios of the estimate and the arrays of the distances and estimates."""
+        self.grid, self.tm, self.r, self.r2 = grid, grid[1:], r, r2
+        self.out_idx = out_idx if out_idx.size else None  # output indices of the samples, if all are output times
+        self.marks = self.cs[out_idx] if marks is None else marks
+        S = self.marks.size
+        self.Lmax, self.Wmax = row_scales(self.problem.L0[self.members][:, None, :], self.moments)
+        self.d1 = np.zeros(S)  # run - first companion, relative, per sample
+        self.d2 = np.zeros(S)  # first - second companion
+        self.err = np.zeros(S)  # estimated error of the run at each sample
 
     def update(self, upto: int, Lf: np.ndarray) -> None:
         """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones."""
         j = self.j
         if upto <= j:
+            return
+        if self.given is not None:  # the probe's runs
+            self.judge(upto, Lf, self.given[0][:, j + 1:upto + 1], self.given[1][:, j + 1:upto + 1])
             return
         grid = self.grid[j:upto + 1]
         L1, L2, (self.carry, self.carry2) = advance_pair_chunked(

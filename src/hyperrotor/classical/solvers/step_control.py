@@ -34,6 +34,12 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    turn of the fastest reachable rate per step: on stiff bodies, moments over 12 decades, longer steps
    put the fast planes' flows in resonance with the step and the Richardson estimates below missed the
    bound 4-100-fold).
+   A window of at least :data:`PROBE_COVER` of the run is the whole run (a short run, 40 radians of the
+   fastest rate or less): it is sampled at output times (:func:`probe_samples`, up to
+   :data:`~.richardson_check.CHECK_SAMPLES` samples, segments of an even number of steps of at most
+   :math:`h`), and its two runs are kept (:class:`~.richardson_check.ProbeRuns`) when asymptotic enough to
+   be the check's companions (step 4). Such a probe at round-off is not enlarged when no output interval is
+   longer than its step (the run's steps cannot be longer than the output intervals).
 3. *Budget.* All planned work (probes, run, check) above ``max_steps`` is refused here,
    before the run starts (:class:`~.chunks.Work`).
 4. *Check inside the run* (:class:`~.richardson_check.RichardsonCheck`, costing :math:`1/c + 1/(c c_2)` of the run for
@@ -48,7 +54,12 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    :math:`e \approx |y_{h^*} - y_{ch^*}| / (c^q - 1)` estimates the run's own error (with
    :math:`c` the smallest ratio of companion to run step over the samples, so the estimate errs
    on the safe side; :math:`q < 1/2`: the difference itself). A run too short for longer
-   companion steps is checked against companions at half and quarter steps instead. The run
+   companion steps is checked against companions at half and quarter steps instead. A run covered by
+   the probe's two runs whose steps are 2 to :data:`~.richardson_check.PROBE_RATIO` times the run's
+   takes those as its companions (:math:`c` the smallest ratio over the segments, :math:`c_2 = 2`): its
+   check costs no integration step (short runs, whose steps the output grid makes much shorter than
+   :math:`h^*`: on 100 output intervals over T = 20 the 3D top and the 5D quartet take 151 and 160 steps
+   in all at rtol 1e-6 ... 1e-12 instead of 160-184). The run
    is accepted when the estimate stays within
    ``ACCEPT * rtol``. It is stopped at the first sample where the estimate exceeds that, or
    (from :data:`~.richardson_check.PROJECT_AFTER` of the run on) where its linear projection to the end exceeds it
@@ -70,8 +81,8 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
 
 Cost. The probe's two runs (steps ``h`` and ``2h``) and the check's two companions each advance in one
 compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run both in
-:func:`~._kernels.split_run_pair`), and a run that fits in one chunk takes its companions in the same call
-(right after it, the run stopping at the samples between output times when they are not output times). The bookkeeping is compiled too: the rate bound, the check's plan (its samples, the
+:func:`~._kernels.split_run_pair`), and a run that fits in one chunk is one call (stopping at the samples
+between output times when they are not output times), its companions the next. The bookkeeping is compiled too: the rate bound, the check's plan (its samples, the
 companions' steps and ratios: :func:`~.richardson_check.check_plan`), the distances of the runs, the estimate
 with its observed order and the round-off test. What remains is 0.2-0.3 ms of Python per call; the compiled
 work of the probe (0.06-0.4 of the run's steps) and of the companions (:math:`1/c + 1/(c c_2)`, 0.3-0.55) is the
@@ -98,7 +109,7 @@ from hyperrotor._options import options
 from .base import Problem, StepBudgetError, nsub_for
 from .chunks import Work, advance_pair_chunked, cost_key, seconds_per_flow
 from ._kernels import relative_difference, row_scales
-from .richardson_check import ASYMPTOTIC, COMPANION_RATIO, SAFETY, CheckFailed, RichardsonCheck
+from .richardson_check import ASYMPTOTIC, CHECK_SAMPLES, COMPANION_RATIO, SAFETY, CheckFailed, ProbeRuns, RichardsonCheck
 
 __all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "UnreachableAccuracyError", "rate_bound", "growth_to_end"]
 
@@ -111,6 +122,11 @@ PROBE_MEMBERS = 8
 PROBE_MAX_POWER = 4.0
 #: no extrapolation beyond this factor of the probed step (the error model is asymptotic in h)
 MAX_STEP_GROWTH = 8.0
+#: a probe window of at least this fraction of the run is the whole run (sampled at output times, and the
+#: check takes its two runs as companions: :class:`~.richardson_check.ProbeRuns`) ...
+PROBE_COVER = 0.5
+#: ... when it has this many output times at least
+PROBE_COVER_SAMPLES = 8
 #: re-runs at a shorter step before the call gives up with UnreachableAccuracyError
 MAX_RETRIES = 3
 #: no step turns the fastest reachable rate (the rate bound) by more than this angle (radians)
@@ -126,25 +142,26 @@ def _plane_rate_bounds(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
     r""":math:`\min(|L|, \sqrt{2EI_a})/I_a` per row of ``L0`` (rows, n) and plane ``a``: no rate of plane
     ``a`` on the orbit exceeds it (from the Casimir :math:`|L|^2` and the energy). ``moments``: ``(n,)`` or one
     row per row of ``L0``."""
-    return _plane_rate_bound_rows(np.broadcast_to(moments, L0.shape), L0)
+    return _plane_rate_bound_rows(moments.reshape(-1, L0.shape[1]), L0)
 
 
 @jit
 def _plane_rate_bound_rows(moments, L0):  # pragma: no cover - jitted
-    """:func:`_plane_rate_bounds` with one row of moments per row of ``L0`` (compiled: the step control asks
-    for it on every call)."""
+    """:func:`_plane_rate_bounds` with one row of moments for all rows of ``L0`` or one per row (compiled:
+    the step control asks for it on every call)."""
     B, n = L0.shape
     W = np.empty((B, n))
     for b in range(B):
+        m = moments[b if moments.shape[0] > 1 else 0]
         C2 = 0.0
         E2 = 0.0
         for a in range(n):
             x = L0[b, a] * L0[b, a]
             C2 += x
-            E2 += x / moments[b, a]
+            E2 += x / m[a]
         C = math.sqrt(C2)
         for a in range(n):
-            W[b, a] = min(C, math.sqrt(E2 * moments[b, a])) / moments[b, a]
+            W[b, a] = min(C, math.sqrt(E2 * m[a])) / m[a]
     return W
 
 
@@ -200,6 +217,47 @@ def _triples(N: int):
     for c in cols:
         c.setflags(write=False)
     return cols
+
+
+@jit
+def probe_samples(t, spacing, h):  # pragma: no cover - jitted
+    """Where a probe of the whole run samples it, and its steps: ``(idx, grid, ms, longest step)``.
+
+    ``idx``: indices of the output times ``t``, from ``t[0]`` each the last output time within ``spacing``
+    of the one before (or the next one, when an interval is longer), the last output time included and a
+    last gap shorter than ``spacing / 2`` merged into the one before; ``grid``: ``t[0]`` and their times;
+    ``ms``: the even number of equal steps of at most ``h`` per segment (the run at twice the step takes
+    half as many). Compiled.
+    """
+    K = t.size
+    out = np.empty(K - 1, dtype=np.int64)
+    n = 0
+    prev = 0
+    for k in range(1, K):
+        if abs(t[k] - t[prev]) > spacing and k - 1 > prev:
+            out[n] = k - 1
+            n += 1
+            prev = k - 1
+        if abs(t[k] - t[prev]) > spacing:  # (an interval longer than spacing: a segment of its own)
+            out[n] = k
+            n += 1
+            prev = k
+    if n == 0 or out[n - 1] != K - 1:
+        if n >= 1 and abs(t[K - 1] - t[out[n - 1]]) < 0.5 * spacing:
+            n -= 1
+        out[n] = K - 1
+        n += 1
+    idx = out[:n]
+    grid = np.empty(n + 1)
+    grid[0] = t[0]
+    ms = np.empty(n, dtype=np.int64)
+    longest = 0.0
+    for i in range(n):
+        grid[i + 1] = t[idx[i]]
+        length = abs(grid[i + 1] - grid[i])
+        ms[i] = 2 * max(1, int(math.ceil(length / (2.0 * h) * (1.0 - 1e-12))))
+        longest = max(longest, length / ms[i])
+    return idx, grid, ms, longest
 
 
 def growth_to_end(envelope: list, floor: float, ratio: float) -> float:
@@ -261,6 +319,7 @@ class ErrorTarget:
         self.last_growth = 0.0
         self.probe_note = ""  # the error growth the probe saw, when faster than PROBE_MAX_POWER allows
         self.roundoff_amplified = False  # the check saw round-off amplified towards rtol: compensated storage
+        self.probe_runs: tuple = ()  # probes of the whole run whose two runs the check may take (ProbeRuns)
 
     def __repr__(self) -> str:
         return f"ErrorTarget(rtol={self.rtol!r})"
@@ -287,6 +346,7 @@ class ErrorTarget:
         self.history = []
         self.probe_note = ""
         self.roundoff_amplified = False
+        self.probe_runs = ()
         if B == 0 or span == 0.0:
             return max(span, 1.0)
         wmax_b, sel = self._rates(problem)
@@ -301,27 +361,41 @@ class ErrorTarget:
 
         def richardson(Pv, m, samples):
             """Error estimate (relative) of ~m steps over [0, Pv] from the same members at twice the
-            step (1.5x the work of the m steps); ``(None, h)`` if a run failed."""
-            k = max(1, min(m // 2, samples))
-            ms = 2 * max(1, int(math.ceil(m / (2 * k))))
-            tg = np.arange(k + 1.0) * (Pv / k)  # (np.linspace(0, Pv, k + 1), without its overhead)
-            tg[k] = Pv
-            tg = direction * tg + problem.t[0]
-            work.refuse(1.5 * k * ms * len(sel), lambda: f"the step control's probe of {1.5 * k * ms:.0f} steps")
+            step (1.5x the work of the m steps); ``(None, h)`` if a run failed. A probe of the whole run
+            samples it at output times (:func:`probe_samples`) and keeps both runs for the check."""
+            if Pv >= span and t.size > PROBE_COVER_SAMPLES:
+                two = 2.0 * Pv / m  # (segments of at most j double steps: samples at most CHECK_SAMPLES)
+                idx, tg, ms, h_probe = probe_samples(t, two * math.ceil(span / (CHECK_SAMPLES * two)), Pv / m)
+            else:
+                idx = None
+                k = max(1, min(m // 2, samples))
+                tg = np.arange(k + 1.0) * (Pv / k)  # (np.linspace(0, Pv, k + 1), without its overhead)
+                tg[k] = Pv
+                tg = direction * tg + t[0]
+                ms = np.full(k, 2 * max(1, int(math.ceil(m / (2 * k)))))
+                h_probe = Pv / (k * ms[0])
+            k = ms.size
+            steps = int(ms.sum())
+            work.refuse(1.5 * steps * len(sel), lambda: f"the step control's probe of {1.5 * steps:.0f} steps")
             try:
-                y1, y2, _ = advance_pair_chunked(solver, problem, L0s, L0s, tg, np.full(k, ms), np.full(k, ms // 2),
+                y1, y2, _ = advance_pair_chunked(solver, problem, L0s, L0s, tg, ms, ms // 2,
                                                  members=sel, work=work, bar=bar)
             except (RuntimeError, FloatingPointError):  # no implicit step / an overflow at this h
-                return None, Pv / (k * ms)
+                return None, h_probe
             d = relative_difference(y1, y2, Ms, *row_scales(y1, Ms))  # per sample
             # the estimate's envelope at (about) half the window and at its end (d[i]: at grid point i)
             env = np.maximum.accumulate(d) / (2.0 ** p - 1.0)
             samples_e[:] = [(i / k, float(env[i])) for i in (k // 4, k // 2, k) if i > 0]
-            return float(env[-1]), Pv / (k * ms)
+            if idx is not None and idx.size >= PROBE_COVER_SAMPLES and ProbeRuns.usable(float(env[-1]), p):
+                runs.append(ProbeRuns(problem, idx, ms, y1, y2))
+            return float(env[-1]), h_probe
 
         samples_e = []
+        runs = []  # the probes of the whole run at output times asymptotic enough to be the check's companions
+        t = problem.t
 
-        P = min(span, PROBE_TURNS / wmax)
+        P = PROBE_TURNS / wmax
+        P = span if P >= PROBE_COVER * span else P
         h = min(P, 1.0 / wmax)
         est = None
         floor = 0.0
@@ -336,6 +410,8 @@ class ErrorTarget:
             floor = 1e3 * _EPS * math.sqrt(2 * m * solver.flows_per_step(problem))
             est = (h, err, P)
             if err < floor:  # round-off level: try longer steps / a longer probe
+                if P >= span and float(np.abs(np.diff(t)).max()) <= h:
+                    break  # (the run's steps are no longer than the output intervals, all shorter than h anyway)
                 if m > 1:
                     h *= 4.0
                 elif P < span:
@@ -359,6 +435,7 @@ class ErrorTarget:
                     f"; the probe's error grows faster than t^{PROBE_MAX_POWER:g}, like exp(lambda t) with lambda ~ "
                     f"{lam * problem.scale:.3g} (a chaotic orbit? exp(lambda T) ~ "
                     f"{math.exp(min(lam * span, 700.0)):.3g} over the run)")
+        self.probe_runs = tuple(runs)
         return min(h_star, MAX_TURN / wmax)
 
     def refusal_note(self, needed: float, budget: float, order: int) -> str:
@@ -391,7 +468,7 @@ class ErrorTarget:
     def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None) -> "RichardsonCheck | None":
         if problem.B == 0 or not nsub.size or int(nsub.sum()) == 0 or solver.flows_per_step(problem) == 0:
             return None
-        return RichardsonCheck(solver, problem, nsub, self, self._members(problem), work, bar)
+        return RichardsonCheck(solver, problem, nsub, self, self._members(problem), work, bar, probes=self.probe_runs)
 
     def next_step(self, failure: CheckFailed, solver, problem: Problem, work: Work) -> float:
         """The step of the re-run after a failed check, or an error when the target is out of reach."""
