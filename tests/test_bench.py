@@ -3,7 +3,7 @@ import csv
 
 import pytest
 
-from hyperrotor.bench import WorkPrecisionPoint, speedup_at, work_precision
+from hyperrotor.bench import WorkPrecisionPoint, best_of_interleaved, speedup_at, work_precision
 from hyperrotor.cli import main
 
 
@@ -25,6 +25,31 @@ def test_speedup_at_picks_fastest_runs_reaching_the_level():
     s = speedup_at(pts, 1e-10)
     assert s == {"method": "splitting4", "seconds": 0.01, "peer_seconds": 0.5, "ratio": 50.0}
     assert speedup_at(pts, 1e-13) is None
+
+
+def test_best_of_interleaved_calls_in_turn_and_keeps_the_best(monkeypatch):
+    """Rounds call the functions in turn (the order of the calls is a, b, a, b, ...), at least ``repeats`` of
+    them and more until about ``seconds`` were spent (on a clock that advances 1 per call of a and 3 per
+    call of b); the best times are the fastest calls and the results the last ones."""
+    import hyperrotor.bench as bench
+
+    clock, calls = [0.0], []
+
+    def fn(name, cost):
+        def call():
+            calls.append(name)
+            clock[0] += cost[len([c for c in calls if c == name]) % len(cost)]
+            return len(calls)
+        return call
+
+    monkeypatch.setattr(bench.time, "perf_counter", lambda: clock[0])
+    best, out = best_of_interleaved([fn("a", [2.0, 1.0]), fn("b", [3.0])], 3)
+    assert calls == ["a", "b"] * 3 and best == [1.0, 3.0] and out == [5, 6]
+    calls.clear()
+    best, out = best_of_interleaved([fn("a", [1.0]), fn("b", [3.0])], 2, seconds=40.0)
+    assert calls == ["a", "b"] * 10 and best == [1.0, 3.0] and out == [19, 20]  # (the first round took 4)
+    with pytest.raises(ValueError, match="repeats must be >= 1, got 0"):
+        best_of_interleaved([fn("a", [1.0])], 0)
 
 
 def test_cli_bench_writes_csv_and_png(capsys, tmp_path):
