@@ -612,6 +612,31 @@ def test_check_plan_samples_the_run_and_errs_on_the_safe_side(K, uneven, steps_p
 
 
 @settings(max_examples=300, deadline=None)
+@given(K=st.integers(2, 60), steps_per=st.floats(0.05, 20.0), backwards=st.booleans(), seed=st.integers(0, 2**31),
+       b=st.lists(st.integers(0, 400), max_size=30))
+def test_a_runs_stops_and_their_merge_match_their_definitions(K, steps_per, backwards, seed, b):
+    """The pieces of a run between stops (compiled): the stops' times are step_times' (output times exactly),
+    the steps between them their differences, each piece's step that of the interval its start lies in; and
+    the merge of two increasing index arrays is NumPy's union with the positions of both in it."""
+    from hyperrotor.classical.solvers.base import nsub_for, step_lengths
+    from hyperrotor.classical.solvers.chunks import merge, step_times, stops
+
+    rng = np.random.default_rng(seed)
+    t = np.cumsum(np.concatenate([[0.0], rng.uniform(0.05, 2.0, K - 1)])) * (-1.0 if backwards else 1.0)
+    nsub = nsub_for(t, 0.7 / steps_per)
+    cs = np.concatenate([[0], np.cumsum(nsub)])
+    hs = step_lengths(t, nsub)
+    a = np.unique(np.minimum(np.array(b, dtype=np.int64), cs[-1]))
+    points, pa, pb = merge(cs, a)
+    union = np.union1d(cs, a)
+    assert np.array_equal(points, union)
+    assert np.array_equal(pa, np.searchsorted(union, cs)) and np.array_equal(pb, np.searchsorted(union, a))
+    times, ns, h = stops(t, cs, nsub, hs, points)
+    assert np.array_equal(times, step_times(t, cs, nsub, points)) and np.array_equal(times[pa], t)
+    assert np.array_equal(ns, np.diff(points)) and np.array_equal(h, hs[np.searchsorted(cs, points[:-1], "right") - 1])
+
+
+@settings(max_examples=300, deadline=None)
 @given(K=st.integers(2, 150), uneven=st.booleans(), spacing=st.floats(0.05, 30.0), h=st.floats(0.01, 10.0),
        backwards=st.booleans(), seed=st.integers(0, 2**31))
 def test_probe_samples_cover_the_run_at_output_times(K, uneven, spacing, h, backwards, seed):

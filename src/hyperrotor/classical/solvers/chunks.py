@@ -21,11 +21,12 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _pricing
+from hyperrotor._jit import jit
 from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError
 
-__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "refuse_steps", "step_times", "stops", "check_finite", "cost_key",
+__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "refuse_steps", "step_times", "stops", "merge", "check_finite", "cost_key",
            "learn", "seconds_per_flow", "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
 
 #: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
@@ -100,13 +101,51 @@ def step_times(t: np.ndarray, cs: np.ndarray, nsub: np.ndarray, s: np.ndarray) -
     return np.where(s == cs[k + 1], t[k + 1], out)
 
 
-def stops(t: np.ndarray, cs: np.ndarray, nsub: np.ndarray, h: np.ndarray, points: np.ndarray) -> tuple:
+@jit
+def stops(t, cs, nsub, h, points):  # pragma: no cover - jitted
     """A run of ``nsub[k]`` steps of ``h[k]`` per interval of ``t`` (``cs``: cumulative step counts) that stops at
     the global step indices ``points`` (increasing, its start first): ``(times of the points, steps between
     them, their step lengths)``. Every piece lies inside one interval and takes that interval's step, so the
-    pieces do the run's arithmetic (output times among the points are hit exactly)."""
-    return (step_times(t, cs, nsub, points), np.diff(points).astype(np.int64),
-            h[np.searchsorted(cs, points[:-1], side="right") - 1])
+    pieces do the run's arithmetic (output times among the points are hit exactly). The times are
+    :func:`step_times`'s, the step of a piece that of the interval its start lies in. Compiled (the driver asks
+    for it on every run whose samples fall between output times, and per chunk)."""
+    P = points.size
+    K1 = nsub.size
+    times = np.empty(P)
+    ns = np.empty(max(P - 1, 0), dtype=np.int64)
+    hs = np.empty(max(P - 1, 0))
+    k = 0
+    for i in range(P):
+        s = points[i]
+        while k + 1 < K1 and cs[k + 1] <= s:  # (the interval with cs[k] <= s, the last one at the end)
+            k += 1
+        times[i] = t[k + 1] if s == cs[k + 1] else t[k] + (t[k + 1] - t[k]) * ((s - cs[k]) / nsub[k])
+        if i + 1 < P:
+            ns[i] = points[i + 1] - s
+            hs[i] = h[k]
+    return times, ns, hs
+
+
+@jit
+def merge(a, b):  # pragma: no cover - jitted
+    """``(union, positions of a in it, positions of b in it)`` of two increasing integer arrays (the stops of a
+    run: its output steps and the check's samples). Compiled."""
+    out = np.empty(a.size + b.size, dtype=np.int64)
+    pa = np.empty(a.size, dtype=np.int64)
+    pb = np.empty(b.size, dtype=np.int64)
+    i = j = n = 0
+    while i < a.size or j < b.size:
+        v = a[i] if j >= b.size or (i < a.size and a[i] <= b[j]) else b[j]
+        if n == 0 or out[n - 1] != v:
+            out[n] = v
+            n += 1
+        if i < a.size and a[i] == v:
+            pa[i] = n - 1
+            i += 1
+        if j < b.size and b[j] == v:
+            pb[j] = n - 1
+            j += 1
+    return out[:n], pa, pb
 
 
 def check_finite(Ls: np.ndarray, grid: np.ndarray, problem: Problem) -> None:

@@ -43,7 +43,7 @@ from hyperrotor._options import options
 from hyperrotor._parallel import progress_bar
 
 from .base import Problem, RunResult, Solver, nsub_for, step_lengths
-from .chunks import FIRST_CHUNK_FLOWS, SECONDS_PER_FLOW, Work, check_finite, cost_key, learn, stops
+from .chunks import FIRST_CHUNK_FLOWS, SECONDS_PER_FLOW, Work, check_finite, cost_key, learn, merge, stops
 from .richardson_check import CheckFailed
 
 __all__ = ["FixedStepSolver", "run_fixed_step", "EventSpec", "event_specs", "DenseOutput", "dense_states"]
@@ -272,10 +272,10 @@ def _sampled_run(solver, problem, t, nsub, hs, check):
     """The whole run (no attitude) in one call that stops at the output times and at the check's samples
     between them: ``(states at the output times, the checked members' states at the samples)``."""
     cs = check.cs
-    points = np.union1d(cs, check.marks)
+    points, at_out, at_samples = merge(cs, check.marks)
     grid, ns, h = stops(t, cs, nsub, hs, points)
     L, _ = solver.advance(problem, problem.L0, None, grid, ns, h=h)
-    return L[:, np.searchsorted(points, cs)], L[check.members][:, np.searchsorted(points, check.marks)]
+    return L[:, at_out], L[check.members][:, at_samples]
 
 
 def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key, bar, stats,

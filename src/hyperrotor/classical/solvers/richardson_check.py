@@ -19,7 +19,7 @@ from hyperrotor._jit import jit
 
 from ._kernels import raise_scales, relative_difference, row_scales
 from .base import Problem, step_lengths
-from .chunks import Work, advance_chunked, advance_pair_chunked, refuse_steps, stops
+from .chunks import Work, advance_chunked, advance_pair_chunked, merge, refuse_steps, stops
 
 __all__ = ["RichardsonCheck", "CheckFailed", "ProbeRuns", "observed_order", "relative_difference", "SAFETY", "ACCEPT",
            "ASYMPTOTIC", "COMPANION_RATIO"]
@@ -507,9 +507,8 @@ class RichardsonCheck:
     def run_alone(self) -> None:
         """The check without the run: the checked members advance on their own to every sample."""
         problem, t, cs, nsub = self.problem, self.problem.t, self.cs, self.nsub
-        points = np.union1d(cs, np.concatenate([[0], self.marks]))
+        points, _, pos = merge(cs, self.marks)  # (cs starts at 0)
         grid, ns, h = stops(t, cs, nsub, step_lengths(t, nsub), points)
         L, _ = advance_chunked(self.solver, problem, problem.L0[self.members], grid, ns, h,
                                members=self.members, work=self.work, bar=self.bar)
-        pos = np.searchsorted(points, self.marks)
         self.update(self.marks.size, L[:, pos])
