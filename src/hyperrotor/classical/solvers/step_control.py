@@ -84,8 +84,10 @@ compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run
 :func:`~._kernels.split_run_pair`), and a run that fits in one chunk is one call (stopping at the samples
 between output times when they are not output times), its companions the next. The bookkeeping is compiled too: the rate bound, the check's plan (its samples, the
 companions' steps and ratios: :func:`~.richardson_check.check_plan`), the distances of the runs, the estimate
-with its observed order and the round-off test. What remains is 0.2-0.3 ms of Python per call; the compiled
-work of the probe (0.06-0.4 of the run's steps) and of the companions (:math:`1/c + 1/(c c_2)`, 0.3-0.55) is the
+with its observed order and the round-off test, and the run's stops at samples between output times
+(:func:`~.chunks.stops`, :func:`~.chunks.merge`). What remains is 0.15-0.3 ms of Python per call; the compiled
+work of the probe (0.06-0.5 of the run's steps) and of the companions (:math:`1/c + 1/(c c_2)`, 0.3-0.55; none
+when the probe's runs are the companions) is the
 price of the promise (``benchmarks/README.md``, step_control.py).
 
 The timed probes also give the cost per step: a run estimated to take longer than
