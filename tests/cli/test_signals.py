@@ -130,3 +130,41 @@ def test_ctrl_c_while_a_scene_integrates(tmp_path):
     assert latency < LATENCY_BOUND
     assert WORD[signal.SIGINT] in _last_line(err) and out == ""
     assert os.listdir(work) == []
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_landing_in_a_callback_python_drops_is_acted_on_after_it(tmp_path, sig):
+    """A signal handled while a weakref callback runs (matplotlib's transform tree, collected while a GIF is
+    drawn: the handler's Stop was printed as "Exception ignored in ..." with a traceback and dropped, and only
+    the watchdog ended the process): the command's unraisable hook prints nothing and sends the signal again
+    once the callback has returned, where Stop ends the command. Other unraisable exceptions are still printed."""
+    script = tmp_path / "callback.py"
+    script.write_text(f"""
+import os, sys, time, weakref
+from hyperrotor.cli import _signals
+_signals.install("x")
+class Node: pass
+def callback(_):
+    os.kill(os.getpid(), {int(sig)})
+    for _ in range(1000):  # (the handler runs here, inside the callback: Python drops its Stop)
+        pass
+node = Node()
+ref = weakref.ref(node, callback)
+class Noisy:
+    def __del__(self):
+        raise ValueError("an ordinary error in __del__")
+try:
+    del node
+    Noisy()
+    start = time.monotonic()
+    while time.monotonic() - start < 0.5:  # well before the watchdog's GRACE
+        sum(range(100))
+    print("not stopped")
+except _signals.Stop as stop:
+    print("stopped", stop.signum, "after", round(time.monotonic() - start, 3))
+""")
+    env = dict(os.environ, PYTHONWARNINGS="ignore")
+    p = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env, timeout=60)
+    assert p.stdout.startswith(f"stopped {int(sig)} after"), (p.stdout, p.stderr)
+    assert float(p.stdout.split()[-1]) < 0.5
+    assert "Stop" not in p.stderr and "ValueError: an ordinary error in __del__" in p.stderr, p.stderr

@@ -12,6 +12,12 @@ The handler records the signal (a flag) and acts on it at a safe point:
   recorded, and :func:`checkpoint` (called between the steps of the work)
   raises :class:`Stop` at the next safe point.
 
+A :class:`Stop` raised where Python drops exceptions (a weakref callback or a ``__del__``
+run by the garbage collector, e.g. matplotlib's transform tree while a GIF is drawn: Python
+prints "Exception ignored in ..." with a traceback and carries on) is caught by the
+command's ``sys.unraisablehook``: nothing is printed, and the signal is sent again
+:data:`RETRY` seconds later, when the interpreter is back in the command's own code.
+
 Either way a watchdog thread, started by the first signal, ends the process
 :data:`GRACE` seconds later if it is still alive (the flag was set where no
 safe point comes soon, e.g. during a long compile; or the interpreter's exit
@@ -24,11 +30,12 @@ from __future__ import annotations
 
 import os
 import signal
+import sys
 import threading
 
 from hyperrotor.cli import _files
 
-__all__ = ["Stop", "SIGNALS", "STATUSES", "GRACE", "install", "restore", "checkpoint", "claim", "message",
+__all__ = ["Stop", "SIGNALS", "STATUSES", "GRACE", "RETRY", "install", "restore", "checkpoint", "claim", "message",
            "bar_shown"]
 
 #: signal -> (exit status, how it is reported).
@@ -44,6 +51,9 @@ STATUSES = frozenset(status for status, _ in SIGNALS.values())
 
 #: Seconds between a signal and the watchdog's exit when the command has not ended by itself.
 GRACE = 0.7
+
+#: Seconds after a :class:`Stop` was dropped (raised inside a callback) before the signal is sent again.
+RETRY = 0.01
 
 #: Modules in whose code a raised exception would be swallowed or leave a broken state.
 _DEFER_IN = ("numba.", "llvmlite.", "hyperrotor.cli._files")
@@ -69,6 +79,7 @@ class _State:
     bar_shown = False              # a progress bar is on stderr: the watchdog starts a new line
     reporter = threading.Lock()    # taken by whoever reports the signal: the command or the watchdog
     previous: dict = {}
+    unraisablehook = None          # sys.unraisablehook before the command
 
 
 def message(signum: int) -> str:
@@ -117,6 +128,17 @@ def _handler(signum, frame) -> None:
         raise Stop(_State.signum)
 
 
+def _unraisable(unraisable) -> None:
+    """``sys.unraisablehook`` during the command: a :class:`Stop` that Python dropped (raised inside a weakref
+    callback or a ``__del__``) is not printed, and its signal is sent again :data:`RETRY` seconds later; anything
+    else goes to the previous hook."""
+    if isinstance(unraisable.exc_value, Stop) and _State.signum is not None:
+        _State.stopping = False  # (act on the signal again, outside the callback)
+        threading.Timer(RETRY, os.kill, (os.getpid(), _State.signum)).start()
+        return
+    (_State.unraisablehook or sys.__unraisablehook__)(unraisable)
+
+
 def install(prog: str) -> bool:
     """Install the handlers (main thread only; returns False elsewhere, where Python's defaults stay)."""
     if threading.current_thread() is not threading.main_thread():
@@ -125,6 +147,7 @@ def install(prog: str) -> bool:
     _State.done = threading.Event()
     _State.reporter = threading.Lock()
     _State.previous = {s: signal.signal(s, _handler) for s in SIGNALS}
+    _State.unraisablehook, sys.unraisablehook = sys.unraisablehook, _unraisable
     return True
 
 
@@ -140,6 +163,8 @@ def restore() -> None:
         for s, old in _State.previous.items():
             signal.signal(s, old)
         _State.previous = {}
+        if sys.unraisablehook is _unraisable:
+            sys.unraisablehook = _State.unraisablehook or sys.__unraisablehook__
     else:
         _State.stopping = True
 
