@@ -12,11 +12,12 @@ The handler records the signal (a flag) and acts on it at a safe point:
   recorded, and :func:`checkpoint` (called between the steps of the work)
   raises :class:`Stop` at the next safe point.
 
-A :class:`Stop` raised where Python drops exceptions (a weakref callback or a ``__del__``
-run by the garbage collector, e.g. matplotlib's transform tree while a GIF is drawn: Python
-prints "Exception ignored in ..." with a traceback and carries on) is caught by the
-command's ``sys.unraisablehook``: nothing is printed, and the signal is sent again
-:data:`RETRY` seconds later, when the interpreter is back in the command's own code.
+Inside matplotlib and Pillow (drawing a GIF or a PNG) the signal is deferred too: raised there,
+it landed once in a weakref callback of matplotlib's transform tree, run by the garbage
+collector, where Python drops exceptions ("Exception ignored in ..." with a traceback on
+stderr) and the callback's own work is left undone. A :class:`Stop` dropped in any other such
+callback (or ``__del__``) is not printed (the command's ``sys.unraisablehook``); the next safe
+point or the watchdog acts on the signal.
 
 Either way a watchdog thread, started by the first signal, ends the process
 :data:`GRACE` seconds later if it is still alive (the flag was set where no
@@ -35,7 +36,7 @@ import threading
 
 from hyperrotor.cli import _files
 
-__all__ = ["Stop", "SIGNALS", "STATUSES", "GRACE", "RETRY", "install", "restore", "checkpoint", "claim", "message",
+__all__ = ["Stop", "SIGNALS", "STATUSES", "GRACE", "install", "restore", "checkpoint", "claim", "message",
            "bar_shown"]
 
 #: signal -> (exit status, how it is reported).
@@ -52,11 +53,8 @@ STATUSES = frozenset(status for status, _ in SIGNALS.values())
 #: Seconds between a signal and the watchdog's exit when the command has not ended by itself.
 GRACE = 0.7
 
-#: Seconds after a :class:`Stop` was dropped (raised inside a callback) before the signal is sent again.
-RETRY = 0.01
-
 #: Modules in whose code a raised exception would be swallowed or leave a broken state.
-_DEFER_IN = ("numba.", "llvmlite.", "hyperrotor.cli._files")
+_DEFER_IN = ("numba.", "llvmlite.", "hyperrotor.cli._files", "matplotlib.", "PIL.")
 
 
 class Stop(BaseException):
@@ -130,11 +128,9 @@ def _handler(signum, frame) -> None:
 
 def _unraisable(unraisable) -> None:
     """``sys.unraisablehook`` during the command: a :class:`Stop` that Python dropped (raised inside a weakref
-    callback or a ``__del__``) is not printed, and its signal is sent again :data:`RETRY` seconds later; anything
-    else goes to the previous hook."""
-    if isinstance(unraisable.exc_value, Stop) and _State.signum is not None:
-        _State.stopping = False  # (act on the signal again, outside the callback)
-        threading.Timer(RETRY, os.kill, (os.getpid(), _State.signum)).start()
+    callback or a ``__del__``) is not printed (the next :func:`checkpoint` or the watchdog acts on the signal);
+    anything else goes to the previous hook."""
+    if isinstance(unraisable.exc_value, Stop):
         return
     (_State.unraisablehook or sys.__unraisablehook__)(unraisable)
 
@@ -175,8 +171,10 @@ def bar_shown(shown: bool) -> None:
 
 
 def checkpoint() -> None:
-    """A safe point: raise :class:`Stop` if a signal arrived while it could not be acted on."""
+    """A safe point: raise :class:`Stop` if a signal arrived while it could not be acted on (and ignore the
+    signals that follow: one Stop per command)."""
     if _State.signum is not None:
+        _State.stopping = True
         raise Stop(_State.signum)
 
 
