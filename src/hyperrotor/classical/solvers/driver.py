@@ -306,13 +306,11 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
             out_pos = cs[outs] - s0
             sample_pos = samples[new] - s0
         else:  # the chunk's start, the output times and samples inside it, and its end
-            marks = np.union1d(cs[outs], samples[new])
+            marks, out_pos, sample_pos = merge(cs[outs], samples[new])
             if marks.size == 0 or marks[-1] != s1:
                 marks = np.append(marks, s1)
-            points = np.concatenate([[s0], marks])
-            grid, ns, h = stops(t, cs, nsub, hs, points)
-            out_pos = np.searchsorted(points, cs[outs])
-            sample_pos = np.searchsorted(points, samples[new])
+            grid, ns, h = stops(t, cs, nsub, hs, np.concatenate([[s0], marks]))
+            out_pos, sample_pos = out_pos + 1, sample_pos + 1  # (the chunk's start first)
         Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=h, carry=carry)
         carry = solver.last_carry
         check_finite(Ls, grid, problem)
