@@ -25,18 +25,18 @@ import importlib.util
 import io
 import os
 import sys
-import time
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 import sympy as sp
+from cpu_clock import CallCPU, call_cpu
 
 import hyperrotor
 import hyperrotor.paper
 
-TIME_LIMIT = 1.0  # seconds of CPU per payload
+TIME_LIMIT = 1.0  # seconds of CPU per payload (the calling thread's: tests/cpu_clock.py)
 HANG_LIMIT = 10.0  # wall seconds after which a call is interrupted (the machine is shared)
 
 #: (id, text). Every payload that would run code creates a file in the working directory.
@@ -205,10 +205,10 @@ def test_every_public_callable_is_walked_or_excused():
 
 def _check(call, where_text, tmp_path):
     """The outcome of ``call()`` in the empty directory ``tmp_path`` (the cwd), or a failure text."""
-    c0 = time.process_time()
     outcome = "completed"
+    clock = CallCPU()
     try:
-        with _limit(HANG_LIMIT), warnings.catch_warnings():
+        with _limit(HANG_LIMIT), warnings.catch_warnings(), call_cpu() as clock:
             warnings.simplefilter("ignore")
             call()
     except (TypeError, ValueError) as exc:  # hyperrotor.ParseError is a ValueError
@@ -219,7 +219,7 @@ def _check(call, where_text, tmp_path):
         return f"{where_text}: no answer within {HANG_LIMIT} s"
     except Exception as exc:  # noqa: BLE001 (RecursionError, MemoryError, anything else: a failure)
         return f"{where_text}: {type(exc).__name__}: {str(exc)[:200]}"
-    cpu = time.process_time() - c0
+    cpu = clock.seconds
     created = sorted(os.listdir(tmp_path))
     for name in created:
         os.remove(tmp_path / name)
@@ -298,18 +298,19 @@ def test_payloads_through_cli_option(command, option, dest, tmp_path, monkeypatc
     failures = []
     for pid, text in PAYLOADS:
         argv = [*command, f"{option}={text}"]
-        c0 = time.process_time()
         err = io.StringIO()
         status = None
+        clock = CallCPU()
         try:
-            with _limit(HANG_LIMIT), contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+            with (_limit(HANG_LIMIT), contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()),
+                  call_cpu() as clock):
                 status = main(argv)
         except SystemExit as exc:
             status = exc.code
         except _Hang:
             failures.append(f"{option}={pid}: no answer within {HANG_LIMIT} s")
             continue
-        cpu = time.process_time() - c0
+        cpu = clock.seconds
         created = sorted(os.listdir(tmp_path))
         for name in created:
             os.remove(tmp_path / name)
