@@ -147,10 +147,7 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
         marks[count] = steps
         out_idx = np.empty(0, dtype=np.int64)
         grid = np.empty(count + 2)
-        for i in range(count + 1):  # (step_times of the marks)
-            k = min(max(np.searchsorted(cs, marks[i], side="right") - 1, 0), K1 - 1)
-            grid[i + 1] = (t[k + 1] if marks[i] == cs[k + 1]
-                           else t[k] + (t[k + 1] - t[k]) * ((marks[i] - cs[k]) / nsub[k]))
+        grid[1:] = stops(t, cs, nsub, ah, marks)[0]  # (the marks' times: output times exactly where they are one)
     grid[0] = t[0]
     S = marks.size
     total = 0
@@ -399,8 +396,8 @@ class RichardsonCheck:
     def judge(self, upto: int, Lf: np.ndarray, L1: np.ndarray, L2: np.ndarray) -> None:
         """The samples ``marks[j:upto]`` reached by the run (``Lf``) and its two companions (``L1``, ``L2``;
         all ``(members, upto - j, n)``): the estimate, and :class:`CheckFailed` when it is over the target
-        (:meth:`update` advances the companions itself; the driver's one-call runs advance them right after
-        the run)."""
+        (called by :meth:`update`, which advances the companions to ``upto`` first, or takes the probe's runs
+        as them)."""
         if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
         self.j = upto
