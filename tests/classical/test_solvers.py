@@ -503,7 +503,7 @@ def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol, spin, monkeypatch):
         given.append(self.given is not None)
 
     monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
-    t = np.linspace(0.0, 20.0, 41)
+    t = np.linspace(0.0, 20.0, 101)
     worst = 0.0
     for seed in range(20):
         moments, w0 = _random_generic5(1000 + seed)
@@ -513,6 +513,36 @@ def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol, spin, monkeypatch):
         worst = max(worst, np.abs(tr.L - Lref).max() / np.abs(Lref).max() / rtol)
     assert worst <= 1.0, worst
     assert any(given) or spin == 1.0, given
+
+
+@pytest.mark.parametrize("seed", [1005, 1008, 1010])
+def test_a_short_last_check_segment_keeps_two_genuine_companions(seed, monkeypatch):
+    """Random generic 5D bodies spinning slowly (max|omega0| = 0.2), 41 output times, rtol 1e-6: the run takes one
+    step of 0.5 per interval (40 steps), the check samples every 9 steps, and its last segment had 4 steps: both
+    companions took one step there (r2 = 1), no order could be observed, the estimate was the first companion's
+    own error (1e4-fold the run's) and the re-run took steps 100-200x shorter (2200-13900 steps for 40). A last
+    segment shorter than half a spacing is merged: two genuine companions, the observed order near the method's,
+    an estimate within 100x of the run's true error, no re-run."""
+    from hyperrotor.classical.solvers import richardson_check
+
+    seen = []
+    init = richardson_check.RichardsonCheck.__init__
+
+    def spy(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        seen.append(self)
+
+    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
+    moments, w0 = _random_generic5(seed)
+    w0 = 0.2 * w0
+    t = np.linspace(0.0, 20.0, 41)
+    Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, options={"compensated": True}).L
+    tr = hr.simulate(moments, w0, t, rtol=1e-6)
+    true = np.abs(tr.L - Lref).max() / np.abs(Lref).max()
+    (check,) = seen
+    assert tr.stats["reruns"] == 0 and tr.stats["steps"] == 40 and tr.stats["work"] <= 3 * tr.stats["steps"]
+    assert check.r2 >= 2.0 and np.all(check.nc2 < check.nc) and check.q >= check.p / 2
+    assert true <= check.err.max() <= 100 * true and check.err.max() <= 1e-6
 
 
 def test_a_chaotic_orbit_that_amplifies_round_off_is_rerun_in_compensated_storage():
@@ -585,7 +615,7 @@ def test_check_plan_samples_the_run_and_errs_on_the_safe_side(K, uneven, steps_p
     assert np.array_equal(cs, np.concatenate([[0], np.cumsum(nsub)])) and steps == cs[-1] and h == hs.max()
     marks, out_idx, grid, nc, nc2, r, r2, total = check_plan(t, nsub, cs, spacing, finer, c, c2)
     assert marks[-1] == steps and np.all(np.diff(marks) > 0) and np.all(np.diff(marks)[:-1] == spacing)
-    assert steps - (marks[-2] if marks.size > 1 else 0) >= min(steps, spacing // 2)  # (a short last gap merged)
+    assert 2 * (steps - (marks[-2] if marks.size > 1 else 0)) >= min(2 * steps, spacing)  # (a short last gap merged)
     aligned = np.all(nsub == nsub[0]) and spacing % nsub[0] == 0
     assert (out_idx.size > 0) == aligned
     if aligned:
@@ -598,6 +628,8 @@ def test_check_plan_samples_the_run_and_errs_on_the_safe_side(K, uneven, steps_p
         assert np.array_equal(nc, np.maximum(1, np.trunc(seg / c)))
         assert np.array_equal(nc2, np.maximum(1, np.trunc(nc / c2)))
     assert total == nc.sum() + nc2.sum()
+    if not finer and min(spacing, steps) >= 2 * c * c2:  # (the check's spacing): two genuine companions everywhere
+        assert np.all(nc2 < nc) and r2 >= 2.0 * (1 - 1e-12)
     lengths = np.abs(np.diff(grid))
     ratios, ratios2 = [], []
     for i in range(marks.size):  # the run's steps inside segment i
@@ -736,6 +768,11 @@ def test_a_probe_of_the_whole_run_is_the_checks_companions(case, T, rtol, monkey
     assert np.array_equal(y1, check.given[0]) and np.array_equal(y2, check.given[1])
     hs = np.diff(check.grid) / check.nc
     assert check.r == pytest.approx(min(hs[i] / tr.stats["dt"] for i in range(hs.size)), rel=1e-12)
+    # one probe, whose step turns the fastest rate by 1 to 2 radians and spans at most PROBE_WHOLE_GAPS intervals
+    # (a first step of 1 radian, as for partial windows, took 51 (top) and 60 (quartet) probe steps here instead of 30)
+    wmax = float(step_control._orbit_rates(check.problem).max())
+    longest = min(step_control.PROBE_FIRST_TURN_WHOLE / wmax, step_control.PROBE_WHOLE_GAPS * (t[1] - t[0]))
+    assert len(probe_work) == 1 and 1.0 / wmax < hs.max() <= longest * (1 + 1e-12)
     from hyperrotor.classical.solvers import chunks, driver  # the same run cut into chunks: the same check
     monkeypatch.setattr(driver, "FIRST_CHUNK_FLOWS", 2000)
     monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", 2000)

@@ -105,7 +105,9 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
     cumulative counts) and how its companions step there: ``(marks, out_idx, grid, nc, nc2, r, r2, steps)``.
 
     ``marks``: global step indices of the samples, every ``spacing`` steps and the run's end (a last gap
-    shorter than half a spacing is merged). When the steps per interval are equal and divide ``spacing``,
+    shorter than half a spacing is merged: with ``spacing >= 2 c c2``, as the check sets it, every segment then
+    has at least ``c c2`` steps, so its second companion takes fewer steps than its first, ``r2 >= 2``; a last
+    gap of ``c c2 / 2`` steps gave both one step, ``r2 = 1``, and an estimate 1e4-fold too high). When the steps per interval are equal and divide ``spacing``,
     the samples are every stride-th output time instead (``out_idx`` their output indices, else empty: the
     run needs no extra stops and gives them with its outputs). ``grid``: the start and their times. ``nc``,
     ``nc2``: the companions' steps per segment between samples (``finer``: twice and four times the run's;
@@ -127,7 +129,7 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
     if uniform and spacing % n0 == 0:
         stride = spacing // n0
         count = (K1 - 1) // stride if K1 > stride else 0
-        if count and (K1 - count * stride) * n0 < spacing // 2:
+        if count and 2 * (K1 - count * stride) * n0 < spacing:
             count -= 1
         out_idx = np.empty(count + 1, dtype=np.int64)
         for i in range(count):
@@ -139,7 +141,7 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
             grid[i + 1] = t[out_idx[i]]
     else:
         count = (steps - 1) // spacing if steps > spacing else 0
-        if count and steps - count * spacing < spacing // 2:
+        if count and 2 * (steps - count * spacing) < spacing:
             count -= 1
         marks = np.empty(count + 1, dtype=np.int64)
         for i in range(count):
@@ -478,10 +480,11 @@ class RichardsonCheck:
         # the observed order where the error is asymptotic (round-off floors show q < p); an error
         # above ASYMPTOTIC says nothing about the order (q ~ 1 there would ask for ~1e8 steps where a
         # few hundred do): extrapolate with the method's order, and the re-run's check decides
-        # (and at least p/2 where one was observed: a run just outside the asymptotic regime shows q ~ 1-2,
-        # and 1.5 asked for 2.5e6 steps where a few thousand do; q < 1/2, no order seen: 1)
+        # (and at least p/2: a run just outside the asymptotic regime shows q ~ 1-2, and 1.5 asked for 2.5e6
+        # steps where a few thousand do; with no order seen, q = 1 once turned an estimate 5e4-fold too high into
+        # steps 1750x shorter, where p/2 asks for 5x)
         q_seen = getattr(self, "q", p)
-        q = p if end > ASYMPTOTIC else (min(p, max(p / 2.0, q_seen)) if q_seen >= 0.5 else 1.0)
+        q = p if end > ASYMPTOTIC else min(p, max(p / 2.0, q_seen))
         h_new = 0.9 * self.h * (SAFETY * rtol / end) ** (1.0 / q)
         h_new = min(h_new, self.h / 1.25)
         lam = self._growth(self.j)
