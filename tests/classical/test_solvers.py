@@ -545,6 +545,34 @@ def test_a_short_last_check_segment_keeps_two_genuine_companions(seed, monkeypat
     assert true <= check.err.max() <= 100 * true and check.err.max() <= 1e-6
 
 
+def test_a_stalled_first_companion_on_a_chaotic_orbit_does_not_hide_the_run_error(monkeypatch):
+    """Random generic body 2002, 101 output times, rtol 1e-6: the run at the output grid's step (0.2) has a
+    whole-run error of 2.1e-6. Its first companion's difference stalled over the last samples (6.7e-4, 4.1e-4,
+    9.8e-4) while the run's error grew 21-fold and the second companion's difference left its asymptotic regime
+    (0.25 -> 1.4): the estimate, 4.4e-7, was 5x under the error and the run was accepted. The estimate now grows
+    with the second difference there: the run is re-run, the accepted one's estimate is above its error and the
+    bound holds."""
+    from hyperrotor.classical.solvers import richardson_check
+
+    seen = []
+    init = richardson_check.RichardsonCheck.__init__
+
+    def spy(self, *args, **kwargs):
+        init(self, *args, **kwargs)
+        seen.append(self)
+
+    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
+    moments, w0 = _random_generic5(2002)
+    t = np.linspace(0.0, 20.0, 101)
+    Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, options={"compensated": True}).L
+    tr = hr.simulate(moments, w0, t, rtol=1e-6)
+    true = np.abs(tr.L - Lref).max() / np.abs(Lref).max()
+    assert true <= 1e-6 and tr.stats["reruns"] >= 1
+    first, last = seen[0], seen[-1]
+    assert first.h > last.h and first.d2.max() > richardson_check.SECOND_COMPANION_ASYMPTOTIC
+    assert true <= last.err.max() <= richardson_check.ACCEPT * 1e-6
+
+
 def test_a_chaotic_orbit_that_amplifies_round_off_is_rerun_in_compensated_storage():
     """Random generic body 2003 at rtol 1e-10, T = 20: its error grows like exp(0.6 t), and plain
     arithmetic's round-off, amplified alike, put the accepted run 1.7x over the bound (Richardson's
