@@ -45,6 +45,10 @@ ROUNDOFF_FACTOR = 4.0
 ROUNDOFF_SHARE = 0.25
 #: the observed order comes from samples where the second companion's difference is below this
 LINEAR_REGIME = 1e-3
+#: the estimate grows with the second companion's difference where the ratio of the two differences exceeds the
+#: one the order came from this many times (and the second companion is outside its asymptotic regime): on regular
+#: and mildly chaotic orbits the ratio moves by up to ~2.5x from sample to sample
+STALL_RATIO = 4.0
 #: sample points of the check (the error can peak between output times)
 CHECK_SAMPLES = 64
 #: the check projects the error to the end of the run once this fraction of it is done ...
@@ -217,8 +221,8 @@ def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
     orbit, stops following :math:`C h^q` and would show a low order) and the run's difference is above
     round-off, when there are such samples. ``q = -1``: no difference at all (the estimate is 0). Where the
     second companion has left its asymptotic regime (difference above :data:`SECOND_COMPANION_ASYMPTOTIC`) and
-    the ratio of the two differences has grown beyond the one the order came from, the estimate is raised by
-    that growth: on a chaotic orbit the first companion's difference stalled (random generic body, rtol 1e-6:
+    the ratio of the two differences has grown beyond :data:`STALL_RATIO` times the one the order came from,
+    the estimate is raised by that growth: on a chaotic orbit the first companion's difference stalled (random generic body, rtol 1e-6:
     ratio 195 -> 1167, the estimate 5x under the run's error) while the second kept growing with the run's.
     """
     D1 = 0.0
@@ -247,7 +251,7 @@ def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
     e = 0.0
     for i in range(upto):
         err[i] = d1[i] / div
-        if not finer and d2[i] > SECOND_COMPANION_ASYMPTOTIC and d2[i] > rho * d1[i]:
+        if not finer and d2[i] > SECOND_COMPANION_ASYMPTOTIC and d2[i] > STALL_RATIO * rho * d1[i]:
             # the second companion outside its asymptotic regime and its difference grown faster than the first's
             # (on a chaotic orbit the first companion's difference can stall while the run's error grows):
             # the run's error assumed to grow like the second difference since the linear samples
