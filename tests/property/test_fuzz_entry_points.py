@@ -465,7 +465,7 @@ NOT_FUZZED = {
     "apply_to_polynomial": "takes SymPy operators and polynomials",
     "sphere_inner_product": "takes SymPy polynomials",
     "textbook_so3": "hbar and coordinates only (as angular_momentum_operators)",
-    "StepBudgetError": "an exception class", "BudgetError": "an exception class",
+    "StepBudgetError": "an exception class", "UnreachableAccuracyError": "an exception class", "BudgetError": "an exception class",
     "UnknownOptionError": "an exception class", "ParseError": "an exception class",
     "LyapunovResult": "a result record", "Spectrum": "a result record (NamedTuple)",
     "EhrenfestResult": "a result record", "OTOCResult": "a result record",

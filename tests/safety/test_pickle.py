@@ -60,6 +60,7 @@ EXAMPLES = {
     "LyapunovResult/spectrum+history": lambda: hr.lyapunov(BODY3, W3, 2.0, spectrum=True, history=True),
     "LyapunovResult/sweep": lambda: hr.lyapunov_sweep([BODY3, [1.0, 2.0, 4.0]], W3[None, :], 2.0),
     "StepBudgetError": lambda: hr.StepBudgetError("over budget"),
+    "UnreachableAccuracyError": lambda: hr.UnreachableAccuracyError("rtol out of reach"),
     "BudgetError": lambda: hr.BudgetError("over budget"),
     "UnknownOptionError": lambda: hr.UnknownOptionError("unknown option 'x'"),
     "ParseError": lambda: hr.ParseError("bad text"),

@@ -92,6 +92,7 @@ SIZELESS = {
     # exceptions, option table, registries, result records (their size is the data they are given)
     "BudgetError": "exception class",
     "StepBudgetError": "exception class",
+    "UnreachableAccuracyError": "exception class",
     "UnknownOptionError": "exception class",
     "ParseError": "exception class",
     "options": "the option table (its sizes are budgets, validated on assignment)",
