@@ -111,9 +111,10 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
     ``marks``: global step indices of the samples, every ``spacing`` steps and the run's end (a last gap
     shorter than half a spacing is merged: with ``spacing >= 2 c c2``, as the check sets it, every segment then
     has at least ``c c2`` steps, so its second companion takes fewer steps than its first, ``r2 >= 2``; a last
-    gap of ``c c2 / 2`` steps gave both one step, ``r2 = 1``, and an estimate 1e4-fold too high). When the steps per interval are equal and divide ``spacing``,
-    the samples are every stride-th output time instead (``out_idx`` their output indices, else empty: the
-    run needs no extra stops and gives them with its outputs). ``grid``: the start and their times. ``nc``,
+    gap of ``c c2 / 2`` steps gave both one step, ``r2 = 1``, and an estimate 5e4-fold too high). When the
+    steps per interval are equal and divide ``spacing``, the samples are every stride-th output time instead
+    (``out_idx`` their output indices, else empty: the run needs no extra stops and gives them with its
+    outputs). ``grid``: the start and their times. ``nc``,
     ``nc2``: the companions' steps per segment between samples (``finer``: twice and four times the run's;
     else the run's divided by ``c``, and that by ``c2``). ``r``, ``r2``: the smallest step ratios over the segments
     (companion / largest run step, second / first companion; ``finer``: smallest run step / companion, first
@@ -222,8 +223,9 @@ def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
     round-off, when there are such samples. ``q = -1``: no difference at all (the estimate is 0). Where the
     second companion has left its asymptotic regime (difference above :data:`SECOND_COMPANION_ASYMPTOTIC`) and
     the ratio of the two differences has grown beyond :data:`STALL_RATIO` times the one the order came from,
-    the estimate is raised by that growth: on a chaotic orbit the first companion's difference stalled (random generic body, rtol 1e-6:
-    ratio 195 -> 1167, the estimate 5x under the run's error) while the second kept growing with the run's.
+    the estimate is raised by that growth: on a chaotic orbit the first companion's difference stalled
+    (random generic body, rtol 1e-6: ratio 195 -> 1167, the estimate 5x under the run's error) while the
+    second kept growing with the run's.
     """
     D1 = 0.0
     D2 = 0.0

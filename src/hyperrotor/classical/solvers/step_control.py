@@ -41,8 +41,8 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    be the check's companions (step 4). Its first step turns the fastest rate by up to
    :data:`PROBE_FIRST_TURN_WHOLE` radians as long as it spans at most :data:`PROBE_WHOLE_GAPS` output intervals
    (a run whose steps the output grid sets is then checked by fewer probe steps: on 100 output intervals over
-   T = 20, 30 instead of 51-60 for the 3D top and the 5D quartet). Such a probe at round-off is not enlarged when no output interval is
-   longer than its step (the run's steps cannot be longer than the output intervals).
+   T = 20, 30 instead of 51-60 for the 3D top and the 5D quartet). Such a probe at round-off is not enlarged
+   when no output interval is longer than its step (the run's steps cannot be longer than the output intervals).
 3. *Budget.* All planned work (probes, run, check) above ``max_steps`` is refused here,
    before the run starts (:class:`~.chunks.Work`).
 4. *Check inside the run* (:class:`~.richardson_check.RichardsonCheck`, costing :math:`1/c + 1/(c c_2)` of the run for
@@ -502,8 +502,8 @@ class ErrorTarget:
             # exceeds rtol: no step reaches it (before: re-runs of up to millions of steps, seconds, then this)
             raise UnreachableAccuracyError(
                 f"simulate: rtol = {self.rtol:g} is out of reach in double precision ({failure.why}): round-off "
-                f"alone, amplified like the error, is about eps * exp(lambda T) ~ {_EPS * growth:.2g}. Ask for a larger "
-                f"rtol or a shorter run (at this lambda round-off alone allows T ~ "
+                f"alone, amplified like the error, is about eps * exp(lambda T) ~ {_EPS * growth:.2g}. Ask for a "
+                f"larger rtol or a shorter run (at this lambda round-off alone allows T ~ "
                 f"{math.log(self.rtol / _EPS) / (lam * problem.scale):.3g})")
         if self.retries > MAX_RETRIES:
             best = min(e for _, e in self.history) if self.history else None
