@@ -623,6 +623,27 @@ def test_observed_order_inverts_the_three_run_ratio(r, r2):
     assert observed_order(-1.0, r, r2, 8) == 0.0 and observed_order(float("nan"), r, r2, 8) == 0.0
 
 
+def test_the_estimate_grows_with_the_second_difference_where_the_first_stalls():
+    """Synthetic differences of an order-8 run with companions at 2.75x and 2x: the linear samples give the
+    order (rho = 200 -> q) and err = d1 / (r^q - 1); where the second companion is outside its regime and the
+    ratio of the differences exceeds STALL_RATIO * rho the estimate is multiplied by (d2 / d1) / rho, elsewhere
+    (ratio under 4 rho, or the second companion inside its regime) it is left alone; d1 = 0 gives 0, not NaN."""
+    from hyperrotor.classical.solvers.richardson_check import STALL_RATIO, estimate, observed_order
+
+    r, r2, p = 2.75, 2.0, 8
+    d1 = np.array([1e-6, 2e-6, 1e-4, 2e-4, 0.0, 1e-4])
+    d2 = np.array([2e-4, 4e-4, 0.05, 0.1, 0.5, 2e-2])  # ratios 200, 200, 500, 500, -, 200
+    err = np.zeros(d1.size)
+    q, e = estimate(d1, d2, err, d1.size, False, r, r2, p)
+    assert q == pytest.approx(observed_order(200.0, r, r2, p), rel=1e-12)
+    div = r ** q - 1.0
+    assert np.allclose(err[[0, 1, 3, 5]] * div, d1[[0, 1, 3, 5]], rtol=1e-14)  # 500 < 4 * 200, and 2e-2 < 3e-2
+    assert err[4] == 0.0 and not np.isnan(err).any()
+    d1[3] = 2e-5  # ratio 5000 = 25 rho > STALL_RATIO * rho: stalled
+    q, e = estimate(d1, d2, err, d1.size, False, r, r2, p)
+    assert 5000.0 > STALL_RATIO * 200.0 and err[3] == pytest.approx(2e-5 / div * 25.0, rel=1e-12) and e == err[3]
+
+
 @settings(max_examples=300, deadline=None)
 @given(K=st.integers(2, 120), uneven=st.booleans(), steps_per=st.floats(0.3, 40.0), spacing=st.integers(1, 90),
        finer=st.booleans(), c=st.floats(2.0, 4.0), c2=st.floats(2.0, 4.0), seed=st.integers(0, 2**31))

@@ -253,7 +253,8 @@ def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
     e = 0.0
     for i in range(upto):
         err[i] = d1[i] / div
-        if not finer and d2[i] > SECOND_COMPANION_ASYMPTOTIC and d2[i] > STALL_RATIO * rho * d1[i]:
+        if not finer and d1[i] > 0.0 and rho > 0.0 and d2[i] > max(SECOND_COMPANION_ASYMPTOTIC,
+                                                                 STALL_RATIO * rho * d1[i]):
             # the second companion outside its asymptotic regime and its difference grown faster than the first's
             # (on a chaotic orbit the first companion's difference can stall while the run's error grows):
             # the run's error assumed to grow like the second difference since the linear samples
