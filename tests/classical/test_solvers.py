@@ -1063,6 +1063,31 @@ def test_an_rtol_that_round_off_cannot_reach_on_a_chaotic_orbit_is_refused_after
     assert len(runs) <= 3 and max(runs) < 50_000, runs
 
 
+def test_the_round_off_refusal_is_for_one_trajectory_only():
+    """Two failed checks in a row with exponential growth exp(lambda T) ~ 1e26: refused for one trajectory; for
+    an ensemble (whose growth is that of the envelope over its checked members, which jumps between members) the
+    re-run's step is returned instead (a 20-member ensemble was once refused where every member reaches rtol)."""
+    from types import SimpleNamespace
+
+    from hyperrotor.classical.solvers.richardson_check import CheckFailed
+    from hyperrotor.classical.solvers.step_control import ErrorTarget
+
+    for B in (1, 20):
+        control = ErrorTarget(1e-6)
+        problem = SimpleNamespace(span=200.0, scale=1.0, B=B)
+        answers = []
+        for _ in range(2):
+            control.last_growth = 0.3
+            try:
+                answers.append(control.next_step(CheckFailed(0.01, "estimated error 1e-4"), None, problem, None))
+            except hr.UnreachableAccuracyError as exc:
+                answers.append(str(exc))
+        if B == 1:
+            assert answers[0] == 0.01 and "out of reach in double precision" in answers[1], answers
+        else:
+            assert answers == [0.01, 0.01]
+
+
 def test_a_run_priced_over_the_budget_after_the_probe_is_refused_before_it_starts(monkeypatch):
     """A budget the probe fits in but the run does not: refused before the run's first step, naming the
     accuracy reachable within the budget (the probe's estimate) and the option to raise."""
