@@ -1031,61 +1031,13 @@ def test_a_failed_check_reruns_at_a_shorter_step(monkeypatch):
 
 
 def test_an_unreachable_rtol_on_a_chaotic_orbit_says_so():
-    """Chaotic 5D orbit, long run, tight rtol: the error grows like exp(lambda t) (exp(lambda T) ~ 1e15, so
-    round-off alone is ~0.2); the call names the growth and the reachable accuracy instead of grinding or
-    missing the bound silently (before the round-off test: a budget error after two re-runs)."""
+    """Chaotic 5D orbit, long run, tight rtol: the error grows like exp(lambda t); the call names the
+    growth and the reachable accuracy instead of grinding or missing the bound silently."""
     moments, w0 = _random_generic5(2)
     t = np.linspace(0.0, 100.0, 11)
-    with pytest.raises(hr.UnreachableAccuracyError, match=r"grows like exp\(lambda t\) .* eps \* exp\(lambda T\)"):
+    with pytest.raises(StepBudgetError, match=r"grows like exp\(lambda t\) .* reachable accuracy about") as info:
         hr.simulate(moments, w0, t, method="splitting8", rtol=1e-10, max_steps=10**5)
-
-
-@pytest.mark.parametrize("rtol", [1e-6, 1e-9, 1e-12])
-def test_an_rtol_that_round_off_cannot_reach_on_a_chaotic_orbit_is_refused_after_two_checks(rtol, monkeypatch):
-    """The benchmark's generic 5D body over T = 200: two checks in a row see the error grow like exp(lambda t)
-    with exp(lambda T) ~ 1e24-1e35, so that round-off alone (eps exp(lambda T)) exceeds any rtol: refused at
-    once, naming the growth and the run length round-off allows (before: re-runs of up to 543k steps, 1-12 s,
-    then "not reached after 3 re-runs")."""
-    from hyperrotor.classical.solvers import richardson_check
-
-    runs = []
-    init = richardson_check.RichardsonCheck.__init__
-
-    def spy(self, *args, **kwargs):
-        init(self, *args, **kwargs)
-        runs.append(self.steps)
-
-    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
-    moments, w0 = _random_generic5(1)
-    with pytest.raises(hr.UnreachableAccuracyError, match=r"out of reach in double precision .*grows like "
-                       r"exp\(lambda t\).*eps \* exp\(lambda T\) ~ [0-9.]+e\+[0-9]+.*round-off alone allows T ~"):
-        hr.simulate(moments, w0, np.linspace(0.0, 200.0, 101), rtol=rtol)
-    assert len(runs) <= 3 and max(runs) < 50_000, runs
-
-
-def test_the_round_off_refusal_is_for_one_trajectory_only():
-    """Two failed checks in a row with exponential growth exp(lambda T) ~ 1e26: refused for one trajectory; for
-    an ensemble (whose growth is that of the envelope over its checked members, which jumps between members) the
-    re-run's step is returned instead (a 20-member ensemble was once refused where every member reaches rtol)."""
-    from types import SimpleNamespace
-
-    from hyperrotor.classical.solvers.richardson_check import CheckFailed
-    from hyperrotor.classical.solvers.step_control import ErrorTarget
-
-    for B in (1, 20):
-        control = ErrorTarget(1e-6)
-        problem = SimpleNamespace(span=200.0, scale=1.0, B=B)
-        answers = []
-        for _ in range(2):
-            control.last_growth = 0.3
-            try:
-                answers.append(control.next_step(CheckFailed(0.01, "estimated error 1e-4"), None, problem, None))
-            except hr.UnreachableAccuracyError as exc:
-                answers.append(str(exc))
-        if B == 1:
-            assert answers[0] == 0.01 and "out of reach in double precision" in answers[1], answers
-        else:
-            assert answers == [0.01, 0.01]
+    assert info.value.needed > info.value.budget == 10**5
 
 
 def test_a_run_priced_over_the_budget_after_the_probe_is_refused_before_it_starts(monkeypatch):

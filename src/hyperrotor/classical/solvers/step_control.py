@@ -81,10 +81,7 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    accuracy reachable within the budget; when :data:`MAX_RETRIES` re-runs do not meet ``rtol``
    (round-off, or exponential growth that outruns the order of the method) the call stops with
    :class:`UnreachableAccuracyError` naming the reachable accuracy, instead of grinding or
-   returning a result that misses the bound; and so it does at once when two checks in a row see the error
-   of one trajectory grow like :math:`e^{\lambda t}` so fast that round-off alone, amplified alike, exceeds ``rtol``
-   (:math:`\epsilon e^{\lambda T} > \mathrm{rtol}`; it names the run length round-off allows, about
-   :math:`\ln(\mathrm{rtol}/\epsilon)/\lambda`).
+   returning a result that misses the bound.
 
 Cost. The probe's two runs (steps ``h`` and ``2h``) and the check's two companions each advance in one
 compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run both in
@@ -331,7 +328,6 @@ class ErrorTarget:
         self.rtol = _validate.positive("rtol", rtol)
         self.seconds_per_step: float | None = None
         self.retries = 0
-        self.growing_failures = 0  # failed checks in a row that saw the error grow exponentially
         self.history: list = []  # (h, estimated error) of every checked run (partial ones too)
         self.last_growth = 0.0
         self.probe_note = ""  # the error growth the probe saw, when faster than PROBE_MAX_POWER allows
@@ -360,7 +356,6 @@ class ErrorTarget:
         span = problem.span
         B = problem.B
         self.retries = 0
-        self.growing_failures = 0  # failed checks in a row that saw the error grow exponentially
         self.history = []
         self.probe_note = ""
         self.roundoff_amplified = False
@@ -494,20 +489,6 @@ class ErrorTarget:
     def next_step(self, failure: CheckFailed, solver, problem: Problem, work: Work) -> float:
         """The step of the re-run after a failed check, or an error when the target is out of reach."""
         self.retries += 1
-        lam = self.last_growth
-        self.growing_failures = self.growing_failures + 1 if lam > 0.0 else 0
-        growth = math.exp(min(lam * problem.span, 700.0))
-        if self.growing_failures >= 2 and _EPS * growth > self.rtol and problem.B == 1:
-            # two checks in a row saw the error grow exponentially, so fast that round-off alone, amplified alike,
-            # exceeds rtol: no step reaches it (before: re-runs of up to millions of steps, seconds, then this).
-            # One trajectory only: an ensemble's growth is that of the envelope over its checked members, which
-            # jumps from member to member (20 generic 5D members, T = 20, rtol 1e-6: refused, where every member
-            # reaches the bound)
-            raise UnreachableAccuracyError(
-                f"simulate: rtol = {self.rtol:g} is out of reach in double precision ({failure.why}): round-off "
-                f"alone, amplified like the error, is about eps * exp(lambda T) ~ {_EPS * growth:.2g}. Ask for a "
-                f"larger rtol or a shorter run (at this lambda round-off alone allows T ~ "
-                f"{math.log(self.rtol / _EPS) / (lam * problem.scale):.3g})")
         if self.retries > MAX_RETRIES:
             best = min(e for _, e in self.history) if self.history else None
             raise UnreachableAccuracyError(
