@@ -487,23 +487,29 @@ def _random_generic5(seed):
     return moments, w0 / np.abs(w0).max()
 
 
-@pytest.mark.parametrize("spin", [1.0, 0.2], ids=["max-omega-1", "max-omega-0.2"])
-@pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-10])
-def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol, spin, monkeypatch):
-    """The whole-run bound over random generic 5D bodies, T = 20, against the same splitting at a
-    step 40x shorter, compensated (its own error is ~1e-13 relative, far below the rtols here), on 10, 40 and
-    100 output intervals. Spinning five times slower, the probe covers the whole run, and checks take its two
-    runs as companions."""
+@pytest.fixture
+def checks(monkeypatch):
+    """The step control's checks (``RichardsonCheck`` instances) of the calls the test makes, in order."""
     from hyperrotor.classical.solvers import richardson_check
 
-    given = []
+    seen = []
     init = richardson_check.RichardsonCheck.__init__
 
     def spy(self, *args, **kwargs):
         init(self, *args, **kwargs)
-        given.append(self.given is not None)
+        seen.append(self)
 
     monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
+    return seen
+
+
+@pytest.mark.parametrize("spin", [1.0, 0.2], ids=["max-omega-1", "max-omega-0.2"])
+@pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-10])
+def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol, spin, checks):
+    """The whole-run bound over random generic 5D bodies, T = 20, against the same splitting at a
+    step 40x shorter, compensated (its own error is ~1e-13 relative, far below the rtols here), on 10, 40 and
+    100 output intervals. Spinning five times slower, the probe covers the whole run, and checks take its two
+    runs as companions."""
     worst = 0.0
     for seed in range(20):
         moments, w0 = _random_generic5(1000 + seed)
@@ -513,40 +519,31 @@ def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol, spin, monkeypatch):
         tr = hr.simulate(moments, w0, t, rtol=rtol)
         worst = max(worst, np.abs(tr.L - Lref).max() / np.abs(Lref).max() / rtol)
     assert worst <= 1.0, worst
+    given = [check.given is not None for check in checks]
     assert any(given) or spin == 1.0, given
 
 
 @pytest.mark.parametrize("seed", [1005, 1008, 1010])
-def test_a_short_last_check_segment_keeps_two_genuine_companions(seed, monkeypatch):
+def test_a_short_last_check_segment_keeps_two_genuine_companions(seed, checks):
     """Random generic 5D bodies spinning slowly (max|omega0| = 0.2), 41 output times, rtol 1e-6: the run takes one
     step of 0.5 per interval (40 steps), the check samples every 9 steps, and its last segment had 4 steps: both
     companions took one step there (r2 = 1), no order could be observed, the estimate was the first companion's
-    own error (1e4-fold the run's) and the re-run took steps 100-200x shorter (2200-13900 steps for 40). A last
+    own error (5e4-fold the run's) and the re-run took steps 100-200x shorter (2200-13900 steps for 40). A last
     segment shorter than half a spacing is merged: two genuine companions, the observed order near the method's,
     an estimate within 100x of the run's true error, no re-run."""
-    from hyperrotor.classical.solvers import richardson_check
-
-    seen = []
-    init = richardson_check.RichardsonCheck.__init__
-
-    def spy(self, *args, **kwargs):
-        init(self, *args, **kwargs)
-        seen.append(self)
-
-    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
     moments, w0 = _random_generic5(seed)
     w0 = 0.2 * w0
     t = np.linspace(0.0, 20.0, 41)
     Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, options={"compensated": True}).L
     tr = hr.simulate(moments, w0, t, rtol=1e-6)
     true = np.abs(tr.L - Lref).max() / np.abs(Lref).max()
-    (check,) = seen
+    (check,) = checks
     assert tr.stats["reruns"] == 0 and tr.stats["steps"] == 40 and tr.stats["work"] <= 3 * tr.stats["steps"]
     assert check.r2 >= 2.0 and np.all(check.nc2 < check.nc) and check.q >= check.p / 2
     assert true <= check.err.max() <= 100 * true and check.err.max() <= 1e-6
 
 
-def test_a_stalled_first_companion_on_a_chaotic_orbit_does_not_hide_the_run_error(monkeypatch):
+def test_a_stalled_first_companion_on_a_chaotic_orbit_does_not_hide_the_run_error(checks):
     """Random generic body 2002, 101 output times, rtol 1e-6: the run at the output grid's step (0.2) has a
     whole-run error of 2.1e-6. Its first companion's difference stalled over the last samples (6.7e-4, 4.1e-4,
     9.8e-4) while the run's error grew 21-fold and the second companion's difference left its asymptotic regime
@@ -555,21 +552,13 @@ def test_a_stalled_first_companion_on_a_chaotic_orbit_does_not_hide_the_run_erro
     bound holds."""
     from hyperrotor.classical.solvers import richardson_check
 
-    seen = []
-    init = richardson_check.RichardsonCheck.__init__
-
-    def spy(self, *args, **kwargs):
-        init(self, *args, **kwargs)
-        seen.append(self)
-
-    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
     moments, w0 = _random_generic5(2002)
     t = np.linspace(0.0, 20.0, 101)
     Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.004, options={"compensated": True}).L
     tr = hr.simulate(moments, w0, t, rtol=1e-6)
     true = np.abs(tr.L - Lref).max() / np.abs(Lref).max()
     assert true <= 1e-6 and tr.stats["reruns"] >= 1
-    first, last = seen[0], seen[-1]
+    first, last = checks[0], checks[-1]
     assert first.h > last.h and first.d2.max() > richardson_check.SECOND_COMPANION_ASYMPTOTIC
     assert true <= last.err.max() <= richardson_check.ACCEPT * 1e-6
 
@@ -769,27 +758,22 @@ def test_probe_ratio_is_the_smallest_step_ratio_over_the_segments(K, steps_per, 
 
 @pytest.mark.parametrize("case, T", [("top", 20.0), ("quartet", 20.0), ("top", 5.0)])
 @pytest.mark.parametrize("rtol", [1e-6, 1e-9, 1e-12])
-def test_a_probe_of_the_whole_run_is_the_checks_companions(case, T, rtol, monkeypatch):
+def test_a_probe_of_the_whole_run_is_the_checks_companions(case, T, rtol, checks, monkeypatch):
     """A run short enough for the probe to cover it (100 output intervals; T = 20: 20 radians of the fastest
     rate or less) is probed at output times, and the check takes the probe's two runs as its companions when
     their steps are 2 to PROBE_RATIO times the run's: no companion step (work: the run and the probes), the
     companions are the runs the check would advance (bit for bit, same steps, same arithmetic), and the bound
     holds against the closed form. At T = 5 the run's steps are too short for them: companions of its own."""
-    from hyperrotor.classical.solvers import richardson_check, step_control
+    from hyperrotor.classical.solvers import step_control
     from hyperrotor.classical.solvers.richardson_check import ACCEPT, PROBE_RATIO
 
-    seen, probe_work = [], []
-    init, pair = richardson_check.RichardsonCheck.__init__, step_control.advance_pair_chunked
-
-    def spy(self, *args, **kwargs):
-        init(self, *args, **kwargs)
-        seen.append(self)
+    seen, probe_work = checks, []
+    pair = step_control.advance_pair_chunked
 
     def counted(solver, problem, La, Lb, grid, na, nb, **kwargs):
         probe_work.append((int(na.sum()) + int(nb.sum())) * La.shape[0])
         return pair(solver, problem, La, Lb, grid, na, nb, **kwargs)
 
-    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
     monkeypatch.setattr(step_control, "advance_pair_chunked", counted)
     t = np.linspace(0.0, T, 101)
     if case == "top":
@@ -870,21 +854,14 @@ def test_roundoff_amplification_is_the_growth_beyond_linear():
 @pytest.mark.parametrize("method, members", [("splitting8", ()), ("splitting8", (3,)), ("splitting8", (11,)),
                                              ("moser-veselov", ())])
 @pytest.mark.parametrize("grid", ["even", "uneven"])
-def test_rtol_runs_in_one_call_and_in_chunks_agree(method, grid, members, rng, monkeypatch):
+def test_rtol_runs_in_one_call_and_in_chunks_agree(method, grid, members, rng, checks, monkeypatch):
     """An rtol run whose work fits in one chunk is one call, its check's companions the next (samples at
     output times, or between them with the run stopping there); cut into chunks, the check follows the
     run chunk by chunk. Same step, same numbers (bit for bit), same work and the same decision (the
     estimates differ by the scales of the distances only, which grow with the samples seen)."""
     from hyperrotor.classical.solvers import richardson_check
 
-    seen = []
-    init = richardson_check.RichardsonCheck.__init__
-
-    def spy(self, *args, **kwargs):
-        init(self, *args, **kwargs)
-        seen.append(self)
-
-    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
+    seen = checks
     from hyperrotor.classical.solvers import chunks, driver
     body = RigidBody(Inertia.from_mass_tensor(J5))
     w0 = 0.6 * rng.normal(size=members + (10,))
