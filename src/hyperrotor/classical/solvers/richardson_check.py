@@ -66,6 +66,13 @@ def _three_run_ratio(q, r, r2):  # pragma: no cover - jitted
 
 
 @jit
+def coarser_divisor(q, r):  # pragma: no cover - jitted
+    """The run's error is its difference to a companion at ``r`` times its step over this: :math:`r^q - 1`
+    (errors :math:`C h^q`); 1 outside the asymptotic regime (:math:`q < 1/2`: the difference itself). Compiled."""
+    return max(r ** q - 1.0, 1.0) if q >= 0.5 else 1.0
+
+
+@jit
 def observed_order(rho, r, r2, p):  # pragma: no cover - jitted
     r"""The order :math:`q \in [0, p]` with :math:`r^q (r_2^q - 1)/(r^q - 1) = \rho` (ratio of the
     differences of three runs at steps :math:`h`, :math:`rh`, :math:`r r_2 h`, errors :math:`C h^q`).
@@ -249,7 +256,7 @@ def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
         div = max(1.0 - r ** -q, 1e-300) if q >= 0.5 else 1.0
     else:
         q = observed_order(rho, r, r2, p)
-        div = max(r ** q - 1.0, 1.0) if q >= 0.5 else 1.0
+        div = coarser_divisor(q, r)
     e = 0.0
     for i in range(upto):
         err[i] = d1[i] / div
@@ -506,8 +513,7 @@ class RichardsonCheck:
                                      or self.d2[:j].max() > SECOND_COMPANION_ASYMPTOTIC):
             # companions outside their asymptotic regime show no order: the run's error from the first one's
             # with the method's order, (r^p - 1) instead of the estimate's divisor (r^q - 1)
-            div = max(self.r ** q_seen - 1.0, 1.0) if q_seen >= 0.5 else 1.0
-            end, q = end * div / max(self.r ** p - 1.0, 1.0), p
+            end, q = end * coarser_divisor(q_seen, self.r) / coarser_divisor(p, self.r), p
         h_new = 0.9 * self.h * (SAFETY * rtol / end) ** (1.0 / q)
         h_new = min(h_new, self.h / 1.25)
         lam = self._growth(self.j)
