@@ -1,6 +1,6 @@
 """Cost and reliability of the step control of hyperrotor.simulate(rtol=...) (issue #22).
 
-Four tables, each measured side by side in one run (ratios are load-robust):
+Five tables, each measured side by side in one run (ratios are load-robust):
 
 1. Overhead: wall time of ``simulate(body, omega0, t, rtol=r)`` (step chosen inside the call)
    over the wall time of the fixed-step run at the step it chose (``dt=stats["dt"]``, same
@@ -18,6 +18,9 @@ Four tables, each measured side by side in one run (ratios are load-robust):
 3. Bound held: over many random generic 5D bodies (T = 20), the fraction of runs whose whole-run
    error stays <= rtol, rtol = 1e-6 ... 1e-10.
 4. Where ``method="auto"`` switches from splitting8 to splitting10: wall time of rtol calls of both.
+5. Ensembles: random generic 5D bodies with 20 members each (T = 20), rtol 1e-6 and 1e-9: the worst member's
+   error over rtol, and whether a miss was named (``AccuracyWarning``, with the accuracy it names) or silent.
+   Goal: no silent miss.
 
 Usage: python benchmarks/step_control.py [--quick]  (run with PYTHONPATH=<other tree>/src for "before")
 Writes benchmarks/results/step_control*.csv.
@@ -25,11 +28,14 @@ Writes benchmarks/results/step_control*.csv.
 from __future__ import annotations
 
 import argparse
+import re
 import time
+import warnings
 from pathlib import Path
 
 import numpy as np
 
+import hyperrotor as hr
 from hyperrotor import Inertia, RigidBody, simulate
 from hyperrotor.classical.simulate import SIMULATION_METHODS
 from hyperrotor.bench import best_of, best_of_interleaved, write_csv
@@ -204,6 +210,43 @@ def auto_table(quick, repeats):
     return rows
 
 
+def ensemble_table(quick):
+    """Table 5: every member of 20-member ensembles on random generic 5D bodies against a reference (splitting10
+    at dt = 0.002, compensated); a member over rtol is a named miss when the call warned (AccuracyWarning: the
+    orbit amplifies the rounding of its own initial state beyond rtol) and its error is within the accuracy the
+    warning names, else silent."""
+    seeds = range(4000, 4004) if quick else range(4000, 4008)
+    print(f"\n== 5. ensembles: {len(seeds)} random generic 5D bodies x 20 members (T = 20, 41 output times) ==")
+    t = np.linspace(0.0, 20.0, 41)
+    rows = []
+    for seed in seeds:
+        rng = np.random.default_rng(seed)
+        moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
+        W = rng.normal(size=(20, 10)) * rng.uniform(0.2, 1.0, (20, 1))
+        ref = simulate(moments, W, t, method="splitting10", dt=0.002, options={"compensated": True}).L
+        for rtol in (1e-6, 1e-9):
+            t0 = time.perf_counter()
+            category = getattr(hr, "AccuracyWarning", None)  # (a tree before it: every miss is silent)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                tr = simulate(moments, W, t, rtol=rtol)
+            seconds = time.perf_counter() - t0
+            err = np.abs(tr.L - ref).max(axis=(1, 2)) / np.abs(ref).max(axis=(1, 2))
+            named = [float(re.search(r"accurate to about (\S+), not", str(w.message)).group(1))
+                     for w in caught if category is not None and issubclass(w.category, category)]
+            floor = max(named) if named else None
+            worst = int(err.argmax())
+            verdict = ("held" if err.max() <= rtol else
+                       "named" if floor is not None and err.max() <= floor else "SILENT MISS")
+            print(f"body {seed} rtol {rtol:.0e}: worst member {worst} err/rtol {err.max() / rtol:.3g}, "
+                  f"{tr.stats['steps']} steps, {tr.stats['reruns']} re-runs, {seconds:.2f} s; "
+                  + (f"AccuracyWarning names {floor:.2g}; " if floor is not None else "") + verdict)
+            rows.append(dict(body=seed, rtol=rtol, worst_member=worst, worst_error_over_rtol=err.max() / rtol,
+                             steps=tr.stats["steps"], reruns=tr.stats["reruns"], seconds=seconds,
+                             named_accuracy=floor, verdict=verdict))
+    return rows
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer problems and tolerances")
@@ -217,11 +260,14 @@ def main(argv=None):
     head = headline(args.quick, repeats)
     bound = bound_table(args.quick)
     auto = auto_table(args.quick, repeats) if "splitting10" in SIMULATION_METHODS else []
+    ensembles = ensemble_table(args.quick)
     write_csv(rows, RESULTS / f"step_control_overhead{args.tag}.csv")
     write_csv(head, RESULTS / f"step_control_headline{args.tag}.csv")
     write_csv(bound, RESULTS / f"step_control_bound{args.tag}.csv")
     if auto:
         write_csv(auto, RESULTS / f"step_control_auto{args.tag}.csv")
+    if ensembles:
+        write_csv(ensembles, RESULTS / f"step_control_ensembles{args.tag}.csv")
     print(f"\nwrote {RESULTS}/step_control*{args.tag}.csv (total {time.perf_counter() - t0:.0f} s)")
 
 

@@ -61,6 +61,7 @@ EXAMPLES = {
     "LyapunovResult/sweep": lambda: hr.lyapunov_sweep([BODY3, [1.0, 2.0, 4.0]], W3[None, :], 2.0),
     "StepBudgetError": lambda: hr.StepBudgetError("over budget"),
     "UnreachableAccuracyError": lambda: hr.UnreachableAccuracyError("rtol out of reach"),
+    "AccuracyWarning": lambda: hr.AccuracyWarning("accurate to about 1e-7"),
     "BudgetError": lambda: hr.BudgetError("over budget"),
     "UnknownOptionError": lambda: hr.UnknownOptionError("unknown option 'x'"),
     "ParseError": lambda: hr.ParseError("bad text"),

@@ -93,6 +93,7 @@ SIZELESS = {
     "BudgetError": "exception class",
     "StepBudgetError": "exception class",
     "UnreachableAccuracyError": "exception class",
+    "AccuracyWarning": "warning class",
     "UnknownOptionError": "exception class",
     "ParseError": "exception class",
     "options": "the option table (its sizes are budgets, validated on assignment)",

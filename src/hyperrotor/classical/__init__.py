@@ -14,7 +14,8 @@ from .rigid_body import *  # noqa: F401,F403
 from .scene_html import *  # noqa: F401,F403
 from .scenes import *  # noqa: F401,F403
 from .simulate import SIMULATION_METHODS, Trajectory, simulate
-from .solvers import SOLVERS, Solver, StepBudgetError, UnreachableAccuracyError, casimir_shift, splitting_coefficients
+from .solvers import (SOLVERS, AccuracyWarning, Solver, StepBudgetError, UnreachableAccuracyError, casimir_shift,
+                      splitting_coefficients)
 from .stability import *  # noqa: F401,F403
 
 __all__ = [
@@ -26,6 +27,7 @@ __all__ = [
     "Solver",
     "StepBudgetError",
     "UnreachableAccuracyError",
+    "AccuracyWarning",
     "splitting_coefficients",
     "casimir_shift",
     *closed_form.__all__,

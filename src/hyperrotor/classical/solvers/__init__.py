@@ -25,11 +25,12 @@ from .moser_veselov import MoserVeselov
 from .scipy_ivp import BDF, DOP853, LSODA, RK23, RK45, Radau, ScipyIVP
 from .splitting import (Splitting, Splitting2, Splitting4, Splitting6, Splitting8, Splitting10, casimir_shift,
                         splitting_coefficients)
-from .step_control import ErrorTarget, FixedStep, StepBudgetError, UnreachableAccuracyError
+from .step_control import AccuracyWarning, ErrorTarget, FixedStep, StepBudgetError, UnreachableAccuracyError
 
 __all__ = ["SOLVERS", "solver_for", "Solver", "FixedStepSolver", "ScipyIVP", "Splitting", "Splitting2", "Splitting4",
            "Splitting6", "Splitting8", "Splitting10", "MoserVeselov", "DOP853", "RK45", "RK23", "LSODA", "Radau", "BDF",
-           "StepBudgetError", "UnreachableAccuracyError", "casimir_shift", "splitting_coefficients", "Problem",
+           "StepBudgetError", "UnreachableAccuracyError", "AccuracyWarning", "casimir_shift", "splitting_coefficients",
+           "Problem",
            "FixedStep", "ErrorTarget"]
 
 #: The registry: method name -> Solver class (the one list of methods; docs and tests loop over it).

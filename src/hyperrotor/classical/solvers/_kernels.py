@@ -392,26 +392,27 @@ split_run_pair = jit(_split_run_pair)
 
 @jit
 def relative_difference(La, Lb, moments, Lmax, Wmax):  # pragma: no cover - jitted
-    """Per sample (axis 1 of ``La``, ``Lb``: rows, samples, n): the largest over rows and planes of
-    ``max(|dL| / Lmax[row], |dL / moments| / Wmax[row])`` (NaN if any difference is NaN).
+    """Per row and sample (``La``, ``Lb``: rows, samples, n; the result: rows, samples): the largest over
+    planes of ``max(|dL| / Lmax[row], |dL / moments| / Wmax[row])`` (NaN if any difference is NaN).
 
     The step control's measure of the distance of two runs (relative to the largest ``|L|`` and
-    ``|omega|`` of each row): Richardson's estimates compare runs at different steps with it.
+    ``|omega|`` of each row): Richardson's estimates compare runs at different steps with it, row
+    (ensemble member) by row: each member's differences follow its own orbit's growth.
     """
     rows, S, n = La.shape
-    out = np.empty(S)
-    for s in range(S):
-        best = 0.0
-        nan = False
-        for b in range(rows):
+    out = np.empty((rows, S))
+    for b in range(rows):
+        for s in range(S):
+            best = 0.0
             for a in range(n):
                 d = abs(La[b, s, a] - Lb[b, s, a])
                 x = max(d / Lmax[b], d / moments[a] / Wmax[b])
                 if x != x:
-                    nan = True
-                elif x > best:
+                    best = math.nan
+                    break
+                if x > best:
                     best = x
-        out[s] = math.nan if nan else best
+            out[b, s] = best
     return out
 
 

@@ -111,6 +111,11 @@ class FixedStepSolver(Solver):
         """Whether the step control may switch the run to compensated (TwoSum) storage of ``L``."""
         return False
 
+    def compensates(self) -> bool:
+        """Whether the run keeps ``L`` in compensated (TwoSum) storage (its round-off then does not grow with the
+        number of steps)."""
+        return False
+
     def kernel_variant(self) -> Any:
         """Hashable label of the compiled code :meth:`advance` runs (the driver learns its speed per label)."""
         return type(self)

@@ -16,13 +16,14 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from hyperrotor._jit import jit
+from hyperrotor._warn import warn
 
 from ._kernels import raise_scales, relative_difference, row_scales
 from .base import Problem, step_lengths
 from .chunks import Work, advance_chunked, advance_pair_chunked, merge, refuse_steps, stops
 
-__all__ = ["RichardsonCheck", "CheckFailed", "ProbeRuns", "observed_order", "relative_difference", "SAFETY", "ACCEPT",
-           "ASYMPTOTIC", "COMPANION_RATIO"]
+__all__ = ["RichardsonCheck", "CheckFailed", "AccuracyWarning", "ProbeRuns", "observed_order", "relative_difference",
+           "SAFETY", "ACCEPT", "ASYMPTOTIC", "COMPANION_RATIO"]
 
 _EPS = float(np.finfo(float).eps)
 #: the error target used for the step: rtol times this (margin for the asymptotic model)
@@ -200,24 +201,25 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
 
 @jit
 def sample_differences(Lf, L1, L2, moments, Lmax, Wmax, d1, d2, j):  # pragma: no cover - jitted
-    """``d1[j:j + S]``, ``d2[j:j + S]``: the distances run - first companion and first - second companion at
-    ``S`` new samples (``(members, S, n)`` each), after raising the running scales with the run's states;
-    ``False`` when a distance is not finite (a companion overflowed). Compiled."""
+    """``d1[:, j:j + S]``, ``d2[:, j:j + S]``: per checked member, the distances run - first companion and
+    first - second companion at ``S`` new samples (``(members, S, n)`` each), after raising the running scales
+    with the run's states; ``False`` when a distance is not finite (a companion overflowed). Compiled."""
     raise_scales(Lf, moments, Lmax, Wmax)
     a = relative_difference(Lf, L1, moments, Lmax, Wmax)
     b = relative_difference(L1, L2, moments, Lmax, Wmax)
     finite = True
-    for i in range(a.size):
-        d1[j + i] = a[i]
-        d2[j + i] = b[i]
-        if not (math.isfinite(a[i]) and math.isfinite(b[i])):
-            finite = False
+    for m in range(a.shape[0]):
+        for i in range(a.shape[1]):
+            d1[m, j + i] = a[m, i]
+            d2[m, j + i] = b[m, i]
+            if not (math.isfinite(a[m, i]) and math.isfinite(b[m, i])):
+                finite = False
     return finite
 
 
 @jit
-def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
-    r"""``err[:upto] = d1[:upto] / divisor`` (the run's estimated error at each sample) and ``(q, max err)``.
+def member_estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
+    r"""``err[:upto] = d1[:upto] / divisor`` (one member's estimated error at each sample) and ``(q, max err)``.
 
     With errors :math:`C h^q`: :math:`\rho = |y_1 - y_2| / |y_{run} - y_1| = r^q (r_2^q - 1)/(r^q - 1)`
     (:func:`observed_order` solves it for :math:`q`), which gives the observed order :math:`q \le p`
@@ -271,11 +273,39 @@ def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
 
 
 @jit
+def estimate(d1, d2, err, upto, finer, r, r2, p):  # pragma: no cover - jitted
+    """The run's estimated error at each sample, ``err[:upto]``: the largest over the checked members (rows of
+    ``d1``, ``d2``) of their own estimates (:func:`member_estimate`), and ``(q, max err)`` with the order ``q``
+    of the member whose estimate is the largest (-1 when no member shows a difference). Each member has its own
+    order, regime and growth: an envelope over the members takes the order from one member and the differences
+    from another (a member of order 2 under one of order 8 with 100x larger differences: its error divided by
+    :math:`r^8 - 1` instead of :math:`r^2 - 1`, 20x too small). Compiled."""
+    M = d1.shape[0]
+    row = np.empty(upto)
+    q_best, e_best = -1.0, 0.0
+    for i in range(upto):
+        err[i] = 0.0
+    for m in range(M):
+        q, e = member_estimate(d1[m], d2[m], row, upto, finer, r, r2, p)
+        for i in range(upto):
+            err[i] = max(err[i], row[i])
+        if q >= 0.0 and (q_best < 0.0 or e > e_best):
+            q_best, e_best = q, e
+    return q_best, e_best
+
+
+@jit
 def roundoff_amplification(t, d1, flows):  # pragma: no cover - jitted
-    """How much the orbit amplified the differences to the first companion beyond linear growth
-    (:meth:`RichardsonCheck._check_roundoff`): from the first sample after an eighth of the run
-    (times ``t`` from the start) where their envelope is above round-off, to the end; 0.0 when no
-    sample qualifies."""
+    r"""``(A, X)``: how much the orbit amplified the differences to the first companion beyond linear growth,
+    and how much their envelope grew over the whole run (:meth:`RichardsonCheck._check_roundoff`).
+
+    ``A``: from the first sample :math:`t_i` after an eighth of the run (times ``t`` from the start) where the
+    envelope is above round-off, to the end :math:`T`, it grew :math:`G`-fold; :math:`A = G t_i / T` (at least
+    1; 0.0 when no sample qualifies). ``X``: the envelope at the end over the first sample's difference (at
+    least :math:`\epsilon`): on a chaotic orbit the differences made early grow like a perturbation of the
+    initial state, :math:`X \approx e^{\lambda T}` (over 62 chaotic members of random generic 5D ensembles,
+    :math:`\epsilon X` was 0.1-10 times the scatter of compensated runs at four steps; extrapolating
+    :math:`G` back to the start instead was 6000x too high on an orbit that was quiet for its first 40%)."""
     S = t.size
     tend = t[S - 1]
     env = 0.0
@@ -286,8 +316,8 @@ def roundoff_amplification(t, d1, flows):  # pragma: no cover - jitted
         if i0 < 0 and t[i] >= tend / 8.0 and env > 10.0 * _EPS * math.sqrt(flows * t[i] / max(tend, 1e-300)):
             i0, e0 = i, env
     if i0 < 0 or i0 >= S - 1 or t[i0] <= 0.0:
-        return 0.0
-    return max(1.0, env / e0 / (tend / t[i0]))
+        return 0.0, 0.0
+    return max(1.0, env / e0 / (tend / t[i0])), env / max(d1[0], _EPS)
 
 
 @jit
@@ -323,6 +353,13 @@ class ProbeRuns(NamedTuple):
         """Whether runs whose Richardson estimate was ``err`` (of ``y1``; order ``p``) are asymptotic enough
         to be companions (the limits of the companions the check would choose itself; round-off is fine)."""
         return err <= COMPANION_ASYMPTOTIC and err * (2.0 ** p - 1.0) <= SECOND_COMPANION_ASYMPTOTIC
+
+
+class AccuracyWarning(UserWarning):
+    """A result is returned, but ``rtol`` is below what double precision gives on this orbit: a chaotic
+    orbit amplifies the rounding of its own initial state (and of every step) beyond ``rtol``. The message
+    names the growth and the accuracy the result has; ``warnings.simplefilter("error", AccuracyWarning)``
+    makes it an error."""
 
 
 class CheckFailed(Exception):
@@ -399,9 +436,10 @@ class RichardsonCheck:
         self.marks = self.cs[out_idx] if marks is None else marks
         S = self.marks.size
         self.Lmax, self.Wmax = row_scales(self.problem.L0[self.members][:, None, :], self.moments)
-        self.d1 = np.zeros(S)  # run - first companion, relative, per sample
-        self.d2 = np.zeros(S)  # first - second companion
-        self.err = np.zeros(S)  # estimated error of the run at each sample
+        M = len(self.members)
+        self.d1 = np.zeros((M, S))  # run - first companion, relative, per checked member and sample
+        self.d2 = np.zeros((M, S))  # first - second companion
+        self.err = np.zeros(S)  # estimated error of the run at each sample (the largest over the members)
 
     def update(self, upto: int, Lf: np.ndarray) -> None:
         """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones."""
@@ -442,30 +480,60 @@ class RichardsonCheck:
             self.control.history.append((self.h, e))
 
     def _check_roundoff(self) -> None:
-        r"""Re-run with compensated storage when the orbit amplifies round-off towards ``rtol``.
+        r"""Re-run with compensated storage when the orbit amplifies round-off towards ``rtol``; warn when even
+        that cannot give ``rtol`` (:class:`AccuracyWarning`).
 
         Richardson's differences see the truncation error only; the round-off of plain
         arithmetic, about :math:`\epsilon\sqrt{\text{flows}}` for a regular orbit, is amplified on a
         chaotic one like the truncation error is: by :math:`A`, the growth of the envelope of the
         differences to the first companion from an eighth of the run (or the first sample after it
-        where they are above round-off) to its end, beyond linear. When
-        :data:`ROUNDOFF_FACTOR` :math:`\cdot\epsilon\sqrt{\text{flows}}\,A` exceeds
-        :data:`ROUNDOFF_SHARE` of the accepted error, the run is repeated at the same step with
+        where they are above round-off) to its end, beyond linear (:func:`roundoff_amplification`, per
+        checked member: an envelope over the members hid a chaotic member's growth under another's larger,
+        steadier differences). When :data:`ROUNDOFF_FACTOR` :math:`\cdot\epsilon\sqrt{\text{flows}}\,A`
+        exceeds :data:`ROUNDOFF_SHARE` of the accepted error, the run is repeated at the same step with
         compensated (TwoSum) storage (a random generic 5D body at rtol 1e-10 missed the bound 1.7-fold
         in plain arithmetic, and met it 40-fold with TwoSum, at the same step).
+
+        No arithmetic does better than the rounding of the initial state itself, :math:`\epsilon` relative,
+        which a chaotic orbit amplifies :math:`X \approx e^{\lambda T}`-fold over the run (the growth of the
+        differences' envelope from the first sample: :func:`roundoff_amplification`): a run on an orbit that
+        amplifies faster than linearly (:math:`A >` :data:`GROWTH_RATIO`) whose floor (:math:`\epsilon X`, and
+        the plain round-off above when the run cannot switch) exceeds ``rtol`` is returned with an
+        :class:`AccuracyWarning` naming that floor (a generic 5D orbit growing ~2e9-fold over T = 20: 3.2e-7 ...
+        4.3e-7 at rtol 1e-7 ... 1e-9, where compensated runs at four steps from 0.001 to 0.003 differ from each
+        other by up to 3.1e-7: the orbit, not the method, sets the accuracy).
         """
-        if not self.solver.can_compensate() or self.j < 8:
+        if self.j < 8:
             return
         flows = self.steps * self.solver.flows_per_step(self.problem)
-        amplification = roundoff_amplification(np.abs(self.tm[:self.j] - self.problem.t[0]), self.d1[:self.j], flows)
+        t = np.abs(self.tm[:self.j] - self.problem.t[0])
+        growth = [roundoff_amplification(t, d1, flows) for d1 in self.d1[:, :self.j]]  # (A, X) per member
+        amplification = max(A for A, _ in growth)
         if amplification == 0.0:
             return
         roundoff = ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification
-        if roundoff > ROUNDOFF_SHARE * ACCEPT * self.control.rtol:
+        rtol = self.control.rtol
+        if self.solver.can_compensate() and roundoff > ROUNDOFF_SHARE * ACCEPT * rtol:
             self.control.roundoff_amplified = True
             raise CheckFailed(self.h, f"the orbit amplifies round-off {amplification:.3g}-fold (about {roundoff:.2g} "
-                                      f"in plain arithmetic, rtol = {self.control.rtol:g}): re-run with compensated "
+                                      f"in plain arithmetic, rtol = {rtol:g}): re-run with compensated "
                                       f"storage at the same step")
+        # the members amplifying faster than linearly (a regular orbit's X is ~10, harmless), the largest X first
+        k = max(range(len(growth)), key=lambda m: growth[m][1] if growth[m][0] > GROWTH_RATIO else -1.0)
+        X = growth[k][1] if growth[k][0] > GROWTH_RATIO else 0.0
+        floor = max(_EPS * X, 0.0 if self.solver.compensates() else roundoff)
+        if floor > rtol and amplification > GROWTH_RATIO:
+            batch = self.problem.batch
+            b = int(self.members[k])
+            member = "" if self.problem.B == 1 else (
+                f" (ensemble member {b if len(batch) < 2 else tuple(int(i) for i in np.unravel_index(b, batch))})")
+            warn(f"simulate: rtol = {rtol:g} is below the accuracy double precision gives on this orbit{member}: "
+                 f"the check's differences grow about {X:.2g}-fold over the run (exp(lambda T), a chaotic orbit), "
+                 f"and so does the rounding of the initial state and of every step"
+                 + ("" if self.solver.compensates() else f" ({roundoff:.2g} in plain arithmetic" + (
+                     ", which options={'compensated': True} avoids)" if "compensated" in self.solver.options else ")"))
+                 + f": the result is accurate to about {floor:.2g}, not {rtol:g}. Ask for rtol >= {floor:.2g} "
+                   f"or a shorter run", AccuracyWarning)
 
     def _user(self, h: float) -> float:
         return h / self.problem.scale
@@ -509,8 +577,8 @@ class RichardsonCheck:
         q_seen = getattr(self, "q", p)
         q = p if end > ASYMPTOTIC else min(p, max(p / 2.0, q_seen))
         j = self.j
-        if not self.finer and j and (self.d1[:j].max() > COMPANION_ASYMPTOTIC
-                                     or self.d2[:j].max() > SECOND_COMPANION_ASYMPTOTIC):
+        if not self.finer and j and (self.d1[:, :j].max() > COMPANION_ASYMPTOTIC
+                                     or self.d2[:, :j].max() > SECOND_COMPANION_ASYMPTOTIC):
             # companions outside their asymptotic regime show no order: the run's error from the first one's
             # with the method's order, (r^p - 1) instead of the estimate's divisor (r^q - 1)
             end, q = end * coarser_divisor(q_seen, self.r) / coarser_divisor(p, self.r), p

@@ -379,6 +379,9 @@ class Splitting(FixedStepSolver):
         """Whether the step control may switch this run to compensated storage (automatic choice, not yet on)."""
         return self.options["compensated"] is None and not self._state["compensated"]
 
+    def compensates(self) -> bool:
+        return bool(self._state["compensated"])
+
     def flows_per_step(self, problem: Problem) -> int:
         return max(1, int(self._state["word"][0].size))
 

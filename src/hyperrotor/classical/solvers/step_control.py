@@ -102,7 +102,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import warnings
 from functools import lru_cache
 from typing import Any
 
@@ -110,15 +109,17 @@ import numpy as np
 
 from hyperrotor import _validate
 from hyperrotor._jit import jit
+from hyperrotor._warn import warn
 from hyperrotor._options import options
 
 from .base import Problem, StepBudgetError, nsub_for
 from .chunks import Work, advance_pair_chunked, cost_key, seconds_per_flow
 from ._kernels import relative_difference, row_scales
-from .richardson_check import (ASYMPTOTIC, CHECK_SAMPLES, COMPANION_RATIO, PROBE_RATIO, SAFETY, CheckFailed, ProbeRuns,
-                               RichardsonCheck)
+from .richardson_check import (ASYMPTOTIC, CHECK_SAMPLES, COMPANION_RATIO, PROBE_RATIO, SAFETY, AccuracyWarning,
+                               CheckFailed, ProbeRuns, RichardsonCheck)
 
-__all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "UnreachableAccuracyError", "rate_bound", "growth_to_end"]
+__all__ = ["FixedStep", "ErrorTarget", "StepBudgetError", "UnreachableAccuracyError", "AccuracyWarning", "rate_bound",
+           "growth_to_end"]
 
 _EPS = float(np.finfo(float).eps)
 #: length of the probe interval in turns of the fastest rate (20 radians: a few periods)
@@ -149,6 +150,7 @@ MAX_TURN = math.pi
 class UnreachableAccuracyError(ValueError):
     """``rtol`` cannot be met at a reasonable cost: the error grows exponentially (a chaotic orbit)
     or sits at round-off. The message names the estimated growth and the reachable accuracy."""
+
 
 
 def _plane_rate_bounds(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
@@ -395,7 +397,7 @@ class ErrorTarget:
                                                  members=sel, work=work, bar=bar)
             except (RuntimeError, FloatingPointError):  # no implicit step / an overflow at this h
                 return None, h_probe
-            d = relative_difference(y1, y2, Ms, *row_scales(y1, Ms))  # per sample
+            d = relative_difference(y1, y2, Ms, *row_scales(y1, Ms)).max(axis=0)  # per sample (NaN kept)
             # the estimate's envelope at (about) half the window and at its end (d[i]: at grid point i)
             env = np.maximum.accumulate(d) / (2.0 ** p - 1.0)
             samples_e[:] = [(i / k, float(env[i])) for i in (k // 4, k // 2, k) if i > 0]
@@ -473,13 +475,11 @@ class ErrorTarget:
         seconds = self.seconds_per_step * steps * problem.B * (1.0 + 1.0 / COMPANION_RATIO)
         limit = options["slow_run_warning_seconds"]
         if seconds > limit:
-            warnings.warn(
+            warn(
                 f"simulate: {solver.name!r} at rtol = {self.rtol:g} needs about {seconds:.3g} s "
                 f"({steps:.3g} steps per trajectory)"
                 + (", a splitting of higher order reaches this accuracy much sooner" if solver.order < 8 else "")
-                + f" (options['slow_run_warning_seconds'] = {_validate.fmt(limit)})",
-                UserWarning, stacklevel=5,
-            )
+                + f" (options['slow_run_warning_seconds'] = {_validate.fmt(limit)})")
 
     def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None) -> "RichardsonCheck | None":
         if problem.B == 0 or not nsub.size or int(nsub.sum()) == 0 or solver.flows_per_step(problem) == 0:
