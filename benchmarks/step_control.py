@@ -212,9 +212,10 @@ def auto_table(quick, repeats):
 
 def ensemble_table(quick):
     """Table 5: every member of 20-member ensembles on random generic 5D bodies against a reference (splitting10
-    at dt = 0.002, compensated); a member over rtol is a named miss when the call warned (AccuracyWarning: the
-    orbit amplifies the rounding of its own initial state beyond rtol) and its error is within the accuracy the
-    warning names, else silent."""
+    at dt = 0.002, compensated; a second one, splitting8 at dt = 0.001, gives the reference's own uncertainty,
+    which on chaotic members reaches 1e-9 ... 4e-8); a member over rtol is a named miss when the call warned
+    (AccuracyWarning: the orbit amplifies the rounding of its own initial state beyond rtol) and its error is
+    within the accuracy the warning names (plus the references' disagreement), else silent."""
     seeds = range(4000, 4004) if quick else range(4000, 4008)
     print(f"\n== 5. ensembles: {len(seeds)} random generic 5D bodies x 20 members (T = 20, 41 output times) ==")
     t = np.linspace(0.0, 20.0, 41)
@@ -224,6 +225,9 @@ def ensemble_table(quick):
         moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
         W = rng.normal(size=(20, 10)) * rng.uniform(0.2, 1.0, (20, 1))
         ref = simulate(moments, W, t, method="splitting10", dt=0.002, options={"compensated": True}).L
+        ref2 = simulate(moments, W, t, method="splitting8", dt=0.001, options={"compensated": True}).L
+        scale = np.abs(ref).max(axis=(1, 2))
+        ref_scatter = np.abs(ref - ref2).max(axis=(1, 2)) / scale  # (on chaotic members the references disagree)
         for rtol in (1e-6, 1e-9):
             t0 = time.perf_counter()
             category = getattr(hr, "AccuracyWarning", None)  # (a tree before it: every miss is silent)
@@ -231,17 +235,21 @@ def ensemble_table(quick):
                 warnings.simplefilter("always")
                 tr = simulate(moments, W, t, rtol=rtol)
             seconds = time.perf_counter() - t0
-            err = np.abs(tr.L - ref).max(axis=(1, 2)) / np.abs(ref).max(axis=(1, 2))
+            err = np.abs(tr.L - ref).max(axis=(1, 2)) / scale
             named = [float(re.search(r"accurate to about (\S+), not", str(w.message)).group(1))
                      for w in caught if category is not None and issubclass(w.category, category)]
             floor = max(named) if named else None
             worst = int(err.argmax())
+            unsure = ref_scatter[worst]
             verdict = ("held" if err.max() <= rtol else
-                       "named" if floor is not None and err.max() <= floor else "SILENT MISS")
-            print(f"body {seed} rtol {rtol:.0e}: worst member {worst} err/rtol {err.max() / rtol:.3g}, "
+                       "named" if floor is not None and err.max() <= floor + unsure else
+                       "within the references' disagreement" if err.max() <= rtol + unsure else "SILENT MISS")
+            print(f"body {seed} rtol {rtol:.0e}: worst member {worst} err/rtol {err.max() / rtol:.3g} (references "
+                  f"differ by {unsure / rtol:.2g} rtol there), "
                   f"{tr.stats['steps']} steps, {tr.stats['reruns']} re-runs, {seconds:.2f} s; "
                   + (f"AccuracyWarning names {floor:.2g}; " if floor is not None else "") + verdict)
             rows.append(dict(body=seed, rtol=rtol, worst_member=worst, worst_error_over_rtol=err.max() / rtol,
+                             reference_scatter_over_rtol=unsure / rtol,
                              steps=tr.stats["steps"], reruns=tr.stats["reruns"], seconds=seconds,
                              named_accuracy=floor, verdict=verdict))
     return rows

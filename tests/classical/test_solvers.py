@@ -577,7 +577,7 @@ def test_a_chaotic_orbit_that_amplifies_round_off_is_rerun_in_compensated_storag
     assert tr.stats["compensated"] and tr.stats["reruns"] >= 1
     assert np.abs(tr.L - Lref).max() <= 1e-10 * np.abs(Lref).max()
     # a user's explicit choice is kept: plain arithmetic stays plain, and the call says what it costs
-    with pytest.warns(hr.AccuracyWarning, match=r"in plain arithmetic, which options=\{'compensated': True\} avoids"):
+    with pytest.warns(hr.AccuracyWarning, match=r"plain arithmetic's round-off is about .* \(options=\{'compensated': True\} avoids it\)"):
         plain = hr.simulate(moments, w0, t, rtol=1e-10, options={"compensated": False})
     assert plain.stats["compensated"] is False
 
@@ -904,12 +904,33 @@ def test_roundoff_amplification_is_the_growth_beyond_linear():
     assert roundoff_amplification(t, zero_first, 1e6)[1] == pytest.approx(1e-12 * np.exp(t[-1]) / EPS)
 
 
+def test_a_mildly_chaotic_orbit_at_a_tight_rtol_is_measured_not_warned(checks):
+    """The benchmark's generic 5D body (seed 1, T = 20, 100 output intervals), splitting8 at rtol 1e-11: the check's
+    differences grow 2e5-fold from the first sample, so eps times that (4.7e-11) is above rtol, but a twin started
+    one unit in the last place away stays within 1e-12 of the run, and runs at four steps agree to 1.2e-13: the
+    rounding is measured, no warning (warnings are errors in the suite), and the bound holds."""
+    rng = np.random.default_rng(1)
+    moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
+    w0 = rng.normal(size=10)
+    w0 /= np.abs(w0).max()
+    t = np.linspace(0.0, 20.0, 101)
+    Lref = hr.simulate(moments, w0, t, method="splitting8", dt=0.001, options={"compensated": True}).L
+    tr = hr.simulate(moments, w0, t, method="splitting8", rtol=1e-11)
+    check = checks[-1]
+    assert np.abs(tr.L - Lref).max() <= 1e-11 * np.abs(Lref).max()
+    from hyperrotor.classical.solvers.richardson_check import GROWTH_RATIO, roundoff_amplification
+
+    flows = check.steps * check.solver.flows_per_step(check.problem)
+    A, X = roundoff_amplification(np.abs(check.tm[:check.j] - t[0]), check.d1[0, :check.j], flows)
+    assert A > GROWTH_RATIO and EPS * X > 1e-11  # (the model alone would have warned: the twin measured)
+
+
 def test_an_orbit_that_amplifies_its_own_rounding_beyond_rtol_is_named():
     """Random generic 5D body 4002, member 2 of its ensemble (41 output times, T = 20): the orbit amplifies a
     perturbation ~2e9-fold, so no arithmetic gives rtol 1e-9: compensated runs at steps 0.0013 and 0.003 differ
-    by over 1e-7. The call returns the result with an AccuracyWarning naming the growth and the accuracy it has
-    (eps times the growth), which is within a few times what the runs' scatter shows; at rtol 1e-6 (reached:
-    0.02 of it) nothing is said."""
+    by over 1e-7. The call returns the result with an AccuracyWarning naming the accuracy it has (measured: a twin
+    started one unit in the last place away), within a few times what the runs' scatter shows; at rtol 1e-6
+    (reached: 0.02 of it) nothing is said."""
     rng = np.random.default_rng(4002)
     moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
     w0 = (rng.normal(size=(20, 10)) * rng.uniform(0.2, 1.0, (20, 1)))[2]
@@ -918,13 +939,18 @@ def test_an_orbit_that_amplifies_its_own_rounding_beyond_rtol_is_named():
             for dt in (0.0013, 0.003)]
     scale = np.abs(runs[0]).max()
     scatter = np.abs(runs[0] - runs[1]).max() / scale
-    with pytest.warns(hr.AccuracyWarning, match=r"rtol = 1e-09 is below .* grow about (\S+)-fold") as record:
+    with pytest.warns(hr.AccuracyWarning, match=r"rtol = 1e-09 is below .* last place changes the result by") as record:
         tr = hr.simulate(moments, w0, t, rtol=1e-9)
     (warning,) = record
     assert warning.filename == __file__  # (attributed to the caller)
     floor = float(re.search(r"accurate to about (\S+), not", str(warning.message)).group(1))
     assert scatter > 10 * 1e-9 and scatter / 10 <= floor <= 10 * scatter, (scatter, floor)
     assert np.abs(tr.L - runs[0]).max() / scale <= 10 * floor
+    # the twin is the call's last work: a max_steps without room for it gives the estimate instead (named so)
+    with pytest.warns(hr.AccuracyWarning, match=r"estimated from the growth of the check's differences.* no room to measure"):
+        short = hr.simulate(moments, w0, t, rtol=1e-9, max_steps=tr.stats["work"] - 1)
+    np.testing.assert_array_equal(short.L, tr.L)
+    assert short.stats["work"] == tr.stats["work"] - tr.stats["steps"]
     tr = hr.simulate(moments, w0, t, rtol=1e-6)  # (warnings are errors in the suite)
     assert np.abs(tr.L - runs[0]).max() / scale <= 1e-6
 

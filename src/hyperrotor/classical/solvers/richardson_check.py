@@ -437,6 +437,7 @@ class RichardsonCheck:
         S = self.marks.size
         self.Lmax, self.Wmax = row_scales(self.problem.L0[self.members][:, None, :], self.moments)
         M = len(self.members)
+        self.Lrun = np.empty((M, S, self.problem.n))  # the run's states at the samples (checked members)
         self.d1 = np.zeros((M, S))  # run - first companion, relative, per checked member and sample
         self.d2 = np.zeros((M, S))  # first - second companion
         self.err = np.zeros(S)  # estimated error of the run at each sample (the largest over the members)
@@ -463,6 +464,7 @@ class RichardsonCheck:
         as them)."""
         if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
+        self.Lrun[:, self.j:upto] = Lf
         self.j = upto
         q, e = estimate(self.d1, self.d2, self.err, upto, self.finer, self.r, self.r2, self.p)
         if q >= 0.0:
@@ -494,14 +496,16 @@ class RichardsonCheck:
         compensated (TwoSum) storage (a random generic 5D body at rtol 1e-10 missed the bound 1.7-fold
         in plain arithmetic, and met it 40-fold with TwoSum, at the same step).
 
-        No arithmetic does better than the rounding of the initial state itself, :math:`\epsilon` relative,
-        which a chaotic orbit amplifies :math:`X \approx e^{\lambda T}`-fold over the run (the growth of the
-        differences' envelope from the first sample: :func:`roundoff_amplification`): a run on an orbit that
-        amplifies faster than linearly (:math:`A >` :data:`GROWTH_RATIO`) whose floor (:math:`\epsilon X`, and
-        the plain round-off above when the run cannot switch) exceeds ``rtol`` is returned with an
-        :class:`AccuracyWarning` naming that floor (a generic 5D orbit growing ~2e9-fold over T = 20: 3.2e-7 ...
-        4.3e-7 at rtol 1e-7 ... 1e-9, where compensated runs at four steps from 0.001 to 0.003 differ from each
-        other by up to 3.1e-7: the orbit, not the method, sets the accuracy).
+        No arithmetic does better than the rounding of the initial state itself, which a chaotic orbit amplifies
+        about :math:`e^{\lambda T}`-fold over the run. Where the orbit amplifies faster than linearly
+        (:math:`A >` :data:`GROWTH_RATIO`) and :math:`\epsilon X` (:func:`roundoff_amplification`: the growth of
+        the differences from the first sample) or the plain round-off above (a run that cannot switch) exceeds
+        ``rtol``, the floor is measured: a twin of the checked members started one unit in the last place away
+        (:meth:`_perturbed_twin`; :math:`\epsilon X` alone overstated it 16-500x on a mildly chaotic orbit whose
+        runs at four steps agree to 1.2e-13). A floor above ``rtol`` returns the result with an
+        :class:`AccuracyWarning` naming it (a generic 5D orbit at rtol 1e-7 ... 1e-9: 7.4e-7 ... 1.1e-6, where
+        compensated runs at four steps from 0.001 to 0.003 differ from each other by up to 3.1e-7: the orbit, not
+        the method, sets the accuracy).
         """
         if self.j < 8:
             return
@@ -518,22 +522,45 @@ class RichardsonCheck:
             raise CheckFailed(self.h, f"the orbit amplifies round-off {amplification:.3g}-fold (about {roundoff:.2g} "
                                       f"in plain arithmetic, rtol = {rtol:g}): re-run with compensated "
                                       f"storage at the same step")
-        # the members amplifying faster than linearly (a regular orbit's X is ~10, harmless), the largest X first
-        k = max(range(len(growth)), key=lambda m: growth[m][1] if growth[m][0] > GROWTH_RATIO else -1.0)
-        X = growth[k][1] if growth[k][0] > GROWTH_RATIO else 0.0
-        floor = max(_EPS * X, 0.0 if self.solver.compensates() else roundoff)
-        if floor > rtol and amplification > GROWTH_RATIO:
+        # the members amplifying faster than linearly (a regular orbit's X is ~10, harmless)
+        X = max((x for a, x in growth if a > GROWTH_RATIO), default=0.0)
+        plain = 0.0 if self.solver.compensates() else roundoff
+        if max(_EPS * X, plain) <= rtol or amplification <= GROWTH_RATIO:
+            return
+        # eps X can overstate the floor (the truncation differences grow faster than a perturbation of the state
+        # on some orbits: 1.8e-12 ... 6e-11 where runs at four steps agree to 1.2e-13): measure it
+        if self.work.done + self.steps * (self.problem.B + len(self.members)) <= self.work.max_steps:  # (the run's
+            # own steps are counted when it ends, or when the members run after their check: run_alone)
+            twin, k = self._perturbed_twin()
+            moved = f"changing its initial state by one unit in the last place changes the result by {twin:.2g}"
+        else:  # (no room left in max_steps for the twin: the estimate)
+            k = max(range(len(growth)), key=lambda m: growth[m][1] if growth[m][0] > GROWTH_RATIO else -1.0)
+            twin = _EPS * X
+            moved = (f"its rounding moves the result by about {twin:.2g} (estimated from the growth of the check's "
+                     f"differences, {X:.2g}-fold: max_steps left no room to measure it)")
+        floor = max(twin, plain)
+        if floor > rtol:
             batch = self.problem.batch
             b = int(self.members[k])
             member = "" if self.problem.B == 1 else (
                 f" (ensemble member {b if len(batch) < 2 else tuple(int(i) for i in np.unravel_index(b, batch))})")
             warn(f"simulate: rtol = {rtol:g} is below the accuracy double precision gives on this orbit{member}: "
-                 f"the check's differences grow about {X:.2g}-fold over the run (exp(lambda T), a chaotic orbit), "
-                 f"and so does the rounding of the initial state and of every step"
-                 + ("" if self.solver.compensates() else f" ({roundoff:.2g} in plain arithmetic" + (
-                     ", which options={'compensated': True} avoids)" if "compensated" in self.solver.options else ")"))
+                 f"{moved} (a chaotic orbit: the check's differences grow {amplification:.3g}-fold beyond linear)"
+                 + ("" if not plain else f", and plain arithmetic's round-off is about {plain:.2g}" + (
+                     " (options={'compensated': True} avoids it)" if "compensated" in self.solver.options else ""))
                  + f": the result is accurate to about {floor:.2g}, not {rtol:g}. Ask for rtol >= {floor:.2g} "
                    f"or a shorter run", AccuracyWarning)
+
+    def _perturbed_twin(self) -> tuple:
+        """``(distance, member)``: the largest distance (:func:`relative_difference`) over the samples between the
+        run and a twin of its checked members started one unit in the last place away (``np.nextafter``, every
+        component) at the same step, and the member where it is: how far the rounding of the initial state
+        alone moves the result (one more run of the checked members, chunked and counted as work: the caller
+        makes sure it fits in ``max_steps``)."""
+        L = self._members_at_samples(np.nextafter(self.problem.L0[self.members], np.inf))
+        d = relative_difference(self.Lrun[:, :self.j], L[:, :self.j], self.moments, self.Lmax, self.Wmax)
+        k = int(np.argmax(d.max(axis=1)))
+        return float(d[k].max()), k
 
     def _user(self, h: float) -> float:
         return h / self.problem.scale
@@ -601,11 +628,15 @@ class RichardsonCheck:
                                self.work.done + steps_new, self.work.max_steps, "ask for a larger rtol or a shorter run")
         return CheckFailed(h_new, why)
 
-    def run_alone(self) -> None:
-        """The check without the run: the checked members advance on their own to every sample."""
-        problem, t, cs, nsub = self.problem, self.problem.t, self.cs, self.nsub
+    def _members_at_samples(self, L0: np.ndarray) -> np.ndarray:
+        """The checked members run from ``L0`` at the run's steps, at every sample ``(members, samples, n)``."""
+        t, cs, nsub = self.problem.t, self.cs, self.nsub
         points, _, pos = merge(cs, self.marks)  # (cs starts at 0)
         grid, ns, h = stops(t, cs, nsub, step_lengths(t, nsub), points)
-        L, _ = advance_chunked(self.solver, problem, problem.L0[self.members], grid, ns, h,
-                               members=self.members, work=self.work, bar=self.bar)
-        self.update(self.marks.size, L[:, pos])
+        L, _ = advance_chunked(self.solver, self.problem, L0, grid, ns, h, members=self.members, work=self.work,
+                               bar=self.bar)
+        return L[:, pos]
+
+    def run_alone(self) -> None:
+        """The check without the run: the checked members advance on their own to every sample."""
+        self.update(self.marks.size, self._members_at_samples(self.problem.L0[self.members]))
