@@ -577,7 +577,8 @@ def test_a_chaotic_orbit_that_amplifies_round_off_is_rerun_in_compensated_storag
     assert tr.stats["compensated"] and tr.stats["reruns"] >= 1
     assert np.abs(tr.L - Lref).max() <= 1e-10 * np.abs(Lref).max()
     # a user's explicit choice is kept: plain arithmetic stays plain, and the call says what it costs
-    with pytest.warns(hr.AccuracyWarning, match=r"plain arithmetic's round-off is about .* \(options=\{'compensated': True\} avoids it\)"):
+    avoids = r"plain arithmetic's round-off is about .* \(options=\{'compensated': True\} avoids it\)"
+    with pytest.warns(hr.AccuracyWarning, match=avoids):
         plain = hr.simulate(moments, w0, t, rtol=1e-10, options={"compensated": False})
     assert plain.stats["compensated"] is False
 
