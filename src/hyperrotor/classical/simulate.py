@@ -405,8 +405,8 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
 
     Same arguments as :func:`simulate`. With ``dt`` nothing is integrated; with ``rtol`` the
     step control's probe runs (a short leading window, a small fraction of the run, chunked
-    and counted against ``max_steps``). The run's check (a companion run of up to
-    :data:`~.solvers.step_control.PROBE_MEMBERS` members at steps
+    and counted against ``max_steps``). The run's check (companion runs of every member, up to
+    :data:`~.solvers.step_control.CHECK_MEMBERS`, at steps up to
     :data:`~.solvers.richardson_check.COMPANION_RATIO` times longer) is included; re-runs after a
     failed check are not (they are rare). scipy methods: ``steps``, ``seconds`` and ``dt`` are
     ``None``.

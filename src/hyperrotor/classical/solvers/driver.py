@@ -181,7 +181,7 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
             work.refuse(planned, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member"
                                          + (", its check and the step control's probes" if check is not None else "")
                                          + after + _refusal_note(control, work, planned, solver))
-            if check is not None and not check.control.retries:
+            if check is not None and not check.control.reruns:
                 control.announce(solver, problem, h, steps)
             hs = step_lengths(t, nsub)  # the run's steps, (K - 1,)
             stats = dict(steps=steps, nfev=None, dt=float(np.abs(hs).max()) if K > 1 else None, chunks=0)
@@ -219,7 +219,7 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
             bar.close()
     stats["status"] = "terminated by event" if K_done < K or (specs and stats.get("terminal")) else "finished"
     stats["work"] = int(work.done)  # every step taken, probes and check included (times members)
-    stats["reruns"] = int(getattr(control, "retries", 0))  # re-runs after a failed check
+    stats["reruns"] = int(getattr(control, "reruns", 0))  # re-runs after a failed check
     res = RunResult(L=outL if K_done == K else outL[:, :K_done],
                     T=None if outT is None else (outT if K_done == K else outT[:, :K_done]),
                     t=t if K_done == K else t[:K_done], stats=stats,

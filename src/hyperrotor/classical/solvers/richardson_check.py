@@ -58,6 +58,8 @@ PROJECT_AFTER = 0.125
 PROJECT_MARGIN = 4.0
 #: an error envelope growing this much over the second half of the samples seen is faster than linear
 GROWTH_RATIO = 8.0
+#: the rounding floor is measured on up to this many members (those whose differences grow the most)
+TWIN_MEMBERS = 8
 
 
 @jit
@@ -365,10 +367,11 @@ class AccuracyWarning(UserWarning):
 class CheckFailed(Exception):
     """Raised by :class:`RichardsonCheck` inside a run: re-run at step ``h`` (scaled units)."""
 
-    def __init__(self, h: float, why: str):
+    def __init__(self, h: float, why: str, compensate: bool = False):
         super().__init__(why)
         self.h = h
         self.why = why
+        self.compensate = compensate  # the same step again, in compensated storage (once per call: not a retry)
 
 
 class RichardsonCheck:
@@ -398,8 +401,8 @@ class RichardsonCheck:
         self.finer = False
         self.given = None  # the companions' states at the samples (the start first), when the probe's runs
         best, r = None, 0.0
-        for probe in probes:  # (the coarsest with steps 2 to PROBE_RATIO times the run's)
-            if probe.problem is problem:
+        for probe in probes:  # (the coarsest with steps 2 to PROBE_RATIO times the run's, of the same members)
+            if probe.problem is problem and probe.y1.shape[0] == len(members):
                 rp = probe_ratio(t, nsub, probe.idx, probe.ms)
                 if r < rp <= PROBE_RATIO and rp >= 2.0:
                     best, r = probe, rp
@@ -437,7 +440,6 @@ class RichardsonCheck:
         S = self.marks.size
         self.Lmax, self.Wmax = row_scales(self.problem.L0[self.members][:, None, :], self.moments)
         M = len(self.members)
-        self.Lrun = np.empty((M, S, self.problem.n))  # the run's states at the samples (checked members)
         self.d1 = np.zeros((M, S))  # run - first companion, relative, per checked member and sample
         self.d2 = np.zeros((M, S))  # first - second companion
         self.err = np.zeros(S)  # estimated error of the run at each sample (the largest over the members)
@@ -464,7 +466,6 @@ class RichardsonCheck:
         as them)."""
         if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
-        self.Lrun[:, self.j:upto] = Lf
         self.j = upto
         q, e = estimate(self.d1, self.d2, self.err, upto, self.finer, self.r, self.r2, self.p)
         if q >= 0.0:
@@ -521,7 +522,7 @@ class RichardsonCheck:
             self.control.roundoff_amplified = True
             raise CheckFailed(self.h, f"the orbit amplifies round-off {amplification:.3g}-fold (about {roundoff:.2g} "
                                       f"in plain arithmetic, rtol = {rtol:g}): re-run with compensated "
-                                      f"storage at the same step")
+                                      f"storage at the same step", compensate=True)
         # the members amplifying faster than linearly (a regular orbit's X is ~10, harmless)
         X = max((x for a, x in growth if a > GROWTH_RATIO), default=0.0)
         plain = 0.0 if self.solver.compensates() else roundoff
@@ -529,9 +530,11 @@ class RichardsonCheck:
             return
         # eps X can overstate the floor (the truncation differences grow faster than a perturbation of the state
         # on some orbits: 1.8e-12 ... 6e-11 where runs at four steps agree to 1.2e-13): measure it
-        if self.work.done + self.steps * (self.problem.B + len(self.members)) <= self.work.max_steps:  # (the run's
+        suspects = sorted((m for m in range(len(growth)) if growth[m][0] > GROWTH_RATIO), key=lambda m: -growth[m][1])
+        suspects = np.array(suspects[:TWIN_MEMBERS])
+        if self.work.done + self.steps * (self.problem.B + 2 * suspects.size) <= self.work.max_steps:  # (the run's
             # own steps are counted when it ends, or when the members run after their check: run_alone)
-            twin, k = self._perturbed_twin()
+            twin, k = self._perturbed_twin(suspects)
             moved = f"changing its initial state by one unit in the last place changes the result by {twin:.2g}"
         else:  # (no room left in max_steps for the twin: the estimate)
             k = max(range(len(growth)), key=lambda m: growth[m][1] if growth[m][0] > GROWTH_RATIO else -1.0)
@@ -551,16 +554,19 @@ class RichardsonCheck:
                  + f": the result is accurate to about {floor:.2g}, not {rtol:g}. Ask for rtol >= {floor:.2g} "
                    f"or a shorter run", AccuracyWarning)
 
-    def _perturbed_twin(self) -> tuple:
-        """``(distance, member)``: the largest distance (:func:`relative_difference`) over the samples between the
-        run and a twin of its checked members started one unit in the last place away (``np.nextafter``, every
-        component) at the same step, and the member where it is: how far the rounding of the initial state
-        alone moves the result (one more run of the checked members, chunked and counted as work: the caller
-        makes sure it fits in ``max_steps``)."""
-        L = self._members_at_samples(np.nextafter(self.problem.L0[self.members], np.inf))
-        d = relative_difference(self.Lrun[:, :self.j], L[:, :self.j], self.moments, self.Lmax, self.Wmax)
-        k = int(np.argmax(d.max(axis=1)))
-        return float(d[k].max()), k
+    def _perturbed_twin(self, rows: np.ndarray) -> tuple:
+        """``(distance, row)``: the largest distance (:func:`relative_difference`) over the samples between the
+        checked members ``rows`` (indices into ``members``) run again from their initial states and a twin started
+        one unit in the last place away (``np.nextafter``, every component), at the run's steps, and the row where
+        it is: how far the rounding of the initial state alone moves the result (two runs of those members,
+        chunked and counted as work: the caller makes sure they fit in ``max_steps``)."""
+        members = self.members[rows]
+        L0 = self.problem.L0[members]
+        L = self._members_at_samples(L0, members)
+        Lp = self._members_at_samples(np.nextafter(L0, np.inf), members)
+        d = relative_difference(L[:, :self.j], Lp[:, :self.j], self.moments, self.Lmax[rows], self.Wmax[rows])
+        i = int(np.argmax(d.max(axis=1)))
+        return float(d[i].max()), int(rows[i])
 
     def _user(self, h: float) -> float:
         return h / self.problem.scale
@@ -628,15 +634,15 @@ class RichardsonCheck:
                                self.work.done + steps_new, self.work.max_steps, "ask for a larger rtol or a shorter run")
         return CheckFailed(h_new, why)
 
-    def _members_at_samples(self, L0: np.ndarray) -> np.ndarray:
-        """The checked members run from ``L0`` at the run's steps, at every sample ``(members, samples, n)``."""
+    def _members_at_samples(self, L0: np.ndarray, members: np.ndarray) -> np.ndarray:
+        """``members`` run from ``L0`` at the run's steps, at every sample ``(members, samples, n)``."""
         t, cs, nsub = self.problem.t, self.cs, self.nsub
         points, _, pos = merge(cs, self.marks)  # (cs starts at 0)
         grid, ns, h = stops(t, cs, nsub, step_lengths(t, nsub), points)
-        L, _ = advance_chunked(self.solver, self.problem, L0, grid, ns, h, members=self.members, work=self.work,
+        L, _ = advance_chunked(self.solver, self.problem, L0, grid, ns, h, members=members, work=self.work,
                                bar=self.bar)
         return L[:, pos]
 
     def run_alone(self) -> None:
         """The check without the run: the checked members advance on their own to every sample."""
-        self.update(self.marks.size, self._members_at_samples(self.problem.L0[self.members]))
+        self.update(self.marks.size, self._members_at_samples(self.problem.L0[self.members], self.members))
