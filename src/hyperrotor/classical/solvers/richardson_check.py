@@ -523,22 +523,21 @@ class RichardsonCheck:
             raise CheckFailed(self.h, f"the orbit amplifies round-off {amplification:.3g}-fold (about {roundoff:.2g} "
                                       f"in plain arithmetic, rtol = {rtol:g}): re-run with compensated "
                                       f"storage at the same step", compensate=True)
-        # the members amplifying faster than linearly (a regular orbit's X is ~10, harmless)
-        X = max((x for a, x in growth if a > GROWTH_RATIO), default=0.0)
+        # the members amplifying faster than linearly (a regular orbit's X is ~10, harmless), largest X first
+        suspects = sorted((m for m in range(len(growth)) if growth[m][0] > GROWTH_RATIO), key=lambda m: -growth[m][1])
         plain = 0.0 if self.solver.compensates() else roundoff
-        if max(_EPS * X, plain) <= rtol or amplification <= GROWTH_RATIO:
+        X = growth[suspects[0]][1] if suspects else 0.0
+        if not suspects or max(_EPS * X, plain) <= rtol:
             return
         # eps X can overstate the floor (the truncation differences grow faster than a perturbation of the state
         # on some orbits: 1.8e-12 ... 6e-11 where runs at four steps agree to 1.2e-13): measure it
-        suspects = sorted((m for m in range(len(growth)) if growth[m][0] > GROWTH_RATIO), key=lambda m: -growth[m][1])
-        suspects = np.array(suspects[:TWIN_MEMBERS])
-        if self.work.done + self.steps * (self.problem.B + 2 * suspects.size) <= self.work.max_steps:  # (the run's
+        rows = np.array(suspects[:TWIN_MEMBERS])
+        if self.work.done + self.steps * (self.problem.B + 2 * rows.size) <= self.work.max_steps:  # (the run's
             # own steps are counted when it ends, or when the members run after their check: run_alone)
-            twin, k = self._perturbed_twin(suspects)
+            twin, k = self._perturbed_twin(rows)
             moved = f"changing its initial state by one unit in the last place changes the result by {twin:.2g}"
         else:  # (no room left in max_steps for the twin: the estimate)
-            k = max(range(len(growth)), key=lambda m: growth[m][1] if growth[m][0] > GROWTH_RATIO else -1.0)
-            twin = _EPS * X
+            k, twin = suspects[0], _EPS * X
             moved = (f"its rounding moves the result by about {twin:.2g} (estimated from the growth of the check's "
                      f"differences, {X:.2g}-fold: max_steps left no room to measure it)")
         floor = max(twin, plain)
