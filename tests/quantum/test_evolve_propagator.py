@@ -159,8 +159,9 @@ def test_quartet_sparsity_blocks_and_evolve_result(rng):
 def test_huge_and_tiny_states_keep_their_direction(scale, rng):
     H = np.diag([1.0, 2.0, 3.0])
     t = [0.0, 1.0]
-    with pytest.warns(UserWarning, match="norm"):
+    with pytest.warns(UserWarning, match="norm") as record:
         res = evolve(H, np.full(3, scale), t, options={"store_states": True})
+    assert [w.filename for w in record] == [__file__]  # (attributed to the caller, not to the package)
     np.testing.assert_allclose(res.states[-1].full().ravel(), np.exp(-1j * np.diag(H)) / np.sqrt(3), rtol=0, atol=1e-14)
     with pytest.raises(ValueError, match="zero vector"):
         evolve(H, np.zeros(3), t)

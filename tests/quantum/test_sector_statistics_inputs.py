@@ -47,8 +47,9 @@ def test_degenerate_spectra_are_refused_with_the_reason():
     with pytest.raises(ValueError, match="2 of the 4 spacings of levels vanish"):
         hq.spacing_ratio([0.0, 1.0, 1.0, 1.0, 3.0])  # was 0.0 silently (one zero ratio, one dropped triple)
     E = np.cumsum(np.arange(1.0, 11.0) ** 1.5)  # 10 spacings with the repeated level below, one zero: a warning
-    with pytest.warns(RuntimeWarning, match="1 of the 10 spacings"):
+    with pytest.warns(RuntimeWarning, match="1 of the 10 spacings") as record:
         assert 0 < hq.spacing_ratio(np.insert(E, 3, E[3])) < hq.spacing_ratio(E)
+    assert [w.filename for w in record] == [__file__]  # (attributed to the caller, not to the package)
     # a spinor irrep: every level four times in the full spectrum (refused), once in its sector (fine)
     spec = hq.sector_spectra(hq.irrep(5, (1.5, 0.5)), 0.5 + np.arange(10) / 7)
     with pytest.raises(ValueError, match="12 of the 15 spacings"):

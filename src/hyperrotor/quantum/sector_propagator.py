@@ -39,7 +39,6 @@ threads, or a dask ``client=``).
 from __future__ import annotations
 
 import time as _time
-import warnings
 from typing import Any
 
 import numpy as np
@@ -47,6 +46,7 @@ import scipy.sparse as sps
 
 from .. import _lazy, _parallel, _pricing, _validate
 from .._options import options as _options
+from .._warn import warn
 from ._krylov import single_thread_blas
 from ._sector_blocks import (
     Block,
@@ -86,11 +86,8 @@ def unit_state(psi0: Any, dim: int, name: str = "psi0") -> np.ndarray:
     nrm = float(np.linalg.norm(vec))
     norm = float(np.ldexp(nrm, e))  # only reported (may be inf for a huge vector)
     if abs(norm - 1) > _options["quantum_psi0_norm_rtol"]:
-        warnings.warn(
-            f"{name} has norm {norm:.12g}; evolving the normalized state {name}/|{name}| "
-            f"(tolerance options['quantum_psi0_norm_rtol'] = {_options['quantum_psi0_norm_rtol']:.3g})",
-            UserWarning, stacklevel=3,
-        )
+        warn(f"{name} has norm {norm:.12g}; evolving the normalized state {name}/|{name}| "
+             f"(tolerance options['quantum_psi0_norm_rtol'] = {_options['quantum_psi0_norm_rtol']:.3g})")
     return vec / nrm
 
 

@@ -33,7 +33,6 @@ tests check :data:`R_MEAN` within a tolerance set by the sample size).
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -44,6 +43,7 @@ from scipy.integrate import trapezoid  # numpy's own is numpy >= 2 only
 from .. import _validate
 from .._options import options
 from .._pricing import refuse
+from .._warn import warn
 
 __all__ = [
     "ENSEMBLES",
@@ -172,7 +172,7 @@ def _check_degeneracies(levels: Any) -> None:
         raise ValueError(f"{text}: forced degeneracies? Pass the levels of one symmetry sector "
                          f"(sector_spectra; a spinor irrep's multiplets count once there) or distinct levels "
                          f"(spectrum(H).levels)")
-    warnings.warn(f"{text} (accidental degeneracies?)", RuntimeWarning, stacklevel=3)
+    warn(f"{text} (accidental degeneracies?)", RuntimeWarning)
 
 
 def ratio_density(r: Any, ensemble: str) -> np.ndarray:
