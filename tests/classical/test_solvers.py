@@ -268,6 +268,10 @@ def test_events_on_an_ensemble_per_member(method, rng):
     # correction is applied per stored step: equal to round-off over the run
     steps = tr.stats["steps"] or 1000
     np.testing.assert_array_equal(tr.L, plain.L)
+    if issubclass(SOLVERS[method], FixedStepSolver) and "rtol" in kw:
+        # every step counted: the same probe and check (of every member, run on their own first), then the members
+        assert tr.stats["reruns"] == plain.stats["reruns"]
+        assert tr.stats["work"] == plain.stats["work"] + tr.stats["steps"] * (W.size // 3)
     np.testing.assert_allclose(tr.attitude, plain.attitude, rtol=0, atol=scaled_tol(np.ones(1), k=64, dim=3,
                                                                                      steps=steps))
     assert len(tr.t_events) == 1 and len(tr.t_events[0]) == 3
@@ -890,7 +894,9 @@ def test_every_member_of_an_ensemble_is_checked():
     the check covered the 8 fastest members only and returned four others 1.1-906x over the bound, silently (their
     orbits amplify perturbations up to ~1e10-fold). Every member checked, the call re-runs and names the accuracy
     the orbits allow (AccuracyWarning); every member is within the larger of rtol and that accuracy (against a
-    reference, up to the disagreement of two references: on chaotic members they differ by up to ~4e-8)."""
+    reference, up to the disagreement of two references: on chaotic members they differ by up to ~4e-8). So with
+    events, where the members run one by one after a check run on its own: it covered the 8 fastest, and returned
+    the same four members up to 2300x over, silently."""
     rng = np.random.default_rng(4007)
     moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
     W = rng.normal(size=(40, 10))
@@ -900,11 +906,80 @@ def test_every_member_of_an_ensemble_is_checked():
             for m, dt in (("splitting10", 0.002), ("splitting8", 0.001))]
     scale = np.abs(refs[0]).max(axis=(1, 2))
     unsure = np.abs(refs[0] - refs[1]).max(axis=(1, 2)) / scale
-    with pytest.warns(hr.AccuracyWarning, match="ensemble member") as record:
-        tr = hr.simulate(moments, W, t, rtol=1e-6)
-    floor = max(float(re.search(r"accurate to about (\S+), not", str(w.message)).group(1)) for w in record)
-    err = np.abs(tr.L - refs[0]).max(axis=(1, 2)) / scale
-    assert np.all(err <= max(1e-6, floor) + unsure), (err.max(), floor)
+    for events in (None, [lambda t, L: L[0] - 10.0]):  # (never crossed: the members run one by one)
+        with pytest.warns(hr.AccuracyWarning, match="ensemble member") as record:
+            tr = hr.simulate(moments, W, t, rtol=1e-6, events=events)
+        floor = max(float(re.search(r"accurate to about (\S+), not", str(w.message)).group(1)) for w in record)
+        err = np.abs(tr.L - refs[0]).max(axis=(1, 2)) / scale
+        assert np.all(err <= max(1e-6, floor) + unsure), (events, err.max(), floor)
+
+
+def test_the_distances_of_the_check_do_not_depend_on_how_the_samples_arrive():
+    """The check's distances at samples brought by one call or by several (as the run's chunks bring them) are
+    the same, bit for bit: each relative to the running scales raised with the run's states up to that sample
+    (max |L| and max |L / moments| per member, from the start). Relative to the scales raised with the last sample
+    of a call, they depended on where the chunks ended: 40 members on body 4007 at rtol 1e-6 re-ran to
+    UnreachableAccuracyError with chunks of 0.02 s and returned a result with chunks of 0.25 s."""
+    from hyperrotor.classical.solvers._kernels import row_scales
+    from hyperrotor.classical.solvers.richardson_check import sample_differences
+
+    rng = np.random.default_rng(5)
+    M, S, n = 3, 12, 10
+    moments = rng.uniform(0.5, 2.0, n)
+    L0 = rng.normal(size=(M, 1, n))
+    Lf = rng.normal(size=(M, S, n)) * np.linspace(1.0, 5.0, S)[None, :, None]  # the scales rise along the run
+    L1 = Lf + 1e-6 * rng.normal(size=Lf.shape)
+    L2 = L1 + 1e-5 * rng.normal(size=Lf.shape)
+    Lmax = np.maximum.accumulate(np.abs(np.concatenate([L0, Lf], axis=1)).max(axis=2), axis=1)[:, 1:]
+    Wmax = np.maximum.accumulate(np.abs(np.concatenate([L0, Lf], axis=1) / moments).max(axis=2), axis=1)[:, 1:]
+
+    def reference(a, b):
+        d = np.abs(a - b)
+        return np.maximum(d / Lmax[:, :, None], d / moments / Wmax[:, :, None]).max(axis=2)
+
+    runs = []
+    for cuts in ((), (5,), (1, 2, 7, 11)):
+        d1, d2 = np.zeros((M, S)), np.zeros((M, S))
+        scales = row_scales(L0, moments)
+        for a, b in zip((0,) + cuts, cuts + (S,)):
+            assert sample_differences(Lf[:, a:b], L1[:, a:b], L2[:, a:b], moments, *scales, d1, d2, a)
+        runs.append((d1, d2))
+    for d1, d2 in runs[1:]:
+        np.testing.assert_array_equal(d1, runs[0][0])
+        np.testing.assert_array_equal(d2, runs[0][1])
+    np.testing.assert_allclose(runs[0][0], reference(Lf, L1), rtol=4 * EPS)
+    np.testing.assert_allclose(runs[0][1], reference(L1, L2), rtol=4 * EPS)
+
+
+def test_an_rtol_call_takes_the_same_steps_however_its_chunks_fall(monkeypatch, checks):
+    """8 members on random generic 5D body 4007 at rtol 1e-8, every run judged at an eighth, a quarter and half
+    of its samples too (``EARLY_STOP_FLOWS = 0``): a run stopped early, re-runs at shorter steps, the switch to
+    compensated storage and an AccuracyWarning. Single calls and chunks of ~20 steps (the chunk lengths follow
+    the machine's measured speed) give the same result bit for bit, with the same steps, re-runs, work and
+    warning: the check judges at fixed samples, and the chunks end there."""
+    from hyperrotor.classical.solvers import chunks, driver, richardson_check
+
+    monkeypatch.setattr(richardson_check, "EARLY_STOP_FLOWS", 0.0)
+    rng = np.random.default_rng(4007)
+    moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
+    W = rng.normal(size=(8, 10))
+    W /= np.linalg.norm(W * moments, axis=1)[:, None] / 3.0
+    t = np.linspace(0.0, 20.0, 41)
+    runs = []
+    for first, seconds in ((chunks.FIRST_CHUNK_FLOWS, 0.25), (4e4, 1e-5)):
+        monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", first)
+        monkeypatch.setattr(driver, "FIRST_CHUNK_FLOWS", first)
+        chunks.SECONDS_PER_FLOW.clear()
+        with hr.options(chunk_seconds=seconds), pytest.warns(hr.AccuracyWarning) as record:
+            tr = hr.simulate(moments, W, t, rtol=1e-8)
+        runs.append((tr, [str(w.message) for w in record]))
+    (a, wa), (b, wb) = runs
+    assert b.stats["chunks"] >= 20 * a.stats["chunks"]
+    assert any(c.j < c.marks.size for c in checks)  # (a run was stopped at an early judgement)
+    assert a.stats["reruns"] >= 3 and a.stats["compensated"]
+    np.testing.assert_array_equal(a.L, b.L)
+    keys = ("steps", "dt", "reruns", "work", "compensated")
+    assert {k: a.stats[k] for k in keys} == {k: b.stats[k] for k in keys} and wa == wb
 
 
 def test_roundoff_amplification_is_the_growth_beyond_linear():
@@ -984,8 +1059,8 @@ def test_an_orbit_that_amplifies_its_own_rounding_beyond_rtol_is_named():
 def test_rtol_runs_in_one_call_and_in_chunks_agree(method, grid, members, rng, checks, monkeypatch):
     """An rtol run whose work fits in one chunk is one call, its check's companions the next (samples at
     output times, or between them with the run stopping there); cut into chunks, the check follows the
-    run chunk by chunk. Same step, same numbers (bit for bit), same work and the same decision (the
-    estimates differ by the scales of the distances only, which grow with the samples seen)."""
+    run chunk by chunk. Same step, same numbers (bit for bit), same work, the same decision and the same
+    estimates, bit for bit (each sample's distances are relative to the scales up to that sample)."""
     from hyperrotor.classical.solvers import richardson_check
 
     seen = checks
@@ -1013,7 +1088,9 @@ def test_rtol_runs_in_one_call_and_in_chunks_agree(method, grid, members, rng, c
     # finished before failing are work done and counted)
     assert one.stats["work"] == many.stats["work"] if method != "moser-veselov" else (
         0 <= many.stats["work"] - one.stats["work"] < one.stats["work"] - one.stats["steps"])
-    assert max(c1.err.max(), c2.err.max()) <= richardson_check.ACCEPT * rtol
+    assert c1.err.max() <= richardson_check.ACCEPT * rtol
+    for a, b in ((c1.d1, c2.d1), (c1.d2, c2.d2), (c1.err, c2.err)):
+        np.testing.assert_array_equal(a, b)
 
 
 def test_relative_difference_and_scales_match_their_formulas(rng):

@@ -44,7 +44,7 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
     B = problem.B
     template = dataclasses.replace(problem, L0=problem.L0[:0],
                                    T0=None if problem.T0 is None else problem.T0[:0])
-    worker_solver, worker_control, steps, h = member_setup(solver, problem, control, max_steps)
+    worker_solver, worker_control, steps, h, work = member_setup(solver, problem, control, max_steps)
     if steps is not None:
         per_member = max(1, steps) * solver.flows_per_step(problem) * SECONDS_PER_FLOW
     else:
@@ -60,6 +60,8 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
     stats = dict(steps=steps, nfev=None, dt=(float(np.max(np.abs(np.diff(problem.t)) / nsub_for(problem.t, h)))
                                              if steps else None) if isinstance(solver, FixedStepSolver) else None,
                  status="finished", chunks=-(-B // chunk))
+    if work is not None:  # every step (the probe and the check in this process, the members on the workers)
+        stats.update(work=int(work.done) + steps * B, reruns=int(getattr(control, "reruns", 0)))
     dense = None
     if isinstance(solver, FixedStepSolver):
         from .driver import DenseOutput

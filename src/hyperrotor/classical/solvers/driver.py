@@ -14,7 +14,9 @@ Chunks
     lengths (a chunk may start inside an output interval) and continues from the exact
     state of the previous one (:attr:`~.base.FixedStepSolver.last_carry`: the low parts
     of compensated storage, Moser-Veselov's Newton predictor), so a run cut into chunks
-    gives the same numbers as one call, bit for bit, however the chunks fall.
+    gives the same numbers as one call, bit for bit, however the chunks fall. So does an
+    ``rtol`` call: its check judges the run at fixed samples, not at chunk ends (a long run's
+    chunks end at the check's early judgements: :data:`~.richardson_check.EARLY_STOP_FLOWS`).
 Events
     With event functions ``g(t, L)`` the state is kept at every step; a sign change of
     ``g`` between two steps (with the requested ``direction``) is located by Brent's method
@@ -250,7 +252,8 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
         cap = max(1, min(EVENT_CHUNK_STEPS, int(first // flows)))
     else:
         cap = steps if steps * flows <= first else max(1, int(first // flows))
-    if not specs and cap >= steps and (check is None or check.out_idx is not None or not problem.with_attitude):
+    if not specs and cap >= steps and (check is None or (check.out_idx is not None or not problem.with_attitude)
+                                       and not check.early_marks.size):
         # one call, no chunk grid: the run (stopping at the check's samples between output times), then the check
         t_start = time.perf_counter()
         if check is not None and check.out_idx is None:
@@ -295,6 +298,7 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
     cs = np.concatenate([[0], np.cumsum(nsub)])
     steps = int(cs[-1])
     samples = check.marks if check is not None else np.zeros(0, dtype=np.int64)
+    early = check.early_marks if check is not None else samples  # (the run stops at the check's early judgements)
     Lc = problem.L0
     Tc = problem.T0
     carry = None  # the exact state behind Lc (compensated low parts), from the solver
@@ -304,6 +308,9 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
     while s0 < steps:
         t_start = time.perf_counter()
         s1 = min(steps, s0 + cap)
+        k = int(np.searchsorted(early, s0, side="right"))
+        if k < early.size:
+            s1 = min(s1, int(early[k]))
         outs = np.arange(np.searchsorted(cs, s0, side="right"), np.searchsorted(cs, s1, side="right"))
         new = np.arange(np.searchsorted(samples, s0, side="right"), np.searchsorted(samples, s1, side="right"))
         if specs:  # every step point

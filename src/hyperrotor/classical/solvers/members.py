@@ -1,8 +1,8 @@
 r"""Ensembles run member by member with the ensemble's step: events on ensembles, dask chunks.
 
 A fixed-step method chooses its step once for the whole ensemble (the probes look at the
-fastest members, whose check then runs on its own before any member runs; the budget
-counts every member). :func:`member_setup` does that once and
+fastest members; the check, of every member as in a run of the whole ensemble, then runs on
+its own before any member runs; the budget counts every member). :func:`member_setup` does that once and
 returns a solver and a step control that reproduce it on any subset of the members: the
 same step, the same automatic ``compensated`` choice, each member's own Casimir shift. A
 member run this way takes the steps of its row of the ensemble run: the same momenta bit
@@ -52,13 +52,14 @@ class GivenStep:
 
 
 def member_setup(solver, problem: Problem, control: Any, max_steps: int):
-    """Choose the ensemble's step once; returns ``(member_solver, member_control, steps, h)``.
+    """Choose the ensemble's step once; returns ``(member_solver, member_control, steps, h, work)``
+    (``work``: the :class:`~.chunks.Work` of the probe and the check, which the members' runs add to).
 
     For a scipy method (adaptive, per member anyway) the solver and control are returned
-    unchanged and ``steps``/``h`` are ``None``.
+    unchanged and ``steps``, ``h`` and ``work`` are ``None``.
     """
     if not isinstance(solver, FixedStepSolver):
-        return solver, control, None, None
+        return solver, control, None, None, None
     solver.check(problem)
     solver.prepare(problem)
     work = Work(max_steps)
@@ -71,7 +72,7 @@ def member_setup(solver, problem: Problem, control: Any, max_steps: int):
     member_solver.options = dict(solver.options)
     if "compensated" in member_solver.options:
         member_solver.options["compensated"] = bool(solver._state["compensated"])
-    return member_solver, GivenStep(h, getattr(control, "rtol", None)), steps, h
+    return member_solver, GivenStep(h, getattr(control, "rtol", None)), steps, h, work
 
 
 def member_problem(template: Problem, L0: np.ndarray, T0: np.ndarray | None, torque: Any) -> Problem:
@@ -95,7 +96,7 @@ def run_members_with_events(solver, problem: Problem, control: Any, *, events, m
                          "omega0 events must be non-terminal (terminal=False); run the members one by one to stop "
                          "each at its event")
     B = problem.B
-    member_solver, member_control, steps, _ = member_setup(solver, problem, control, max_steps)
+    member_solver, member_control, steps, _, work = member_setup(solver, problem, control, max_steps)
     bar = None
     if progress:
         from tqdm.auto import tqdm
@@ -121,9 +122,12 @@ def run_members_with_events(solver, problem: Problem, control: Any, *, events, m
     T = None if problem.T0 is None else np.concatenate([r.T for r in results])
     stats = dict(results[0].stats)
     stats["nfev"] = None if steps is not None else int(used)
-    for key in ("chunks", "work"):  # summed over the members (work: their runs; the ensemble's probe and
-        if key in stats:             # check before them are not counted here)
+    for key in ("chunks", "work"):  # summed over the members
+        if key in stats:
             stats[key] = int(sum(r.stats.get(key, 0) for r in results))
+    if work is not None:  # and the ensemble's probe and check before them, and its re-runs
+        stats["work"] += int(work.done)
+        stats["reruns"] = int(getattr(control, "reruns", 0))
 
 
     def per_event(attr):

@@ -58,6 +58,12 @@ PROJECT_AFTER = 0.125
 PROJECT_MARGIN = 4.0
 #: an error envelope growing this much over the second half of the samples seen is faster than linear
 GROWTH_RATIO = 8.0
+#: a run of this many elementary flows or more (about a second of one core) is also judged at an eighth, a quarter
+#: and half of its samples, and stopped there when over the target; a shorter one at its end only. Fixed points,
+#: not the ends of the run's chunks (whose lengths follow the machine's measured speed): judged at every chunk end,
+#: a 40-member ensemble at rtol 1e-6 crept through three re-runs, each stopped a little later on the same growing
+#: error, to UnreachableAccuracyError on a slower machine, and returned a result on a faster one
+EARLY_STOP_FLOWS = 1e8
 #: the rounding floor is measured on up to this many members (those whose differences grow the most)
 TWIN_MEMBERS = 8
 
@@ -204,17 +210,19 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
 @jit
 def sample_differences(Lf, L1, L2, moments, Lmax, Wmax, d1, d2, j):  # pragma: no cover - jitted
     """``d1[:, j:j + S]``, ``d2[:, j:j + S]``: per checked member, the distances run - first companion and
-    first - second companion at ``S`` new samples (``(members, S, n)`` each), after raising the running scales
-    with the run's states; ``False`` when a distance is not finite (a companion overflowed). Compiled."""
-    raise_scales(Lf, moments, Lmax, Wmax)
-    a = relative_difference(Lf, L1, moments, Lmax, Wmax)
-    b = relative_difference(L1, L2, moments, Lmax, Wmax)
+    first - second companion at ``S`` new samples (``(members, S, n)`` each), each relative to the running scales
+    raised with the run's states up to that sample (not to the last of them: the distances do not depend on how
+    many samples a call brings, i.e. on where the run's chunks end); ``False`` when a distance is not finite (a
+    companion overflowed). Compiled."""
     finite = True
-    for m in range(a.shape[0]):
-        for i in range(a.shape[1]):
-            d1[m, j + i] = a[m, i]
-            d2[m, j + i] = b[m, i]
-            if not (math.isfinite(a[m, i]) and math.isfinite(b[m, i])):
+    for i in range(Lf.shape[1]):
+        raise_scales(Lf[:, i:i + 1], moments, Lmax, Wmax)
+        a = relative_difference(Lf[:, i:i + 1], L1[:, i:i + 1], moments, Lmax, Wmax)
+        b = relative_difference(L1[:, i:i + 1], L2[:, i:i + 1], moments, Lmax, Wmax)
+        for m in range(a.shape[0]):
+            d1[m, j + i] = a[m, 0]
+            d2[m, j + i] = b[m, 0]
+            if not (math.isfinite(a[m, 0]) and math.isfinite(b[m, 0])):
                 finite = False
     return finite
 
@@ -443,6 +451,11 @@ class RichardsonCheck:
         self.d1 = np.zeros((M, S))  # run - first companion, relative, per checked member and sample
         self.d2 = np.zeros((M, S))  # first - second companion
         self.err = np.zeros(S)  # estimated error of the run at each sample (the largest over the members)
+        # where the run is judged: at its end; a long run also at an eighth, a quarter and half of its samples
+        flows = self.steps * self.problem.B * self.solver.flows_per_step(self.problem)
+        early = (S // 8, S // 4, S // 2) if flows >= EARLY_STOP_FLOWS else ()
+        self.checkpoints = sorted({c for c in early if c > 0} | {S})
+        self.early_marks = self.marks[np.array(self.checkpoints[:-1], dtype=np.int64) - 1]  # (the run stops there)
 
     def update(self, upto: int, Lf: np.ndarray) -> None:
         """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones."""
@@ -466,18 +479,26 @@ class RichardsonCheck:
         as them)."""
         if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
-        self.j = upto
+        prev, self.j = self.j, upto
+        for c in self.checkpoints:
+            if prev < c <= upto:
+                self._decide(c)
+
+    def _decide(self, upto: int) -> None:
+        """Accept the run up to the checkpoint ``marks[upto - 1]`` (its first ``upto`` samples), or stop it with
+        :class:`CheckFailed`; at the last sample, the round-off test. Decided from those samples only, whatever
+        the run has reached: the same call takes the same steps on every machine."""
         q, e = estimate(self.d1, self.d2, self.err, upto, self.finer, self.r, self.r2, self.p)
         if q >= 0.0:
             self.q = q
         accept = ACCEPT * self.control.rtol
         done = abs(self.tm[upto - 1] - self.problem.t[0]) / self.span
         if e > accept:
-            raise self._failure(e, self._project(upto, e, done), done)
+            raise self._failure(upto, e, self._project(e, done), done)
         if upto < self.marks.size and done >= PROJECT_AFTER:
-            projected = self._project(upto, e, done)
+            projected = self._project(e, done)
             if projected > PROJECT_MARGIN * accept:
-                raise self._failure(e, projected, done)
+                raise self._failure(upto, e, projected, done)
         if upto == self.marks.size:
             self._check_roundoff()
             self.control.history.append((self.h, e))
@@ -589,14 +610,15 @@ class RichardsonCheck:
                 lam = max(lam, math.log(env[k] / env[i]) / (t[k] - t[i]))
         return lam
 
-    def _project(self, upto: int, e: float, done: float) -> float:
+    def _project(self, e: float, done: float) -> float:
         """The estimated error at the end of the run from the samples so far, growing linearly (the
         regular case; an exponential projection would stop runs near a separatrix, where the error
         grows fast for a while only, and ask for far too short steps)."""
         return e / max(done, 1e-300)
 
-    def _failure(self, e: float, projected: float, done: float) -> CheckFailed:
-        """The re-run's step, priced; or the error naming why ``rtol`` is out of reach."""
+    def _failure(self, upto: int, e: float, projected: float, done: float) -> CheckFailed:
+        """The re-run's step, priced, from the first ``upto`` samples; or the error naming why ``rtol`` is out of
+        reach."""
         rtol, p = self.control.rtol, self.p
         end = max(e, projected)
         self.control.history.append((self.h, end))
@@ -608,7 +630,7 @@ class RichardsonCheck:
         # steps 1750x shorter, where p/2 asks for 5x)
         q_seen = getattr(self, "q", p)
         q = p if end > ASYMPTOTIC else min(p, max(p / 2.0, q_seen))
-        j = self.j
+        j = upto
         if not self.finer and j and (self.d1[:, :j].max() > COMPANION_ASYMPTOTIC
                                      or self.d2[:, :j].max() > SECOND_COMPANION_ASYMPTOTIC):
             # companions outside their asymptotic regime show no order: the run's error from the first one's
@@ -616,7 +638,7 @@ class RichardsonCheck:
             end, q = end * coarser_divisor(q_seen, self.r) / coarser_divisor(p, self.r), p
         h_new = 0.9 * self.h * (SAFETY * rtol / end) ** (1.0 / q)
         h_new = min(h_new, self.h / 1.25)
-        lam = self._growth(self.j)
+        lam = self._growth(upto)
         why = (f"estimated error {end:.2g} at the end of the run (rtol = {rtol:g}) with step "
                f"{self._user(self.h):.3g}")
         if lam > 0.0:
