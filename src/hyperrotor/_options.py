@@ -214,9 +214,10 @@ register(
 )
 register(
     "max_output_bytes", 2**31,
-    "Budget of hyperrotor.simulate: largest memory for the returned arrays (omega, L, attitude), "
-    "estimated before the run; 2 GiB by default, so that a mistyped output grid (e.g. 2e8 times) "
-    "is refused with a message instead of ending in MemoryError.",
+    "Budget of hyperrotor.simulate: largest memory for the returned arrays (omega, L, attitude) and, "
+    "with rtol, the step control's check (about 1 kB per member), estimated before the run; 2 GiB by "
+    "default, so that a mistyped output grid (e.g. 2e8 times) is refused with a message instead of "
+    "ending in MemoryError.",
 )
 register(
     "chunk_seconds", 0.25,

@@ -493,22 +493,6 @@ def _random_generic5(seed):
     return moments, w0 / np.abs(w0).max()
 
 
-@pytest.fixture
-def checks(monkeypatch):
-    """The step control's checks (``RichardsonCheck`` instances) of the calls the test makes, in order."""
-    from hyperrotor.classical.solvers import richardson_check
-
-    seen = []
-    init = richardson_check.RichardsonCheck.__init__
-
-    def spy(self, *args, **kwargs):
-        init(self, *args, **kwargs)
-        seen.append(self)
-
-    monkeypatch.setattr(richardson_check.RichardsonCheck, "__init__", spy)
-    return seen
-
-
 @pytest.mark.parametrize("spin", [1.0, 0.2], ids=["max-omega-1", "max-omega-0.2"])
 @pytest.mark.parametrize("rtol", [1e-6, 1e-8, 1e-10])
 def test_rtol_bound_holds_on_random_generic_5d_bodies(rtol, spin, checks):
@@ -912,6 +896,30 @@ def test_every_member_of_an_ensemble_is_checked():
         floor = max(float(re.search(r"accurate to about (\S+), not", str(w.message)).group(1)) for w in record)
         err = np.abs(tr.L - refs[0]).max(axis=(1, 2)) / scale
         assert np.all(err <= max(1e-6, floor) + unsure), (events, err.max(), floor)
+
+
+def test_every_member_of_a_large_ensemble_is_checked_and_its_check_priced(checks):
+    """5000 members (beyond the 4096 a dask ensemble's check covers, in this process): the check covers all of
+    them, and the run's bound holds for each (against the closed form of the 3D top). Its memory, about 1 kB per
+    member, is priced with the output before the run: between the output's bytes and the output's and the check's
+    together, an rtol call of a splitting is refused naming the check; with dt (no check) it runs."""
+    from hyperrotor.classical.solvers.richardson_check import check_bytes
+
+    W = W3 * (1.0 + 0.3 * np.random.default_rng(3).uniform(-1.0, 1.0, size=(5000, 3)))
+    t = np.linspace(0.0, 2.0, 5)
+    tr = hr.simulate(MOM3, W, t, method="splitting8", rtol=1e-8)
+    assert checks[-1].members.size == 5000
+    exact = np.stack([euler_poinsot(MOM3, w, t) for w in W])
+    scale = np.abs(exact).max(axis=(1, 2))
+    assert np.all(np.abs(tr.omega - exact).max(axis=(1, 2)) <= 1e-8 * scale)
+    B = 100
+    output = 8.0 * B * t.size * 2 * 3  # (omega and L)
+    with hr.options(max_output_bytes=int(output + check_bytes(B, 3) / 2)):
+        with pytest.raises(StepBudgetError, match="accuracy check"):
+            hr.simulate(MOM3, W[:B], t, method="splitting8", rtol=1e-8)
+        assert hr.simulate(MOM3, W[:B], t, method="splitting8", dt=0.01).L.shape == (B, t.size, 3)
+    with hr.options(max_output_bytes=int(output + check_bytes(B, 3))):
+        hr.simulate(MOM3, W[:B], t, method="splitting8", rtol=1e-8)
 
 
 def test_the_distances_of_the_check_do_not_depend_on_how_the_samples_arrive():

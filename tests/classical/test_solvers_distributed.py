@@ -44,3 +44,24 @@ def test_client_gives_the_same_moser_veselov_ensemble(dask_client):
 def test_events_on_an_ensemble_with_a_client_are_refused_by_name(dask_client):
     with pytest.raises(ValueError, match="events= on an ensemble runs in this process"):
         hr.simulate([2.0, 3.0, 4.0], np.ones((2, 3)), [0.0, 1.0], events=lambda t, L: L[0], client=dask_client)
+
+
+def test_a_dask_ensembles_check_covers_the_fastest_up_to_its_limit(dask_client, monkeypatch, checks):
+    """The check of a dask ensemble runs in this process before the workers: on up to CHECK_MEMBERS members,
+    the fastest (here 16 of 40), not the whole ensemble again; a run in this process checks all 40."""
+    from hyperrotor.classical.solvers import distributed
+
+    seen = checks
+    monkeypatch.setattr(distributed, "CHECK_MEMBERS", 16)
+    w0 = np.random.default_rng(4).normal(size=(40, 10)) * np.linspace(0.5, 1.5, 40)[:, None]
+    t = np.linspace(0.0, 2.0, 5)
+    body = hr.RigidBody(hr.Inertia.from_mass_tensor(BODY5))
+    a = hr.simulate(body, w0, t, rtol=1e-8)
+    assert {c.members.size for c in seen} == {40}
+    seen.clear()
+    b = hr.simulate(body, w0, t, rtol=1e-8, client=dask_client)
+    rates = np.abs(w0).max(axis=1)  # (the members' rates grow with their index here)
+    assert seen and all(c.members.size == 16 for c in seen)
+    assert set(seen[-1].members) <= set(np.argsort(rates)[-20:])
+    if a.stats["steps"] == b.stats["steps"]:
+        np.testing.assert_array_equal(a.L, b.L)

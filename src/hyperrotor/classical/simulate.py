@@ -17,6 +17,7 @@ for each method's order, invariants and options).
 """
 from __future__ import annotations
 
+import math
 import time
 from functools import lru_cache
 from typing import Any, Callable, Mapping, NamedTuple
@@ -31,7 +32,8 @@ from .solvers import SOLVERS, FixedStepSolver, Problem, ScipyIVP, Solver, solver
 from .solvers.base import power_of_two_scale
 from .solvers.chunks import Work, cost_key, seconds_per_flow
 from ._trajectory import Trajectory
-from .solvers.step_control import ErrorTarget, FixedStep, StepBudgetError
+from .solvers.richardson_check import check_bytes
+from .solvers.step_control import CHECK_MEMBERS, ErrorTarget, FixedStep, StepBudgetError
 
 __all__ = ["simulate", "Trajectory", "SIMULATION_METHODS"]
 
@@ -93,8 +95,17 @@ class _ScaledTorque:
         return np.asarray(self.torque(tt / s, w * s), dtype=float) / (s * s)
 
 
-def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Problem, np.ndarray]:
-    """Check and normalise the inputs once (scaled units, see :mod:`.solvers.base`)."""
+def _checked(solver, rtol, client) -> float:
+    """How many members the step control's check may cover: every member of an ``rtol`` run of a fixed-step method,
+    up to :data:`~.solvers.step_control.CHECK_MEMBERS` with a dask client; none otherwise."""
+    if rtol is None or not isinstance(solver, FixedStepSolver):
+        return 0.0
+    return math.inf if client is None else float(CHECK_MEMBERS)
+
+
+def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float = 0.0) -> tuple[Problem, np.ndarray]:
+    """Check and normalise the inputs once (scaled units, see :mod:`.solvers.base`); the output, and the step
+    control's check of up to ``checked`` members (:func:`_checked`), priced against ``max_output_bytes``."""
     moments = _validate.moments(body, name="body")
     n = moments.size
     N = dimension_from_count(n)
@@ -109,11 +120,13 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes) -> tuple[Probl
     with_att = attitude is not False and attitude is not None
     K = int(np.size(t)) if isinstance(t, (np.ndarray, list, tuple)) else 1  # before any copy of a huge grid
     nbytes = 8.0 * B * K * (2 * n + (N * N if with_att else 0))
-    if nbytes > max_output_bytes:
+    check = check_bytes(int(min(B, checked)), n) if K > 1 else 0.0
+    if nbytes + check > max_output_bytes:
         raise _pricing.refuse(
-            "simulate", f"the output of this run ({B} member(s) x {K} output times)", nbytes, "max_output_bytes",
+            "simulate", f"the output of this run ({B} member(s) x {K} output times"
+            + (f", and its accuracy check: {check:.3g} bytes)" if check else ")"), nbytes + check, "max_output_bytes",
             "bytes", "ask for fewer output times (events= or Trajectory.sol give states between them)",
-            limit=int(max_output_bytes), cls=StepBudgetError, needed=nbytes, budget=max_output_bytes,
+            limit=int(max_output_bytes), cls=StepBudgetError, needed=nbytes + check, budget=max_output_bytes,
             option="max_output_bytes")
     t_user = _validate.time_grid(t)
     s = max(power_of_two_scale(float(np.abs(w0).max()) if w0.size else 0.0), MIN_SCALE)
@@ -290,8 +303,8 @@ def simulate(
         with ``rtol`` the step control's probes and check; scipy: right-hand-side
         evaluations); default ``hyperrotor.options["max_steps"]``. A run estimated above it
         is refused before it starts (:class:`~hyperrotor.classical.solvers.StepBudgetError`,
-        naming the estimate; :func:`estimate_cost` prices a call without running it). The output memory is bounded by
-        ``hyperrotor.options["max_output_bytes"]``.
+        naming the estimate; :func:`estimate_cost` prices a call without running it). The output memory (and with
+        ``rtol`` that of the check, about 1 kB per member) is bounded by ``hyperrotor.options["max_output_bytes"]``.
     progress : bool or None, optional
         show a tqdm progress bar (``None``: only on a terminal, for runs longer than ~1 s).
     client : dask.distributed.Client, optional
@@ -341,7 +354,8 @@ def simulate(
     progress = _validate.flag("progress", progress, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
-    problem, t_user = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"])
+    problem, t_user = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"],
+                               _checked(solver, rtol, client))
     _pricing.check("simulate", N=problem.N)
     control = _step_control(solver, rtol, dt, _atol(atol, problem))
     if events is not None and problem.batch:
@@ -405,8 +419,7 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
 
     Same arguments as :func:`simulate`. With ``dt`` nothing is integrated; with ``rtol`` the
     step control's probe runs (a short leading window, a small fraction of the run, chunked
-    and counted against ``max_steps``). The run's check (companion runs of every member, up to
-    :data:`~.solvers.step_control.CHECK_MEMBERS`, at steps up to
+    and counted against ``max_steps``). The run's check (companion runs of every member, at steps up to
     :data:`~.solvers.richardson_check.COMPANION_RATIO` times longer) is included; re-runs after a
     failed check are not (they are rare). scipy methods: ``steps``, ``seconds`` and ``dt`` are
     ``None``.
@@ -427,7 +440,7 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     rtol = _validate.positive("rtol", rtol, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
-    problem, _ = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"])
+    problem, _ = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"], _checked(solver, rtol, None))
     control = _step_control(solver, rtol, dt)
     if not isinstance(solver, FixedStepSolver):
         return RunCost(None, None, None, solver.name)

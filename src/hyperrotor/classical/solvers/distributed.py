@@ -22,6 +22,7 @@ import numpy as np
 from .base import Problem, RunResult, nsub_for
 from .driver import FixedStepSolver
 from .members import member_problem, member_setup
+from .step_control import CHECK_MEMBERS
 
 __all__ = ["run_distributed"]
 
@@ -44,7 +45,8 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
     B = problem.B
     template = dataclasses.replace(problem, L0=problem.L0[:0],
                                    T0=None if problem.T0 is None else problem.T0[:0])
-    worker_solver, worker_control, steps, h, work = member_setup(solver, problem, control, max_steps)
+    # (the check runs here, before the workers: on up to CHECK_MEMBERS members, not the whole ensemble again)
+    worker_solver, worker_control, steps, h, work = member_setup(solver, problem, control, max_steps, CHECK_MEMBERS)
     if steps is not None:
         per_member = max(1, steps) * solver.flows_per_step(problem) * SECONDS_PER_FLOW
     else:

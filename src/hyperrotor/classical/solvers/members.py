@@ -39,7 +39,9 @@ class GivenStep:
     def first_step(self, solver, problem, work, bar=None):
         return self.h
 
-    verified_step = first_step
+    def verified_step(self, solver, problem, work, most=None):
+        """The step (nothing to verify: ``most``, the members a check would cover, is unused)."""
+        return self.first_step(solver, problem, work)
 
     def checker(self, solver, problem, nsub, work, bar=None):
         return None
@@ -51,9 +53,10 @@ class GivenStep:
         return f"GivenStep(h={self.h!r})"
 
 
-def member_setup(solver, problem: Problem, control: Any, max_steps: int):
+def member_setup(solver, problem: Problem, control: Any, max_steps: int, most: int | None = None):
     """Choose the ensemble's step once; returns ``(member_solver, member_control, steps, h, work)``
-    (``work``: the :class:`~.chunks.Work` of the probe and the check, which the members' runs add to).
+    (``work``: the :class:`~.chunks.Work` of the probe and the check, which the members' runs add to). The check
+    covers every member (up to ``most``, the fastest beyond: :meth:`~.step_control.ErrorTarget.verified_step`).
 
     For a scipy method (adaptive, per member anyway) the solver and control are returned
     unchanged and ``steps``, ``h`` and ``work`` are ``None``.
@@ -63,7 +66,7 @@ def member_setup(solver, problem: Problem, control: Any, max_steps: int):
     solver.check(problem)
     solver.prepare(problem)
     work = Work(max_steps)
-    h = control.verified_step(solver, problem, work) if problem.t.size > 1 and problem.B > 0 else 1.0
+    h = control.verified_step(solver, problem, work, most=most) if problem.t.size > 1 and problem.B > 0 else 1.0
     steps = int(nsub_for(problem.t, h).sum()) if problem.t.size > 1 else 0
     work.refuse(steps * problem.B, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
     control.announce(solver, problem, h)

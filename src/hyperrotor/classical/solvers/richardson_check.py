@@ -23,7 +23,7 @@ from .base import Problem, step_lengths
 from .chunks import Work, advance_chunked, advance_pair_chunked, merge, refuse_steps, stops
 
 __all__ = ["RichardsonCheck", "CheckFailed", "AccuracyWarning", "ProbeRuns", "observed_order", "relative_difference",
-           "SAFETY", "ACCEPT", "ASYMPTOTIC", "COMPANION_RATIO"]
+           "check_bytes", "SAFETY", "ACCEPT", "ASYMPTOTIC", "COMPANION_RATIO"]
 
 _EPS = float(np.finfo(float).eps)
 #: the error target used for the step: rtol times this (margin for the asymptotic model)
@@ -331,6 +331,24 @@ def roundoff_amplification(t, d1, flows):  # pragma: no cover - jitted
 
 
 @jit
+def roundoff_growth(t, d1, flows):  # pragma: no cover - jitted
+    """:func:`roundoff_amplification` of every row of ``d1 (members, samples)``: arrays ``(A, X)`` (one compiled
+    call for any number of checked members)."""
+    M = d1.shape[0]
+    A = np.empty(M)
+    X = np.empty(M)
+    for m in range(M):
+        A[m], X[m] = roundoff_amplification(t, d1[m], flows)
+    return A, X
+
+
+def check_bytes(members: int, n: int) -> float:
+    """Memory of the check of ``members`` members of ``n`` planes (the distances and estimates at every sample,
+    the companions' states and their compensated low parts, the running scales): priced with the output."""
+    return 8.0 * members * (2 * CHECK_SAMPLES + 4 * n + 2)
+
+
+@jit
 def probe_ratio(t, nsub, idx, ms):  # pragma: no cover - jitted
     """The smallest ratio, over the segments between the output times ``t[idx]`` (``t[0]`` first), of the
     probe's step there (``ms[i]`` equal steps) to the longest step of a run of ``nsub[k]`` steps per interval
@@ -533,8 +551,8 @@ class RichardsonCheck:
             return
         flows = self.steps * self.solver.flows_per_step(self.problem)
         t = np.abs(self.tm[:self.j] - self.problem.t[0])
-        growth = [roundoff_amplification(t, d1, flows) for d1 in self.d1[:, :self.j]]  # (A, X) per member
-        amplification = max(A for A, _ in growth)
+        A, X = roundoff_growth(t, np.ascontiguousarray(self.d1[:, :self.j]), flows)  # per member
+        amplification = float(A.max())
         if amplification == 0.0:
             return
         roundoff = ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification
@@ -545,22 +563,23 @@ class RichardsonCheck:
                                       f"in plain arithmetic, rtol = {rtol:g}): re-run with compensated "
                                       f"storage at the same step", compensate=True)
         # the members amplifying faster than linearly (a regular orbit's X is ~10, harmless), largest X first
-        suspects = sorted((m for m in range(len(growth)) if growth[m][0] > GROWTH_RATIO), key=lambda m: -growth[m][1])
+        fast = np.flatnonzero(A > GROWTH_RATIO)
+        suspects = fast[np.argsort(-X[fast], kind="stable")]
         plain = 0.0 if self.solver.compensates() else roundoff
-        X = growth[suspects[0]][1] if suspects else 0.0
-        if not suspects or max(_EPS * X, plain) <= rtol:
+        Xs = float(X[suspects[0]]) if suspects.size else 0.0
+        if not suspects.size or max(_EPS * Xs, plain) <= rtol:
             return
         # eps X can overstate the floor (the truncation differences grow faster than a perturbation of the state
         # on some orbits: 1.8e-12 ... 6e-11 where runs at four steps agree to 1.2e-13): measure it
-        rows = np.array(suspects[:TWIN_MEMBERS])
+        rows = suspects[:TWIN_MEMBERS]
         if self.work.done + self.steps * (self.problem.B + 2 * rows.size) <= self.work.max_steps:  # (the run's
             # own steps are counted when it ends, or when the members run after their check: run_alone)
             twin, k = self._perturbed_twin(rows)
             moved = f"changing its initial state by one unit in the last place changes the result by {twin:.2g}"
         else:  # (no room left in max_steps for the twin: the estimate)
-            k, twin = suspects[0], _EPS * X
+            k, twin = int(suspects[0]), _EPS * Xs
             moved = (f"its rounding moves the result by about {twin:.2g} (estimated from the growth of the check's "
-                     f"differences, {X:.2g}-fold: max_steps left no room to measure it)")
+                     f"differences, {Xs:.2g}-fold: max_steps left no room to measure it)")
         floor = max(twin, plain)
         if floor > rtol:
             batch = self.problem.batch

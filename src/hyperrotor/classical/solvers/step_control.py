@@ -46,10 +46,11 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
 3. *Budget.* All planned work (probes, run, check) above ``max_steps`` is refused here,
    before the run starts (:class:`~.chunks.Work`).
 4. *Check inside the run* (:class:`~.richardson_check.RichardsonCheck`, costing :math:`1/c + 1/(c c_2)` of the run for
-   every member, up to :data:`CHECK_MEMBERS`, each judged on its own: checking the :data:`PROBE_MEMBERS` fastest
-   only left a 100-member ensemble of similar rates with 9 members up to 2300x over rtol 1e-6, silently; ensembles
-   run member by member, with events or on dask workers, check the same members, run on their own before the
-   members run: about 1.3-1.6x the members' run). Beside the
+   every member, each judged on its own: checking the :data:`PROBE_MEMBERS` fastest
+   only left a 100-member ensemble of similar rates with 9 members up to 2300x over rtol 1e-6, silently; its memory,
+   about 1 kB per member, is priced with the output. Ensembles run member by member, with events or on dask workers,
+   check the same members, run on their own before the members run: about 1.3-1.6x the members' run; a dask
+   ensemble's check, in this process, covers up to :data:`CHECK_MEMBERS`, the fastest beyond). Beside the
    run at :math:`h^*` two companion runs of the same members advance with steps :math:`c` and :math:`c c_2` times longer
    (:math:`2 \le c \le` :data:`~.richardson_check.COMPANION_RATIO`, as large as keeps the first companion's error below
    :data:`~.richardson_check.COMPANION_ASYMPTOTIC`; :math:`2 \le c_2 \le c`, the second's below
@@ -138,8 +139,9 @@ PROBE_FIRST_TURN_WHOLE = 2.0
 PROBE_WHOLE_GAPS = 0.75 * PROBE_RATIO
 #: ensemble members probed (the fastest ones): the step is one for all members
 PROBE_MEMBERS = 8
-#: the run's check covers every member up to this many (the fastest beyond; its distances take 2 floats per member
-#: and sample)
+#: the check of a dask ensemble, run in this process before the members run on the workers, covers up to this many
+#: members (the fastest beyond); every other run's check covers every member (its memory is priced with the output:
+#: :func:`~.richardson_check.check_bytes`)
 CHECK_MEMBERS = 4096
 #: the probe extrapolates its error to the end of the run like t^a, 1 <= a <= this (the steady growth it sees)
 PROBE_MAX_POWER = 4.0
@@ -322,7 +324,9 @@ class FixedStep:
     def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None):
         return None
 
-    verified_step = first_step
+    def verified_step(self, solver, problem, work, most=None):
+        """The step (nothing to verify: ``most``, the members a check would cover, is unused)."""
+        return self.first_step(solver, problem, work)
 
     def announce(self, solver, problem: Problem, h: float, steps: int | None = None) -> None:
         """Nothing: a given step is the caller's choice."""
@@ -362,13 +366,13 @@ class ErrorTarget:
     def _members(self, problem: Problem) -> np.ndarray:
         return self._rates(problem)[1]
 
-    def _checked(self, problem: Problem) -> np.ndarray:
-        """The members the run's check covers: all, up to :data:`CHECK_MEMBERS` (the fastest beyond)."""
+    def _checked(self, problem: Problem, most: int | None = None) -> np.ndarray:
+        """The members the run's check covers: all (up to ``most``, the fastest beyond: :meth:`verified_step`)."""
         if problem.B <= PROBE_MEMBERS:
             return self._members(problem)
-        if problem.B <= CHECK_MEMBERS:
+        if most is None or problem.B <= most:
             return np.arange(problem.B)
-        return np.sort(np.argsort(self._rates(problem)[0])[::-1][:CHECK_MEMBERS])
+        return np.sort(np.argsort(self._rates(problem)[0])[::-1][:most])
 
     def first_step(self, solver, problem: Problem, work: Work, bar=None) -> float:
         """The probe (module docstring, steps 1-3): a step for ``SAFETY * rtol`` from a leading window
@@ -500,11 +504,12 @@ class ErrorTarget:
                 + (", a splitting of higher order reaches this accuracy much sooner" if solver.order < 8 else "")
                 + f" (options['slow_run_warning_seconds'] = {_validate.fmt(limit)})")
 
-    def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None) -> "RichardsonCheck | None":
-        """The check of a run at ``nsub`` steps per interval, of every member (:meth:`_checked`)."""
+    def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None, most: int | None = None
+                ) -> "RichardsonCheck | None":
+        """The check of a run at ``nsub`` steps per interval, of every member (up to ``most``: :meth:`_checked`)."""
         if problem.B == 0 or not nsub.size or int(nsub.sum()) == 0 or solver.flows_per_step(problem) == 0:
             return None
-        members = self._checked(problem)
+        members = self._checked(problem, most)
         return RichardsonCheck(solver, problem, nsub, self, members, work, bar, probes=self.probe_runs)
 
     def next_step(self, failure: CheckFailed, solver, problem: Problem, work: Work) -> float:
@@ -521,9 +526,10 @@ class ErrorTarget:
                 f"or a shorter run")
         return failure.h
 
-    def verified_step(self, solver, problem: Problem, work: Work) -> float:
+    def verified_step(self, solver, problem: Problem, work: Work, most: int | None = None) -> float:
         """The step, checked before any member runs (ensembles run member by member): the probe, then the
-        checked members (the same as a run's check: :meth:`_checked`) run on their own with their companions (no
+        checked members (every member, as in a run's check: :meth:`_checked`; up to ``most``, the fastest beyond,
+        for the members of a dask ensemble, checked in this process) run on their own with their companions (no
         output kept). Checking the 8 fastest only returned 4 of 40 members of similar rates 1.1-2300x over rtol
         1e-6, silently, with events (body 4007), where the same ensemble run at once met it."""
         h = self.first_step(solver, problem, work)
@@ -532,7 +538,7 @@ class ErrorTarget:
             nsub = nsub_for(t, h)
             # the arithmetic the members will run in
             solver.set_accuracy(problem, self.rtol, int(nsub.sum()), roundoff_amplified=self.roundoff_amplified)
-            check = self.checker(solver, problem, nsub, work)
+            check = self.checker(solver, problem, nsub, work, most=most)
             if check is None:
                 return h
             work.refuse(int(nsub.sum()) * len(check.members) + check.planned_steps,
