@@ -922,6 +922,65 @@ def test_every_member_of_a_large_ensemble_is_checked_and_its_check_priced(checks
         hr.simulate(MOM3, W[:B], t, method="splitting8", rtol=1e-8)
 
 
+def test_a_failed_check_on_amplified_roundoff_refines_and_compensates_at_once(monkeypatch):
+    """8 members on random generic 5D body 4007 at rtol 1e-8 (chaotic: plain arithmetic's round-off, amplified
+    ~1e7-fold, is ~1e-5): the first check fails, and its differences show the amplified round-off; the re-run takes
+    a shorter step in compensated storage at once, not a shorter step in plain arithmetic (whose differences then
+    carry the round-off: a 40-member ensemble at rtol 1e-6 was refined on it until UnreachableAccuracyError when
+    judged early) and the switch as one more re-run. The result is within the accuracy the warning names."""
+    from hyperrotor.classical.solvers import step_control
+
+    failures = []
+    next_step = step_control.ErrorTarget.next_step
+
+    def spy(self, failure, *args):
+        failures.append((failure.why, failure.compensate))
+        return next_step(self, failure, *args)
+
+    monkeypatch.setattr(step_control.ErrorTarget, "next_step", spy)
+    rng = np.random.default_rng(4007)
+    moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
+    W = rng.normal(size=(8, 10))
+    W /= np.linalg.norm(W * moments, axis=1)[:, None] / 3.0
+    t = np.linspace(0.0, 20.0, 41)
+    with pytest.warns(hr.AccuracyWarning) as record:
+        tr = hr.simulate(moments, W, t, rtol=1e-8)
+    assert "the re-run in compensated storage" in failures[0][0]
+    assert not any(compensate for _, compensate in failures) and tr.stats["compensated"]
+    assert tr.stats["reruns"] == len(failures)
+    refs = [hr.simulate(moments, W, t, method=m, dt=dt, options={"compensated": True}).L
+            for m, dt in (("splitting10", 0.002), ("splitting8", 0.001))]
+    scale = np.abs(refs[0]).max(axis=(1, 2))
+    unsure = np.abs(refs[0] - refs[1]).max(axis=(1, 2)) / scale  # (member 7: the references differ by 3.7e-7)
+    floor = float(re.search(r"accurate to about (\S+), not", str(record[0].message)).group(1))
+    assert np.all(np.abs(tr.L - refs[0]).max(axis=(1, 2)) / scale <= max(floor, 1e-8) + unsure)
+
+
+def test_a_rerun_stopped_later_than_any_before_is_progress_not_a_retry():
+    """A long run is judged at an eighth, a quarter and half of its samples: re-runs each stopped at a later
+    judgement than any before made progress and do not count against MAX_RETRIES (on a chaotic orbit each re-run
+    got a little further on the same growing error); a second stop at the same judgement, a failure at the end
+    and the switch to compensated storage alone are counted as they were (the switch: not at all)."""
+    from hyperrotor.classical.solvers.richardson_check import CheckFailed
+    from hyperrotor.classical.solvers.step_control import MAX_RETRIES, ErrorTarget, UnreachableAccuracyError
+
+    def failure(done, compensate=False):
+        f = CheckFailed(0.1, f"stopped at {done:.0%}", compensate=compensate)
+        f.done = done
+        return f
+
+    control = ErrorTarget(1e-6)
+    for done in (0.125, 0.25, 0.5):
+        control.next_step(failure(done), None, None, None)
+    control.next_step(failure(1.0, compensate=True), None, None, None)
+    assert (control.retries, control.reruns) == (0, 4)
+    for done in (0.5, 1.0, 0.25):  # (no further than before, the end, earlier)
+        control.next_step(failure(done), None, None, None)
+    assert control.retries == MAX_RETRIES == 3
+    with pytest.raises(UnreachableAccuracyError, match="not reached after 3 re-runs"):
+        control.next_step(failure(1.0), None, None, None)
+
+
 def test_the_distances_of_the_check_do_not_depend_on_how_the_samples_arrive():
     """The check's distances at samples brought by one call or by several (as the run's chunks bring them) are
     the same, bit for bit: each relative to the running scales raised with the run's states up to that sample

@@ -549,13 +549,9 @@ class RichardsonCheck:
         """
         if self.j < 8:
             return
-        flows = self.steps * self.solver.flows_per_step(self.problem)
-        t = np.abs(self.tm[:self.j] - self.problem.t[0])
-        A, X = roundoff_growth(t, np.ascontiguousarray(self.d1[:, :self.j]), flows)  # per member
-        amplification = float(A.max())
+        roundoff, amplification, A, X = self._roundoff(self.j, per_member=True)
         if amplification == 0.0:
             return
-        roundoff = ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification
         rtol = self.control.rtol
         if self.solver.can_compensate() and roundoff > ROUNDOFF_SHARE * ACCEPT * rtol:
             self.control.roundoff_amplified = True
@@ -592,6 +588,19 @@ class RichardsonCheck:
                      " (options={'compensated': True} avoids it)" if "compensated" in self.solver.options else ""))
                  + f": the result is accurate to about {floor:.2g}, not {rtol:g}. Ask for rtol >= {floor:.2g} "
                    f"or a shorter run", AccuracyWarning)
+
+    def _roundoff(self, upto: int, per_member: bool = False) -> tuple:
+        """``(round-off, amplification)`` of plain arithmetic over the first ``upto`` samples (``per_member``: and
+        the arrays ``(A, X)`` of :func:`roundoff_growth`): :data:`ROUNDOFF_FACTOR` eps sqrt(flows) times the largest
+        amplification beyond linear growth (:meth:`_check_roundoff`; 0 before 8 samples)."""
+        flows = self.steps * self.solver.flows_per_step(self.problem)
+        if upto < 8:
+            return (0.0, 0.0, np.zeros(0), np.zeros(0)) if per_member else (0.0, 0.0)
+        t = np.abs(self.tm[:upto] - self.problem.t[0])
+        A, X = roundoff_growth(t, np.ascontiguousarray(self.d1[:, :upto]), flows)  # per member
+        amplification = float(A.max())
+        roundoff = ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification
+        return (roundoff, amplification, A, X) if per_member else (roundoff, amplification)
 
     def _perturbed_twin(self, rows: np.ndarray) -> tuple:
         """``(distance, row)``: the largest distance (:func:`relative_difference`) over the samples between the
@@ -665,6 +674,13 @@ class RichardsonCheck:
                     f"(growth exp(lambda T) ~ {math.exp(min(lam * self.span, 700.0)):.3g} over the run, estimated "
                     f"from the check at {done:.0%} of it)")
         self.control.last_growth = lam
+        roundoff, amplification = self._roundoff(upto)
+        if self.solver.can_compensate() and roundoff > ROUNDOFF_SHARE * ACCEPT * rtol:
+            # the differences at shorter steps would carry plain arithmetic's amplified round-off: refined alone, the
+            # re-runs of a chaotic 40-member ensemble at rtol 1e-6 failed on it until UnreachableAccuracyError
+            self.control.roundoff_amplified = True
+            why += (f"; the orbit amplifies round-off {amplification:.3g}-fold (about {roundoff:.2g} in plain "
+                    f"arithmetic): the re-run in compensated storage")
         steps_new = self.span / h_new * self.problem.B * (1.0 + 1.0 / COMPANION_RATIO)
         if self.work.done + steps_new > self.work.max_steps:
             h_budget = self.span * self.problem.B * (1.0 + 1.0 / COMPANION_RATIO) / max(
@@ -672,7 +688,9 @@ class RichardsonCheck:
             reachable = min(1.0, end * (h_budget / self.h) ** q)  # the order h_new assumed (1: no digit left)
             raise refuse_steps(f"rtol = {rtol:g} ({why}; reachable accuracy about {reachable:.2g} within the budget)",
                                self.work.done + steps_new, self.work.max_steps, "ask for a larger rtol or a shorter run")
-        return CheckFailed(h_new, why)
+        failure = CheckFailed(h_new, why)
+        failure.done = done  # (how far the run got: a re-run stopped later than the last one made progress)
+        return failure
 
     def _members_at_samples(self, L0: np.ndarray, members: np.ndarray) -> np.ndarray:
         """``members`` run from ``L0`` at the run's steps, at every sample ``(members, samples, n)``."""

@@ -81,11 +81,15 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    time done), which the messages below name.
    Richardson's differences do not see round-off: an accepted run whose differences show the
    orbit amplifying it towards ``rtol`` (a chaotic orbit, plain arithmetic) is repeated at the
-   same step in compensated storage (``RichardsonCheck._check_roundoff``).
+   same step in compensated storage (``RichardsonCheck._check_roundoff``); a failed check whose differences show
+   it re-runs at the shorter step in compensated storage at once (refined in plain arithmetic, the differences
+   carry the amplified round-off, and a chaotic 40-member ensemble at rtol 1e-6 was refined on it until
+   :class:`UnreachableAccuracyError`).
 5. *Unreachable accuracy.* The re-run's step is priced first: above the budget the call
    stops with :class:`~.base.StepBudgetError` naming the estimated error, its growth
    :math:`e^{\lambda T}` when the samples grow exponentially (a chaotic orbit), and the
-   accuracy reachable within the budget; when :data:`MAX_RETRIES` re-runs do not meet ``rtol``
+   accuracy reachable within the budget; when :data:`MAX_RETRIES` re-runs do not meet ``rtol`` (a re-run stopped
+   at a later early judgement than any before made progress and is not counted)
    (round-off, or exponential growth that outruns the order of the method) the call stops with
    :class:`UnreachableAccuracyError` naming the reachable accuracy, instead of grinding or
    returning a result that misses the bound.
@@ -344,6 +348,7 @@ class ErrorTarget:
         self.seconds_per_step: float | None = None
         self.retries = 0
         self.reruns = 0  # (retries: the re-runs at shorter steps)
+        self.furthest = 0.0  # the furthest fraction of the run a check stopped at before its end
         self.history: list = []  # (h, estimated error) of every checked run (partial ones too)
         self.last_growth = 0.0
         self.probe_note = ""  # the error growth the probe saw, when faster than PROBE_MAX_POWER allows
@@ -381,6 +386,7 @@ class ErrorTarget:
         B = problem.B
         self.retries = 0
         self.reruns = 0  # (retries: the re-runs at shorter steps)
+        self.furthest = 0.0  # the furthest fraction of the run a check stopped at before its end
         self.history = []
         self.probe_note = ""
         self.roundoff_amplified = False
@@ -515,7 +521,12 @@ class ErrorTarget:
     def next_step(self, failure: CheckFailed, solver, problem: Problem, work: Work) -> float:
         """The step of the re-run after a failed check, or an error when the target is out of reach."""
         self.reruns += 1
-        self.retries += not failure.compensate  # (the switch to compensated storage refines nothing)
+        # (the switch to compensated storage refines nothing; a run stopped at an early judgement later than
+        # any before it made progress towards the end)
+        done = getattr(failure, "done", 1.0)
+        progress = self.furthest < done < 1.0
+        self.retries += not (failure.compensate or progress)
+        self.furthest = max(self.furthest, done if done < 1.0 else 0.0)
         if self.retries > MAX_RETRIES:
             best = min(e for _, e in self.history) if self.history else None
             raise UnreachableAccuracyError(
