@@ -171,28 +171,13 @@ class UnreachableAccuracyError(ValueError):
 def _plane_rate_bounds(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
     r""":math:`\min(|L|, \sqrt{2EI_a})/I_a` per row of ``L0`` (rows, n) and plane ``a``: no rate of plane
     ``a`` on the orbit exceeds it (from the Casimir :math:`|L|^2` and the energy). ``moments``: ``(n,)`` or one
-    row per row of ``L0``."""
-    return _plane_rate_bound_rows(moments.reshape(-1, L0.shape[1]), L0)
-
-
-@jit
-def _plane_rate_bound_rows(moments, L0):  # pragma: no cover - jitted
-    """:func:`_plane_rate_bounds` with one row of moments for all rows of ``L0`` or one per row (compiled:
-    the step control asks for it on every call)."""
-    B, n = L0.shape
-    W = np.empty((B, n))
-    for b in range(B):
-        m = moments[b if moments.shape[0] > 1 else 0]
-        C2 = 0.0
-        E2 = 0.0
-        for a in range(n):
-            x = L0[b, a] * L0[b, a]
-            C2 += x
-            E2 += x / m[a]
-        C = math.sqrt(C2)
-        for a in range(n):
-            W[b, a] = min(C, math.sqrt(E2 * m[a])) / m[a]
-    return W
+    row per row of ``L0``. NumPy, not compiled: callers that price work before running it (``lyapunov``) then
+    refuse without loading numba (about 1 s in a fresh process)."""
+    m = moments.reshape(-1, L0.shape[1])
+    L2 = L0 * L0
+    C = np.sqrt(L2.sum(axis=1))[:, None]
+    E2 = (L2 / m).sum(axis=1)[:, None]
+    return np.minimum(C, np.sqrt(E2 * m)) / m
 
 
 def rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
