@@ -965,9 +965,7 @@ def test_a_rerun_stopped_later_than_any_before_is_progress_not_a_retry():
     from hyperrotor.classical.solvers.step_control import MAX_RETRIES, ErrorTarget, UnreachableAccuracyError
 
     def failure(done, compensate=False):
-        f = CheckFailed(0.1, f"stopped at {done:.0%}", compensate=compensate)
-        f.done = done
-        return f
+        return CheckFailed(0.1, f"stopped at {done:.0%}", compensate=compensate, done=done)
 
     control = ErrorTarget(1e-6)
     for done in (0.125, 0.25, 0.5):

@@ -393,11 +393,12 @@ class AccuracyWarning(UserWarning):
 class CheckFailed(Exception):
     """Raised by :class:`RichardsonCheck` inside a run: re-run at step ``h`` (scaled units)."""
 
-    def __init__(self, h: float, why: str, compensate: bool = False):
+    def __init__(self, h: float, why: str, compensate: bool = False, done: float = 1.0):
         super().__init__(why)
         self.h = h
         self.why = why
         self.compensate = compensate  # the same step again, in compensated storage (once per call: not a retry)
+        self.done = done  # the fraction of the run judged (a re-run stopped later than any before made progress)
 
 
 class RichardsonCheck:
@@ -547,9 +548,7 @@ class RichardsonCheck:
         compensated runs at four steps from 0.001 to 0.003 differ from each other by up to 3.1e-7: the orbit, not
         the method, sets the accuracy).
         """
-        if self.j < 8:
-            return
-        roundoff, amplification, A, X = self._roundoff(self.j, per_member=True)
+        roundoff, amplification, A, X = self._roundoff(self.j)
         if amplification == 0.0:
             return
         rtol = self.control.rtol
@@ -589,18 +588,17 @@ class RichardsonCheck:
                  + f": the result is accurate to about {floor:.2g}, not {rtol:g}. Ask for rtol >= {floor:.2g} "
                    f"or a shorter run", AccuracyWarning)
 
-    def _roundoff(self, upto: int, per_member: bool = False) -> tuple:
-        """``(round-off, amplification)`` of plain arithmetic over the first ``upto`` samples (``per_member``: and
-        the arrays ``(A, X)`` of :func:`roundoff_growth`): :data:`ROUNDOFF_FACTOR` eps sqrt(flows) times the largest
-        amplification beyond linear growth (:meth:`_check_roundoff`; 0 before 8 samples)."""
-        flows = self.steps * self.solver.flows_per_step(self.problem)
+    def _roundoff(self, upto: int) -> tuple:
+        """``(round-off, amplification, A, X)`` of plain arithmetic over the first ``upto`` samples:
+        :data:`ROUNDOFF_FACTOR` eps sqrt(flows) times the largest amplification beyond linear growth, and the
+        per-member arrays of :func:`roundoff_growth` (:meth:`_check_roundoff`; all 0 before 8 samples)."""
         if upto < 8:
-            return (0.0, 0.0, np.zeros(0), np.zeros(0)) if per_member else (0.0, 0.0)
+            return 0.0, 0.0, np.zeros(0), np.zeros(0)
+        flows = self.steps * self.solver.flows_per_step(self.problem)
         t = np.abs(self.tm[:upto] - self.problem.t[0])
         A, X = roundoff_growth(t, np.ascontiguousarray(self.d1[:, :upto]), flows)  # per member
         amplification = float(A.max())
-        roundoff = ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification
-        return (roundoff, amplification, A, X) if per_member else (roundoff, amplification)
+        return ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification, amplification, A, X
 
     def _perturbed_twin(self, rows: np.ndarray) -> tuple:
         """``(distance, row)``: the largest distance (:func:`relative_difference`) over the samples between the
@@ -674,7 +672,7 @@ class RichardsonCheck:
                     f"(growth exp(lambda T) ~ {math.exp(min(lam * self.span, 700.0)):.3g} over the run, estimated "
                     f"from the check at {done:.0%} of it)")
         self.control.last_growth = lam
-        roundoff, amplification = self._roundoff(upto)
+        roundoff, amplification, _, _ = self._roundoff(upto)
         if self.solver.can_compensate() and roundoff > ROUNDOFF_SHARE * ACCEPT * rtol:
             # the differences at shorter steps would carry plain arithmetic's amplified round-off: refined alone, the
             # re-runs of a chaotic 40-member ensemble at rtol 1e-6 failed on it until UnreachableAccuracyError
@@ -688,9 +686,7 @@ class RichardsonCheck:
             reachable = min(1.0, end * (h_budget / self.h) ** q)  # the order h_new assumed (1: no digit left)
             raise refuse_steps(f"rtol = {rtol:g} ({why}; reachable accuracy about {reachable:.2g} within the budget)",
                                self.work.done + steps_new, self.work.max_steps, "ask for a larger rtol or a shorter run")
-        failure = CheckFailed(h_new, why)
-        failure.done = done  # (how far the run got: a re-run stopped later than the last one made progress)
-        return failure
+        return CheckFailed(h_new, why, done=done)
 
     def _members_at_samples(self, L0: np.ndarray, members: np.ndarray) -> np.ndarray:
         """``members`` run from ``L0`` at the run's steps, at every sample ``(members, samples, n)``."""

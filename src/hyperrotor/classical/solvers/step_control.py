@@ -508,7 +508,7 @@ class ErrorTarget:
         self.reruns += 1
         # (the switch to compensated storage refines nothing; a run stopped at an early judgement later than
         # any before it made progress towards the end)
-        done = getattr(failure, "done", 1.0)
+        done = failure.done
         progress = self.furthest < done < 1.0
         self.retries += not (failure.compensate or progress)
         self.furthest = max(self.furthest, done if done < 1.0 else 0.0)
