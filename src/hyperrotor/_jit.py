@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["jit", "JIT_ENABLED", "prange"]
+__all__ = ["jit", "JIT_ENABLED", "CACHE_ENABLED", "NUMBA_VERSION", "prange"]
 
 try:  # pragma: no cover - depends on the platform
     import numba as _numba
@@ -22,7 +22,9 @@ except ImportError:  # pragma: no cover
     _numba = None
 
 JIT_ENABLED: bool = _numba is not None and os.environ.get("HYPERROTOR_DISABLE_JIT", "0") != "1"
-_CACHE: bool = os.environ.get("HYPERROTOR_DISABLE_CACHE", "0") != "1"
+#: the numba release that compiles the kernels (``None`` without numba)
+NUMBA_VERSION: str | None = None if _numba is None else _numba.__version__
+CACHE_ENABLED: bool = os.environ.get("HYPERROTOR_DISABLE_CACHE", "0") != "1"
 
 
 def jit(fn=None, **options):
@@ -33,7 +35,7 @@ def jit(fn=None, **options):
     def wrap(f):
         if not JIT_ENABLED:
             return f
-        opts = {"cache": _CACHE, "nogil": True}
+        opts = {"cache": CACHE_ENABLED, "nogil": True}
         opts.update(options)
         return _numba.njit(**opts)(f)
 

@@ -40,7 +40,10 @@ Performance notes
 The kernels are compiled by numba on first use and cached on disk: a cold first
 call costs about 1.3 s (one body), 2.8 s (ensemble kernel) and 2.5 s (ensemble
 with attitude) on the reference machine, a cached one about 0.1 s. One body (or
-fewer than 32) runs a serial kernel; ensembles without attitude run a chunked
+fewer than 32) runs a serial kernel, without attitude or torque the one unrolled for its
+dimension ``N <= 6`` (:mod:`._unrolled`: ``L`` in registers, 1.3-1.5x faster per flow in
+5D, the same numbers; compiled once per ``N`` into a cache folder, 1.5-5 s cold);
+ensembles without attitude run a chunked
 kernel with the bodies innermost (vectorised, threads over chunks); ensembles
 with attitude run one thread per body. With the option ``compensated`` (automatic
 for runs of more than 1e6 elementary flows per trajectory or ``rtol < 1e-11``) the
@@ -64,7 +67,7 @@ import numpy as np
 from hyperrotor import _pricing, _validate
 from hyperrotor.conventions import to_matrix
 
-from . import _kernels
+from . import _kernels, _unrolled
 from .base import Problem, step_lengths
 from .driver import FixedStepSolver
 
@@ -283,6 +286,12 @@ def unshift_attitude(att: np.ndarray, L0: np.ndarray, T0: np.ndarray, t: np.ndar
 
 
 @lru_cache(maxsize=None)
+def splitting_slots(N: int, order: int, seq: tuple[int, ...], kick: bool = False) -> Any:
+    """:func:`splitting_word` laid onto the sweeps of the unrolled kernels (:func:`~._unrolled.slot_table`)."""
+    return _unrolled.slot_table(N, *splitting_word(order, seq, kick))
+
+
+@lru_cache(maxsize=None)
 def rotation_tables(N: int):
     tables = _kernels.rotation_tables(N)
     for arr in tables:
@@ -298,13 +307,16 @@ def _start(L0: np.ndarray, carry: Any) -> tuple[np.ndarray, np.ndarray]:
     return np.ascontiguousarray(carry[:, 0]), carry.copy()
 
 
-def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, compensated, carry=None):
-    """Dispatch to a kernel: one body or a few -> serial; an ensemble without attitude ->
+def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, compensated, carry=None,
+               slots=None):
+    """Dispatch to a kernel: one body or a few -> serial (unrolled for their ``N`` when ``slots``, the
+    word's :func:`~._unrolled.slot_table`, is given and there is no attitude); an ensemble without attitude ->
     bodies-innermost chunks over threads; an ensemble with attitude -> threads over bodies.
     ``nsub[k]`` steps of length ``hstep[k]`` per output interval; ``compensated``: TwoSum
     storage of ``L`` (see the performance notes). ``carry (B, 2, n)``: the exact state
     ``(high, low)`` a previous call ended with (then ``L0`` is ignored; default: start from
-    ``L0``). Returns ``(L (B, K, n), T or None, carry of the last state)``."""
+    ``L0``). Returns ``(L (B, K, n), T or None, carry of the last state)``; every kernel gives the
+    same numbers to the last bit."""
     B, n = L0.shape
     N = T0.shape[-1]
     K = hstep.size + 1
@@ -313,6 +325,11 @@ def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, c
     rates_b = np.ascontiguousarray(rates_b)
     torque_b = np.ascontiguousarray(torque_b)
     hstep = np.ascontiguousarray(hstep, dtype=np.float64)
+    unrolled = None if (with_att or slots is None or B >= _kernels.PARALLEL_MIN_BODIES) else _unrolled.kernel(
+        N, compensated)
+    if unrolled is not None:
+        unrolled(L0, carry, rates_b, slots[0], slots[1], hstep, nsub, outL)
+        return outL, None, carry
     if B >= _kernels.PARALLEL_MIN_BODIES and not with_att:
         chunk = max(1, min(_ENSEMBLE_CHUNK, -(-B // 8)))
         _kernels.split_run_ensemble(L0, rates_b, word[0], word[1], *tables[:3], hstep, nsub, torque_b, chunk,
@@ -360,8 +377,9 @@ class Splitting(FixedStepSolver):
         rates_b = 1.0 / problem.moments - shift[:, None]
         # a plane drops out when its rate vanishes for every member (for the others its flow is exact identity)
         seq = tuple(int(a) for a in np.flatnonzero(np.any(rates_b != 0.0, axis=0)))
+        word = splitting_word(self.order, seq, kick=kick)
         self._state = dict(
-            shift=shift, rates=rates_b, word=splitting_word(self.order, seq, kick=kick),
+            shift=shift, rates=rates_b, word=word, slots=splitting_slots(problem.N, self.order, seq, kick),
             tables=rotation_tables(problem.N),
             torque=np.zeros((B, n)) if not kick else np.ascontiguousarray(problem.torque),
             compensated=self.options["compensated"],
@@ -408,7 +426,7 @@ class Splitting(FixedStepSolver):
         T_run = np.ascontiguousarray(T) if with_att else np.zeros((1, problem.N, problem.N))
         outL, outT, self.last_carry = run_kernel(L, rates, st["word"], st["tables"],
                                                  step_lengths(t, nsub) if h is None else h, nsub, torque, T_run,
-                                                 with_att, comp, carry)
+                                                 with_att, comp, carry, slots=st["slots"])
         if with_att and np.any(shift != 0.0):
             outT = unshift_attitude(outT, L, T, t, shift)
         return outL, outT
@@ -425,6 +443,13 @@ class Splitting(FixedStepSolver):
         (L0a, ca), (L0b, cb) = _start(La, carries[0]), _start(Lb, carries[1])
         outa = np.empty((La.shape[0], t.size, La.shape[1]))
         outb = np.empty_like(outa)
+        unrolled = None if st["slots"] is None else _unrolled.kernel(problem.N, comp)
+        if unrolled is not None:
+            rates = np.ascontiguousarray(rates)
+            unrolled(L0a, ca, rates, *st["slots"], step_lengths(t, na), na, outa)
+            unrolled(L0b, cb, rates, *st["slots"], step_lengths(t, nb), nb, outb)
+            self.last_carries = (ca, cb)
+            return outa, outb
         _kernels.split_run_pair(L0a, L0b, np.ascontiguousarray(rates), word[0], word[1], *tables,
                                 step_lengths(t, na), na, step_lengths(t, nb), nb, np.ascontiguousarray(torque), comp,
                                 outa, outb, ca, cb)
