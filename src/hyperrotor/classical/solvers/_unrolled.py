@@ -16,7 +16,8 @@ A step's word of flows (:func:`.splitting.splitting_word`) is laid onto *slots*:
 plane and a fraction of ``h`` (0: no flow, skipped by a branch that goes the same way at every step).
 So one compiled function per ``N`` serves every order, every set of planes the Casimir shift
 leaves and every body. Words with torque kicks, runs with attitude and ensembles of
-``PARALLEL_MIN_BODIES`` or more bodies keep the generic kernels.
+``PARALLEL_MIN_BODIES`` or more bodies keep the generic kernels (an unrolled attitude, ``N^2`` more locals
+passed through every flow, made 5D runs 1.9x and 3D runs 1.4x slower: tried and dropped).
 
 The generated module is written once into a cache folder (``$HYPERROTOR_CACHE_DIR``, else
 ``$XDG_CACHE_HOME/hyperrotor`` or ``~/.cache/hyperrotor``), its name carrying a hash of its
@@ -42,8 +43,9 @@ from hyperrotor import _jit
 
 __all__: list[str] = []  # private module
 
-#: dimensions up to this one get an unrolled kernel (the code grows like N^3; N = 6: ~0.5k lines)
-MAX_UNROLLED_N = 6
+#: dimensions up to this one get unrolled kernels (the paper's; the code grows like N^3 and so does its cold
+#: compile: N = 5 takes 2.8 s (plain) and 3.8 s (compensated), N = 6 4.1 s and 5.1 s)
+MAX_UNROLLED_N = 5
 
 
 def slot_table(N: int, planes_: np.ndarray, coefs: np.ndarray):
