@@ -18,7 +18,7 @@ Goals checked side by side in one run:
      the measured global/requested factor.
 Also the cold JIT compile time (fresh process, on-disk cache disabled).
 
-Usage: python benchmarks/work_precision_classical.py [--quick]
+Usage: python benchmarks/work_precision_classical.py [--quick] [--tag _before]
 Writes benchmarks/results/work_precision_classical*.csv and .png.
 """
 from __future__ import annotations
@@ -315,6 +315,7 @@ def plot(rows, path):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="fewer points, 1e5 instead of 1e6 steps for the drift")
+    ap.add_argument("--tag", default="", help="suffix of the output files (e.g. _before: the stored run stays)")
     args = ap.parse_args(argv)
     RESULTS.mkdir(exist_ok=True)
     t0 = time.perf_counter()
@@ -326,15 +327,16 @@ def main(argv=None):
     abl = ablation(rows, probs)
     cas = goal_casimir(args.quick)
     thr = goal_throughput(args.quick)
-    write_csv(rows, RESULTS / "work_precision_classical.csv")
-    write_csv(speed, RESULTS / "work_precision_classical_speedup.csv")
-    write_csv(rt, RESULTS / "work_precision_classical_rtol.csv")
-    write_csv(abl, RESULTS / "work_precision_classical_ablation.csv")
-    write_csv(cas, RESULTS / "work_precision_classical_casimir.csv")
-    write_csv(thr, RESULTS / "work_precision_classical_throughput.csv")
-    write_csv([dict(case=k, seconds=v) for k, v in compile_times.items()], RESULTS / "work_precision_classical_compile.csv")
-    plot(rows, RESULTS / "work_precision_classical.png")
-    print(f"\nwrote {RESULTS}/work_precision_classical*.csv and .png  (total {time.perf_counter() - t0:.0f} s)")
+    write_csv(rows, RESULTS / f"work_precision_classical{args.tag}.csv")
+    write_csv(speed, RESULTS / f"work_precision_classical_speedup{args.tag}.csv")
+    write_csv(rt, RESULTS / f"work_precision_classical_rtol{args.tag}.csv")
+    write_csv(abl, RESULTS / f"work_precision_classical_ablation{args.tag}.csv")
+    write_csv(cas, RESULTS / f"work_precision_classical_casimir{args.tag}.csv")
+    write_csv(thr, RESULTS / f"work_precision_classical_throughput{args.tag}.csv")
+    write_csv([dict(case=k, seconds=v) for k, v in compile_times.items()],
+              RESULTS / f"work_precision_classical_compile{args.tag}.csv")
+    plot(rows, RESULTS / f"work_precision_classical{args.tag}.png")
+    print(f"\nwrote {RESULTS}/work_precision_classical*{args.tag}.csv and .png  (total {time.perf_counter() - t0:.0f} s)")
 
 
 if __name__ == "__main__":

@@ -7,9 +7,10 @@ the sweep of Strang's method over the planes is a fixed straight line of code: t
 writes it out (one local variable per component of ``L``, constant component pairs and signs)
 and compiles it with numba. Same arithmetic as :func:`._kernels._split_run` flow by flow (the
 same :func:`._kernels.rotation`, the same expressions in the same order), so the results agree
-to the last bit (tested). One 5D body, splitting10, measured per elementary flow on the reference machine:
-plain arithmetic 15 instead of 22 ns (generic body), 17 instead of 21 ns (quartet: four planes left, every
-flow waits for the one before); compensated 27 instead of 33 ns (generic), 28 both (quartet).
+to the last bit (tested). Plain storage only (compensated: see :func:`kernel`). Whole ``simulate`` calls, the two
+kernels in turn in one process (``benchmarks/unrolled_kernels.py``): 1.1-1.25x faster, the most on long runs
+(1e4 steps: 1.18-1.25x), the least on short ones, where Python's share is larger (the kernel alone, called back to
+back: 1.3-1.45x on the generic 5D body).
 
 A step's word of flows (:func:`.splitting.splitting_word`) is laid onto *slots*: row ``r`` of
 :func:`slot_table` is one sweep over all ``n`` planes forward and ``n - 1`` back, each slot a
@@ -44,7 +45,7 @@ from hyperrotor import _jit
 __all__: list[str] = []  # private module
 
 #: dimensions up to this one get unrolled kernels (the paper's; the code grows like N^3 and so does its cold
-#: compile: N = 5 takes 2.8 s (plain) and 3.8 s (compensated), N = 6 4.1 s and 5.1 s)
+#: compile: N = 5 takes 2.8 s, N = 6 4.1 s)
 MAX_UNROLLED_N = 5
 
 
@@ -76,73 +77,52 @@ def slot_table(N: int, planes_: np.ndarray, coefs: np.ndarray):
     return slot_coef, slot_plane
 
 
-def _flow_function(npair: int, compensated: bool) -> list[str]:
-    """``flow(x, ua[, la], g_0..g_{npair-1}, x_0, y_0[, lx_0, ly_0], ...)``: one plane's exact flow.
+def _flow_function(npair: int) -> list[str]:
+    """``flow(x, ua, g_0..g_{npair-1}, x_0, y_0, x_1, y_1, ...)``: one plane's exact flow.
 
-    ``x`` is the half-angle per unit momentum, ``ua`` (+ ``la``) the plane's momentum, ``g_e`` the signs
-    of :func:`._kernels.rotation_tables` and ``x_e, y_e`` the component pairs it rotates; returns the
-    rotated pairs. The arithmetic of :func:`._kernels._split_run`, expression for expression."""
+    ``x`` is the half-angle per unit momentum, ``ua`` the plane's momentum, ``g_e`` the signs of
+    :func:`._kernels.rotation_tables` and ``x_e, y_e`` the component pairs it rotates; returns the rotated
+    pairs. The arithmetic of :func:`._kernels._split_run` (plain storage), expression for expression."""
     g = [f"g{e}" for e in range(npair)]
-    pairs = [f"x{e}, y{e}" + (f", lx{e}, ly{e}" if compensated else "") for e in range(npair)]
-    head = "x, ua, la, " if compensated else "x, ua, "
-    lines = ["", "", "@jit",
-             f"def flow_{'compensated' if compensated else 'plain'}({head}{', '.join(g + pairs)}):",
-             f"    sh, chh = sincos(x * {'(ua + la)' if compensated else 'ua'})",
-             "    s = 2.0 * sh * chh", "    v = 2.0 * sh * sh"]
-    out = []
+    pairs = [f"x{e}, y{e}" for e in range(npair)]
+    lines = ["", "", "@jit", f"def flow(x, ua, {', '.join(g + pairs)}):",
+             "    sh, chh = sincos(x * ua)", "    s = 2.0 * sh * chh", "    v = 2.0 * sh * sh"]
     for e in range(npair):
-        lines.append(f"    ss = s * g{e}")
-        if not compensated:
-            lines += [f"    x{e}, y{e} = x{e} + (ss * y{e} - v * x{e}), y{e} - (ss * x{e} + v * y{e})"]
-            out.append(f"x{e}, y{e}")
-            continue
-        for xs, ys, inc in (("x", "y", f"(ss * y{e} - v * x{e})"), ("y", "x", f"(-(ss * x{e}) - v * y{e})")):
-            lines += [f"    d = {inc} + l{xs}{e}", f"    snew = {xs}{e} + d", f"    bb = snew - {xs}{e}",
-                      f"    n{xs}{e} = snew", f"    nl{xs}{e} = ({xs}{e} - (snew - bb)) + (d - bb)"]
-        out.append(f"nx{e}, ny{e}, nlx{e}, nly{e}")
-    return lines + [f"    return {', '.join(out)}"]
+        lines += [f"    ss = s * g{e}",
+                  f"    x{e}, y{e} = x{e} + (ss * y{e} - v * x{e}), y{e} - (ss * x{e} + v * y{e})"]
+    return lines + [f"    return {', '.join(pairs)}"]
 
 
 def source(N: int) -> str:
-    """The module text of the unrolled kernels for ``N`` (plain and compensated)."""
+    """The module text of the unrolled kernel for ``N``."""
     from ._kernels import rotation_tables
 
     pair_p, pair_q, pair_s, _, _ = rotation_tables(N)
     n, npair = N * (N - 1) // 2, N - 2
     slots = list(range(n)) + list(range(n - 2, -1, -1))
-    text = [f'"""Unrolled splitting kernels for so({N}), written by hyperrotor.classical.solvers._unrolled."""',
+    text = [f'"""Unrolled splitting kernel for so({N}), written by hyperrotor.classical.solvers._unrolled."""',
             "import numpy as np",
             "from hyperrotor._jit import jit",
             "from hyperrotor.classical.solvers._kernels import sincos"]
-    for comp in (False, True):
-        name = "compensated" if comp else "plain"
-        text += _flow_function(npair, comp)
-        text += ["", "", "@jit",
-                 f"def run_{name}(L0, carry, rates, slot_coef, slot_plane, hstep, nsub, outL):",
-                 "    B = L0.shape[0]", "    K = hstep.shape[0] + 1", "    R = slot_coef.shape[0]",
-                 f"    W = {len(slots)}", "    f = np.empty((R, W))", "    for b in range(B):"]
-        text += [f"        u{a} = L0[b, {a}]" for a in range(n)]
-        text += [f"        l{a} = carry[b, 1, {a}]" for a in range(n)]
-        text += [f"        outL[b, 0, {a}] = u{a} + l{a}" for a in range(n)]
-        text += ["        for k in range(K - 1):", "            h = hstep[k]",
-                 "            for r in range(R):", "                for w in range(W):",
-                 "                    f[r, w] = 0.5 * slot_coef[r, w] * h * rates[b, slot_plane[w]]",
-                 "            for _ in range(nsub[k]):", "                for r in range(R):"]
-        for w, a in enumerate(slots):
-            signs = [repr(float(pair_s[a, e])) for e in range(npair)]
-            comps = [(int(pair_p[a, e]), int(pair_q[a, e])) for e in range(npair)]
-            if comp:
-                args = [f"u{p}, u{q}, l{p}, l{q}" for p, q in comps]
-                head = f"x, u{a}, l{a}"
-            else:
-                args = [f"u{p}, u{q}" for p, q in comps]
-                head = f"x, u{a}"
-            # (a slot of the word, even where a row's rate is 0: compensated storage renormalises as in _split_run)
-            text += [f"                    if slot_coef[r, {w}] != 0.0:", f"                        x = f[r, {w}]",
-                     f"                        {', '.join(args)} = flow_{name}({head}, {', '.join(signs + args)})"]
-        text += [f"            outL[b, k + 1, {a}] = u{a} + l{a}" for a in range(n)]
-        text += [f"        carry[b, 0, {a}] = u{a}" for a in range(n)]
-        text += [f"        carry[b, 1, {a}] = l{a}" for a in range(n)]
+    text += _flow_function(npair)
+    text += ["", "", "@jit", "def run(L0, carry, rates, slot_coef, slot_plane, hstep, nsub, outL):",
+             "    B = L0.shape[0]", "    K = hstep.shape[0] + 1", "    R = slot_coef.shape[0]",
+             f"    W = {len(slots)}", "    f = np.empty((R, W))", "    for b in range(B):"]
+    text += [f"        u{a} = L0[b, {a}]" for a in range(n)]
+    text += [f"        l{a} = carry[b, 1, {a}]" for a in range(n)]  # (a start's low parts, kept: plain storage)
+    text += [f"        outL[b, 0, {a}] = u{a} + l{a}" for a in range(n)]
+    text += ["        for k in range(K - 1):", "            h = hstep[k]",
+             "            for r in range(R):", "                for w in range(W):",
+             "                    f[r, w] = 0.5 * slot_coef[r, w] * h * rates[b, slot_plane[w]]",
+             "            for _ in range(nsub[k]):", "                for r in range(R):"]
+    for w, a in enumerate(slots):
+        signs = [repr(float(pair_s[a, e])) for e in range(npair)]
+        args = ", ".join(f"u{int(pair_p[a, e])}, u{int(pair_q[a, e])}" for e in range(npair))
+        text += [f"                    if slot_coef[r, {w}] != 0.0:", f"                        x = f[r, {w}]",
+                 f"                        {args} = flow(x, u{a}, {', '.join(signs)}, {args})"]
+    text += [f"            outL[b, k + 1, {a}] = u{a} + l{a}" for a in range(n)]
+    text += [f"        carry[b, 0, {a}] = u{a}" for a in range(n)]
+    text += [f"        carry[b, 1, {a}] = l{a}" for a in range(n)]
     return "\n".join(text) + "\n"
 
 
@@ -187,12 +167,14 @@ def _module(N: int):
 
 
 def kernel(N: int, compensated: bool):
-    """The unrolled run of ``N`` (``compensated`` storage or plain arithmetic), or ``None`` (generic kernels).
+    """The unrolled run of ``N`` for plain storage, or ``None`` (the generic kernels: compensated storage, JIT or
+    cache off, no writable folder, ``N`` out of range).
 
     Signature ``run(L0, carry, rates, slot_coef, slot_plane, hstep, nsub, outL)``: as
     :func:`._kernels._split_run` without torque and attitude (``carry`` holds the start's low parts on
-    entry and the last state on exit)."""
-    module = _module(N)
-    if module is None:
+    entry and the last state on exit). Compensated storage was unrolled too and dropped: its TwoSum doubles the
+    locals and the code, and whole runs were 0.92-1.01x as fast as with the generic kernel."""
+    if compensated:
         return None
-    return module.run_compensated if compensated else module.run_plain
+    module = _module(N)
+    return None if module is None else module.run

@@ -40,9 +40,9 @@ Performance notes
 The kernels are compiled by numba on first use and cached on disk: a cold first
 call costs about 1.3 s (one body), 2.8 s (ensemble kernel) and 2.5 s (ensemble
 with attitude) on the reference machine, a cached one about 0.1 s. One body (or
-fewer than 32) runs a serial kernel, without attitude or torque the one unrolled for its
-dimension ``N <= 5`` (:mod:`._unrolled`: ``L`` in registers, 1.3-1.5x faster per flow in
-5D, the same numbers; compiled once per ``N`` into a cache folder, 1.5-5 s cold);
+fewer than 32) runs a serial kernel, in plain storage without attitude or torque the one
+unrolled for its dimension ``N <= 5`` (:mod:`._unrolled`: ``L`` in registers, whole runs
+1.1-1.25x faster, the same numbers; compiled once per ``N`` into a cache folder, 1.4-3 s cold);
 ensembles without attitude run a chunked
 kernel with the bodies innermost (vectorised, threads over chunks); ensembles
 with attitude run one thread per body. With the option ``compensated`` (automatic
