@@ -79,6 +79,10 @@ def test_no_unrolled_kernel_without_a_writable_folder_or_beyond_the_largest_dime
             assert _unrolled.kernel(3, False) is not None
             written = list((tmp_path / "cache" / "unrolled").glob("hyperrotor_unrolled_so3_*.py"))
             assert len(written) == 1 and written[0].read_text() == _unrolled.source(3)
+            written[0].write_text(_unrolled.source(3) + "raise RuntimeError('not ours')\n")  # damaged or edited
+            _unrolled._module.cache_clear()
+            assert _unrolled.kernel(3, False) is not None  # (the file is written again before it is imported)
+            assert written[0].read_text() == _unrolled.source(3)
     finally:
         _unrolled._module.cache_clear()
 

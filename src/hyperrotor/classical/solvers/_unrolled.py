@@ -152,7 +152,9 @@ def _module(N: int):
     name = f"hyperrotor_unrolled_so{N}_{digest}"
     path = folder / f"{name}.py"
     try:
-        if not path.exists():  # written atomically: processes starting together write the same text
+        # written atomically (processes starting together write the same text); a file whose text is not this
+        # one (damaged, edited) is written again: only the text generated here is ever executed
+        if not path.exists() or path.read_text() != text:
             fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")
             with os.fdopen(fd, "w") as fh:
                 fh.write(text)
@@ -161,7 +163,7 @@ def _module(N: int):
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module  # numba's cache locator looks the module up by name
         spec.loader.exec_module(module)
-    except OSError:
+    except (OSError, UnicodeDecodeError):
         return None
     return module
 
