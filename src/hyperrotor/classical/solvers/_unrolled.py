@@ -49,13 +49,19 @@ __all__: list[str] = []  # private module
 MAX_UNROLLED_N = 5
 
 
+def sweep_planes(n: int) -> list[int]:
+    """The planes of one slot row: Strang's sweep over all ``n`` planes forward and back (the order of
+    :func:`.splitting.splitting_word`)."""
+    return list(range(n)) + list(range(n - 2, -1, -1))
+
+
 def slot_table(N: int, planes_: np.ndarray, coefs: np.ndarray):
     """``(slot_coef (R, 2n - 1), slot_plane (2n - 1,))`` laying the word ``(planes_, coefs)`` onto sweeps,
     or ``None`` when it is not a sequence of plane flows in sweep order (a torque kick ``-1``)."""
     n = N * (N - 1) // 2
     if n == 0 or planes_.size == 0 or np.any(planes_ < 0):
         return None
-    slot_plane = np.array(list(range(n)) + list(range(n - 2, -1, -1)), dtype=np.int64)
+    slot_plane = np.array(sweep_planes(n), dtype=np.int64)
     W = slot_plane.size
     rows: list[np.ndarray] = []
     pos = W  # slot index in the current row (W: start a new row)
@@ -99,7 +105,7 @@ def source(N: int) -> str:
 
     pair_p, pair_q, pair_s, _, _ = rotation_tables(N)
     n, npair = N * (N - 1) // 2, N - 2
-    slots = list(range(n)) + list(range(n - 2, -1, -1))
+    slots = sweep_planes(n)
     text = [f'"""Unrolled splitting kernel for so({N}), written by hyperrotor.classical.solvers._unrolled."""',
             "import numpy as np",
             "from hyperrotor._jit import jit",
@@ -156,9 +162,13 @@ def _module(N: int):
         # one (damaged, edited) is written again: only the text generated here is ever executed
         if not path.exists() or path.read_text() != text:
             fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")
-            with os.fdopen(fd, "w") as fh:
-                fh.write(text)
-            os.replace(tmp, path)
+            try:
+                with os.fdopen(fd, "w") as fh:
+                    fh.write(text)
+                os.replace(tmp, path)
+            finally:  # (a failed write, e.g. a full disk, leaves no temporary file behind)
+                if os.path.exists(tmp):
+                    os.remove(tmp)
         spec = importlib.util.spec_from_file_location(name, path)
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module  # numba's cache locator looks the module up by name

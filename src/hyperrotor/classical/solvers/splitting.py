@@ -307,6 +307,13 @@ def _start(L0: np.ndarray, carry: Any) -> tuple[np.ndarray, np.ndarray]:
     return np.ascontiguousarray(carry[:, 0]), carry.copy()
 
 
+def _unrolled_kernel(slots, N: int, B: int, with_att: bool, compensated: bool):
+    """The unrolled kernel :func:`run_kernel` runs for ``B`` rows (:func:`~._unrolled.kernel`), or ``None``."""
+    if with_att or slots is None or B >= _kernels.PARALLEL_MIN_BODIES:
+        return None
+    return _unrolled.kernel(N, compensated)
+
+
 def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, compensated, carry=None,
                slots=None):
     """Dispatch to a kernel: one body or a few -> serial (unrolled for their ``N`` when ``slots``, the
@@ -325,8 +332,7 @@ def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, c
     rates_b = np.ascontiguousarray(rates_b)
     torque_b = np.ascontiguousarray(torque_b)
     hstep = np.ascontiguousarray(hstep, dtype=np.float64)
-    unrolled = None if (with_att or slots is None or B >= _kernels.PARALLEL_MIN_BODIES) else _unrolled.kernel(
-        N, compensated)
+    unrolled = _unrolled_kernel(slots, N, B, with_att, compensated)
     if unrolled is not None:
         unrolled(L0, carry, rates_b, slots[0], slots[1], hstep, nsub, outL)
         return outL, None, carry
@@ -433,23 +439,18 @@ class Splitting(FixedStepSolver):
 
     def advance_pair(self, problem, La, Lb, t, na, nb, members=None, carries=(None, None)):
         """Both runs in one compiled call (:func:`~._kernels.split_run_pair`) for up to
-        ``PARALLEL_MIN_BODIES`` rows (the step control's members); more rows: two calls."""
-        if La.shape[0] >= _kernels.PARALLEL_MIN_BODIES:
-            return super().advance_pair(problem, La, Lb, t, na, nb, members, carries)
+        ``PARALLEL_MIN_BODIES`` rows (the step control's members); more rows, or rows the unrolled kernel
+        takes: two :meth:`advance` calls (the same numbers)."""
         st = self._state
-        rates, torque, _ = self._rows(members)
         comp = bool(st["compensated"])
+        if (La.shape[0] >= _kernels.PARALLEL_MIN_BODIES
+                or _unrolled_kernel(st["slots"], problem.N, La.shape[0], False, comp) is not None):
+            return super().advance_pair(problem, La, Lb, t, na, nb, members, carries)  # (two run_kernel calls)
+        rates, torque, _ = self._rows(members)
         word, tables = st["word"], st["tables"]
         (L0a, ca), (L0b, cb) = _start(La, carries[0]), _start(Lb, carries[1])
         outa = np.empty((La.shape[0], t.size, La.shape[1]))
         outb = np.empty_like(outa)
-        unrolled = None if st["slots"] is None else _unrolled.kernel(problem.N, comp)
-        if unrolled is not None:
-            rates = np.ascontiguousarray(rates)
-            unrolled(L0a, ca, rates, *st["slots"], step_lengths(t, na), na, outa)
-            unrolled(L0b, cb, rates, *st["slots"], step_lengths(t, nb), nb, outb)
-            self.last_carries = (ca, cb)
-            return outa, outb
         _kernels.split_run_pair(L0a, L0b, np.ascontiguousarray(rates), word[0], word[1], *tables,
                                 step_lengths(t, na), na, step_lengths(t, nb), nb, np.ascontiguousarray(torque), comp,
                                 outa, outb, ca, cb)
