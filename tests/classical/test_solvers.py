@@ -5,6 +5,8 @@ properties (order, preserves, adaptive, supports_torque) from the classes. Error
 compared with closed forms (3D Euler-Poinsot, the 5D quartet) or a tight reference run, with
 tolerances that scale with the requested rtol, the run length and the norm of the state.
 """
+import itertools
+import math
 import re
 
 import numpy as np
@@ -773,6 +775,32 @@ def test_probe_samples_cover_the_run_at_output_times(K, uneven, spacing, h, back
     assert longest == pytest.approx((lengths / ms).max(), rel=1e-15)
 
 
+@settings(max_examples=100, deadline=None)
+@given(k=st.integers(1, 16), m=st.integers(1, 5000), length=st.floats(1e-3, 1e4), t0=st.floats(-1e3, 1e3),
+       backwards=st.booleans(), rows=st.integers(1, 8), nan_at=st.integers(-1, 16), seed=st.integers(0, 2**31))
+def test_the_probe_window_and_its_envelope_match_their_definitions(k, m, length, t0, backwards, rows, nan_at, seed):
+    """The probe of a leading window (compiled): k equal segments from t0 to t0 +- length (the end exact), each of
+    the same even number 2 ceil(m / 2k) of steps, and that step; the estimate's envelope: the running maximum over
+    the grid points of the largest member distance (relative_difference with the first run's scales) over the
+    divisor, NaN from the first NaN distance on."""
+    from hyperrotor.classical.solvers._kernels import relative_difference, row_scales
+    from hyperrotor.classical.solvers.step_control import probe_envelope, window_samples
+
+    direction = -1.0 if backwards else 1.0
+    grid, ms, h = window_samples(t0, length, direction, k, m)
+    assert grid.size == k + 1 and grid[0] == t0 and grid[-1] == direction * length + t0
+    np.testing.assert_allclose(np.diff(grid), direction * length / k, rtol=1e-9, atol=1e-12 * abs(t0))
+    assert np.all(ms == 2 * math.ceil(m / (2 * k))) and h == length / (k * ms[0])
+    rng = np.random.default_rng(seed)
+    moments = rng.uniform(0.3, 3.0, 10)
+    y1 = rng.normal(size=(rows, k + 1, 10))
+    y2 = y1 + rng.normal(size=y1.shape) * np.exp(rng.uniform(-30, 0, (rows, k + 1, 1)))
+    if 0 <= nan_at <= k:
+        y2[rng.integers(rows), nan_at, rng.integers(10)] = np.nan
+    want = np.maximum.accumulate(relative_difference(y1, y2, moments, *row_scales(y1, moments)).max(axis=0)) / 255.0
+    np.testing.assert_array_equal(probe_envelope(y1, y2, moments, 255.0), want)
+
+
 @settings(max_examples=200, deadline=None)
 @given(K=st.integers(3, 80), steps_per=st.floats(0.3, 20.0), stride=st.integers(1, 9), seed=st.integers(0, 2**31))
 def test_probe_ratio_is_the_smallest_step_ratio_over_the_segments(K, steps_per, stride, seed):
@@ -1045,6 +1073,37 @@ def test_an_rtol_call_takes_the_same_steps_however_its_chunks_fall(monkeypatch, 
     np.testing.assert_array_equal(a.L, b.L)
     keys = ("steps", "dt", "reruns", "work", "compensated")
     assert {k: a.stats[k] for k in keys} == {k: b.stats[k] for k in keys} and wa == wb
+
+
+@pytest.mark.parametrize("N", [3, 4, 5])
+def test_the_orbit_rate_bound_is_the_largest_plane_bound_or_coupled_frequency(N, rng):
+    """The step control's rate bound per member (compiled, module docstring step 1), from its definition in
+    NumPy: the plane bounds min(|L|, sqrt(2 E I_a)) / I_a (rate_bound) and, for each coupled triple of planes
+    {ij, ik, jk} with each plane in turn as c, W_c sqrt(|(I_c - I_a)(I_c - I_b)| / (I_a I_b)); moments over
+    six decades."""
+    from hyperrotor.conventions import planes
+    from hyperrotor.classical.solvers import step_control
+    from hyperrotor.classical.solvers.base import Problem
+
+    n = N * (N - 1) // 2
+    idx = {p: k for k, p in enumerate(planes(N))}
+    moments = np.exp(rng.uniform(np.log(1e-3), np.log(1e3), n))
+    L0 = rng.normal(size=(6, n)) * np.exp(rng.uniform(-3.0, 3.0, (6, 1)))
+    L2 = L0 * L0
+    W = np.minimum(np.sqrt(L2.sum(axis=1))[:, None], np.sqrt((L2 / moments).sum(axis=1)[:, None] * moments)) / moments
+    want = W.max(axis=1)
+    np.testing.assert_allclose(step_control.rate_bound(moments, L0), want, rtol=0)
+    for i, j, k in itertools.combinations(range(1, N + 1), 3):
+        trio = (idx[(i, j)], idx[(i, k)], idx[(j, k)])
+        for c in trio:
+            a, b = (x for x in trio if x != c)
+            Ic, Ia, Ib = moments[c], moments[a], moments[b]
+            want = np.maximum(want, W[:, c] * np.sqrt(abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib)))
+    problem = Problem(body=None, moments=moments, N=N, n=n, convention="paper", signs=np.ones(N), batch=(6,), L0=L0,
+                      T0=None, torque=None, t=np.array([0.0, 1.0]), scale=1.0)
+    got = step_control._orbit_rates(problem)
+    np.testing.assert_allclose(got, want, rtol=8 * n * np.finfo(float).eps)  # (sums in another order)
+    assert np.all(got >= step_control.rate_bound(moments, L0))
 
 
 def test_roundoff_amplification_is_the_growth_beyond_linear():

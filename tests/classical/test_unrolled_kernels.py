@@ -48,6 +48,16 @@ def test_unrolled_kernel_equals_the_generic_kernel_bit_for_bit(N, rng):
         run(L0, cb, rates, *splitting_slots(N, order, seq), hstep, nsub, b)
         np.testing.assert_array_equal(b, a)
         np.testing.assert_array_equal(cb, ca)  # the exact last state: a chunked run continues identically
+        # the pair kernel (the step control's probes and companions): the same two runs in one call
+        nsub2 = 2 * nsub
+        a2, ca2 = np.empty_like(a), carry.copy()
+        _kernels.split_run_serial(L0[::-1].copy(), rates, *word, *tables, hstep / 2, nsub2, np.zeros_like(L0),
+                                  np.zeros((1, N, N)), False, compensated, a2, np.empty((3, 1, N, N)), ca2)
+        pa, pb, qa, qb = np.empty_like(a), np.empty_like(a), carry.copy(), carry.copy()
+        _unrolled.kernel(N, compensated, pair=True)(L0, qa, L0[::-1].copy(), qb, rates, *splitting_slots(N, order, seq),
+                                                     hstep, nsub, hstep / 2, nsub2, pa, pb)
+        for got, want in ((pa, a), (qa, ca), (pb, a2), (qb, ca2)):
+            np.testing.assert_array_equal(got, want)
 
 
 @pytest.mark.parametrize("N", [3, 5, 7])
@@ -99,15 +109,15 @@ def test_simulate_runs_the_unrolled_kernel_with_the_generic_numbers(kwargs, rng,
     calls = []
     kernel = _unrolled.kernel
 
-    def spy(N, compensated):
-        run = kernel(N, compensated)
+    def spy(N, compensated, pair=False):
+        run = kernel(N, compensated, pair)
         return None if run is None else lambda *a: (calls.append(run), run(*a))[1]
 
     for w in (w0[0], w0):
         monkeypatch.setattr(_unrolled, "kernel", spy)
         a = simulate(moments, w, t, method="splitting8", **kwargs)
         assert calls and a.stats["compensated"] == (kwargs.get("rtol") == 1e-12)  # (compensated below rtol 1e-11)
-        monkeypatch.setattr(_unrolled, "kernel", lambda N, compensated: None)
+        monkeypatch.setattr(_unrolled, "kernel", lambda N, compensated, pair=False: None)
         b = simulate(moments, w, t, method="splitting8", **kwargs)
         np.testing.assert_array_equal(a.L, b.L)
         assert (a.stats["steps"], a.stats["work"]) == (b.stats["steps"], b.stats["work"])

@@ -16,9 +16,11 @@ A step's word of flows (:func:`.splitting.splitting_word`) is laid onto *slots*:
 :func:`slot_table` is one sweep over all ``n`` planes forward and ``n - 1`` back, each slot a
 plane and a fraction of ``h`` (0: no flow, skipped by a branch that goes the same way at every step).
 So one compiled function per ``N`` serves every order, every set of planes the Casimir shift
-leaves and every body. Words with torque kicks, runs with attitude and ensembles of
-``PARALLEL_MIN_BODIES`` or more bodies keep the generic kernels (an unrolled attitude, ``N^2`` more locals
-passed through every flow, made 5D runs 1.9x and 3D runs 1.4x slower: tried and dropped).
+leaves and every body (and ``run_pair``, two such runs in one call for the step control's probes and
+companions: one dispatch from Python instead of two, 0.6 s more of cold compile for ``N = 5``). Words with
+torque kicks, runs with attitude and ensembles of ``PARALLEL_MIN_BODIES`` or more bodies keep the generic
+kernels (an unrolled attitude, ``N^2`` more locals passed through every flow, made 5D runs 1.9x and 3D runs 1.4x
+slower: tried and dropped).
 
 The generated module is written once into a cache folder (``$HYPERROTOR_CACHE_DIR``, else
 ``$XDG_CACHE_HOME/hyperrotor`` or ``~/.cache/hyperrotor``), its name carrying a hash of its
@@ -129,6 +131,10 @@ def source(N: int) -> str:
     text += [f"            outL[b, k + 1, {a}] = u{a} + l{a}" for a in range(n)]
     text += [f"        carry[b, 0, {a}] = u{a}" for a in range(n)]
     text += [f"        carry[b, 1, {a}] = l{a}" for a in range(n)]
+    text += ["", "", "@jit",
+             "def run_pair(L0a, carry_a, L0b, carry_b, rates, slot_coef, slot_plane, ha, na, hb, nb, outa, outb):",
+             "    run(L0a, carry_a, rates, slot_coef, slot_plane, ha, na, outa)",
+             "    run(L0b, carry_b, rates, slot_coef, slot_plane, hb, nb, outb)"]
     return "\n".join(text) + "\n"
 
 
@@ -178,15 +184,18 @@ def _module(N: int):
     return module
 
 
-def kernel(N: int, compensated: bool):
+def kernel(N: int, compensated: bool, pair: bool = False):
     """The unrolled run of ``N`` for plain storage, or ``None`` (the generic kernels: compensated storage, JIT or
     cache off, no writable folder, ``N`` out of range).
 
     Signature ``run(L0, carry, rates, slot_coef, slot_plane, hstep, nsub, outL)``: as
     :func:`._kernels._split_run` without torque and attitude (``carry`` holds the start's low parts on
-    entry and the last state on exit). Compensated storage was unrolled too and dropped: its TwoSum doubles the
-    locals and the code, and whole runs were 0.92-1.01x as fast as with the generic kernel."""
+    entry and the last state on exit). ``pair``: ``run_pair(L0a, carry_a, L0b, carry_b, rates, slot_coef,
+    slot_plane, ha, na, hb, nb, outa, outb)``, two runs of the same rows in one compiled call (the step control's
+    probes and companions: one dispatch from Python instead of two). Compensated storage was unrolled too and
+    dropped: its TwoSum doubles the locals and the code, and whole runs were 0.92-1.01x as fast as with the generic
+    kernel."""
     if compensated:
         return None
     module = _module(N)
-    return None if module is None else module.run
+    return None if module is None else (module.run_pair if pair else module.run)

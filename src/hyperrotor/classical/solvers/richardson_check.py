@@ -472,9 +472,11 @@ class RichardsonCheck:
         self.err = np.zeros(S)  # estimated error of the run at each sample (the largest over the members)
         # where the run is judged: at its end; a long run also at an eighth, a quarter and half of its samples
         flows = self.steps * self.problem.B * self.solver.flows_per_step(self.problem)
-        early = (S // 8, S // 4, S // 2) if flows >= EARLY_STOP_FLOWS else ()
-        self.checkpoints = sorted({c for c in early if c > 0} | {S})
-        self.early_marks = self.marks[np.array(self.checkpoints[:-1], dtype=np.int64) - 1]  # (the run stops there)
+        if flows >= EARLY_STOP_FLOWS:
+            self.checkpoints = sorted({c for c in (S // 8, S // 4, S // 2) if c > 0} | {S})
+            self.early_marks = self.marks[np.array(self.checkpoints[:-1], dtype=np.int64) - 1]  # (the run stops there)
+        else:
+            self.checkpoints, self.early_marks = [S], self.marks[:0]
 
     def update(self, upto: int, Lf: np.ndarray) -> None:
         """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones."""
@@ -557,10 +559,12 @@ class RichardsonCheck:
             raise CheckFailed(self.h, f"the orbit amplifies round-off {amplification:.3g}-fold (about {roundoff:.2g} "
                                       f"in plain arithmetic, rtol = {rtol:g}): re-run with compensated "
                                       f"storage at the same step", compensate=True)
+        plain = 0.0 if self.solver.compensates() else roundoff
+        if max(_EPS * float(X.max()), plain) <= rtol:
+            return  # (no member's growth, nor plain arithmetic's round-off, reaches rtol)
         # the members amplifying faster than linearly (a regular orbit's X is ~10, harmless), largest X first
         fast = np.flatnonzero(A > GROWTH_RATIO)
         suspects = fast[np.argsort(-X[fast], kind="stable")]
-        plain = 0.0 if self.solver.compensates() else roundoff
         Xs = float(X[suspects[0]]) if suspects.size else 0.0
         if not suspects.size or max(_EPS * Xs, plain) <= rtol:
             return

@@ -307,11 +307,12 @@ def _start(L0: np.ndarray, carry: Any) -> tuple[np.ndarray, np.ndarray]:
     return np.ascontiguousarray(carry[:, 0]), carry.copy()
 
 
-def _unrolled_kernel(slots, N: int, B: int, with_att: bool, compensated: bool):
-    """The unrolled kernel :func:`run_kernel` runs for ``B`` rows (:func:`~._unrolled.kernel`), or ``None``."""
+def _unrolled_kernel(slots, N: int, B: int, with_att: bool, compensated: bool, pair: bool = False):
+    """The unrolled kernel :func:`run_kernel` runs for ``B`` rows (``pair``: the one
+    :meth:`Splitting.advance_pair` runs; :func:`~._unrolled.kernel`), or ``None``."""
     if with_att or slots is None or B >= _kernels.PARALLEL_MIN_BODIES:
         return None
-    return _unrolled.kernel(N, compensated)
+    return _unrolled.kernel(N, compensated, pair)
 
 
 def run_kernel(L0, rates_b, word, tables, hstep, nsub, torque_b, T0, with_att, compensated, carry=None,
@@ -438,22 +439,27 @@ class Splitting(FixedStepSolver):
         return outL, outT
 
     def advance_pair(self, problem, La, Lb, t, na, nb, members=None, carries=(None, None)):
-        """Both runs in one compiled call (:func:`~._kernels.split_run_pair`) for up to
-        ``PARALLEL_MIN_BODIES`` rows (the step control's members); more rows, or rows the unrolled kernel
-        takes: two :meth:`advance` calls (the same numbers)."""
+        """Both runs in one compiled call for up to ``PARALLEL_MIN_BODIES`` rows (the step control's members:
+        the unrolled kernel's ``run_pair`` where it applies, else :func:`~._kernels.split_run_pair`); more rows:
+        two :meth:`advance` calls (the same numbers)."""
         st = self._state
         comp = bool(st["compensated"])
-        if (La.shape[0] >= _kernels.PARALLEL_MIN_BODIES
-                or _unrolled_kernel(st["slots"], problem.N, La.shape[0], False, comp) is not None):
+        if La.shape[0] >= _kernels.PARALLEL_MIN_BODIES:
             return super().advance_pair(problem, La, Lb, t, na, nb, members, carries)  # (two run_kernel calls)
         rates, torque, _ = self._rows(members)
-        word, tables = st["word"], st["tables"]
         (L0a, ca), (L0b, cb) = _start(La, carries[0]), _start(Lb, carries[1])
         outa = np.empty((La.shape[0], t.size, La.shape[1]))
         outb = np.empty_like(outa)
-        _kernels.split_run_pair(L0a, L0b, np.ascontiguousarray(rates), word[0], word[1], *tables,
-                                step_lengths(t, na), na, step_lengths(t, nb), nb, np.ascontiguousarray(torque), comp,
-                                outa, outb, ca, cb)
+        rates = np.ascontiguousarray(rates)
+        ha, hb = step_lengths(t, na), step_lengths(t, nb)
+        unrolled = _unrolled_kernel(st["slots"], problem.N, La.shape[0], False, comp, pair=True)
+        if unrolled is not None:
+            slot_coef, slot_plane = st["slots"]
+            unrolled(L0a, ca, L0b, cb, rates, slot_coef, slot_plane, ha, na, hb, nb, outa, outb)
+        else:
+            word, tables = st["word"], st["tables"]
+            _kernels.split_run_pair(L0a, L0b, rates, word[0], word[1], *tables, ha, na, hb, nb,
+                                    np.ascontiguousarray(torque), comp, outa, outb, ca, cb)
         self.last_carries = (ca, cb)
         return outa, outb
 

@@ -95,15 +95,18 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    returning a result that misses the bound.
 
 Cost. The probe's two runs (steps ``h`` and ``2h``) and the check's two companions each advance in one
-compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run both in
-:func:`~._kernels.split_run_pair`), and a run that fits in one chunk is one call (stopping at the samples
-between output times when they are not output times), its companions the next. The bookkeeping is compiled too: the rate bound, the check's plan (its samples, the
+compiled call (:meth:`~.driver.FixedStepSolver.advance_pair`; the splittings run both in the unrolled
+kernel's ``run_pair`` or in :func:`~._kernels.split_run_pair`), and a run that fits in one chunk is one call
+(stopping at the samples between output times when they are not output times), its companions the next. The
+bookkeeping is compiled too: the rate bound (:func:`_coupled_rates`, one call), the probe's window and its
+estimate (:func:`window_samples`, :func:`probe_envelope`), the check's plan (its samples, the
 companions' steps and ratios: :func:`~.richardson_check.check_plan`), the distances of the runs, the estimate
 with its observed order and the round-off test, and the run's stops at samples between output times
-(:func:`~.chunks.stops`, :func:`~.chunks.merge`). What remains is 0.15-0.3 ms of Python per call; the compiled
+(:func:`~.chunks.stops`, :func:`~.chunks.merge`). What remains over a fixed-step call is 0.2-0.37 ms per call on
+the 3D top and the 5D quartet (T = 20 ... 200, rtol 1e-6: Python, and the companions' few steps); the compiled
 work of the probe (0.06-0.5 of the run's steps) and of the companions (:math:`1/c + 1/(c c_2)`, 0.3-0.55; none
-when the probe's runs are the companions) is the
-price of the promise (``benchmarks/README.md``, step_control.py).
+when the probe's runs are the companions) is the price of the promise (``benchmarks/README.md``,
+step_control.py).
 
 The timed probes also give the cost per step: a run estimated to take longer than
 ``options["slow_run_warning_seconds"]`` gives a ``UserWarning`` before it starts
@@ -190,7 +193,7 @@ def rate_bound(moments: np.ndarray, L0: np.ndarray) -> np.ndarray:
 def _orbit_rates(problem: Problem) -> np.ndarray:
     """Per-member bound on the rates reachable on the orbit (module docstring, step 1)."""
     m = problem.moments
-    wmax_b = _coupled_rates(_plane_rate_bounds(m, problem.L0), m, *_triples(problem.N))
+    wmax_b = _coupled_rates(m, problem.L0, *_triples(problem.N))
     if problem.kick:
         tq = float(np.max(np.abs(problem.torque) / m))
         wmax_b = np.maximum(wmax_b, max(tq * problem.span, tq ** 0.5))
@@ -198,19 +201,28 @@ def _orbit_rates(problem: Problem) -> np.ndarray:
 
 
 @jit
-def _coupled_rates(W, moments, tc, ta, tb):  # pragma: no cover - jitted
-    r"""Per row of the plane rate bounds ``W (rows, n)`` (:func:`_plane_rate_bounds`): the largest of them and of
-    the linearised frequencies :math:`W_c\sqrt{|(I_c-I_a)(I_c-I_b)|/(I_aI_b)}` of the coupled triples
-    ``(tc, ta, tb)`` (:func:`_triples`). Compiled (once per call of the step control)."""
-    B, n = W.shape
+def _coupled_rates(moments, L0, tc, ta, tb):  # pragma: no cover - jitted
+    r"""Per row of ``L0 (rows, n)``: the largest of the plane rate bounds :math:`W_a` (:func:`_plane_rate_bounds`,
+    computed here in the same way) and of the linearised frequencies :math:`W_c\sqrt{|(I_c-I_a)(I_c-I_b)|/(I_aI_b)}`
+    of the coupled triples ``(tc, ta, tb)`` (:func:`_triples`). Compiled (once per call of the step control)."""
+    B, n = L0.shape
     out = np.zeros(B)
+    W = np.empty(n)
     for b in range(B):
+        C2 = 0.0
+        E2 = 0.0
+        for a in range(n):
+            x = L0[b, a] * L0[b, a]
+            C2 += x
+            E2 += x / moments[a]
+        C = math.sqrt(C2)
         w = 0.0
         for a in range(n):
-            w = max(w, W[b, a])
+            W[a] = min(C, math.sqrt(E2 * moments[a])) / moments[a]
+            w = max(w, W[a])
         for i in range(tc.size):
             Ic, Ia, Ib = moments[tc[i]], moments[ta[i]], moments[tb[i]]
-            w = max(w, W[b, tc[i]] * math.sqrt(abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib)))
+            w = max(w, W[tc[i]] * math.sqrt(abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib)))
         out[b] = w
     return out
 
@@ -273,6 +285,39 @@ def probe_samples(t, spacing, h):  # pragma: no cover - jitted
         ms[i] = 2 * max(1, int(math.ceil(length / (2.0 * h) * (1.0 - 1e-12))))
         longest = max(longest, length / ms[i])
     return idx, grid, ms, longest
+
+
+@jit
+def window_samples(t0, length, direction, k, m):  # pragma: no cover - jitted
+    """A probe of the leading window from ``t0`` over ``length`` (``direction``: +1 or -1): ``(grid, ms, step)``,
+    ``k`` equal segments (``grid``: their ends, ``t0`` first and the window's end exactly) of the same even number
+    of equal steps, ``2 ceil(m / 2k)`` (about ``m`` in all), and that step. Compiled."""
+    grid = np.empty(k + 1)
+    for i in range(k):
+        grid[i] = direction * (i * (length / k)) + t0
+    grid[k] = direction * length + t0
+    ms = np.full(k, 2 * max(1, int(math.ceil(m / (2 * k)))))
+    return grid, ms, length / (k * ms[0])
+
+
+@jit
+def probe_envelope(y1, y2, moments, divisor):  # pragma: no cover - jitted
+    r"""The probe's Richardson estimate up to each grid point: ``env[i]`` is the largest distance
+    (:func:`~._kernels.relative_difference`, relative to the scales of ``y1``) between the runs ``y1`` (step
+    :math:`h`) and ``y2`` (:math:`2h`) over the members and the grid points ``0 .. i``, over ``divisor``
+    (:math:`2^p - 1`); NaN from the first NaN distance on (a run that failed). Compiled."""
+    Lmax, Wmax = row_scales(y1, moments)
+    d = relative_difference(y1, y2, moments, Lmax, Wmax)
+    rows, S = d.shape
+    env = np.empty(S)
+    best = 0.0
+    for i in range(S):
+        for b in range(rows):
+            x = d[b, i]
+            if x != x or x > best:  # (a NaN is taken, and kept: comparisons with NaN are false)
+                best = x
+        env[i] = best / divisor
+    return env
 
 
 def growth_to_end(envelope: list, floor: float, ratio: float) -> float:
@@ -397,12 +442,7 @@ class ErrorTarget:
                 idx, tg, ms, h_probe = probe_samples(t, two * math.ceil(span / (CHECK_SAMPLES * two)), Pv / m)
             else:
                 idx = None
-                k = max(1, min(m // 2, samples))
-                tg = np.arange(k + 1.0) * (Pv / k)  # (np.linspace(0, Pv, k + 1), without its overhead)
-                tg[k] = Pv
-                tg = direction * tg + t[0]
-                ms = np.full(k, 2 * max(1, int(math.ceil(m / (2 * k)))))
-                h_probe = Pv / (k * ms[0])
+                tg, ms, h_probe = window_samples(float(t[0]), Pv, direction, max(1, min(m // 2, samples)), m)
             k = ms.size
             steps = int(ms.sum())
             work.refuse(1.5 * steps * len(sel), lambda: f"the step control's probe of {1.5 * steps:.0f} steps")
@@ -411,9 +451,8 @@ class ErrorTarget:
                                                  members=sel, work=work, bar=bar)
             except (RuntimeError, FloatingPointError):  # no implicit step / an overflow at this h
                 return None, h_probe
-            d = relative_difference(y1, y2, Ms, *row_scales(y1, Ms)).max(axis=0)  # per sample (NaN kept)
-            # the estimate's envelope at (about) half the window and at its end (d[i]: at grid point i)
-            env = np.maximum.accumulate(d) / (2.0 ** p - 1.0)
+            env = probe_envelope(y1, y2, Ms, 2.0 ** p - 1.0)  # (env[i]: up to grid point i)
+            # the estimate's envelope at a quarter, half the window and at its end
             samples_e[:] = [(i / k, float(env[i])) for i in (k // 4, k // 2, k) if i > 0]
             if idx is not None and idx.size >= PROBE_COVER_SAMPLES and ProbeRuns.usable(float(env[-1]), p):
                 runs.append(ProbeRuns(problem, idx, ms, y1, y2))
