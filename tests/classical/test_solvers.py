@@ -1151,7 +1151,7 @@ def test_an_orbit_that_amplifies_its_own_rounding_beyond_rtol_is_named(checks):
     """Random generic 5D body 4002, member 2 of its ensemble (41 output times, T = 20): the orbit amplifies a
     perturbation ~2e9-fold, so no arithmetic gives rtol 1e-9: compensated runs at steps 0.0013 and 0.003 differ
     by over 1e-7. The call returns the result with an AccuracyWarning naming the accuracy it has (measured: a twin
-    started one unit in the last place away, the pair at the first companion's steps), within a few times what the
+    started one unit in the last place away, at the first companion's steps), within a few times what the
     runs' scatter shows; at rtol 1e-6 (reached: 0.02 of it) nothing is said."""
     rng = np.random.default_rng(4002)
     moments = np.exp(rng.uniform(np.log(0.3), np.log(3.0), 10))
@@ -1165,8 +1165,13 @@ def test_an_orbit_that_amplifies_its_own_rounding_beyond_rtol_is_named(checks):
         tr = hr.simulate(moments, w0, t, rtol=1e-9)
     (warning,) = record
     assert warning.filename == __file__  # (attributed to the caller)
-    twin = 2 * checks[-1]._twin_steps()  # (the twin pair: at the first companion's steps, 2 to 8 times the run's)
-    assert 2 * tr.stats["steps"] / 8 <= twin <= 2 * tr.stats["steps"] / 2
+    check = checks[-1]  # (the twin at the first companion's steps, 2 to 8 times the run's; the unperturbed run of
+    twin = check._twin_work(1)  # the pair is the first companion itself, kept: only the twin runs)
+    assert check.L1s is not None and tr.stats["steps"] / 8 <= twin <= tr.stats["steps"] / 2
+    rows = np.arange(len(check.members))
+    kept = check._perturbed_twin(rows)
+    check.L1s = None  # the pair run anew from the initial states: the same numbers
+    assert check._perturbed_twin(rows) == kept and check._twin_work(1) == 2 * twin
     floor = float(re.search(r"accurate to about (\S+), not", str(warning.message)).group(1))
     assert scatter > 10 * 1e-9 and scatter / 10 <= floor <= 10 * scatter, (scatter, floor)
     assert np.abs(tr.L - runs[0]).max() / scale <= 10 * floor
@@ -1174,7 +1179,7 @@ def test_an_orbit_that_amplifies_its_own_rounding_beyond_rtol_is_named(checks):
     with pytest.warns(hr.AccuracyWarning, match=r"estimated from the growth of the check's differences.* no room to measure"):
         short = hr.simulate(moments, w0, t, rtol=1e-9, max_steps=tr.stats["work"] - 1)
     np.testing.assert_array_equal(short.L, tr.L)
-    assert short.stats["work"] == tr.stats["work"] - twin  # (the pair not run)
+    assert short.stats["work"] == tr.stats["work"] - twin  # (the twin not run)
     tr = hr.simulate(moments, w0, t, rtol=1e-6)  # (warnings are errors in the suite)
     assert np.abs(tr.L - runs[0]).max() / scale <= 1e-6
 

@@ -344,8 +344,10 @@ def roundoff_growth(t, d1, flows):  # pragma: no cover - jitted
 
 def check_bytes(members: int, n: int) -> float:
     """Memory of the check of ``members`` members of ``n`` planes (the distances and estimates at every sample,
-    the companions' states and their compensated low parts, the running scales): priced with the output."""
-    return 8.0 * members * (2 * CHECK_SAMPLES + 4 * n + 2)
+    the companions' states and their compensated low parts, the running scales; up to :data:`TWIN_MEMBERS`
+    members, the first companion's states at every sample, kept for the round-off twin): priced with the output."""
+    kept = CHECK_SAMPLES * n if members <= TWIN_MEMBERS else 0
+    return 8.0 * members * (2 * CHECK_SAMPLES + 4 * n + 2 + kept)
 
 
 @jit
@@ -426,6 +428,7 @@ class RichardsonCheck:
         self.span = problem.span
         self.j = 0
         self.finer = False
+        self.L1s = None  # the first companion's states at the samples, kept for the round-off twin (few members)
         self.given = None  # the companions' states at the samples (the start first), when the probe's runs
         best, r = None, 0.0
         for probe in probes:  # (the coarsest with steps 2 to PROBE_RATIO times the run's, of the same members)
@@ -457,6 +460,8 @@ class RichardsonCheck:
         self.planned_steps = companion_steps * len(members)
         self.Lc = self.Lc2 = problem.L0[members]
         self.carry = self.carry2 = None
+        if not finer and len(members) <= TWIN_MEMBERS:  # (the unperturbed half of the twin pair: no run of its own)
+            self.L1s = np.empty((len(members), self.marks.size, problem.n))
 
     def _samples(self, out_idx, grid, r, r2, marks=None) -> None:
         """The samples (at the output times ``out_idx``, or at the run's steps ``marks``; ``grid``: their times,
@@ -491,6 +496,8 @@ class RichardsonCheck:
             self.solver, self.problem, self.Lc, self.Lc2, grid, self.nc[j:upto], self.nc2[j:upto], members=self.members,
             work=self.work, bar=self.bar, carries=(self.carry, self.carry2))
         self.Lc, self.Lc2 = L1[:, -1], L2[:, -1]
+        if self.L1s is not None:
+            self.L1s[:, j:upto] = L1[:, 1:]
         self.judge(upto, Lf, L1[:, 1:], L2[:, 1:])
 
     def judge(self, upto: int, Lf: np.ndarray, L1: np.ndarray, L2: np.ndarray) -> None:
@@ -571,7 +578,7 @@ class RichardsonCheck:
         # eps X can overstate the floor (the truncation differences grow faster than a perturbation of the state
         # on some orbits: 1.8e-12 ... 6e-11 where runs at four steps agree to 1.2e-13): measure it
         rows = suspects[:TWIN_MEMBERS]
-        if self.work.done + self.steps * self.problem.B + self._twin_steps() * 2 * rows.size <= self.work.max_steps:
+        if self.work.done + self.steps * self.problem.B + self._twin_work(rows.size) <= self.work.max_steps:
             # (the run's own steps are counted when it ends, or when the members run after their check: run_alone)
             twin, k = self._perturbed_twin(rows)
             moved = f"changing its initial state by one unit in the last place changes the result by {twin:.2g}"
@@ -604,9 +611,11 @@ class RichardsonCheck:
         amplification = float(A.max())
         return ROUNDOFF_FACTOR * _EPS * math.sqrt(flows) * amplification, amplification, A, X
 
-    def _twin_steps(self) -> int:
-        """Steps of one run of the twin pair of :meth:`_perturbed_twin` (the first companion's)."""
-        return self.steps if self.finer else int(np.sum(self.nc))
+    def _twin_work(self, rows: int) -> int:
+        """Steps times members of :meth:`_perturbed_twin` for ``rows`` checked members: the pair at the first
+        companion's steps, or only its perturbed run when the first companion's states were kept."""
+        steps = self.steps if self.finer else int(np.sum(self.nc))
+        return steps * rows * (1 if self.L1s is not None else 2)
 
     def _perturbed_twin(self, rows: np.ndarray) -> tuple:
         """``(distance, row)``: the largest distance (:func:`relative_difference`) over the samples between the
@@ -615,12 +624,20 @@ class RichardsonCheck:
         rounding of the initial state alone moves the result. The pair runs at the first companion's steps (2 to
         8 times the run's; the run's own on runs of fewer than 32 steps): how much the orbit amplifies a
         perturbation is the orbit's, not the step's, and the pair costs 2/c of the run instead of twice the run
-        (one compiled call, chunked and counted as work: the caller makes sure it fits in ``max_steps``)."""
+        (chunked and counted as work: the caller makes sure it fits in ``max_steps``). The unperturbed run is the
+        first companion itself when its states were kept (up to :data:`TWIN_MEMBERS` checked members, companions
+        not the probe's runs, whose arithmetic is plain): only the twin runs, 1/c of the run (the same numbers as
+        running both: tested)."""
         members = self.members[rows]
         L0 = self.problem.L0[members]
         if self.finer:
             L = self._members_at_samples(L0, members)
             Lp = self._members_at_samples(np.nextafter(L0, np.inf), members)
+        elif self.L1s is not None:
+            L = self.L1s[rows]
+            Lp, _ = advance_chunked(self.solver, self.problem, np.nextafter(L0, np.inf), self.grid, self.nc,
+                                    members=members, work=self.work, bar=self.bar)
+            Lp = Lp[:, 1:]
         else:
             L, Lp, _ = advance_pair_chunked(self.solver, self.problem, L0, np.nextafter(L0, np.inf), self.grid,
                                             self.nc, self.nc, members=members, work=self.work, bar=self.bar)
