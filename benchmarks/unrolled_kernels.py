@@ -64,7 +64,7 @@ def main(argv=None):
     rounds = 20 if args.quick else 60
     kernel = _unrolled.kernel
 
-    def off(N, compensated):  # the generic kernels
+    def off(N, compensated, pair=False):  # the generic kernels (pair: the step control's two runs in one call)
         return None
 
     def call(unrolled, body, w0, t, kw):
