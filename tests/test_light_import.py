@@ -65,3 +65,18 @@ def test_plotting_loads_matplotlib_on_first_use():
         print("ok")
     """)
     assert out == "ok"
+
+
+def test_the_command_line_parser_loads_no_heavy_library():
+    """Every ``hyperrotor`` command builds the parser of all subcommands first: listing ``verify``'s
+    section keys must not load SymPy (0.55 s on every start of ``hyperrotor scene``, before)."""
+    out = _run(f"""
+        import sys
+        from hyperrotor.cli import build_parser
+        parser = build_parser()
+        args = parser.parse_args(["verify", "--section", "closed-form", "--section", "quantum"])
+        from hyperrotor._parse import number
+        value = number(" -2.5e-3", "--t-end")  # a plain decimal: read without SymPy
+        print([m for m in {HEAVY!r} if m in sys.modules], args.section, value)
+    """)
+    assert out == "[] ['closed-form', 'quantum'] -0.0025"

@@ -5,6 +5,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 import sympy as sp
+from hypothesis import given, settings, strategies as st
 
 from hyperrotor import _parse
 
@@ -53,6 +54,58 @@ def test_number():
     for big in ("1e400", "10**400", "-(10**309)"):
         with pytest.raises(_parse.ParseError, match="too large for a float"):
             _parse.number(big, "k")
+
+
+_DIGITS = st.text("0123456789", min_size=1, max_size=25)
+
+
+@settings(max_examples=400, deadline=None)
+@given(sign=st.sampled_from(["", "+", "-"]), whole=_DIGITS | st.just(""), point=st.booleans(),
+       frac=_DIGITS | st.just(""), exp=st.none() | st.integers(-99, 99) | st.integers(-420, 420),
+       pad=st.sampled_from(["", " ", "\t "]))
+def test_plain_decimals_read_without_sympy_equal_the_exact_reading(sign, whole, point, frac, exp, pad):
+    """number() reads a short plain decimal literal with float() (no SymPy); whichever path a literal
+    takes, it must give the float of the exact rational the grammar reads, bit for bit (-0 included),
+    and refuse what the grammar refuses or what overflows, with the same message."""
+    if not whole and not (point and frac):
+        whole = "0"
+    text = f"{pad}{sign}{whole}{'.' if point else ''}{frac if point else ''}{'' if exp is None else f'e{exp}'}{pad}"
+    try:
+        exact = _parse.expression(text, "k", symbols=False)
+    except _parse.ParseError as exc:  # over a bound of the grammar (exponent beyond 400)
+        with pytest.raises(_parse.ParseError) as got:
+            _parse.number(text, "k")
+        assert str(got.value) == str(exc)
+        return
+    try:
+        expected = float(exact)
+    except OverflowError:
+        expected = float("inf")
+    if np.isfinite(expected):
+        got = _parse.number(text, "k")
+        assert got == expected and np.signbit(got) == np.signbit(expected), (text, got, expected)
+    else:
+        with pytest.raises(_parse.ParseError, match="too large for a float"):
+            _parse.number(text, "k")
+    if len(text) <= 64 and (exp is None or abs(exp) < 100):
+        assert _parse._DECIMAL.fullmatch(text)  # (this literal took the path without SymPy)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.sampled_from(["", "+", "-"]), st.text("0123456789", min_size=1, max_size=30),
+       st.sampled_from(["", " ", "\t"]), st.sampled_from(["", ".0", ".5", "e1", "/2", "**2"]))
+def test_integers_read_without_sympy_equal_the_exact_reading(sign, digits, pad, tail):
+    """integer() reads a short plain integer literal with int() (no SymPy); whichever path a text takes,
+    the value is the exact reading's, and a non-integer is refused naming the argument and the text."""
+    text = f"{pad}{sign}{digits}{tail}{pad}"
+    exact = _parse.expression(text, "k", symbols=False)
+    if exact.is_Integer:
+        got = _parse.integer(text, "k")
+        assert type(got) is int and got == int(exact)
+    else:
+        with pytest.raises(ValueError) as err:
+            _parse.integer(text, "k")
+        assert str(err.value) == f"k must be an integer, got {text!r}"
 
 
 PAYLOADS = [

@@ -13,14 +13,12 @@ module ``__getattr__``): ``hyperrotor.quantum`` (QuTiP, SymPy),
 """
 from __future__ import annotations
 
-import importlib as _importlib
-from typing import Any as _Any
-
 from . import _cost_models  # noqa: F401  (registers the cost models of hyperrotor._pricing first)
 from . import conventions
 from .conventions import *  # noqa: F401,F403
 from . import classical
 from .classical import *  # noqa: F401,F403
+from . import _lazy
 from ._options import UnknownOptionError, options
 from ._parse import ParseError
 from ._pricing import BudgetError
@@ -41,18 +39,6 @@ __all__ = [*conventions.__all__, *classical.__all__, "options", "BudgetError", "
            "quantum", "classical", "conventions", "paper"]
 
 
-def __getattr__(name: str) -> _Any:
-    """PEP 562: import the heavy subpackages and names on first use (see the module docstring)."""
-    if name in _LAZY_MODULES:
-        return _importlib.import_module(f"{__name__}.{name}")
-    if name in _LAZY_NAMES:
-        module, attr = _LAZY_NAMES[name]
-        value = getattr(_importlib.import_module(module), attr)
-        if name != "TIME":  # TIME is a fresh lookup each time (cheap, SymPy caches symbols)
-            globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted({*globals(), *_LAZY_MODULES, *_LAZY_NAMES})
+#: PEP 562: the heavy subpackages and names are imported on first use (see the module docstring);
+#: TIME is looked up on every access (cheap, SymPy caches symbols).
+__getattr__, __dir__ = _lazy.lazy_attributes(__name__, _LAZY_NAMES, modules=_LAZY_MODULES, fresh=("TIME",))

@@ -19,9 +19,9 @@ from __future__ import annotations
 import importlib
 import sys
 from types import ModuleType
-from typing import Any
+from typing import Any, Callable
 
-__all__ = ["LazyModule", "loaded", "sympy", "qutip"]
+__all__ = ["LazyModule", "loaded", "lazy_attributes", "sympy", "qutip"]
 
 
 class LazyModule(ModuleType):
@@ -49,6 +49,36 @@ class LazyModule(ModuleType):
     def __repr__(self) -> str:
         state = "loaded" if self.__dict__["_lazy_module"] is not None else "not loaded yet"
         return f"<lazy module {self.__dict__['_lazy_name']!r} ({state})>"
+
+
+def lazy_attributes(package: str, names: dict[str, tuple[str, str]], modules: tuple[str, ...] = (),
+                    fresh: tuple[str, ...] = ()) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
+    """PEP 562 ``__getattr__`` and ``__dir__`` of ``package``, whose heavy names load on first use.
+
+    ``names`` maps an attribute to ``(module, attribute)`` (``module`` may be relative to
+    ``package``); the value is imported on first access and kept in the package's namespace,
+    except for the names in ``fresh`` (looked up on every access). ``modules`` lists submodules
+    imported on first attribute access. Used by ``hyperrotor`` and ``hyperrotor.paper``::
+
+        __getattr__, __dir__ = lazy_attributes(__name__, {"verify_paper": (".verify", "verify")})
+    """
+    namespace = sys.modules[package].__dict__
+
+    def __getattr__(name: str) -> Any:
+        if name in modules:
+            return importlib.import_module(f"{package}.{name}")
+        if name in names:
+            module, attr = names[name]
+            value = getattr(importlib.import_module(module, package), attr)
+            if name not in fresh:
+                namespace[name] = value
+            return value
+        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+
+    def __dir__() -> list[str]:
+        return sorted({*namespace, *modules, *names})
+
+    return __getattr__, __dir__
 
 
 def loaded(name: str) -> bool:

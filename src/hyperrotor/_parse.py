@@ -46,6 +46,7 @@ __all__ = [
     "ParseError",
     "expression",
     "number",
+    "integer",
     "to_sympy",
     "MAX_LENGTH",
     "MAX_DEPTH",
@@ -57,6 +58,12 @@ __all__ = [
 
 #: Longest text accepted (characters).
 MAX_LENGTH = 1000
+#: A short plain decimal literal (optional sign, digits, point, an exponent of one or two digits; no
+#: underscores, no inf/nan; at most 64 characters, far inside the bounds below), which :func:`number`
+#: reads without SymPy: ``float`` of it is the correctly rounded value of the exact decimal.
+_DECIMAL = re.compile(r"[ \t]*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]{1,2})?[ \t]*")
+#: A plain integer literal of at most 18 digits, which :func:`integer` reads without SymPy.
+_INTEGER = re.compile(r"[ \t]*[+-]?[0-9]{1,18}[ \t]*")
 #: Deepest nesting of parentheses and unary/binary operators.
 MAX_DEPTH = 60
 #: Most digits in one numeric literal (mantissa).
@@ -309,6 +316,12 @@ def number(text: str, name: str, *, exact: bool = False):
     ParseError
         Not a number of the grammar, or not finite as a float.
     """
+    if not exact and isinstance(text, str) and len(text) <= 64 and _DECIMAL.fullmatch(text):
+        # a plain decimal literal: Python rounds it correctly, as float(Rational) does; + 0.0 turns -0.0
+        # into 0.0 (the exact reading, Rational 0, has no sign)
+        value = float(text) + 0.0
+        if math.isfinite(value):
+            return value  # (no SymPy: a command line that only reads plain numbers starts 0.6 s sooner)
     expr = expression(text, name, symbols=False)
     if exact:
         if not expr.is_Rational:
@@ -323,6 +336,28 @@ def number(text: str, name: str, *, exact: bool = False):
     if not math.isfinite(value):
         raise _fail(name, text, "the value is too large for a float", names=False)
     return value
+
+
+def integer(text: str, name: str) -> int:
+    """Read ``text`` as one integer (no names), e.g. ``"12"``, ``"2**10"``, ``"6/3"``.
+
+    A plain integer literal is read without SymPy; anything else by :func:`expression`.
+
+    Raises
+    ------
+    TypeError
+        ``text`` is not a ``str``.
+    ParseError
+        Not a number of the grammar.
+    ValueError
+        A number that is not an integer (``"5.5"``), naming ``name`` and the text.
+    """
+    if isinstance(text, str) and _INTEGER.fullmatch(text):
+        return int(text)
+    value = expression(text, name, symbols=False)
+    if not value.is_Integer:
+        raise ValueError(f"{name} must be an integer, got {text!r}")
+    return int(value)
 
 
 def to_sympy(value: Any, name: str, *, text: bool = True, symbols: bool | Collection[str] = True, **assumptions: Any):

@@ -54,8 +54,10 @@ def test_elementary_flow_is_the_flow_of_one_plane_term(N, compensated, rng):
             outL = np.zeros((1, 2, n))
             outT = np.zeros((1, 2, N, N))
             # a negative step is the inverse flow: run on a reversed grid by flipping the coefficient
-            coef = np.array([1.0 if tt[1] > 0 else -1.0])
-            _kernels.split_run(L0, 1.0 / mom, np.array([a]), coef, *tables, np.array([h]), np.array([1]),
+            plane, coef = np.array([a]), np.array([1.0 if tt[1] > 0 else -1.0])
+            for arr in (plane, coef):  # read-only like the solver's cached words: the kernel it compiled
+                arr.setflags(write=False)
+            _kernels.split_run(L0, 1.0 / mom, plane, coef, *tables, np.array([h]), np.array([1]),
                                np.zeros((1, n)), np.eye(N)[None], True, compensated, outL, outT, np.zeros((1, 2, n)))
             outs.append((outL[0, 1], outT[0, 1]))
         w = np.zeros(n)

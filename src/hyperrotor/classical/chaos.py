@@ -62,7 +62,8 @@ from hyperrotor.conventions import dimension_from_count
 
 from .solvers._tangent_kernels import tangent_run, tangent_run_lanes
 from .solvers import SOLVERS
-from .solvers.splitting import casimir_shift, rotation_tables, splitting_word
+from .solvers._kernels import rotation_tables
+from .solvers.splitting import casimir_shift, splitting_word
 from .solvers.step_control import rate_bound
 
 __all__ = ["lyapunov", "lyapunov_sweep", "LyapunovResult", "LYAPUNOV_METHODS"]

@@ -83,11 +83,9 @@ def integer(text, option: str, *, minimum: int | None = None, maximum: int | Non
     value = text
     if isinstance(text, str):
         try:
-            value = _parse.expression(text, option, symbols=False)
-        except (_parse.ParseError, TypeError) as err:
+            value = _parse.integer(text, option)
+        except (ValueError, TypeError) as err:  # (ParseError is a ValueError)
             raise UsageError(str(err)) from None
-        if not value.is_Integer:
-            raise UsageError(f"{option} must be an integer, got {text!r}")
     return usage(_validate.integer, option, value, minimum=minimum, maximum=maximum)
 
 

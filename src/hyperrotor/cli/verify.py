@@ -14,13 +14,18 @@ _VERIFY_SUFFIXES = {"json": (".json",), "markdown": (".md", ".markdown"), "table
 
 
 def configure(p: argparse.ArgumentParser) -> None:
-    from hyperrotor.paper import verify
+    """The options of ``hyperrotor verify`` (the section keys come from a module without SymPy: building
+    the parser of any subcommand loads no heavy library)."""
+    from hyperrotor.paper.section_titles import SECTION_TITLES
 
-    verify.configure_parser(p)
-    for action in p._actions:  # document the extension rule on -o
-        if "--output" in action.option_strings:
-            action.help = ("write the report to FILE instead of stdout: .txt (table), .md (Markdown) or .json; "
-                           "without --json/--markdown the extension chooses the format, with them it must match")
+    fmt = p.add_mutually_exclusive_group()
+    fmt.add_argument("--json", action="store_true", help="JSON list of {equation, status, detail, ...}")
+    fmt.add_argument("--markdown", action="store_true", help="Markdown report (docs/verification.md)")
+    p.add_argument("--section", action="append", choices=list(SECTION_TITLES), metavar="NAME",
+                   help="only this section (repeatable); one of: " + ", ".join(SECTION_TITLES))
+    p.add_argument("--output", "-o", metavar="FILE",
+                   help="write the report to FILE instead of stdout: .txt (table), .md (Markdown) or .json; "
+                        "without --json/--markdown the extension chooses the format, with them it must match")
     add_common(p)
 
 

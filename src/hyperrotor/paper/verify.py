@@ -48,12 +48,11 @@ Rendering
 (``"table"``), Markdown (``"markdown"``, the page ``docs/verification.md``) or
 JSON (``"json"``: a list of objects with ``equation``, ``status``, ``detail``,
 ``printed``, ``correct``, ``section``). The command line is ``hyperrotor verify
-[--json | --markdown] [--section NAME ...] [-o FILE]`` (:func:`configure_parser`
+[--json | --markdown] [--section NAME ...] [-o FILE]`` (:mod:`hyperrotor.cli.verify`
 declares its options; the CLI writes files through its one checked, no-clobber path).
 """
 from __future__ import annotations
 
-import argparse
 from typing import Iterable
 
 from hyperrotor.paper import printed_solutions as ps
@@ -131,21 +130,6 @@ def verify(sections: Iterable[str] | None = None) -> list[Verdict]:
     for k in keys:
         out.extend(SECTIONS[k][1]())
     return out
-
-
-def configure_parser(parser: argparse.ArgumentParser) -> None:
-    """Add the options of ``hyperrotor verify`` to ``parser`` (the CLI writes ``--output`` through its one checked file path)."""
-    fmt = parser.add_mutually_exclusive_group()
-    fmt.add_argument("--json", action="store_true", help="JSON list of {equation, status, detail, ...}")
-    fmt.add_argument("--markdown", action="store_true", help="Markdown report (docs/verification.md)")
-    parser.add_argument("--section", action="append", choices=list(SECTIONS), metavar="NAME",
-                        help="only this section (repeatable); one of: " + ", ".join(SECTIONS))
-    parser.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
-
-
-#: One-line description of the report (CLI help).
-VERIFY_DESCRIPTION = ("check the preprint's equations (3)-(147) against hyperrotor's derivations; "
-                      "each item holds / typo / claim-false / not-checkable")
 
 
 if __name__ == "__main__":  # not a command: the report is written by `hyperrotor verify` (the CLI's one file path)

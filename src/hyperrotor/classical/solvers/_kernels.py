@@ -46,6 +46,7 @@ and every other entry is unchanged. The attitude (plain-matrix convention,
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -54,8 +55,14 @@ from hyperrotor._jit import jit, prange
 __all__: list[str] = []  # private module
 
 
+@lru_cache(maxsize=None)
 def rotation_tables(N: int):
-    """Index tables of the elementary plane rotations for so(N) (see module docstring)."""
+    """Index tables of the elementary plane rotations for so(N) (see module docstring); cached, read-only.
+
+    Read-only for every caller: numba compiles a kernel once per argument type, writeability
+    included, so one kind of table means one compiled kernel (a writeable copy compiled the
+    ensemble kernel a second time, ~8 s).
+    """
     from hyperrotor.conventions import planes
 
     ps = planes(N)
@@ -80,7 +87,10 @@ def rotation_tables(N: int):
             col += 1
     plane_i = np.array([i - 1 for i, _ in ps], dtype=np.int64)
     plane_j = np.array([j - 1 for _, j in ps], dtype=np.int64)
-    return pair_p, pair_q, pair_s, plane_i, plane_j
+    tables = pair_p, pair_q, pair_s, plane_i, plane_j
+    for arr in tables:
+        arr.setflags(write=False)
+    return tables
 
 
 # Taylor coefficients (-1)^k / (2k+1)! and (-1)^k / (2k)!; on |x| <= 0.5 the truncation
@@ -381,10 +391,12 @@ def _split_run_pair(L0a, L0b, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s
     pairs: one compiled call instead of two."""
     T0 = np.zeros((1, 1, 1))  # (no attitude: never read)
     outT = np.empty((L0a.shape[0], 1, 1, 1))
+    # a run-time False: a literal False would compile split_run_serial a second time (for Literal[bool])
+    with_attitude = T0.size == 0
     split_run_serial(L0a, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j, ha, na, torque,
-                     T0, False, compensated, outa, outT, carrya)
+                     T0, with_attitude, compensated, outa, outT, carrya)
     split_run_serial(L0b, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s, plane_i, plane_j, hb, nb, torque,
-                     T0, False, compensated, outb, outT, carryb)
+                     T0, with_attitude, compensated, outb, outT, carryb)
 
 
 split_run_pair = jit(_split_run_pair)

@@ -83,6 +83,19 @@ class Problem:
     scale: float
     extra: dict = field(default_factory=dict)
 
+    def __post_init__(self):
+        # Read-only whatever the caller passed (a body's cached moments are, a user's array is not): numba
+        # compiles a kernel once per argument type, writeability included, so one kind of moments array
+        # means one compiled kernel per route (the Moser-Veselov kernel compiled twice before, ~4-19 s).
+        if self.moments.flags.writeable:
+            self.moments = self.moments.copy()
+            self.moments.setflags(write=False)
+
+    def __setstate__(self, state: dict) -> None:
+        # unpickled or deep-copied arrays come back writeable: read-only again, as built
+        self.__dict__.update(state)
+        self.__post_init__()
+
     @property
     def B(self) -> int:
         return self.L0.shape[0]

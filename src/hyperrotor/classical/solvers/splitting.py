@@ -68,6 +68,7 @@ from hyperrotor import _pricing, _validate
 from hyperrotor.conventions import to_matrix
 
 from . import _kernels, _unrolled
+from ._kernels import rotation_tables
 from .base import Problem, step_lengths
 from .driver import FixedStepSolver
 
@@ -289,14 +290,6 @@ def unshift_attitude(att: np.ndarray, L0: np.ndarray, T0: np.ndarray, t: np.ndar
 def splitting_slots(N: int, order: int, seq: tuple[int, ...], kick: bool = False) -> Any:
     """:func:`splitting_word` laid onto the sweeps of the unrolled kernels (:func:`~._unrolled.slot_table`)."""
     return _unrolled.slot_table(N, *splitting_word(order, seq, kick))
-
-
-@lru_cache(maxsize=None)
-def rotation_tables(N: int):
-    tables = _kernels.rotation_tables(N)
-    for arr in tables:
-        arr.setflags(write=False)
-    return tables
 
 
 def _start(L0: np.ndarray, carry: Any) -> tuple[np.ndarray, np.ndarray]:

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from typing import Callable
 
+from hyperrotor.paper.section_titles import SECTION_TITLES
 from hyperrotor.paper.sections.closed_form import sec_closed_form
 from hyperrotor.paper.sections.euler import sec_euler
 from hyperrotor.paper.sections.quantum import sec_quantum
@@ -30,12 +31,14 @@ from hyperrotor.paper.sections.tensor import sec_tensor
 
 __all__ = ["SECTIONS"]
 
-#: Section key -> (title, checker).
-SECTIONS: dict[str, tuple[str, Callable[[], tuple]]] = {
-    "tensor": ("Sec. 1: inertia tensor, angular momentum, energy (eqs. 3-6, 26-27)", sec_tensor),
-    "euler": ("Sec. 2.1: product (25), Tables 1-2, Euler equations (28)-(37), invariants (38)", sec_euler),
-    "reductions": ("Sec. 2.2-2.5: reductions (42)-(81), headings and locked sets", sec_reductions),
-    "closed-form": ("Sec. 3: closed-form solutions (82)-(118)", sec_closed_form),
-    "stability": ("Sec. 4: stability (119)-(140)", sec_stability),
-    "quantum": ("Sec. 5: quantum angular momentum (141)-(147)", sec_quantum),
+_CHECKERS: dict[str, Callable[[], tuple]] = {
+    "tensor": sec_tensor,
+    "euler": sec_euler,
+    "reductions": sec_reductions,
+    "closed-form": sec_closed_form,
+    "stability": sec_stability,
+    "quantum": sec_quantum,
 }
+#: Section key -> (title, checker), in paper order (titles: :data:`~hyperrotor.paper.section_titles.SECTION_TITLES`).
+SECTIONS: dict[str, tuple[str, Callable[[], tuple]]] = {key: (title, _CHECKERS[key])
+                                                         for key, title in SECTION_TITLES.items()}
