@@ -35,10 +35,11 @@ Layout
 * :mod:`hyperrotor.paper.verdicts`: :class:`~hyperrotor.paper.verdicts.Verdict`,
   :data:`~hyperrotor.paper.verdicts.STATUSES` and the shared comparison helpers;
 * :mod:`hyperrotor.paper.sections`: one checker per paper section and the
-  registry :data:`~hyperrotor.paper.sections.SECTIONS`;
+  registry :data:`~hyperrotor.paper.sections.SECTIONS` (its keys and titles:
+  :mod:`hyperrotor.paper.section_titles`, without SymPy);
 * :mod:`hyperrotor.paper.report`: :func:`~hyperrotor.paper.report.summary` and
   the renderers;
-* this module: :func:`verify`, :func:`clear_cache` and the command line. It
+* this module: :func:`verify` and :func:`clear_cache`. It
   re-exports ``Verdict``, ``STATUSES``, ``SECTIONS``, ``summary``, ``render``,
   ``render_table``, ``render_markdown`` and ``render_json``.
 
