@@ -87,7 +87,7 @@ def test_plain_decimals_read_without_sympy_equal_the_exact_reading(sign, whole, 
     else:
         with pytest.raises(_parse.ParseError, match="too large for a float"):
             _parse.number(text, "k")
-    if len(text) <= 64 and (exp is None or abs(exp) < 100):
+    if len(text) <= _parse._DECIMAL_LENGTH and (exp is None or abs(exp) < 100):
         assert _parse._DECIMAL.fullmatch(text)  # (this literal took the path without SymPy)
 
 

@@ -59,8 +59,9 @@ __all__ = [
 #: Longest text accepted (characters).
 MAX_LENGTH = 1000
 #: A short plain decimal literal (optional sign, digits, point, an exponent of one or two digits; no
-#: underscores, no inf/nan; at most 64 characters, far inside the bounds below), which :func:`number`
-#: reads without SymPy: ``float`` of it is the correctly rounded value of the exact decimal.
+#: underscores, no inf/nan; at most :data:`_DECIMAL_LENGTH` characters, far inside the bounds below), which
+#: :func:`number` reads without SymPy: ``float`` of it is the correctly rounded value of the exact decimal.
+_DECIMAL_LENGTH = 64
 _DECIMAL = re.compile(r"[ \t]*[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]{1,2})?[ \t]*")
 #: A plain integer literal of at most 18 digits, which :func:`integer` reads without SymPy.
 _INTEGER = re.compile(r"[ \t]*[+-]?[0-9]{1,18}[ \t]*")
@@ -316,7 +317,7 @@ def number(text: str, name: str, *, exact: bool = False):
     ParseError
         Not a number of the grammar, or not finite as a float.
     """
-    if not exact and isinstance(text, str) and len(text) <= 64 and _DECIMAL.fullmatch(text):
+    if not exact and isinstance(text, str) and len(text) <= _DECIMAL_LENGTH and _DECIMAL.fullmatch(text):
         # a plain decimal literal: Python rounds it correctly, as float(Rational) does; + 0.0 turns -0.0
         # into 0.0 (the exact reading, Rational 0, has no sign)
         value = float(text) + 0.0
