@@ -85,6 +85,36 @@ def cases():
         out.append(("evolve", f"{K} times, dim 5", dict(dim=5, n_times=K),
                     lambda: hq.rotor_hamiltonian(hq.irrep(3, (2,)), [1.0, 2.0, 3.0]),
                     lambda H, K=K: hq.evolve(H, np.ones(5) / 5**0.5, np.linspace(0.0, 1.0, K))))
+    def _rotor(l):
+        rep = hq.irrep(3, (l,))
+        return rep, hq.rotor_hamiltonian(rep, [1.0, 2.0, 3.0])
+
+    for l, T in ((100, 0.5), (400, 0.1), (1000, 0.02)):  # products: a phase ||H|| t / hbar, not output times
+        rep, H = _rotor(l)
+        prop = hq.SectorPropagator(H, method="krylov")
+        out.append(("evolve", f"krylov dim {rep.dim}, t = [0, {T:g}]",
+                    dict(dim=rep.dim, n_times=2, **prop._stepping_phases(np.array([0.0, T]))),
+                    lambda H=H: H, lambda H, T=T: hq.evolve(H, np.ones(H.shape[0]) / H.shape[0] ** 0.5, [0.0, T],
+                                                            method="krylov")))
+    from scipy.spatial.transform import Rotation
+    from hyperrotor.quantum.coherent import _givens_angles
+
+    Q = Rotation.from_rotvec([0.9, -1.7, 1.1]).as_matrix()
+    for l in (250, 1000, 2000):
+        rep = hq.irrep(3, (l,))
+        gens = rep.generators()
+        phase = sum(abs(th) * float(abs(gens[p]).sum(axis=1).max()) for p, th in _givens_angles(Q))
+        out.append(("apply_rotation", f"dim={rep.dim}", dict(dim=rep.dim, phase=phase, factors=3), lambda rep=rep: rep,
+                    lambda rep: hq.apply_rotation(rep, Q, np.ones(rep.dim) / rep.dim**0.5)))
+    for ls, K in (([1] * 50, 5), ([10, 40, 80], 200), ([100, 200], 100)):
+        dims = [2 * l + 1 for l in ls]
+        out.append(("ehrenfest_time", f"{len(ls)} irreps, {K} times",
+                    dict(irreps=len(ls), dims=sum(dims), dim_squares=sum(d * d for d in dims), n_times=K, n=3),
+                    lambda: None, lambda _, ls=ls, K=K: hq.ehrenfest_time([1.0, 2.0, 3.0], [0.3, 0.2, 1.0], ls,
+                                                                            np.linspace(0.0, 3.0, K))))
+    for n in (500, 1000, 2000):
+        out.append(("dense_diagonalization", f"sample_spectrum gue n={n}", dict(dim=n, complex=True), lambda: None,
+                    lambda _, n=n: hq.sample_spectrum("gue", n, rng=1)))
     for P in (10**3, 10**4, 10**5):
         out.append(("lyapunov_sweep", f"{P} bodies", dict(bodies=P, orbits=1, n=3),
                     lambda P=P: 1.0 + np.random.default_rng(0).random((P, 3)),

@@ -60,6 +60,13 @@ _PY_S = 3.0e-7
 _LANCZOS_S = 6.0e-9
 #: seconds per output time of evolve (a state Qobj per time, expectation values)
 _EVOLVE_S = 2.6e-5
+#: seconds per unit of the phase ||H|| t / hbar of a block propagated by Lanczos / by expm_multiply (their products
+#: and restarts; measured, so(3) irreps of dimension 201-2001, methods 'krylov' and 'expm_multiply': 1.8e-4 ...
+#: 3.2e-4 and 7e-5; grown with the dimension as 1 + dim / 1e4)
+_KRYLOV_PHASE_S = 2.5e-4
+_EXPM_PHASE_S = 7.0e-5
+#: the same for the rotations of a state (apply_rotation: Lanczos at tolerance 1e-14)
+_ROTATION_PHASE_S = 8.5e-4
 #: bytes held per stored output time of evolve besides the state's entries (Qobj and its data object)
 _QOBJ_BYTES = 360.0
 
@@ -172,14 +179,46 @@ def _tensor(dim_a: Any, dim_b: Any, nnz_a: Any, nnz_b: Any) -> tuple[Cost, ...]:
                     f"({entries:.3g} nonzeros)", 30.0 * entries),)
 
 
-@model("evolve", "ask for fewer output times (t) or pass e_ops to keep expectation values only")
-def _evolve(dim: Any, n_times: Any, states: bool = True) -> tuple[Cost, ...]:
+@model("evolve", "ask for fewer output times (t) or a shorter span, or pass e_ops to keep expectation values "
+                 "only")
+def _evolve(dim: Any, n_times: Any, states: bool = True, krylov_phase: Any = 0.0, expm_phase: Any = 0.0
+            ) -> tuple[Cost, ...]:
+    # krylov_phase, expm_phase: sums over the blocks propagated by Lanczos / expm_multiply of ||H_b|| span / hbar
+    # (SectorPropagator._stepping_phases), which their numbers of products follow
     per = (16.0 * _f(dim) + _QOBJ_BYTES) if states else 8.0
+    stepped = _f(krylov_phase) * _KRYLOV_PHASE_S + _f(expm_phase) * _EXPM_PHASE_S
     return (
         Cost(f"{n_times} output states of dimension {dim}" if states else f"{n_times} output values",
              _f(n_times) * per, "max_output_bytes", "bytes"),
-        _seconds(f"{n_times} output times", _f(n_times) * _EVOLVE_S),
+        _seconds(f"{n_times} output times" + (f" and the products of a phase ||H|| t / hbar = "
+                                              f"{_f(krylov_phase) + _f(expm_phase):.3g}" if stepped else ""),
+                 _f(n_times) * _EVOLVE_S + stepped * (1.0 + _f(dim) / 1e4)),
     )
+
+
+@model("ehrenfest_time", "ask for fewer irreps (ls) or fewer times (t)")
+def _ehrenfest_time(irreps: Any, dims: Any = None, dim_squares: Any = None, n_times: Any = None, n: Any = 3
+                    ) -> tuple[Cost, ...]:
+    # per irrep (measured, so(3), dimensions 3-161, 5-200 times): ~20 ms of set-up (the irrep, its Hamiltonian,
+    # coherent state and sectors), ~1.5 ms per unit of dimension (the generators, the sectors' propagation), the
+    # highest-weight search (dim^2) and the expectation values of the n generators at every time; without the
+    # dimensions (a first check on the count alone) every irrep counts as dimension 1
+    k = _f(irreps)
+    K = 1.0 if n_times is None else _f(n_times)
+    d1 = k if dims is None else _f(dims)
+    d2 = k if dim_squares is None else _f(dim_squares)
+    what = f"{irreps} irreps (ls)" + ("" if n_times is None else f" x {n_times} times (t)")
+    return (_seconds(what, k * (0.02 + K * _EVOLVE_S * _f(n)) + 1.5e-3 * d1 + _LANCZOS_S * d2),
+            Cost(f"the quantum curves of {what} x {n} planes", 16.0 * _mul(k, K, n), "max_output_bytes", "bytes"))
+
+
+@model("apply_rotation", "rotate by a smaller angle or use an irrep of smaller dimension")
+def _apply_rotation(dim: Any, phase: Any, factors: Any = 1) -> tuple[Cost, ...]:
+    # one Lanczos propagation exp(theta X_p) v per Givens factor, at tolerance quantum_rotation_atol: its products
+    # follow the phase sum_k |theta_k| ||X_p_k|| (measured, so(3) irreps of dimension 501-4001, a generic
+    # rotation: 8.5e-4 ... 1.0e-3 s per unit of phase)
+    return (_seconds(f"{factors} plane rotations of a state of dimension {dim} (phase sum |theta| ||X|| = "
+                     f"{_f(phase):.3g})", _f(phase) * _ROTATION_PHASE_S * (1.0 + _f(dim) / 1e4)),)
 
 
 @model("otoc", "use fewer times (t) or fewer samples")
@@ -369,10 +408,21 @@ def _harmonic_space(N: Any, l: Any, dim: float) -> Cost:
 def _binomial(a: float, b: float) -> float:
     if not (math.isfinite(a) and math.isfinite(b)):
         return math.inf
+    if not 0 <= b <= a:
+        return 0.0
     try:
         if a < 1e5:  # exact (a dimension compared with a budget must not round up)
-            return float(math.comb(int(a), int(b))) if 0 <= b <= a else 0.0
-        return math.exp(math.lgamma(a + 1) - math.lgamma(b + 1) - math.lgamma(a - b + 1))
+            return float(math.comb(int(a), int(b)))
+        # a huge, k small: the product (a - k + 1) ... a / k! (lgamma differences of numbers near 1e15 lost all
+        # their digits: the harmonic dimension of l = 1e15 came out 0 and the budget let it run); k > 1000 and
+        # a >= 2k: at least comb(2002, 1001) > 1e600, beyond a float
+        k = int(min(b, a - b))
+        if k > 1000:
+            return math.inf
+        out = 1.0
+        for i in range(1, k + 1):
+            out *= (a - k + i) / i
+        return out
     except OverflowError:  # beyond a float (comb(1499, 999) of N = 1000, l = 500)
         return math.inf
 
@@ -396,5 +446,19 @@ def _harmonic_terms(N: Any, l: Any) -> float:
 
 
 def _harmonic_dim(N: Any, l: Any) -> float:
+    """Dimension of the harmonic polynomials of degree ``l`` in ``N`` variables: exact below 1e5, else the closed
+    form :math:`\frac{2l + N - 2}{l + N - 2}\binom{l + N - 2}{N - 2}` (the difference of the two binomials below
+    cancels to nothing in floats: 0 for ``N = 3, l = 1e15`` instead of ``2l + 1``)."""
     N, l = _f(N), _f(l)
-    return _binomial(l + N - 1, N - 1) - (_binomial(l + N - 3, N - 1) if l >= 2 else 0.0)
+    if not (math.isfinite(N) and math.isfinite(l)):
+        return math.inf
+    if l < 0:
+        return 0.0
+    if N < 3:  # one variable: 1, x; two: the real and imaginary parts of (x + iy)^l
+        return (1.0 if l < 2 else 0.0) if N < 2 else (1.0 if l == 0 else 2.0)
+    if l + N < 1e5:  # exact (a dimension compared with a budget must not round up)
+        try:
+            return float((2 * int(l) + int(N) - 2) * math.comb(int(l + N) - 2, int(N) - 2) // (int(l + N) - 2))
+        except OverflowError:  # beyond a float (N = 1000, l = 500)
+            return math.inf
+    return (2.0 * l + N - 2.0) / (l + N - 2.0) * _binomial(l + N - 2, N - 2)

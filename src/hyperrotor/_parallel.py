@@ -51,10 +51,12 @@ on a terminal and only when the run lasts longer than a second.
 """
 from __future__ import annotations
 
+import contextvars
 import math
 import os
+import queue
 import sys
-from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+import threading
 from typing import Any, Callable, Sequence
 
 import numpy as np
@@ -62,7 +64,7 @@ import numpy as np
 from . import _validate
 from ._options import options
 
-__all__ = ["map_rows", "grid_rows", "import_distributed", "client_threads", "default_workers"]
+__all__ = ["map_rows", "grid_rows", "import_distributed", "client_threads", "default_workers", "interruptible"]
 
 _INSTALL_HINT = 'pip install "hyperrotor[distributed]"'
 #: chunks per worker thread when ``chunk_size`` is not given (load balance vs per-task overhead)
@@ -268,7 +270,7 @@ def map_rows(
         elif threads == 1 or len(chunks) == 1:
             parts = []
             for ch in chunks:
-                parts.append(func(*ch, *args))
+                parts.append(interruptible(func, *ch, *args))
                 if bar is not None:
                     bar.update(ch[0].shape[0])
         else:
@@ -279,24 +281,90 @@ def map_rows(
     return _concat(parts)
 
 
+#: how often (seconds) a caller waiting for worker threads looks up for Ctrl-C
+_WAIT_SLICE = 0.1
+
+
+def interruptible(func: Callable, *args: Any) -> Any:
+    """``func(*args)`` on a worker thread, waited for in slices of :data:`_WAIT_SLICE` seconds.
+
+    Python delivers Ctrl-C (``KeyboardInterrupt``) to the main thread between bytecodes; a long C
+    routine called there (LAPACK's ``eigh`` of a large block, a compiled kernel) holds it off until
+    it returns (36 s measured for a sector of dimension 12001). Run here, the main thread only waits,
+    and the interrupt reaches the caller within ~0.1 s (its ``except`` and ``finally`` blocks run, an
+    interactive session is back at once). The interrupted call runs on to its end in the background (a
+    C routine cannot be stopped; its result is dropped), and a process that exits waits for it: a
+    daemon thread left inside LAPACK while the interpreter shut down crashed the process (SIGSEGV).
+    ``func`` runs in a copy of the caller's :mod:`contextvars` context (the options of a
+    ``with hr.options(...)`` block); its exceptions are raised here. Called from another thread
+    (which Ctrl-C does not reach) it simply calls ``func``.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        return func(*args)
+    box: dict = {}
+    ctx = contextvars.copy_context()
+    done = threading.Event()
+
+    def run() -> None:
+        try:
+            box["value"] = ctx.run(func, *args)
+        except BaseException as exc:  # (re-raised in the caller's thread)
+            box["error"] = exc
+        finally:
+            done.set()
+
+    threading.Thread(target=run, name="hyperrotor-call").start()
+    # (an Event, not Thread.join: a KeyboardInterrupt inside join(timeout) can leave the thread's state lock
+    # taken, and the interpreter's wait for the thread at exit then hung for good)
+    while not done.wait(_WAIT_SLICE):
+        pass
+    if "error" in box:
+        raise box.pop("error")
+    return box["value"]
+
+
 def _run_threads(func, chunks, args, nthreads, bar):
+    """``func(*chunk, *args)`` for every chunk on ``nthreads`` threads, the results in chunk order.
+
+    The caller waits in short slices (Ctrl-C reaches it within ~0.1 s) and, on an interrupt or an error,
+    tells the workers to take no new chunk (a ``ThreadPoolExecutor`` ran its queued chunks on); the chunks
+    already running finish in the background, and an exiting process waits for them (:func:`interruptible`).
+    """
     parts: list = [None] * len(chunks)
-    pool = ThreadPoolExecutor(max_workers=nthreads, thread_name_prefix="hyperrotor")
-    futs = {pool.submit(func, *ch, *args): k for k, ch in enumerate(chunks)}
-    pending = set(futs)
+    todo: queue.SimpleQueue = queue.SimpleQueue()
+    for k in range(len(chunks)):
+        todo.put(k)
+    finished: queue.SimpleQueue = queue.SimpleQueue()
+    stop = threading.Event()
+
+    def work() -> None:
+        while not stop.is_set():
+            try:
+                k = todo.get_nowait()
+            except queue.Empty:
+                return
+            try:
+                finished.put((k, func(*chunks[k], *args), None))
+            except BaseException as exc:  # (re-raised in the caller's thread)
+                finished.put((k, None, exc))
+
+    for i in range(nthreads):
+        threading.Thread(target=work, name=f"hyperrotor-{i}").start()
     try:
-        while pending:
-            # short waits keep the main thread responsive to Ctrl-C
-            done, pending = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
-            for f in done:
-                k = futs[f]
-                parts[k] = f.result()
-                if bar is not None:
-                    bar.update(chunks[k][0].shape[0])
-    except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    pool.shutdown(wait=True)
+        for _ in range(len(chunks)):
+            while True:
+                try:
+                    k, value, error = finished.get(timeout=_WAIT_SLICE)
+                    break
+                except queue.Empty:
+                    continue
+            if error is not None:
+                raise error
+            parts[k] = value
+            if bar is not None:
+                bar.update(chunks[k][0].shape[0])
+    finally:
+        stop.set()
     return parts
 
 

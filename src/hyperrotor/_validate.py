@@ -359,6 +359,26 @@ def finite_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = 
     return arr
 
 
+def exact_or_float_array(name: str, value: Any, *, what: str = "numeric array") -> np.ndarray:
+    """``value`` as a finite numeric array that keeps exact integers exact: integer input as ``int64``
+    (``uint64`` as ``float64``), so that negating or adding entries cannot wrap around (``-np.uint8(1)``
+    is 255; an ``int8`` ``-128`` stays ``-128``), real and complex floats as they are, finite. Text, booleans,
+    dates, masked and ragged input are refused with ``name`` (:func:`numeric_input`)."""
+    numeric_input(name, value)
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError):  # (ragged nesting)
+        raise TypeError(f"{name} must be a {what}, got {fmt(value)}") from None
+    if arr.dtype.kind not in "iufc":
+        raise TypeError(f"{name} must be a {what}, got {fmt(value)} of dtype {arr.dtype}")
+    if arr.dtype.kind in "iu":
+        return arr.astype(np.float64 if arr.dtype == np.uint64 else np.int64)
+    if not np.all(np.isfinite(arr)):
+        idx = tuple(int(b) for b in np.argwhere(~np.isfinite(arr))[0])
+        raise ValueError(f"{name} must be finite; {name}{list(idx)} = {fmt(arr[idx])}")
+    return arr
+
+
 def components(name: str, value: Any, n: int, *, what: str = "plane components") -> np.ndarray:
     """A finite float array of shape batch + ``(n,)`` (one vector of ``n`` components per member).
 
@@ -369,6 +389,15 @@ def components(name: str, value: Any, n: int, *, what: str = "plane components")
     if arr.ndim == 0 or arr.shape[-1] != n:
         raise ValueError(f"{name} must have shape ({n},) or batch + ({n},) ({n} {what}), got shape {arr.shape}")
     return arr
+
+
+def time_count(t: Any, *, name: str = "t") -> int:
+    """The number of entries of the output times ``t`` before any copy of them (a huge grid is priced by its size
+    first), or the ``TypeError`` of :func:`time_grid` for input that is no array (a ragged list)."""
+    try:
+        return int(np.size(t)) if isinstance(t, (np.ndarray, list, tuple)) else 1
+    except (TypeError, ValueError):  # (ragged nesting: NumPy's "inhomogeneous shape")
+        raise TypeError(f"{name} must be a 1-D array of real output times, got {fmt(t)}") from None
 
 
 def time_grid(t: Any, *, name: str = "t", allow_decreasing: bool = True) -> np.ndarray:

@@ -291,12 +291,9 @@ def to_matrix(components: Any, *, convention: str = "paper"):
             M[i - 1, j - 1] = int(s) * c
             M[j - 1, i - 1] = -int(s) * c
         return M
-    _validate.numeric_input("components", components)  # booleans, dates, masked arrays (np.asarray drops a mask)
-    arr = np.asarray(components)
+    arr = _validate.exact_or_float_array("components", components, what="numeric array (or SymPy expressions)")
     if arr.ndim == 0:
         raise ValueError(f"components must be a sequence of N(N-1)/2 numbers, got the scalar {components!r}")
-    if arr.dtype.kind not in "biufc":
-        raise TypeError(f"components must be numeric (or SymPy expressions), got dtype {arr.dtype}")
     N = dimension_from_count(arr.shape[-1])
     signs = plane_signs(N, convention=convention)
     iu = np.array(planes(N)) - 1
@@ -335,14 +332,12 @@ def to_components(matrix: Any, *, convention: str = "paper", atol: float | None 
             raise ValueError(f"matrix is not antisymmetric: M + M^T != 0 at 1-based entries {bad[:5]}")
         signs = plane_signs(N, convention=convention)
         return sp.Matrix([int(s) * M[i - 1, j - 1] for (i, j), s in zip(planes(N), signs)])
-    _validate.numeric_input("matrix", matrix)  # booleans, dates, masked arrays (np.asarray drops a mask)
-    arr = np.asarray(matrix)
-    if arr.dtype.kind not in "biufc":
-        raise TypeError(f"matrix must be numeric (or a SymPy matrix), got {_validate.fmt(matrix)} of dtype {arr.dtype}")
+    arr = _validate.exact_or_float_array("matrix", matrix, what="numeric matrix (or a SymPy matrix)")
     if arr.ndim < 2 or arr.shape[-1] != arr.shape[-2] or arr.shape[-1] < 2:
         raise ValueError(f"matrix must be an array of shape (..., N, N) with N >= 2, got shape {arr.shape}")
     N = arr.shape[-1]
     asym = np.abs(arr + np.swapaxes(arr, -1, -2))
+    atol = _validate.positive("atol", atol, allow_none=True, allow_zero=True)
     if arr.dtype.kind in "fc":
         tol = atol if atol is not None else 1e-12 * max(1.0, float(np.max(np.abs(arr), initial=0.0)))
     else:
@@ -401,10 +396,7 @@ def structure_constants(N: int) -> np.ndarray:
 
 def _component_array(name: str, value: Any) -> np.ndarray:
     """A numeric array of component vectors (last axis), refused with the argument's name otherwise."""
-    _validate.numeric_input(name, value)  # booleans, dates, masked arrays (np.asarray drops a mask)
-    arr = np.asarray(value)
-    if arr.dtype.kind not in "biufc":
-        raise TypeError(f"{name} must be a numeric component vector (or SymPy), got {_validate.fmt(value)}")
+    arr = _validate.exact_or_float_array(name, value, what="numeric component vector (or SymPy)")
     if arr.ndim == 0:
         raise ValueError(f"{name} must be a vector of N(N-1)/2 plane components, got the scalar {_validate.fmt(value)}")
     return arr

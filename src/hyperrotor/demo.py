@@ -173,6 +173,11 @@ def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
 
     body, axis = _body(kappa, axis)
     omega0 = _v.components("omega0", omega0, 10)
+    energy0 = float(body.energy(omega0))
+    if not energy0 >= np.finfo(float).tiny:  # (the drifts are relative to the energy and |L|^2 at t = 0)
+        raise ValueError(f"omega0 must set the body in motion with a kinetic energy within double precision: "
+                         f"omega0 = {_v.fmt(omega0)} gives {energy0:.3g} (relative drifts would be 0/0); "
+                         f"use an omega0 of ordinary size, e.g. the default")
     t_end = _v.positive("t_end", t_end)
     n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
     _pricing.check("compare_quartet_motion", t_end=t_end, rate=_fastest_rate(body, omega0))

@@ -152,6 +152,16 @@ def _manakov_traces(L: Any, J: Any, lam: Any = 1):
     return np.stack(out, axis=-1)
 
 
+def _within_double(what: str, out: np.ndarray, name: str, values: np.ndarray, through: str = "it") -> np.ndarray:
+    """``out`` when finite, else a ``ValueError`` naming the argument ``name`` whose size took ``through`` beyond
+    double precision (the input is finite: only the computation can overflow; NumPy gave inf or NaN with a
+    RuntimeWarning)."""
+    if np.all(np.isfinite(out)):
+        return out
+    raise ValueError(f"{what}: {name} too large, max |{name}| = {float(np.max(np.abs(values))):.3g}: computing "
+                     f"{through} overflows double precision (about 1.8e308); rescale (e.g. the unit of time) first")
+
+
 class RigidBody:
     r"""A rigid body in N dimensions with principal plane moments ``inertia``.
 
@@ -209,7 +219,8 @@ class RigidBody:
                 raise ValueError(f"axes must be {self.N} increasing positive integers, got {axes!r}")
             axes = tuple(int(a) for a in axes)
         self.axes = axes
-        self.ambient_dimension = int(ambient_dimension) if ambient_dimension is not None else max(axes)
+        self.ambient_dimension = (_validate.integer("ambient_dimension", ambient_dimension, minimum=2, maximum=10**6)
+                                  if ambient_dimension is not None else max(axes))
         if self.ambient_dimension < max(axes):
             raise ValueError(f"ambient_dimension {ambient_dimension} < largest axis label {max(axes)}")
         self.locked_axes = tuple(_locked)
@@ -404,14 +415,17 @@ class RigidBody:
 
         Eq. (6) read with full summation over ``ij`` and ``kl`` and the
         eq.-(3) tensor counts every plane twice and gives twice this value.
-        numpy ``(...)`` or a SymPy expression.
+        numpy ``(...)`` or a SymPy expression; a ``ValueError`` names ``omega`` when the energy is beyond
+        double precision (instead of ``inf`` with a RuntimeWarning).
         """
         if is_symbolic(omega) or self.inertia.is_symbolic:
             w = list(omega)
             self._check_len(w)
             return sp.Rational(1, 2) * sum((I * x**2 for I, x in zip(self.inertia.symbolic_moments, w)), sp.Integer(0))
         w = self._check_omega(omega)
-        return 0.5 * np.sum(self.inertia.moments * w**2, axis=-1)
+        with np.errstate(over="ignore"):
+            E = 0.5 * np.sum(self.inertia.moments * w**2, axis=-1)
+        return _within_double("energy", E, "omega", w)
 
     def matrix(self, components: Any):
         r"""``N x N`` matrix of a component vector in this body's convention.
@@ -453,6 +467,12 @@ class RigidBody:
         Returns
         -------
         numpy.ndarray ``(..., N // 2)`` or a list of SymPy expressions.
+
+        Raises
+        ------
+        ValueError
+            ``values`` so large that the traces :math:`\operatorname{tr} L^k`, ``k <= N``, overflow double
+            precision (instead of NaN or inf with a RuntimeWarning).
         """
         if of not in ("omega", "L"):
             raise ValueError(f"of must be 'omega' or 'L', got {of!r}")
@@ -476,13 +496,16 @@ class RigidBody:
         M = to_matrix(L, convention="standard")
         # Newton's identities: k e_k = sum_{i=1}^k (-1)^(i-1) e_{k-i} p_i, p_i = tr(M^i)
         p, P = [None], np.broadcast_to(np.eye(N), M.shape)
-        for _ in range(N):
-            P = P @ M
-            p.append(np.trace(P, axis1=-2, axis2=-1))
-        e = [np.ones(M.shape[:-2])]
-        for k in range(1, N + 1):
-            e.append(sum((-1) ** (i - 1) * e[k - i] * p[i] for i in range(1, k + 1)) / k)
-        return np.stack([e[2 * k] for k in range(1, N // 2 + 1)], axis=-1)
+        with np.errstate(over="ignore", invalid="ignore"):
+            for _ in range(N):
+                P = P @ M
+                p.append(np.trace(P, axis1=-2, axis2=-1))
+            e = [np.ones(M.shape[:-2])]
+            for k in range(1, N + 1):
+                e.append(sum((-1) ** (i - 1) * e[k - i] * p[i] for i in range(1, k + 1)) / k)
+        # (the traces of M^N overflow first; a rescaled L would underflow the small terms' cancelling sums instead)
+        return _within_double("casimirs", np.stack([e[2 * k] for k in range(1, N // 2 + 1)], axis=-1), "values",
+                              L, "the traces of the powers of L up to L^N")
 
     def manakov_integrals(self, values: Any, lam: Any = 1.0, *, of: str = "omega"):
         r"""Manakov's integrals :math:`\operatorname{tr}\bigl((L + \lambda J^2)^k\bigr)`, ``k = 2..N``.

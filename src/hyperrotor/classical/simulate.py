@@ -118,7 +118,7 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
     batch = w0.shape[:-1]
     B = int(np.prod(batch)) if batch else 1
     with_att = attitude is not False and attitude is not None
-    K = int(np.size(t)) if isinstance(t, (np.ndarray, list, tuple)) else 1  # before any copy of a huge grid
+    K = _validate.time_count(t)  # before any copy of a huge grid
     nbytes = 8.0 * B * K * (2 * n + (N * N if with_att else 0))
     check = check_bytes(int(min(B, checked)), n) if K > 1 else 0.0
     if nbytes + check > max_output_bytes:

@@ -18,6 +18,7 @@ import numpy as np
 import scipy.sparse as sps
 
 from .. import _pricing
+from .._parallel import interruptible
 from .._options import options as _options
 from .propagators import Eigen, Krylov
 from .sectors import nonempty_blocks, restrict
@@ -185,7 +186,7 @@ class Block:
         return cplx * _EIGH_FLOPS * self.n**3 + 8.0 * nt * self.n**2
 
     def diagonalize(self, stats: dict) -> None:
-        E, V = np.linalg.eigh(self.matrix.toarray())  # LAPACK ?syevd: real for the real sectors
+        E, V = interruptible(np.linalg.eigh, self.matrix.toarray())  # LAPACK ?syevd: real for the real sectors
         stats["n_eigh"] = stats.get("n_eigh", 0) + 1
         self.eig = (E, V)
 

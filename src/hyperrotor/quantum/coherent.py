@@ -206,6 +206,17 @@ def _givens_angles(Q: np.ndarray) -> list[tuple[tuple[int, int], float]]:
     return factors
 
 
+def _priced_rotation(rep: Any, Q: np.ndarray) -> tuple[list, dict]:
+    r"""``(Givens factors of Q, the generators of rep)``, refused first (``"apply_rotation"``) when the Lanczos
+    propagations would be over budget: their products follow the phase :math:`\sum_k |\theta_k|\,\|X_{p_k}\|`
+    (:math:`\|X\|`: the largest absolute row sum, a bound of the spectral radius)."""
+    factors = _givens_angles(Q)
+    gens = rep.generators()
+    phase = sum(abs(theta) * float(abs(gens[plane]).sum(axis=1).max()) for plane, theta in factors)
+    _pricing.check("apply_rotation", dim=int(rep.dim), phase=phase, factors=len(factors))
+    return factors, gens
+
+
 def apply_rotation(rep: Any, Q: Any, psi: Any) -> np.ndarray:
     r"""Apply the representation of a rotation, :math:`U(Q)\psi`, with :math:`U(e^X) = e^{\rho(X)}`.
 
@@ -223,9 +234,9 @@ def apply_rotation(rep: Any, Q: Any, psi: Any) -> np.ndarray:
     if np.abs(Q @ Q.T - np.eye(N)).max() > 1e-10 or np.linalg.det(Q) < 0:
         raise ValueError(f"Q must be a rotation (orthogonal with det +1), got {_validate.fmt(Q)}")
     vec = _vector(psi, int(rep.dim))
-    gens = rep.generators()
+    factors, gens = _priced_rotation(rep, Q)
     with single_thread_blas():
-        for plane, theta in reversed(_givens_angles(Q)):
+        for plane, theta in reversed(factors):
             # exp(theta X) v = exp(-i H |theta|) v with the Hermitian H = i sign(theta) X (Lanczos)
             Hp = sps.csr_matrix(gens[plane]) * (1j * np.sign(theta))
             prop = krylov_propagator(Hp, vec, np.array([0.0, abs(theta)]), 1.0, {},
@@ -280,6 +291,7 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1, frame: str = "space", r
         raise ValueError(f"L must be finite and non-zero, got {comps!r}")
     target = -comps if frame == "body" else comps
     Q, lam = normal_form_rotation(target)
+    _priced_rotation(rep, Q)  # the rotation's price before the highest-weight search (apply_rotation below)
     psi_w, w = highest_weight_state(rep)
     if not np.any(np.abs(w) > 1e-9):
         raise ValueError("the representation is trivial (highest weight 0); no coherent state points along L")

@@ -292,6 +292,7 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     ls = np.atleast_1d(np.asarray(ls))
     if ls.ndim != 1 or ls.size == 0:
         raise ValueError(f"ls must be a non-empty sequence of integers >= 1, got {_validate.fmt(ls)}")
+    _pricing.check("ehrenfest_time", irreps=ls.size)  # (the count alone, before a loop over ls)
     ls = np.array([_validate.integer("ls[k]", x, minimum=1) for x in ls])
     w = np.zeros(N // 2) if weight is None else _validate.real_array("weight", weight, ndim=1)
     if weight is None:
@@ -302,9 +303,14 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     t = _validate.time_grid(t, allow_decreasing=False)
     rtol = options["quantum_ehrenfest_rtol"] if rtol is None else _validate.positive("rtol", rtol)
     hws = [tuple(_highest_weight_entry(l * x) for x in w) for l in ls]
-    for hw in hws:  # every irrep's size before any work (the classical run compiles and integrates)
-        if gt_size(N, hw) > DEFAULT_MAX_DIM:
+    sizes = [gt_size(N, hw) for hw in hws]
+    for hw, size in zip(hws, sizes):  # every irrep's size before any work (the classical run compiles and integrates)
+        if size > DEFAULT_MAX_DIM:
             irrep(N, hw)  # raises irrep's own error, naming the dimension and max_dim
+    # the whole loop over ls (each irrep's own steps are priced again at their doors)
+    _pricing.check("ehrenfest_time", irreps=ls.size, dims=float(sum(float(d) for d in sizes)),
+                   dim_squares=float(sum(float(d) ** 2 for d in sizes)),
+                   n_times=t.size, n=n_planes(N))
     try:
         traj = simulate(moments, L0 / moments, t, rtol=rtol)
     except FloatingPointError as exc:  # moments (or L0) out of the range of double precision

@@ -113,7 +113,7 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     no_e_ops = e_ops is None or (isinstance(e_ops, (list, tuple, dict)) and not e_ops)
     store = bool(given) if given is not None else no_e_ops
     if hasattr(H, "shape") and len(H.shape) == 2:  # priced at the door, before any block or solver is built
-        _pricing.check("evolve", dim=int(H.shape[0]), n_times=int(np.size(t)), states=store)
+        _pricing.check("evolve", dim=int(H.shape[0]), n_times=_validate.time_count(t), states=store)
     mat, dims = hermitian_matrix(H)  # checked once here; the propagators take it as it is
     if not cls.native:
         vec = unit_state(psi0, mat.shape[0])

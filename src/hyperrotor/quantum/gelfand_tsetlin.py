@@ -248,7 +248,7 @@ def gt_index(N: int, highest_weight: Any, pattern: Any) -> Any:
     N = check_dimension(N)
     m = check_highest_weight(N, highest_weight)
     P = patterns(N, m)
-    Q = np.asarray(pattern, dtype=float)
+    Q = _validate.finite_array("pattern", pattern)  # (complex, booleans, text, ragged: refused by name)
     single = Q.ndim == 1
     Q = np.atleast_2d(Q)
     if Q.shape[1] != P.shape[1]:

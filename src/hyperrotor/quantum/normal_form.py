@@ -118,6 +118,8 @@ def _symbols(coordinates: Any) -> tuple:
         coords = tuple(coordinates)
     except TypeError:
         raise TypeError(f"coordinates must be a sequence of SymPy symbols, got {type(coordinates).__name__}") from None
+    if not coords:  # (SymPy would choose the expression's own symbols as generators)
+        raise ValueError("coordinates must name at least one SymPy symbol (e.g. coordinate_symbols(N)), got none")
     bad = [c for c in coords if not isinstance(c, sp.Symbol)]
     if bad:
         raise TypeError(f"coordinates must be SymPy symbols (e.g. coordinate_symbols(N)), got {bad[0]!r} of type "
@@ -166,6 +168,9 @@ def polynomial_to_dict(expr: Any, coordinates: Sequence[sp.Symbol]) -> dict:
 def dict_to_polynomial(poly: Mapping, coordinates: Sequence[sp.Symbol]) -> sp.Expr:
     """SymPy expression of a coefficient dict ``{exponent tuple: coefficient}``."""
     coords = _symbols(coordinates)
+    if not isinstance(poly, Mapping):
+        raise TypeError(f"poly must be a mapping {{exponent tuple: coefficient}}, got {poly!r} of type "
+                        f"{type(poly).__name__}")
     terms = []
     for m, c in poly.items():
         if len(m) != len(coords):

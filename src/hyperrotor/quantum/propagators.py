@@ -38,6 +38,7 @@ from scipy.sparse.linalg import expm_multiply
 
 from .. import _lazy, _validate
 from .._options import options as _options
+from .._parallel import interruptible
 from .._pricing import refuse
 from ._krylov import krylov_propagator
 
@@ -146,7 +147,7 @@ def propagator_class(method: Any) -> type[Propagator]:
 # ----------------------------------------------------------------------------
 def _eigen_propagator(mat, v0, times, hbar, stats) -> Iterator[np.ndarray]:
     dense = mat.toarray()
-    E, V = np.linalg.eigh(dense)
+    E, V = interruptible(np.linalg.eigh, dense)
     stats["n_eigh"] = stats.get("n_eigh", 0) + 1
     c = V.conj().T @ v0
     for t in times:

@@ -60,6 +60,7 @@ import scipy.sparse as sps
 
 from .. import _lazy, _pricing, _validate
 from .._options import options
+from .._parallel import interruptible
 from ..conventions import check_dimension, plane_index, planes, structure_constants
 from .operator_input import as_format, check_antihermitian, check_format, operator_mapping, real_if_possible
 from .weights import casimir_eigenvalue, check_highest_weight, positive_roots
@@ -269,7 +270,7 @@ class Representation:
             bound = max(float(abs(Hk).sum(axis=1).max()) for Hk in H)
             R = 4 * (int(np.ceil(bound)) + 1) + 1
             Hc = sum((float(R) ** (-k)) * Hk.toarray() for k, Hk in enumerate(H))
-            _, V = np.linalg.eigh(Hc)
+            _, V = interruptible(np.linalg.eigh, Hc)
             w = np.stack([np.einsum("ia,ia->a", V.conj(), Hk @ V).real for Hk in H], axis=1)
         w2 = np.rint(2 * w) / 2
         if w.size and np.max(np.abs(w - w2)) > 1e-6:

@@ -56,7 +56,7 @@ from ._sector_blocks import (
     sector_price,
 )
 from .hamiltonian import blocks_of, hermitian_matrix, representation_of
-from .propagators import PROPAGATORS, Auto, Krylov, propagator_class
+from .propagators import PROPAGATORS, Auto, ExpmMultiply, Krylov, propagator_class
 
 __all__ = ["SectorPropagator"]
 
@@ -403,6 +403,23 @@ class SectorPropagator:
                 b.embed(out, C)
         return out
 
+    def _stepping_phases(self, t: np.ndarray) -> dict:
+        r"""``{"krylov_phase": ..., "expm_phase": ...}``: :math:`\sum_b \|H_b\|\,|t_\text{end} - t_0|/|\hbar|` over
+        the blocks propagated by Lanczos and by ``expm_multiply``, whose numbers of products grow like it
+        (:math:`\|H_b\|`: the largest absolute row sum, a bound of the spectral radius); 0 for blocks that are
+        diagonalized and while the propagator rents (its Lanczos work is bounded by the sectors' price,
+        :meth:`_run`)."""
+        phases = {"krylov_phase": 0.0, "expm_phase": 0.0}
+        if t.size < 2:
+            return phases
+        span = abs(float(t[-1] - t[0])) / abs(self.hbar)
+        for b in self._parts or ():
+            key = ("krylov_phase" if isinstance(b.engine, Krylov) else
+                   "expm_phase" if isinstance(b.engine, ExpmMultiply) else None)
+            if key is not None and b.n:
+                phases[key] += float(abs(b.matrix).sum(axis=1).max()) * span
+        return phases
+
     def evolve(self, psi0: Any, t: Any, *, e_ops: Any = None, store_states: bool | None = None,
                store_final_state: bool = True):
         """:func:`evolve` with this propagator: ``psi0`` normalized, a ``qutip.solver.Result``.
@@ -416,7 +433,7 @@ class SectorPropagator:
         t = _validate.time_grid(t, allow_decreasing=False)
         e_ops = e_ops_list(e_ops, self.dims)
         store = bool(store_states) if store_states is not None else not e_ops
-        _pricing.check("evolve", dim=self.dim, n_times=t.size, states=store)
+        _pricing.check("evolve", dim=self.dim, n_times=t.size, states=store, **self._stepping_phases(t))
         ropts = {"store_states": store_states, "store_final_state": store_final_state, "normalize_output": False}
         result = qutip.solver.Result(e_ops, ropts, solver=f"hyperrotor.evolve[{self.method}]", stats=dict(self.stats))
         ket_dims = [self.dims[0], [1]]

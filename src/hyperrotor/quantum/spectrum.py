@@ -8,6 +8,7 @@ import scipy.sparse as sps
 
 from .. import _pricing, _validate
 from .._options import options
+from .._parallel import interruptible
 from .hamiltonian import blocks_of, hermitian_matrix, representation_of
 from .sectors import nonempty_blocks, restrict
 
@@ -83,7 +84,7 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
         if len(b) == 1:
             evs.append(np.array([mat[b[0], b[0]].real]))
         else:
-            evs.append(np.linalg.eigvalsh(mat[b][:, b].toarray()))
+            evs.append(interruptible(np.linalg.eigvalsh, mat[b][:, b].toarray()))
     return _levels(np.sort(np.concatenate(evs).real), atol, rtol)
 
 
@@ -98,7 +99,7 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
     evs = []
     for basis, degeneracy, _ in parts:
         block = restrict(mat, basis)  # mat is checked; real symmetric for GT irreps (cheaper eigvalsh)
-        e = np.linalg.eigvalsh(block)
+        e = interruptible(np.linalg.eigvalsh, block)
         evs.append(np.repeat(e, int(degeneracy)))
     return np.concatenate(evs).real
 

@@ -40,8 +40,9 @@ from typing import Any
 import numpy as np
 from scipy.integrate import trapezoid  # numpy's own is numpy >= 2 only
 
-from .. import _validate
+from .. import _pricing, _validate
 from .._options import options
+from .._parallel import interruptible
 from .._pricing import refuse
 from .._warn import warn
 
@@ -390,10 +391,8 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
     """
     ens = _ensemble(ensemble)
     n = _validate.integer("n", n, minimum=3)
-    lim = int(options["quantum_max_dense_dim"])
-    if ens != "poisson" and n > lim:
-        raise refuse("sample_spectrum", f"a {ens.upper()} spectrum of n = {n} levels (a dense n x n matrix diagonalized)",
-                     n, "quantum_max_dense_dim", "dimension", "ask for a smaller n or the 'poisson' ensemble")
+    if ens != "poisson":  # (the n x n matrix, its eigvalsh: dimension, memory and time budgets, before any draw)
+        _pricing.check("dense_diagonalization", dim=n, complex=ens == "gue")
     if n > options["statistics_max_size"]:
         raise refuse("sample_spectrum", f"a spectrum of n = {n} levels", n, "statistics_max_size", "levels",
                      "ask for a smaller n")
@@ -405,10 +404,10 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
         E = np.cumsum(g.exponential(size=n))
     elif ens == "goe":
         A = g.standard_normal((n, n))
-        E = np.linalg.eigvalsh(0.5 * (A + A.T))
+        E = interruptible(np.linalg.eigvalsh, 0.5 * (A + A.T))  # (Ctrl-C: _parallel.interruptible)
     else:
         A = g.standard_normal((n, n)) + 1j * g.standard_normal((n, n))
-        E = np.linalg.eigvalsh(0.5 * (A + A.conj().T))
+        E = interruptible(np.linalg.eigvalsh, 0.5 * (A + A.conj().T))
     if bulk < 1:
         k = int(round(n * (1 - bulk) / 2))
         if n - 2 * k < 1:

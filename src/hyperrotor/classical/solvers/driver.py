@@ -153,6 +153,8 @@ def event_specs(events) -> list[EventSpec]:
         return []
     if callable(events):
         events = [events]
+    if not isinstance(events, (list, tuple)):
+        raise TypeError(f"events must be a callable g(t, L) -> float or a list of them, got {events!r}")
     return [EventSpec(g, i) for i, g in enumerate(events)]
 
 

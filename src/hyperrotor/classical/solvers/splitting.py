@@ -186,8 +186,7 @@ def casimir_shift(moments: Any, L: Any = None) -> float | np.ndarray:
     float, or ndarray (B,) for a 2-D ``L``
         ``c``, equal to one of the :math:`1/I_a`.
     """
-    if np.iscomplexobj(moments):  # NumPy would drop the imaginary parts with a ComplexWarning
-        raise TypeError(f"moments must be real, got complex values {_validate.fmt(moments)}")
+    moments = _validate.finite_array("moments", moments)  # (complex, ragged, text: refused, named)
     moments = _validate.moments(moments, name="moments")
     n = moments.size
     _pricing.check("casimir_shift", n=n)

@@ -11,7 +11,6 @@ from fractions import Fraction
 from typing import Any
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sps
 
 from ... import _pricing, _validate
@@ -273,9 +272,9 @@ def _levels_task(idx: np.ndarray, H, bases: list, width: int, blas_threads: int 
         Hs = restrict(H, B, real=real)
         limit = threadpool_limits(limits=blas_threads, user_api="blas") if blas_threads else nullcontext()
         with limit:
-            # divide and conquer ("evd"), except for 1 x 1 blocks, which scipy < 1.14 refuses with it; Hs.T is
-            # the same symmetric matrix in Fortran order, so LAPACK works in place (no second dense copy)
-            w = sla.eigvalsh(Hs.T, driver="evd" if Hs.shape[0] > 1 else None, overwrite_a=True, check_finite=False)
+            # NumPy's eigvalsh (LAPACK ?syevd, divide and conquer) releases the GIL, scipy's holds it: run on a
+            # worker thread (map_rows), it keeps Ctrl-C responsive (_parallel.interruptible)
+            w = np.linalg.eigvalsh(Hs)
         out[r, : len(w)] = w
     return out
 

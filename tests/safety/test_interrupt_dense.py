@@ -1,0 +1,83 @@
+"""Ctrl-C reaches the caller during a dense diagonalization (review of session 38).
+
+LAPACK's ``eigh`` holds off Python's signal handling until it returns (36 s measured for a sector of
+dimension 12001); :func:`hyperrotor._parallel.interruptible` runs such calls on a worker thread while
+the main thread waits in slices.
+"""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import hyperrotor as hr
+from hyperrotor import _parallel
+from hyperrotor._options import options
+
+
+def test_interruptible_returns_raises_and_sees_the_callers_options():
+    assert _parallel.interruptible(np.add, 2, 3) == 5
+    with pytest.raises(ZeroDivisionError):
+        _parallel.interruptible(lambda: 1 / 0)
+    with hr.options(max_seconds=12.5):
+        seen = _parallel.interruptible(lambda: (options["max_seconds"], threading.current_thread().daemon))
+    assert seen == (12.5, False)
+    # from a thread other than the main one (which Ctrl-C does not reach): a plain call
+    out = []
+    t = threading.Thread(target=lambda: out.append(_parallel.interruptible(threading.current_thread)))
+    t.start()
+    t.join()
+    assert out == [t]
+
+
+def test_map_rows_workers_keep_chunk_order_and_raise_the_first_error():
+    rows = np.arange(40.0)
+    np.testing.assert_array_equal(_parallel.map_rows(lambda x: 2 * x, rows, workers=2, chunk_size=3), 2 * rows)
+
+    def bad(x):
+        if x[0] >= 20:
+            raise ValueError(f"row {x[0]:g}")
+        return x
+
+    with pytest.raises(ValueError, match="row"):
+        _parallel.map_rows(bad, rows, workers=2, chunk_size=5)
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_a_dense_eigvalsh_reaches_the_caller_long_before_lapack_returns():
+    """The child times one GUE eigvalsh of the size it then interrupts: its ``except KeyboardInterrupt`` must
+    run well before a second one could end (a relative bound, not a timing of the machine); the process then
+    exits cleanly (after the routine, which cannot be stopped, has ended)."""
+    code = (
+        "import time, sys, hyperrotor.quantum as hq\n"
+        "t0 = time.perf_counter(); hq.sample_spectrum('gue', 2200, rng=1)\n"
+        "print(time.perf_counter() - t0, flush=True)\n"
+        "print('running', flush=True)\n"
+        "try:\n"
+        "    hq.sample_spectrum('gue', 2200, rng=2)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n"
+        "    sys.exit(3)\n"
+    )
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    try:
+        once = float(proc.stdout.readline())
+        assert proc.stdout.readline().strip() == "running"
+        time.sleep(0.1 * once)
+        sent = time.perf_counter()
+        proc.send_signal(signal.SIGINT)
+        assert proc.stdout.readline().strip() == "interrupted"
+        latency = time.perf_counter() - sent
+        proc.communicate(timeout=120)  # a guard against a hang
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 3
+    assert latency < 0.5 * once, (latency, once)
