@@ -348,8 +348,9 @@ def _run_threads(func, chunks, args, nthreads, bar):
             except BaseException as exc:  # (re-raised in the caller's thread)
                 finished.put((k, None, exc))
 
-    for i in range(nthreads):
-        threading.Thread(target=work, name=f"hyperrotor-{i}").start()
+    for i in range(nthreads):  # each in a copy of the caller's context: its option values exactly (the portable
+        # values alone, those that differ from the defaults, lost a block that set a key back to its default)
+        threading.Thread(target=contextvars.copy_context().run, args=(work,), name=f"hyperrotor-{i}").start()
     try:
         for _ in range(len(chunks)):
             while True:

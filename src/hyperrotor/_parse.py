@@ -90,7 +90,7 @@ _TOKEN = re.compile(
         (?P<name>[A-Za-z_][A-Za-z0-9_]*) |
         (?P<op>\*\*|[-+*/()])
     )""",
-    re.VERBOSE,
+    re.VERBOSE | re.ASCII,  # (ASCII digits and spaces only: "\d" also matched Arabic-Indic and other digits)
 )
 
 

@@ -21,6 +21,8 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from . import _parse
+
 __all__ = [
     "fmt",
     "integer",
@@ -453,7 +455,9 @@ def plane(value: Any, N: int | None) -> tuple[int, int]:
     try:
         if pair is None or len(pair) != 2:
             raise ValueError
-        i, j = (integer("plane index", v) if not isinstance(v, str) else int(v) for v in pair)
+        # (text through the one parser: int() also read "1_0" and non-ASCII digits)
+        i, j = (integer("plane index", v) if not isinstance(v, str) else _parse.integer(v.strip(), "plane index")
+                for v in pair)
     except (TypeError, ValueError):
         raise ValueError(f"a plane is a pair (i, j) of integers with 1 <= i < j <= {bound}, got {fmt(value)}") from None
     if not (1 <= i < j and (N is None or j <= N)):

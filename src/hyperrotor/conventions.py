@@ -176,6 +176,13 @@ def plane_label(plane: Sequence[int], N: int | None = None) -> str:
     return f"{i}{sep}{j}"
 
 
+def function_argument(function_of: Any) -> Any:
+    """The argument of symbolic functions ``w_ij(function_of)``: ``None``, a SymPy object, a number, or text read
+    by :func:`hyperrotor._parse.expression` (``"t"``). ``sympy.Function(...)("...")`` would ``sympify`` -- run --
+    the text."""
+    return None if function_of is None else _parse.to_sympy(function_of, "function_of")
+
+
 def plane_symbols(name: str, N: int, *, function_of: sp.Symbol | None = None, **assumptions) -> tuple:
     """SymPy symbols (or functions of ``function_of``) ``name_ij``, one per plane, in plane order.
 
@@ -185,6 +192,7 @@ def plane_symbols(name: str, N: int, *, function_of: sp.Symbol | None = None, **
     if not isinstance(name, str) or not name.isidentifier():
         raise TypeError(f"name must be a non-empty identifier string such as 'w' or 'L', got {_validate.fmt(name)}")
     _pricing.check("plane_symbols", N=check_dimension(N))
+    function_of = function_argument(function_of)
     out = []
     for p in planes(N):
         label = f"{name}_{plane_label(p, N)}"

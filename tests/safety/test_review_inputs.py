@@ -134,3 +134,55 @@ def test_symbols_patterns_and_ambient_dimension_are_checked_by_name():
         with pytest.raises(TypeError if isinstance(bad, float) else ValueError, match="ambient_dimension must be"):
             hr.RigidBody([1.0, 2.0, 3.0], ambient_dimension=bad)
     assert hr.RigidBody([1.0, 2.0, 3.0], ambient_dimension=4).ambient_dimension == 4
+
+
+def test_a_text_function_argument_is_read_never_run(tmp_path):
+    import sympy as sp
+
+    from hyperrotor._parse import ParseError
+
+    marker = tmp_path / "ran"
+    payload = f"__import__('os').system('touch {marker}')"
+    with pytest.raises(ParseError, match="function_of"):
+        hr.plane_symbols("w", 3, function_of=payload)
+    with pytest.raises(ParseError, match="function_of"):
+        hr.RigidBody([1.0, 2.0, 3.0]).omega_symbols(function_of=payload)
+    assert not marker.exists()
+    t = sp.Symbol("t")
+    assert hr.plane_symbols("w", 3, function_of="t") == hr.plane_symbols("w", 3, function_of=t)
+    assert hr.RigidBody([1.0, 2.0, 3.0]).omega_symbols(function_of="t")[0] == sp.Function("omega_12")(t)
+
+
+@pytest.mark.parametrize("text", ["1, 1_0", "١٢", "1/1,2x"])
+def test_plane_labels_in_text_go_through_the_one_parser(text):
+    with pytest.raises(ValueError, match="a plane is a pair"):
+        hr.plane_index(text, 10)
+
+
+def test_plane_labels_read_by_the_parser_and_scene_planes_and_axes_are_integers():
+    from hyperrotor._parse import ParseError
+
+    assert hr.plane_index("1,10", 10) == 8 and hr.plane_index(" 2 , 3 ", 4) == 3 and hr.plane_index("12", 5) == 0
+    with pytest.raises(ParseError):
+        hr._parse.expression("١٢", "x", symbols=False)  # (ASCII digits only)
+    w0, t = [0.1, 0.2, 0.3], [0.0, 1.0]
+    with pytest.raises(ValueError, match="a plane is a pair"):
+        hr.Scene([1.0, 2.0, 3.0], w0, t, planes=[(1.9, 2.9)]).evaluate()
+    ok = hr.Scene([1.0, 2.0, 3.0], w0, t, observables=("omega",), planes=[("1", "3")]).evaluate()
+    ref = hr.Scene([1.0, 2.0, 3.0], w0, t, observables=("omega",), planes=[(1, 3)]).evaluate()
+    np.testing.assert_array_equal(ok.omega, ref.omega)
+
+
+def test_worker_threads_see_the_callers_block_even_when_it_sets_a_default_back():
+    from hyperrotor import _parallel
+    from hyperrotor._options import options
+
+    default = options["max_steps"]
+    options["max_steps"] = 7  # the session value
+    try:
+        with hr.options(max_steps=default):
+            seen = _parallel.map_rows(lambda x: np.full(x.shape, float(options["max_steps"])), np.arange(8.0),
+                                      workers=2, chunk_size=2)
+    finally:
+        options["max_steps"] = default
+    np.testing.assert_array_equal(seen, float(default))

@@ -50,6 +50,7 @@ import numpy as np
 from hyperrotor._lazy import sympy as sp  # SymPy loads on first symbolic use (light ``import hyperrotor``)
 from hyperrotor.conventions import (
     check_convention,
+    function_argument,
     is_symbolic,
     plane_label,
     planes,
@@ -279,6 +280,7 @@ class RigidBody:
     def omega_symbols(self, *, function_of: sp.Symbol | None = None) -> tuple:
         """SymPy symbols ``omega_ij`` (or functions of ``function_of``) with the original plane labels."""
         names = [f"omega_{self._label(p)}" for p in self.planes]
+        function_of = function_argument(function_of)  # (text is read, never run)
         if function_of is None:
             return tuple(sp.Symbol(s) for s in names)
         return tuple(sp.Function(s)(function_of) for s in names)

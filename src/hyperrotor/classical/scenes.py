@@ -316,7 +316,7 @@ def _validate(scene: Scene):
     bad = [o for o in obs if o not in SCENE_OBSERVABLES]
     if bad or not obs:
         raise ValueError(f"unknown observable(s) {bad!r}; allowed: {', '.join(SCENE_OBSERVABLES)}")
-    sel_planes = tuple(planes(N)) if scene.planes is None else tuple(tuple(int(v) for v in p) for p in scene.planes)
+    sel_planes = tuple(planes(N)) if scene.planes is None else tuple(_v.plane(p, N) for p in scene.planes)
     cols = np.array([plane_index(p, N) for p in sel_planes], dtype=int)
     pts = None
     ax = None
@@ -326,7 +326,9 @@ def _validate(scene: Scene):
         pts = np.asarray(scene.points, dtype=float)
         if pts.ndim != 2 or pts.shape[1] != N:
             raise ValueError(f"points must have shape (P, {N}), got {pts.shape}")
-        ax = np.array([int(a) for a in scene.axes], dtype=int)
+        if isinstance(scene.axes, str):
+            raise TypeError(f"axes must be a sequence of integer axis labels, got text {_v.fmt(scene.axes)}")
+        ax = np.array([_v.integer("axes[k]", a) for a in scene.axes], dtype=int)
         if ax.size == 0 or np.any(ax < 1) or np.any(ax > N):
             raise ValueError(f"projection axes must be in 1..{N}, got {tuple(scene.axes)!r}")
     T0 = None
