@@ -327,8 +327,8 @@ def _run_threads(func, chunks, args, nthreads, bar):
     """``func(*chunk, *args)`` for every chunk on ``nthreads`` threads, the results in chunk order.
 
     The caller waits in short slices (Ctrl-C reaches it within ~0.1 s) and, on an interrupt or an error,
-    tells the workers to take no new chunk (a ``ThreadPoolExecutor`` ran its queued chunks on); the chunks
-    already running finish in the background, and an exiting process waits for them (:func:`interruptible`).
+    tells the workers to take no new chunk; the chunks already running finish in the background, and an
+    exiting process waits for them (:func:`interruptible`). The workers run in copies of the caller's context.
     """
     parts: list = [None] * len(chunks)
     todo: queue.SimpleQueue = queue.SimpleQueue()
