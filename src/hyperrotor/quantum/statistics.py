@@ -375,9 +375,11 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
     ----------
     ensemble : {"poisson", "goe", "gue"}
     n : int
-        Number of levels (matrix size for GOE/GUE, ``n >= 3``; for GOE/GUE at most
-        ``options["quantum_max_dense_dim"]``, the package's limit of dense diagonalization,
-        for Poisson at most ``options["statistics_max_size"]``).
+        Number of levels (matrix size for GOE/GUE, ``n >= 3``; for GOE/GUE priced as a dense
+        diagonalization, the ``"dense_diagonalization"`` model: at most ``options["quantum_max_dense_dim"]``
+        and within ``max_memory_bytes`` and ``max_seconds``; for Poisson at most
+        ``options["statistics_max_size"]``). The ``eigvalsh`` runs where Ctrl-C reaches the caller at once
+        (:func:`hyperrotor._parallel.interruptible`).
     rng : seed or numpy.random.Generator, keyword-only
     bulk : float in (0, 1], default 1
         Keep only the central fraction of the levels (the semicircle's edges have
