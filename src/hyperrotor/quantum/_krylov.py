@@ -15,7 +15,7 @@ import scipy.linalg as sla
 from scipy.linalg.blas import zgemv
 import scipy.sparse as sps
 
-__all__ = ["krylov_propagator", "matvec_factory", "norm", "single_thread_blas"]
+__all__ = ["krylov_propagator", "matvec_factory", "norm", "row_bound", "single_thread_blas"]
 
 
 def matvec_factory(mat: sps.csr_matrix):
@@ -42,6 +42,12 @@ def single_thread_blas():
 
 
 _CONTROLLER = None
+
+
+def row_bound(mat) -> float:
+    """The largest absolute row sum of ``mat`` (sparse or dense): a bound of its spectral radius, which sets the
+    number of products a Lanczos propagation over a given span needs (the prices of evolve and apply_rotation)."""
+    return float(abs(mat).sum(axis=1).max())
 
 
 def norm(v: np.ndarray) -> float:

@@ -37,7 +37,7 @@ import scipy.sparse.linalg as spla
 from .. import _pricing, _validate
 from .._options import options
 from ..conventions import n_planes, planes, to_matrix
-from ._krylov import krylov_propagator, single_thread_blas
+from ._krylov import krylov_propagator, row_bound, single_thread_blas
 
 options.register(
     "quantum_coherent_rtol", 1e-8,
@@ -212,7 +212,7 @@ def _priced_rotation(rep: Any, Q: np.ndarray) -> tuple[list, dict]:
     (:math:`\|X\|`: the largest absolute row sum, a bound of the spectral radius)."""
     factors = _givens_angles(Q)
     gens = rep.generators()
-    phase = sum(abs(theta) * float(abs(gens[plane]).sum(axis=1).max()) for plane, theta in factors)
+    phase = sum(abs(theta) * row_bound(gens[plane]) for plane, theta in factors)
     _pricing.check("apply_rotation", dim=int(rep.dim), phase=phase, factors=len(factors))
     return factors, gens
 

@@ -267,7 +267,9 @@ class Representation:
                 V = np.eye(self.dim, dtype=complex)
         else:
             _pricing.check("dense_diagonalization", dim=self.dim)
-            bound = max(float(abs(Hk).sum(axis=1).max()) for Hk in H)
+            from ._krylov import row_bound  # (the Krylov module imports scipy.linalg: only when needed)
+
+            bound = max(row_bound(Hk) for Hk in H)
             R = 4 * (int(np.ceil(bound)) + 1) + 1
             Hc = sum((float(R) ** (-k)) * Hk.toarray() for k, Hk in enumerate(H))
             _, V = interruptible(np.linalg.eigh, Hc)

@@ -47,7 +47,7 @@ import scipy.sparse as sps
 from .. import _lazy, _parallel, _pricing, _validate
 from .._options import options as _options
 from .._warn import warn
-from ._krylov import single_thread_blas
+from ._krylov import row_bound, single_thread_blas
 from ._sector_blocks import (
     Block,
     propagate_blocks,
@@ -417,7 +417,7 @@ class SectorPropagator:
             key = ("krylov_phase" if isinstance(b.engine, Krylov) else
                    "expm_phase" if isinstance(b.engine, ExpmMultiply) else None)
             if key is not None and b.n:
-                phases[key] += float(abs(b.matrix).sum(axis=1).max()) * span
+                phases[key] += row_bound(b.matrix) * span
         return phases
 
     def evolve(self, psi0: Any, t: Any, *, e_ops: Any = None, store_states: bool | None = None,
