@@ -10,6 +10,7 @@ from hyperrotor._options import options
 from hyperrotor.classical import chaos
 from hyperrotor.classical.solvers import _tangent_kernels
 from hyperrotor.classical.chaos import lyapunov, lyapunov_sweep
+from interrupted_child import interrupted
 
 EPS = float(np.finfo(float).eps)
 N5, n5 = 5, 10
@@ -84,7 +85,7 @@ def test_tangent_map_is_derivative_of_step_map(jitted, order):
 
     def run(L):
         out, Lo, Wo = np.zeros((1, 1, n5)), np.empty((1, n5)), np.empty((1, n5, n5))
-        kernel(L, rates, np.eye(n5)[None], word[0], word[1], pp, pq, ps, np.array([0.05]),
+        kernel(L, rates, np.eye(n5)[None], np.zeros((1, n5)), word[0], word[1], pp, pq, ps, np.array([0.05]),
                np.array([nsteps], dtype=np.int64), 1, 1, False, out, Lo, Wo)
         return Lo[0], Wo[0]
 
@@ -113,14 +114,14 @@ def test_python_and_compiled_kernels_agree():
     res = []
     for kern in (_tangent_kernels.tangent_run, _tangent_kernels.tangent_run.py_func):
         out, Lo, Wo = np.zeros((2, 2, 3)), np.empty((2, n5)), np.empty((2, 3, n5))
-        kern(L0, rates, W0, word[0], word[1], *tables, np.array([0.02, 0.03]), np.array([5, 4], dtype=np.int64),
-             4, 2, True, out, Lo, Wo)
+        kern(L0, rates, W0, np.zeros((2, 3)), word[0], word[1], *tables, np.array([0.02, 0.03]),
+             np.array([5, 4], dtype=np.int64), 4, 2, True, out, Lo, Wo)
         res.append(out)
     assert np.allclose(res[0], res[1], rtol=0, atol=1e3 * EPS)
 
 
 @pytest.mark.parametrize("k", [1, 4])
-def test_lanes_kernel_is_bit_identical_to_one_body_kernel(k):
+def test_lanes_kernel_is_bit_identical_to_one_body_kernel_and_to_time_segments(k):
     """The bodies-innermost kernel used for ensembles performs each orbit's arithmetic exactly
     as the one-body kernel (so grouping orbits into blocks cannot change a result)."""
     moments, w0 = generic_5d(17, 9)
@@ -134,8 +135,16 @@ def test_lanes_kernel_is_bit_identical_to_one_body_kernel(k):
     results = []
     for kern, extra in ((_tangent_kernels.tangent_run, (True,)), (_tangent_kernels.tangent_run_lanes, (4,))):
         out, Lo, Wo = np.zeros((9, 3, k)), np.empty((9, n5)), np.empty((9, k, n5))
-        kern(L0, rates, W0, word[0], word[1], *tables, h, nsub, 6, 2, *extra, out, Lo, Wo)
+        kern(L0, rates, W0, np.zeros((9, k)), word[0], word[1], *tables, h, nsub, 6, 2, *extra, out, Lo, Wo)
         results.append((out, Lo, Wo))
+        # the same run in two time segments (4 + 2 renormalisations), the second continuing from the first's
+        # final states and sums: bit for bit the one call (a long orbit is cut like this, chaos._benettin)
+        out1, Lo1, Wo1 = np.zeros((9, 2, k)), np.empty((9, n5)), np.empty((9, k, n5))
+        kern(L0, rates, W0, np.zeros((9, k)), word[0], word[1], *tables, h, nsub, 4, 2, *extra, out1, Lo1, Wo1)
+        out2, Lo2, Wo2 = np.zeros((9, 1, k)), np.empty((9, n5)), np.empty((9, k, n5))
+        kern(Lo1, rates, Wo1, out1[:, -1].copy(), word[0], word[1], *tables, h, nsub, 2, 2, *extra, out2, Lo2, Wo2)
+        for a, b in zip((out, Lo, Wo), (np.concatenate([out1, out2], axis=1), Lo2, Wo2)):
+            assert np.array_equal(a, b)
     for a, b in zip(*results):
         assert np.array_equal(a, b)
 
@@ -256,6 +265,50 @@ def test_chunking_is_bit_identical(monkeypatch, workers, chunk_size):
         monkeypatch.setattr(chaos._parallel, "default_workers", lambda: workers)
     out = lyapunov(moments, w0, 40.0, rng=6, chunk_size=chunk_size).exponents
     assert np.array_equal(out, ref)
+
+
+@pytest.mark.parametrize("history", [False, True])
+@pytest.mark.parametrize("spectrum", [False, 3])
+def test_a_long_orbit_runs_in_time_segments_bit_for_bit(monkeypatch, history, spectrum):
+    """An orbit longer than options["chunk_seconds"] goes on in segments of whole renormalisations (Ctrl-C
+    and progress between them): the same exponents and history as one call, for one orbit and for several."""
+    moments, w0 = generic_5d(4, 3)
+    kw = dict(spectrum=spectrum, history=history, renorm_interval=0.5, rng=6)
+    for omega0 in (w0[0], w0):
+        ref = lyapunov(moments, omega0, 20.0, **kw)
+        calls = []
+        real = chaos._parallel.map_rows
+        monkeypatch.setattr(chaos._parallel, "map_rows", lambda *a, **k: calls.append(k["args"][-3]) or real(*a, **k))
+        with hr.options(chunk_seconds=1e-4):  # ~1.5e4 work units per segment: a few renormalisations each
+            cut = lyapunov(moments, omega0, 20.0, **kw)
+        monkeypatch.setattr(chaos._parallel, "map_rows", real)
+        assert len(calls) > 3 and sum(calls) == 40  # segments of whole renormalisations, all 40 of them
+        assert np.array_equal(cut.exponents, ref.exponents) and np.array_equal(cut.t, ref.t)
+        assert (cut.history is None) == (not history)
+        if history:
+            assert np.array_equal(cut.history, ref.history)
+
+
+@pytest.mark.slow
+def test_ctrl_c_interrupts_one_long_orbit_promptly():
+    """SIGINT during the Benettin run of ONE long orbit (one compiled call before the time segments: the signal
+    waited for its end, 39 s): KeyboardInterrupt within about one segment (options["chunk_seconds"] = 0.25 s)."""
+    code = (
+        "import numpy as np, signal, sys, time, hyperrotor as hr\n"
+        "m = np.exp(np.random.default_rng(1).uniform(np.log(0.3), np.log(3.0), 10))\n"
+        "hr.lyapunov(m, np.ones(10), 1.0)  # JIT\n"
+        "got = []\n"
+        "signal.signal(signal.SIGINT, lambda *a: (got.append(time.perf_counter()), signal.default_int_handler(*a)))\n"
+        "print('running', flush=True)\n"
+        "try:\n"
+        "    hr.lyapunov(m, np.ones(10), 2e5, spectrum=True)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', f'{time.perf_counter() - got[0]:.3f}', flush=True)\n"
+        "    sys.exit(3)\n"
+    )
+    word, delay = interrupted(code, wait=1.5).split()
+    assert word == "interrupted"
+    assert float(delay) < 2.0, delay  # generous for a loaded machine: the segment is 0.25 s of work
 
 
 def test_sweep_rows_equal_single_body_calls():

@@ -21,6 +21,7 @@ from hyperrotor.classical import euler_poinsot, quartet_solution
 from hyperrotor.classical.solvers import SOLVERS, FixedStepSolver, ScipyIVP, StepBudgetError, solver_for
 from hyperrotor.conventions import to_matrix
 from tolerance import EPS, scaled_tol
+from interrupted_child import interrupted
 
 ALL = list(SOLVERS)
 FIXED = [m for m, c in SOLVERS.items() if issubclass(c, FixedStepSolver)]
@@ -407,31 +408,8 @@ def test_ctrl_c_interrupts_a_long_run(tmp_path):
         "    sys.exit(3)\n"
         "print('finished', flush=True)\n"
     )
-    out = _interrupted(code, wait=1.0)
+    out = interrupted(code, wait=1.0)
     assert "interrupted" in out
-
-
-def _interrupted(code: str, wait: float) -> str:
-    """Run ``code`` in a child process, SIGINT it ``wait`` s after it prints 'running'; its stdout
-    (the child must exit with status 3 on KeyboardInterrupt)."""
-    import os
-    import signal
-    import subprocess
-    import sys
-    import time
-
-    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            env={**os.environ, "PYTHONUNBUFFERED": "1"})
-    try:
-        assert proc.stdout.readline().strip() == "running"
-        time.sleep(wait)
-        proc.send_signal(signal.SIGINT)
-        out, err = proc.communicate(timeout=60)  # a guard against a hang, not a timing assertion
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-    assert proc.returncode == 3, (out, err)
-    return out
 
 
 def test_a_slow_request_is_announced_before_it_runs():
@@ -1391,7 +1369,7 @@ def test_ctrl_c_interrupts_the_step_selection(tmp_path):
         "    print('interrupted', 'first_step' in where, f'{time.perf_counter() - got[0]:.3f}', flush=True)\n"
         "    sys.exit(3)\n"
     )
-    word, in_probe, delay = _interrupted(code, wait=1.5).split()
+    word, in_probe, delay = interrupted(code, wait=1.5).split()
     assert word == "interrupted" and in_probe == "True"
     # within about one chunk (options["chunk_seconds"] = 0.25 s); generous for a loaded machine
     assert float(delay) < 2.0, delay

@@ -84,29 +84,30 @@ _MIN_LANES = 4
 # ----------------------------------------------------------------------------
 # the chunk function (top level: pickled to dask workers)
 # ----------------------------------------------------------------------------
-def _benettin_rows(L0, rates, W0, h, nsub, word_planes, word_coefs, pair_p, pair_q, pair_s, nren, stride, nstore):
-    """Benettin sums ``(rows, nstore, k)`` for a chunk of orbits (see :mod:`.solvers._tangent_kernels`).
+def _benettin_rows(L0, rates, W0, acc0, h, nsub, word_planes, word_coefs, pair_p, pair_q, pair_s, nren, stride,
+                   nstore):
+    """Benettin sums ``(rows, nstore, k)`` and final states ``(rows, n)``, ``(rows, k, n)`` for a chunk of orbits.
 
-    Orbits with the same number of steps per renormalisation advance together in the
-    bodies-innermost kernel (``tangent_run_lanes``, bit-identical to the one-body kernel for
-    each orbit, so the grouping does not change any result).
+    ``nren`` renormalisations from the states ``L0``, ``W0`` and the sums ``acc0`` (see
+    :mod:`.solvers._tangent_kernels`). Orbits with the same number of steps per renormalisation
+    advance together in the bodies-innermost kernel (``tangent_run_lanes``, bit-identical to the
+    one-body kernel for each orbit, so the grouping does not change any result).
     """
     B, n = L0.shape
     k = W0.shape[1]
-    out = np.zeros((B, nstore, k))
+    out, Lout, Wout = np.zeros((B, nstore, k)), np.empty((B, n)), np.empty((B, k, n))
     for ns in np.unique(nsub):
         sel = np.flatnonzero(nsub == ns)
-        part = np.zeros((sel.size, nstore, k))
         args = (np.ascontiguousarray(L0[sel]), np.ascontiguousarray(rates[sel]), np.ascontiguousarray(W0[sel]),
-                word_planes, word_coefs, pair_p, pair_q, pair_s, np.ascontiguousarray(h[sel]),
-                np.ascontiguousarray(nsub[sel]), nren, stride)
-        outs = (part, np.empty((sel.size, n)), np.empty((sel.size, k, n)))
+                np.ascontiguousarray(acc0[sel]), word_planes, word_coefs, pair_p, pair_q, pair_s,
+                np.ascontiguousarray(h[sel]), np.ascontiguousarray(nsub[sel]), nren, stride)
+        outs = (np.zeros((sel.size, nstore, k)), np.empty((sel.size, n)), np.empty((sel.size, k, n)))
         if sel.size >= _MIN_LANES:
             tangent_run_lanes(*args, _LANES, *outs)
         else:  # a few orbits: the one-body kernel is faster (same arithmetic)
             tangent_run(*args, True, *outs)
-        out[sel] = part
-    return out
+        out[sel], Lout[sel], Wout[sel] = outs
+    return out, Lout, Wout
 
 
 # ----------------------------------------------------------------------------
@@ -186,9 +187,14 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
         raise _pricing.refuse("lyapunov", f"history=True (the running exponents of {B} orbit(s) x {nstore} "
                               f"renormalisations x {k})", B * nstore * k * 8.0, "max_output_bytes", "bytes",
                               "use a larger renorm_interval or fewer orbits")
+    # time segments: an orbit whose run exceeds options["chunk_seconds"] goes on in segments of whole
+    # renormalisations, each continuing from the last one's states and sums (bit for bit one call), so that
+    # Ctrl-C is honoured and progress shown within a segment's time even for a single long orbit
+    per_chunk = options["chunk_seconds"] * _WORK_RATE
+    per_ren = float(work_rows.max()) / nren if B else 0.0
+    seg = nren if per_ren * nren <= per_chunk else max(1, int(per_chunk // max(per_ren, 1.0)))
     if chunk_size is None and B:
-        per_chunk = options["chunk_seconds"] * _WORK_RATE
-        chunk_size = min(max(1, int(per_chunk // max(work_rows.max(), 1.0))), max(1, math.ceil(B / (4 * threads))))
+        chunk_size = min(max(1, int(per_chunk // max(per_ren * seg, 1.0))), max(1, math.ceil(B / (4 * threads))))
     # random orthonormal tangent vectors, drawn before chunking (reproducible with a seeded rng)
     G = gen.standard_normal((B, n, k))
     Q, R = np.linalg.qr(G)
@@ -197,11 +203,26 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     # (each group advances together in the bodies-innermost kernel); the order does not change
     # any orbit's arithmetic
     order = np.argsort(nsub, kind="stable")
-    sorted_sums = _parallel.map_rows(
-        _benettin_rows, (Ls[order], rates[order], W0[order], h[order], nsub[order]),
-        args=(word[0], word[1], tables[0], tables[1], tables[2], nren, stride, nstore),
-        client=client, chunk_size=chunk_size, progress=progress, desc=desc,
-    )
+    L, W, acc = Ls[order], W0[order], np.zeros((B, k))
+    fixed = (rates[order], h[order], nsub[order])
+    segments = [min(seg, nren - s0) for s0 in range(0, nren, seg)]  # renormalisations per segment
+    bar = _parallel.progress_bar(progress, nren, desc, unit="renormalisation") if len(segments) > 1 else None
+    stored = []
+    try:
+        for r in segments:
+            out, L, W = _parallel.map_rows(
+                _benettin_rows, (L, fixed[0], W, acc, fixed[1], fixed[2]),
+                args=(word[0], word[1], tables[0], tables[1], tables[2], r, 1 if history else r, r if history else 1),
+                client=client, chunk_size=chunk_size, progress=progress if len(segments) == 1 else False, desc=desc,
+            )
+            acc = out[:, -1]
+            stored.append(out)
+            if bar is not None:
+                bar.update(r)
+    finally:
+        if bar is not None:
+            bar.close()
+    sorted_sums = np.concatenate(stored, axis=1) if history else stored[-1]
     sums = np.empty_like(sorted_sums)
     sums[order] = sorted_sums
     t = tau * stride * np.arange(1, nstore + 1)
@@ -316,7 +337,10 @@ def lyapunov(
         orbits per chunk (default: about ``options["chunk_seconds"]`` of work,
         at least four chunks per worker thread).
     progress : bool or None
-        tqdm progress bar (``None``: on a terminal, for runs over a second).
+        tqdm progress bar (``None``: on a terminal, for runs over a second): orbits done, or
+        renormalisations done when the orbits run in time segments (an orbit longer than
+        ``options["chunk_seconds"]`` goes on in segments of whole renormalisations, with the
+        same numbers as one call; Ctrl-C is honoured between segments).
 
     Returns
     -------

@@ -33,10 +33,12 @@ Benettin's algorithm
 --------------------
 ``nren`` renormalisations, each after ``nsub[b]`` steps of length ``h[b]``: the ``k``
 tangent vectors are re-orthonormalised by modified Gram-Schmidt (the ``R`` of a QR
-factorisation), and ``log R_jj`` is added to ``acc[j]``. ``out[b, s, j]`` holds
-``acc[j]`` after renormalisation ``(s + 1) * stride`` (``s = 0 .. nstore-1``). Each
-body is integrated by the same arithmetic whichever rows share its call, so results
-do not depend on the chunking of an ensemble.
+factorisation), and ``log R_jj`` is added to ``acc[j]``, which starts at ``acc0[b, j]`` (zero
+for a new run; the sums so far when a long run goes on in time segments, with the final states
+``Lout``, ``Wout`` of the previous segment: the same arithmetic as one call). ``out[b, s, j]``
+holds ``acc[j]`` after renormalisation ``(s + 1) * stride`` (``s = 0 .. nstore-1``). Each
+body is integrated by the same arithmetic whichever rows share its call and however its
+time is cut, so results depend neither on the chunking of an ensemble nor on the segments.
 """
 from __future__ import annotations
 
@@ -51,7 +53,7 @@ from ._kernels import redo_wide_lanes, rotate_lanes, rotation, rotation_poly
 __all__: list[str] = []  # private module
 
 
-def _tangent_run(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
+def _tangent_run(L0, rates, W0, acc0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                  h, nsub, nren, stride, renormalize, out, Lout, Wout):  # pragma: no cover - jitted
     """Integrate ``B`` bodies and their ``k`` tangent vectors; Benettin sums in ``out``.
 
@@ -72,7 +74,7 @@ def _tangent_run(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
         for a in range(n):
             L[a] = L0[b, a]
         for j in range(k):
-            acc[j] = 0.0
+            acc[j] = acc0[b, j]
             for a in range(n):
                 W[j, a] = W0[b, j, a]
         for r in range(m):  # half-angle per unit L_a of flow r (its angle is 2 * fac * L_a)
@@ -146,7 +148,7 @@ def dot_lanes(W, i1, i2, D):  # pragma: no cover - jitted
             D[j] += W[i1, a, j] * W[i2, a, j]
 
 
-def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
+def _tangent_run_lanes(L0, rates, W0, acc0, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                        h, nsub, nren, stride, lanes, out, Lout, Wout):  # pragma: no cover - jitted
     """:func:`_tangent_run` for bodies that share ``nsub`` (steps per renormalisation), bodies innermost.
 
@@ -170,7 +172,7 @@ def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_
         L = np.empty((n, nb))
         W = np.empty((k, n, nb))
         fac = np.empty((m, nb))
-        acc = np.zeros((k, nb))
+        acc = np.empty((k, nb))
         X = np.empty(nb)
         S = np.empty(nb)
         V = np.empty(nb)
@@ -181,6 +183,8 @@ def _tangent_run_lanes(L0, rates, W0, seq_plane, seq_coef, pair_p, pair_q, pair_
                 L[a, j] = L0[b0 + j, a]
                 for i in range(k):
                     W[i, a, j] = W0[b0 + j, i, a]
+            for i in range(k):
+                acc[i, j] = acc0[b0 + j, i]
             for r in range(m):
                 fac[r, j] = 0.5 * seq_coef[r] * h[b0 + j] * rates[b0 + j, seq_plane[r]]
         s_out = 0
