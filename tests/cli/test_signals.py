@@ -168,6 +168,45 @@ except _signals.Stop as stop:
     assert "Stop" not in p.stderr and "ValueError: an ordinary error in __del__" in p.stderr, p.stderr
 
 
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_inside_a_progress_bars_constructor_waits_for_the_bar(tmp_path, sig):
+    """A signal handled inside tqdm's constructor, before the bar has its attributes (CI, lowest versions: the
+    Stop left a half-built bar whose ``__del__`` printed "Exception ignored in: <function tqdm.__del__ ...>
+    AttributeError: ... no attribute 'disable'"): the bar is built, the next safe point stops the command, and
+    nothing is printed on stderr."""
+    script = tmp_path / "bar.py"
+    script.write_text(f"""
+import gc, signal
+from tqdm.auto import tqdm
+from hyperrotor.cli import _signals
+_signals.install("x")
+class Stream:  # tqdm asks file.isatty() near the start of __init__, before it sets the bar's attributes
+    def isatty(self):
+        signal.raise_signal({int(sig)})
+        for _ in range(1000):  # (the handler runs here, inside the constructor)
+            pass
+        return True
+    def write(self, text):
+        pass
+    def flush(self):
+        pass
+try:
+    bar = tqdm(total=10, file=Stream(), disable=None, delay=0.0)
+    print("built", bar.total, hasattr(bar, "disable"))
+    bar.close()
+    del bar
+    _signals.checkpoint()  # a safe point, as every step of a command's progress is
+    print("not stopped")
+except _signals.Stop as stop:
+    print("stopped", stop.signum)
+gc.collect()
+""")
+    p = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=60,
+                       env=dict(os.environ, PYTHONWARNINGS="ignore"))
+    assert p.stdout.split("\n") == ["built 10 True", f"stopped {int(sig)}", ""], (p.stdout, p.stderr)
+    assert p.stderr == "", p.stderr
+
+
 def test_signals_inside_matplotlib_and_pillow_wait_for_a_safe_point():
     """Raised inside matplotlib or Pillow code (their weakref callbacks included), a Stop could leave a
     half-updated drawing or be dropped: there the handler only records the signal."""

@@ -15,9 +15,13 @@ The handler records the signal (a flag) and acts on it at a safe point:
 Inside matplotlib and Pillow (drawing a GIF or a PNG) the signal is deferred too: raised there,
 it landed once in a weakref callback of matplotlib's transform tree, run by the garbage
 collector, where Python drops exceptions ("Exception ignored in ..." with a traceback on
-stderr) and the callback's own work is left undone. A :class:`Stop` dropped in any other such
-callback (or ``__del__``) is not printed (the command's ``sys.unraisablehook``); the next safe
-point or the watchdog acts on the signal.
+stderr) and the callback's own work is left undone. And inside tqdm: raised in a progress bar's
+constructor, it once left a half-built bar whose ``__del__`` then failed on stderr
+("AttributeError: 'tqdm_asyncio' object has no attribute 'disable'"); all of tqdm's code is
+deferred, not only its constructors (its ``close`` and its write lock, several locks taken one
+by one, leave a broken bar as well). A :class:`Stop` dropped in any other such callback (or
+``__del__``) is not printed (the command's ``sys.unraisablehook``); the next safe point or the
+watchdog acts on the signal.
 
 Either way a watchdog thread, started by the first signal, ends the process
 :data:`GRACE` seconds later if it is still alive (the flag was set where no
@@ -54,7 +58,7 @@ STATUSES = frozenset(status for status, _ in SIGNALS.values())
 GRACE = 0.7
 
 #: Modules in whose code a raised exception would be swallowed or leave a broken state.
-_DEFER_IN = ("numba.", "llvmlite.", "hyperrotor.cli._files", "matplotlib.", "PIL.")
+_DEFER_IN = ("numba.", "llvmlite.", "hyperrotor.cli._files", "matplotlib.", "PIL.", "tqdm.")
 
 
 class Stop(BaseException):

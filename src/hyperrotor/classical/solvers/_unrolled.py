@@ -25,16 +25,17 @@ slower: tried and dropped).
 The generated module is written once into a cache folder (``$HYPERROTOR_CACHE_DIR``, else
 ``$XDG_CACHE_HOME/hyperrotor`` or ``~/.cache/hyperrotor``), its name carrying a hash of its
 source, so numba caches its compiled code on disk like the package's own kernels (a first call
-for an ``N`` compiles for a few seconds, later processes load it). Without a writable folder,
-with ``HYPERROTOR_DISABLE_JIT=1`` or ``HYPERROTOR_DISABLE_CACHE=1``, or beyond
-``MAX_UNROLLED_N``, :func:`kernel` returns ``None`` and the generic kernels run (the same
-numbers, only slower).
+for an ``N`` compiles for a few seconds, later processes load it). Without a writable folder (or
+with one that others could write: :func:`_folder`), with ``HYPERROTOR_DISABLE_JIT=1`` or
+``HYPERROTOR_DISABLE_CACHE=1``, or beyond ``MAX_UNROLLED_N``, :func:`kernel` returns ``None``
+and the generic kernels run (the same numbers, only slower).
 """
 from __future__ import annotations
 
 import hashlib
 import importlib.util
 import os
+import stat
 import sys
 import tempfile
 from functools import lru_cache
@@ -43,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from hyperrotor import _jit
+from hyperrotor._warn import warn
 
 __all__: list[str] = []  # private module
 
@@ -138,13 +140,65 @@ def source(N: int) -> str:
     return "\n".join(text) + "\n"
 
 
+#: the folders refused in this process (one warning each)
+_refused: set[str] = set()
+
+
 def _folder() -> Path | None:
+    """The folder of the generated modules, ``unrolled`` in the cache root, if it is safe to load code from.
+
+    Returns
+    -------
+    pathlib.Path or None
+        The folder, or ``None``: the caller runs the generic kernels (the same numbers, slower).
+
+    Notes
+    -----
+    Python imports the modules written here and numba unpickles the index files of its cache next to
+    them: whoever can write this folder can run code in every process that uses it. So:
+
+    * missing folders (``unrolled``, the cache root and its missing parents) are created with mode
+      ``0o700``, as the XDG base directory specification asks;
+    * an existing ``unrolled`` is used only if it is a folder, not a symbolic link, owned by the
+      effective user (the one that creates the folder and runs the code) and writable by neither its
+      group nor others. Otherwise ``None`` and one ``UserWarning`` per folder and process, naming the
+      folder and the reason: the unrolled kernel is a speed-up, so a run goes on without it, but a
+      refused folder may have been tampered with and the slower runs need an explanation. The folder
+      is neither tightened nor emptied (what it holds cannot be trusted): remove it (it is created
+      again, private) or point ``HYPERROTOR_CACHE_DIR`` at a folder of your own;
+    * a folder that cannot be created or written (a read-only installation) gives ``None`` silently.
+
+    Windows has no ``os.geteuid`` and its permission bits only mirror the read-only attribute: there,
+    only the symbolic link is refused.
+    """
     root = os.environ.get("HYPERROTOR_CACHE_DIR") or os.path.join(
         os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache"), "hyperrotor")
     folder = Path(root) / "unrolled"
     try:
-        folder.mkdir(parents=True, exist_ok=True)
+        for part in reversed((folder, *folder.parents)):  # (Path.mkdir(parents=True) ignores mode for parents)
+            if not part.exists():
+                try:
+                    part.mkdir(mode=0o700)
+                except FileExistsError:  # (made by a process starting together, or a dangling link)
+                    pass
+        st = os.lstat(folder)
     except OSError:
+        return None
+    reason = None
+    if stat.S_ISLNK(st.st_mode):
+        reason = "it is a symbolic link"
+    elif not stat.S_ISDIR(st.st_mode):
+        return None
+    elif hasattr(os, "geteuid") and st.st_uid != os.geteuid():
+        reason = f"it is owned by user id {st.st_uid}, not by this user ({os.geteuid()})"
+    elif hasattr(os, "geteuid") and st.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+        reason = f"its group or other users can write it (mode {oct(stat.S_IMODE(st.st_mode))})"
+    if reason is not None:
+        if str(folder) not in _refused:
+            _refused.add(str(folder))
+            warn(f"hyperrotor does not use the kernel cache folder {folder}: {reason}, and Python and numba "
+                 "load code from it. The generic kernels run (the same numbers, slower). Remove the folder "
+                 "(it is created again, private) or set HYPERROTOR_CACHE_DIR to a folder of your own.")
         return None
     return folder if os.access(folder, os.W_OK) else None
 
