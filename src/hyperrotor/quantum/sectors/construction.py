@@ -11,6 +11,7 @@ import scipy.sparse as sps
 from scipy.sparse.csgraph import connected_components
 
 from ... import _pricing, _validate
+from ..._parallel import interruptible
 from .._gt_monomials import Monomial, gt_rotations
 from .group import Sector, check_dense_dim, group_of
 
@@ -48,7 +49,7 @@ def pi_rotation(rep, plane, *, format: str = "csr"):
             M = rot[i].matrix()
             return M.toarray() if fmt == "dense" else M
     check_dense_dim(rep)
-    E = sla.expm(np.pi * rep.generator((i, j), format="dense"))
+    E = interruptible(sla.expm, np.pi * rep.generator((i, j), format="dense"))  # (seconds at the dense limit)
     E[np.abs(E) < 1e-13] = 0.0
     return E if fmt == "dense" else sps.csr_matrix(E)
 
@@ -131,7 +132,7 @@ def _project_dense(Ds: list[np.ndarray], eigs: tuple, dim: int) -> np.ndarray:
     for D, lam in zip(Ds, eigs):
         Pm = 0.5 * (Pm + np.conj(lam) * (D @ Pm))
     Pm = 0.5 * (Pm + Pm.conj().T)
-    w, V = np.linalg.eigh(Pm)
+    w, V = interruptible(np.linalg.eigh, Pm)  # (seconds at the dense limit: Ctrl-C, _parallel.interruptible)
     return V[:, w > 0.5]
 
 

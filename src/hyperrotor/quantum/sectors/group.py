@@ -20,6 +20,7 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 
 from ... import _pricing
+from ..._parallel import interruptible
 from .._gt_monomials import Monomial, gt_symmetries
 
 __all__ = ["Sector"]
@@ -185,7 +186,8 @@ def _gt_group(rep, half: bool) -> SignGroup | None:
 def _dense_group(rep) -> SignGroup:
     check_dense_dim(rep)
     dim = rep.dim
-    D1 = sla.expm(np.pi * rep.generator((1, 2), format="dense"))
+    # (each exponential takes seconds at the dense limit, in compiled code: Ctrl-C, _parallel.interruptible)
+    D1 = interruptible(sla.expm, np.pi * rep.generator((1, 2), format="dense"))
     sq = D1 @ D1
     if np.abs(sq - np.eye(dim)).max() < 1e-8:
         spinorial = False
@@ -197,5 +199,5 @@ def _dense_group(rep) -> SignGroup:
             f"decompose it and take the sectors of each part"
         )
     ks, alphabet, degen = structure(rep.N, spinorial)
-    Ds = [sla.expm(np.pi * rep.generator((k, k + 1), format="dense")) for k in ks]
+    Ds = [interruptible(sla.expm, np.pi * rep.generator((k, k + 1), format="dense")) for k in ks]
     return SignGroup(rep.N, spinorial, ks, alphabet, degen, Ds, monomial=False)
