@@ -193,8 +193,8 @@ def cases():
     for l in (1000, 2000, 4000):
         out.append(("sector_spectra", f"irrep l={l}", _largest_sector(l), lambda l=l: hq.irrep(3, (l,)),
                     lambda a: hq.sector_spectra(a, [1.0, 2.0, 3.0])))
-    for S in (100, 1000, 4000):
-        out.append(("otoc", f"5 times, {S} samples, dim 5", dict(n_times=5, columns=S, dim=5), _otoc_inputs,
+    for l, S in ((2, 100), (2, 1000), (2, 4000), (100, 20), (400, 20), (1000, 20)):
+        out.append(("otoc", f"5 times, {S} samples, dim {2 * l + 1}", _otoc_price(l, S), lambda l=l: _otoc_inputs(l),
                     lambda x, S=S: hq.otoc(*x, samples=S)))
     for N, l in ((3, 6), (3, 10), (3, 14)):
         out.append(("orthogonal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), _clear_harmonic_caches,
@@ -259,12 +259,21 @@ def _largest_sector(l):
     return dict(dim=max(s.basis.shape[1] for s in secs), real=all(s.real for s in secs))
 
 
-def _otoc_inputs():
+def _otoc_inputs(l=2):
     import qutip
 
-    H = hq.rotor_hamiltonian(hq.irrep(3, (2,)), [1.0, 2.0, 3.0])
-    W = qutip.Qobj(np.diag([2.0, 1.0, 0.0, -1.0, -2.0]))
+    H = hq.rotor_hamiltonian(hq.irrep(3, (l,)), [1.0, 2.0, 3.0])
+    W = qutip.Qobj(np.diag(np.arange(l, -l - 1, -1.0)))
     return H, W, W, np.linspace(0.0, 1.0, 5)
+
+
+def _otoc_price(l, S):
+    """The sizes otoc prices itself by (its blocks: hq.otoc's own computation, no diagonalization)."""
+    H = _otoc_inputs(l)[0]
+    U = hq.SectorPropagator(H)
+    sizes = np.array(U.apply_blocks(), dtype=float)
+    return dict(n_times=5, columns=S, dim=2 * l + 1, squares=float(np.sum(sizes ** 2)),
+                cubes=float(np.sum(sizes ** 3)), complex=U.matrix.dtype.kind == "c")
 
 
 def _quartet_rate():

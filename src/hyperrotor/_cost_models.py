@@ -67,6 +67,9 @@ _KRYLOV_PHASE_S = 2.5e-4
 _EXPM_PHASE_S = 7.0e-5
 #: the same for the rotations of a state (apply_rotation: Lanczos at tolerance 1e-14)
 _ROTATION_PHASE_S = 8.5e-4
+#: seconds per n^2 of a diagonalized block, per state column and propagation (otoc: the two dense products with the
+#: block's eigenvectors; measured, the 2-4 sectors of so(3) irreps of dimension 201-4001: 0.65e-9 ... 1.0e-9)
+_BLOCK_SQUARE_S = 1.0e-9
 #: bytes held per stored output time of evolve besides the state's entries (Qobj and its data object)
 _QOBJ_BYTES = 360.0
 
@@ -97,16 +100,20 @@ def _simulate(N: Any = None, n: Any = None) -> tuple[Cost, ...]:
     return (_memory(f"the Casimir shift of {n:.0f} planes (n x n rate differences)", 16.0 * n * n),)
 
 
+def _eigh_seconds(cubes: Any, complex: bool = True) -> float:
+    """Seconds of dense ``eigh`` of blocks whose dimensions cubed sum to ``cubes`` (complex: 4 real flops)."""
+    return (4.0 if complex else 1.0) * 4.0 / 3.0 * _f(cubes) * _EIGH_S
+
+
 @model("dense_diagonalization", "use a representation whose symmetry sectors are smaller (rep=)")
 def _dense_diagonalization(dim: Any, complex: bool = True) -> tuple[Cost, ...]:
     d = _f(dim)
     item = 16.0 if complex else 8.0
-    flops = (4.0 if complex else 1.0) * 4.0 / 3.0 * d ** 3
     return (
         Cost(f"a dense block of dimension {dim}", d, "quantum_max_dense_dim", "dimension"),
         # sparse copies of the block (CSR: entry + index), the dense block and eigvalsh's copy
         _memory(f"a dense {dim} x {dim} block (and its sparse and working copies)", 6 * item * d * d),
-        _seconds(f"diagonalizing a dense {dim} x {dim} block", flops * _EIGH_S),
+        _seconds(f"diagonalizing a dense {dim} x {dim} block", _eigh_seconds(d ** 3, complex)),
     )
 
 
@@ -222,13 +229,20 @@ def _apply_rotation(dim: Any, phase: Any, factors: Any = 1) -> tuple[Cost, ...]:
 
 
 @model("otoc", "use fewer times (t) or fewer samples")
-def _otoc(n_times: Any, columns: Any, dim: Any = 1) -> tuple[Cost, ...]:
-    # four propagations of `columns` state columns to every time (the evolve model, states not kept)
+def _otoc(n_times: Any, columns: Any, dim: Any = 1, squares: Any = 0.0, cubes: Any = 0.0, complex: bool = True
+          ) -> tuple[Cost, ...]:
+    # four propagations of `columns` state columns to every time (the evolve model, states not kept), in the
+    # eigenbases of the blocks of H: `squares` and `cubes` are the sums of n^2 and n^3 over the blocks, each
+    # diagonalized once (dense eigh) and then applied to every column by two dense products (n^2 each)
     runs = 4.0 * _mul(n_times, columns)
     # the columns are propagated together (a matrix of states, no Qobj per time): ~3e-6 s per column and
-    # time of each propagation and ~20 ms of set-up (measured, benchmarks/pricing.py, 100-4000 samples)
-    return (_seconds(f"{n_times} times (t) x {columns} state columns (samples or the exact trace) x 4 propagations",
-                     0.02 + runs * 3e-6),
+    # time of each propagation and ~20 ms of set-up (measured, benchmarks/pricing.py, 100-4000 samples, dim 5)
+    return (_seconds(f"{n_times} times (t) x {columns} state columns (samples or the exact trace) x 4 propagations"
+                     f" in blocks of sum n^2 = {_f(squares):.3g}",
+                     0.02 + runs * (3e-6 + _f(squares) * _BLOCK_SQUARE_S) + _eigh_seconds(cubes, complex)),
+            # the blocks' dense copies and eigenvectors, kept for every propagation: ~80 bytes per n^2 at the peak
+            # (measured, benchmarks/pricing.py, so(3) irreps of dimension 801 and 2001: 78-79 bytes)
+            _memory(f"the dense blocks of H and their eigenvectors (sum n^2 = {_f(squares):.3g})", 80.0 * _f(squares)),
             Cost(f"{n_times} times (t) x {columns} state columns (samples or the exact trace)",
                  runs * (16.0 * _f(dim) + _QOBJ_BYTES) / 4.0, "max_output_bytes", "bytes"))
 

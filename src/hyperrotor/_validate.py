@@ -29,6 +29,7 @@ __all__ = [
     "dimension",
     "real",
     "positive",
+    "tolerance",
     "hbar",
     "flag",
     "rng",
@@ -165,6 +166,22 @@ def positive(name: str, value: Any, *, allow_none: bool = False, allow_zero: boo
     if not (math.isfinite(value) and ok):
         raise ValueError(f"{name} must be finite and {'>= 0' if allow_zero else '> 0'}, got {fmt(value)}")
     return value
+
+
+def tolerance(name: str, value: Any, *, allow_none: bool = False, allow_zero: bool = False) -> float | None:
+    """A relative tolerance: a finite number with ``0 < value < 1`` (``0 <= value < 1`` with ``allow_zero``)
+    as ``float`` (``None`` passes through when ``allow_none``). A relative tolerance of 1 or more accepts
+    any value, so it is refused with the allowed range."""
+    if value is None and allow_none:
+        return None
+    low = f"0 {'<=' if allow_zero else '<'} {name} < 1"
+    if not _is_real_scalar(value):
+        raise TypeError(f"{name} must be a relative tolerance, a real number with {low}, got {fmt(value)} "
+                        f"of type {type(value).__name__}")
+    x = float(value)
+    if not (math.isfinite(x) and (x >= 0 if allow_zero else x > 0) and x < 1):
+        raise ValueError(f"{name} must be a relative tolerance with {low}, got {fmt(value)}")
+    return x
 
 
 def hbar(value: Any) -> float:

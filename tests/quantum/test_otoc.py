@@ -68,6 +68,18 @@ def test_infinite_temperature_ket_and_density_matrix(problem):
                                atol=1e-10 * ref.max())
 
 
+def test_a_long_time_costs_a_short_one_and_is_right(problem):
+    """otoc works in the eigenbases of H's blocks: its price does not grow with |t| (a phase price would refuse
+    t = 1e4 here), and the values stay those of the dense Heisenberg operator (to the conditioning of exp at
+    phase ~ |t| ||H|| / hbar)."""
+    rep, H, W, V, _ = problem
+    far = np.array([0.0, 1e4])
+    ref = _brute(H, W, V, far, np.eye(rep.dim) / rep.dim, 0.5)
+    with hr.options(max_seconds=1.0):
+        got = otoc(H, W, V, far, hbar=0.5).values
+    np.testing.assert_allclose(got, ref, rtol=1e-7)
+
+
 def test_stochastic_trace_is_within_its_standard_error(problem):
     rep, H, W, V, _ = problem
     t = np.array([0.5, 1.5])

@@ -77,11 +77,11 @@ def detect_closed_form(body: Any, *, rtol: float | None = None) -> dict | None:
     Returns ``{"kind": "equal"}``, ``{"kind": "quartet", "axis": a, "theta": Theta}``
     (any N; moments ``alpha`` on the planes containing ``a`` and ``beta`` on the
     others, :math:`\Theta = 1 - \beta/\alpha`), ``{"kind": "euler-poinsot"}``
-    (N = 3) or ``None``. Moments are compared with relative tolerance ``rtol``
-    (default ``hr.options["closed_form_rtol"]``, 1e-14).
+    (N = 3) or ``None``. Moments are compared with relative tolerance ``rtol``,
+    ``0 <= rtol < 1`` (default ``hr.options["closed_form_rtol"]``, 1e-14).
     """
     I = _validate.moments(body, name="body")
-    rtol = options["closed_form_rtol"] if rtol is None else _validate.positive("rtol", rtol, allow_zero=True)
+    rtol = options["closed_form_rtol"] if rtol is None else _validate.tolerance("rtol", rtol, allow_zero=True)
     N = dimension_from_count(I.size)
     scale = float(np.max(np.abs(I)))
 

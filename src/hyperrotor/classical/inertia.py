@@ -147,12 +147,33 @@ def _to_float_array(values: Sequence[sp.Expr]) -> np.ndarray | None:
     return np.array([float(v) for v in values], dtype=np.float64)
 
 
-def _subs_pairs(args: tuple) -> list:
+def _subs_pairs(args: tuple, held: Iterable[sp.Symbol] = ()) -> list:
     """``Inertia.subs`` arguments as ``[(old, new), ...]`` of SymPy objects (never ``sympify``).
 
     SymPy's ``subs`` would ``sympify`` -- evaluate -- a string ``old`` or ``new``: here
     text is read by :func:`hyperrotor._parse.to_sympy` (numbers, names and arithmetic only).
+    A name in the text is the symbol of that name among ``held`` (the inertia's own symbols, whatever
+    their assumptions: ``"I_12"`` is the positive ``I_12`` of :meth:`Inertia.symbolic`); in ``old``
+    only those names are allowed (a ``ParseError`` lists them), in ``new`` other names are new symbols.
     """
+    by_name: dict[str, list] = {}
+    for s in held:
+        by_name.setdefault(s.name, []).append(s)
+
+    def read(value: Any, name: str, known_only: bool):
+        if not isinstance(value, str):
+            return _parse.to_sympy(value, name)
+        expr = _parse.to_sympy(value, name, symbols=set(by_name) if known_only else True)
+        swap = {}
+        for s in expr.free_symbols:
+            same = by_name.get(s.name, [])
+            if len(same) > 1:  # (e.g. a positive and a plain "a"): the text cannot say which
+                raise ValueError(f"{name}={value!r}: the inertia holds {len(same)} symbols named {s.name!r} "
+                                 f"(with different assumptions); pass the SymPy symbol itself")
+            if same:
+                swap[s] = same[0]
+        return expr.xreplace(swap)
+
     if len(args) == 2:
         pairs = [tuple(args)]
     elif len(args) == 1 and isinstance(args[0], Mapping):
@@ -163,7 +184,7 @@ def _subs_pairs(args: tuple) -> list:
         raise TypeError(f"subs takes (old, new), a mapping or a sequence of (old, new) pairs, got {_validate.fmt(args)}")
     if any(len(p) != 2 for p in pairs):
         raise TypeError(f"subs pairs must be (old, new), got {_validate.fmt(args)}")
-    return [(_parse.to_sympy(o, "subs: old"), _parse.to_sympy(n, "subs: new")) for o, n in pairs]
+    return [(read(o, "subs: old", True), read(n, "subs: new", False)) for o, n in pairs]
 
 
 def _as_list(x: Any, what: str) -> list:
@@ -476,8 +497,14 @@ class Inertia:
         return {p: self[p] for p in self.planes}
 
     def subs(self, *args, **kwargs) -> "Inertia":
-        """New :class:`Inertia` with ``sympy.subs`` applied to every moment."""
-        pairs = _subs_pairs(args)
+        """New :class:`Inertia` with ``sympy.subs`` applied to every moment.
+
+        Text is read by :mod:`hyperrotor._parse`, and its names are the inertia's own symbols:
+        ``Inertia.symbolic(3).subs("I_12", 2)`` replaces the positive symbol ``I_12``; a name the
+        inertia does not hold in ``old`` is a ``ParseError`` listing the names it holds.
+        """
+        held = set().union(*(_parse.to_sympy(v, "moment").free_symbols for v in (*self._values, *(self._J or ()))))
+        pairs = _subs_pairs(args, held)
         values = [_parse.to_sympy(v, "moment").subs(pairs, **kwargs) for v in self._values]
         J = None if self._J is None else tuple(_parse.to_sympy(v, "J").subs(pairs, **kwargs) for v in self._J)
         values = [_as_value(v, f"moment I_{plane_label(p, self._N)}") for v, p in zip(values, self.planes)]

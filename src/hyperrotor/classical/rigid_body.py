@@ -473,8 +473,16 @@ class RigidBody:
         Raises
         ------
         ValueError
-            ``values`` so large that the traces :math:`\operatorname{tr} L^k`, ``k <= N``, overflow double
-            precision (instead of NaN or inf with a RuntimeWarning).
+            ``values`` so large that a Casimir (degree up to ``N`` in ``L``) overflows double precision
+            (instead of inf with a RuntimeWarning).
+
+        Notes
+        -----
+        Numbers: :math:`c_{2k} = e_k(a_1^2, \dots, a_m^2)`, the elementary symmetric polynomials of the
+        squared plane components :math:`a_j` of ``L``'s normal form (its singular values, in equal pairs),
+        a sum of positive terms: each :math:`c_{2k}` is as accurate as the :math:`a_j` (to
+        :math:`\sim\epsilon\,|L|` each), also when they differ by many orders of magnitude; and
+        :math:`c_2 = |L|^2` directly. Symbols: the sums of squared Pfaffians, exact.
         """
         if of not in ("omega", "L"):
             raise ValueError(f"of must be 'omega' or 'L', got {of!r}")
@@ -495,19 +503,19 @@ class RigidBody:
                 out.append(sp.expand(tot))
             return out
         L = self._check_omega(L, "L")
-        M = to_matrix(L, convention="standard")
-        # Newton's identities: k e_k = sum_{i=1}^k (-1)^(i-1) e_{k-i} p_i, p_i = tr(M^i)
-        p, P = [None], np.broadcast_to(np.eye(N), M.shape)
+        m = N // 2
+        # c_2k = e_k(a_1^2, ..., a_m^2), the elementary symmetric polynomials of the squares of the plane components
+        # a_k of L's normal form (L's singular values come in equal pairs a_k, a_k): a sum of positive terms, so each
+        # c_2k is as accurate as the a_k (Newton's identities on tr(L^k) cancelled terms of very different size away)
+        s = np.linalg.svd(to_matrix(L, convention="standard"), compute_uv=False)
         with np.errstate(over="ignore", invalid="ignore"):
-            for _ in range(N):
-                P = P @ M
-                p.append(np.trace(P, axis1=-2, axis2=-1))
-            e = [np.ones(M.shape[:-2])]
-            for k in range(1, N + 1):
-                e.append(sum((-1) ** (i - 1) * e[k - i] * p[i] for i in range(1, k + 1)) / k)
-        # (the traces of M^N overflow first; a rescaled L would underflow the small terms' cancelling sums instead)
-        return _within_double("casimirs", np.stack([e[2 * k] for k in range(1, N // 2 + 1)], axis=-1), "values",
-                              L, "the traces of the powers of L up to L^N")
+            a2 = s[..., 0 : 2 * m : 2] * s[..., 1 : 2 * m : 2]
+            e = np.zeros(L.shape[:-1] + (m + 1,))
+            e[..., 0] = 1.0
+            for j in range(m):  # multiply by (1 + a_j^2 x): e_k += a_j^2 e_(k-1), from the old values
+                e[..., 1 : j + 2] = e[..., 1 : j + 2] + a2[..., j, None] * e[..., 0 : j + 1]
+            e[..., 1] = np.sum(L * L, axis=-1)  # c_2 = |L|^2, directly (no round-off of the decomposition)
+        return _within_double("casimirs", e[..., 1:], "values", L, "the products of the squared components of L")
 
     def manakov_integrals(self, values: Any, lam: Any = 1.0, *, of: str = "omega"):
         r"""Manakov's integrals :math:`\operatorname{tr}\bigl((L + \lambda J^2)^k\bigr)`, ``k = 2..N``.

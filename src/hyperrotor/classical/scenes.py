@@ -192,6 +192,7 @@ class Scene:
     def __post_init__(self):
         # refuse a bad body, omega0 or t where it is given, not later in evaluate()
         _check_inputs(self.body, self.omega0, self.t)
+        _check_run_options(self)
         _v.flag("progress", self.progress, allow_none=True)
 
     def evaluate(self, *, minimal: bool = True) -> SceneResult:
@@ -308,10 +309,22 @@ def _rtol(scene: Scene) -> float:
     return options["scene_rtol"] if scene.rtol is None else _v.positive("rtol", scene.rtol)
 
 
+def _check_run_options(scene: Scene) -> None:
+    """``rtol`` and ``method``, checked on every route (closed forms and invariants never reach simulate)."""
+    from .simulate import SIMULATION_METHODS
+    from .solvers import Solver
+
+    _rtol(scene)
+    m = scene.method
+    if not (isinstance(m, Solver) or (isinstance(m, type) and issubclass(m, Solver))):
+        _v.choice("method", m, SIMULATION_METHODS)
+
+
 def _validate(scene: Scene):
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a hyperrotor.Scene, got {_v.fmt(scene)} of type {type(scene).__name__}")
     moments, N, w0, t = _check_inputs(scene.body, scene.omega0, scene.t)
+    _check_run_options(scene)
     obs = tuple(scene.observables) if not isinstance(scene.observables, str) else (scene.observables,)
     bad = [o for o in obs if o not in SCENE_OBSERVABLES]
     if bad or not obs:

@@ -237,8 +237,8 @@ def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None
     omega0 : float
         Angular velocity :math:`\Omega` of the steady rotation.
     rtol : float, optional
-        Moment differences below ``rtol * max(I)`` count as zero (default
-        ``hr.options["stability_rtol"]``, 1e-12).
+        Moment differences below ``rtol * max(I)`` count as zero, ``0 <= rtol < 1``
+        (default ``hr.options["stability_rtol"]``, 1e-12).
 
     Returns
     -------
@@ -261,7 +261,7 @@ def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None
     i, j = _local_plane(plane, labels)
     lab = lambda q: (labels[q[0] - 1], labels[q[1] - 1])  # noqa: E731  local -> body labels
     Om = _validate.real("omega0", omega0)
-    rtol = options["stability_rtol"] if rtol is None else _validate.positive("rtol", rtol, allow_zero=True)
+    rtol = options["stability_rtol"] if rtol is None else _validate.tolerance("rtol", rtol, allow_zero=True)
     p = plane_index((i, j), N)
     tol = rtol * float(np.max(I))
     pairs, eig = [], []

@@ -26,7 +26,7 @@ import numpy as np
 
 from .. import _pricing, _validate
 from .._options import options
-from .._parallel import progress_bar
+from .._parallel import interruptible, progress_bar
 from ..classical.simulate import simulate
 from ..conventions import n_planes, planes
 from .coherent import coherent_state
@@ -121,7 +121,7 @@ def _density_columns(state: Any, dim: int) -> np.ndarray:
     scale = float(np.abs(rho).max())
     if scale == 0.0 or np.abs(rho - rho.conj().T).max() > 1e-12 * scale:
         raise ValueError("a density matrix must be Hermitian and non-zero")
-    p, vecs = np.linalg.eigh(rho / scale)
+    p, vecs = interruptible(np.linalg.eigh, rho / scale)  # (Ctrl-C: _parallel.interruptible)
     if p.min() < -1e-12 * p.max():
         raise ValueError(f"a density matrix must be positive semi-definite, got an eigenvalue {p.min() * scale:.3g}")
     keep = p > 1e-15 * p.max()
@@ -180,36 +180,44 @@ def otoc(H: Any, W: Any, V: Any, t: Any, *, state: Any = None, samples: int | No
 
     Notes
     -----
-    Every populated block of ``H`` is diagonalized once (dense ``eigh`` per sector,
-    priced); then :math:`e^{\mp i\hat H t/\hbar}` acts on many columns at once at the
-    cost of block-diagonal products. Four propagations per column and time.
+    Every block of ``H`` is diagonalized once (dense ``eigh`` per sector); then
+    :math:`e^{\mp i\hat H t/\hbar}` acts on many columns at once at the cost of
+    block-diagonal products, four propagations per column and time. The work does not
+    grow with :math:`|t|`: it is priced (``hr.options["max_seconds"]``, and the largest
+    block as a dense diagonalization) by the columns, the times and the blocks' sizes,
+    before any of it.
     """
-    U = SectorPropagator(H, rep=rep, hbar=hbar)
-    dim = U.dim
-    Wm, Vm = _operator("W", W, dim), _operator("V", V, dim)
     _validate.numeric_input("t", t)
     t = _validate.finite_array("t", t)
     if t.ndim != 1 or t.size == 0:
         raise ValueError(f"t must be a non-empty 1-D array of times, got shape {t.shape}")
+    if state is not None and samples is not None:
+        raise ValueError("samples applies to the infinite-temperature trace (state=None) only")
+    samples = None if samples is None else _validate.integer("samples", samples, minimum=2)
+    gen = _validate.rng(rng)  # checked on every route (only the stochastic trace uses it)
+    U = SectorPropagator(H, rep=rep, hbar=hbar)
+    dim = U.dim
+    Wm, Vm = _operator("W", W, dim), _operator("V", V, dim)
+    sizes = np.array(U.apply_blocks(), dtype=float)
+    cplx = U.matrix.dtype.kind == "c"
+    if sizes.size:
+        _pricing.check("dense_diagonalization", dim=int(sizes.max()), complex=cplx)
+    price = {"dim": dim, "squares": float(np.sum(sizes**2)), "cubes": float(np.sum(sizes**3)), "complex": cplx}
     stderr = None
     if state is not None:
-        if samples is not None:
-            raise ValueError("samples applies to the infinite-temperature trace (state=None) only")
         is_ket = (hasattr(state, "isket") and state.isket) or np.ndim(state) == 1 or np.shape(state)[1:] == (1,)
         X = unit_state(state, dim, "state")[:, None] if is_ket else _density_columns(state, dim)
-        _pricing.check("otoc", n_times=t.size, columns=X.shape[1], dim=dim)
+        _pricing.check("otoc", n_times=t.size, columns=X.shape[1], **price)
         values = _commutator_norms(U, Wm, Vm, X, t).sum(axis=1)
     elif samples is None:
-        _pricing.check("otoc", n_times=t.size, columns=dim, dim=dim)
+        _pricing.check("otoc", n_times=t.size, columns=dim, **price)
         values = np.zeros(t.size)
         eye = np.eye(dim)
         for start in range(0, dim, _COLUMNS):
             values += _commutator_norms(U, Wm, Vm, eye[:, start : start + _COLUMNS], t).sum(axis=1)
         values /= dim
     else:
-        samples = _validate.integer("samples", samples, minimum=2)
-        _pricing.check("otoc", n_times=t.size, columns=samples, dim=dim)
-        gen = _validate.rng(rng)
+        _pricing.check("otoc", n_times=t.size, columns=samples, **price)
         parts = []
         for start in range(0, samples, _COLUMNS):
             k = min(_COLUMNS, samples - start)

@@ -13,6 +13,7 @@ import scipy.sparse as sps
 
 from .. import _pricing, _validate
 from .._options import options
+from .._parallel import interruptible
 from .representation import Representation, check_same_algebra
 from .weights import positive_roots
 
@@ -50,7 +51,7 @@ def highest_weight_vector(rep: Representation, raising: list) -> np.ndarray:
     if not raising:
         return np.ones(1, dtype=complex)
     G = sum((E.conj().T @ E for E in raising), sps.csr_matrix((rep.dim, rep.dim))).toarray()
-    w, V = np.linalg.eigh(G)
+    w, V = interruptible(np.linalg.eigh, G)  # (Ctrl-C: _parallel.interruptible)
     tol = 1e-10 * max(1.0, float(w[-1]))
     K = V[:, w < tol]
     if K.shape[1] != 1:
@@ -157,7 +158,7 @@ def real_form(rep: Representation, *, rtol: float | None = None) -> Representati
     T), and :math:`Y_{(ij)} = W^\dagger X_{(ij)} W` is real antisymmetric.
     Dense :math:`O(\dim^3)`; meant for moderate dimensions.
 
-    ``rtol`` (default ``options["quantum_real_form_rtol"]``) bounds the
+    ``rtol`` (default ``options["quantum_real_form_rtol"]``; ``0 < rtol < 1``) bounds the
     imaginary part left in :math:`Y_{(ij)}` relative to :math:`\max(1, \max|Y|)`
     (an internal consistency check); entries below
     ``options["quantum_real_form_drop"]`` (relative) are round-off of exact
@@ -171,6 +172,8 @@ def real_form(rep: Representation, *, rtol: float | None = None) -> Representati
     """
     if not isinstance(rep, Representation):
         raise TypeError(f"real_form takes a Representation, got {type(rep).__name__}")
+    # checked before the early return (a real rep needs no tolerance, but a bad one is still an error)
+    rtol = options["quantum_real_form_rtol"] if rtol is None else _validate.tolerance("rtol", rtol)
     if rep.is_real:
         return rep
     _pricing.check("real_form", dim=rep.dim)
@@ -189,10 +192,9 @@ def real_form(rep: Representation, *, rtol: float | None = None) -> Representati
     T = 0.5 * (T + T.T)
     A, B = T.real, T.imag
     c = np.sqrt(2.0) + 0.1234
-    _, O = np.linalg.eigh(A + c * B)
+    _, O = interruptible(np.linalg.eigh, A + c * B)  # (Ctrl-C: _parallel.interruptible)
     theta = np.angle(np.einsum("ia,ij,ja->a", O, T, O))
     W = (O * np.exp(0.5j * theta)) @ O.T
-    rtol = options["quantum_real_form_rtol"] if rtol is None else _validate.positive("rtol", rtol)
     drop = options["quantum_real_form_drop"]
     gens = {}
     for p, X in gens_in.items():

@@ -110,6 +110,7 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
         cls = PROPAGATORS["mesolve"]
     progress = _validate.flag("progress", progress, allow_none=True)
     given = options.get("store_states") if isinstance(options, dict) else None
+    given = _validate.flag("store_states", given, allow_none=True)  # "no" or 0 would act by their truth value
     no_e_ops = e_ops is None or (isinstance(e_ops, (list, tuple, dict)) and not e_ops)
     store = bool(given) if given is not None else no_e_ops
     if hasattr(H, "shape") and len(H.shape) == 2:  # priced at the door, before any block or solver is built

@@ -131,7 +131,8 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
         :math:`\hat L^{ij} = -i\hbar X_{(ij)}` (eq. 141), so energies scale as :math:`\hbar^2`.
     form : {"antihermitian", "hermitian"}, keyword-only, default "antihermitian"
         What mapping operators are: :math:`X_{(ij)}` (anti-Hermitian) or
-        :math:`L^{ij} = -i\hbar X_{(ij)}` (Hermitian). Ignored for a Representation.
+        :math:`L^{ij} = -i\hbar X_{(ij)}` (Hermitian). Checked always, used only for a mapping
+        (a Representation holds its generators in its own form).
         A Hermitian mapping declared anti-Hermitian is refused (it would give
         :math:`-\hat H`).
 
@@ -156,6 +157,7 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
     (eq. 38's quadratic invariant, quantized).
     """
     hbar = _validate.hbar(hbar)
+    form = _validate.form(form)  # on every route, also where it is not used (a Representation)
     if isinstance(rep, Representation):
         N, dim = rep.N, rep.dim
         gens = rep.generators(format="csr")
@@ -166,7 +168,6 @@ def rotor_hamiltonian(rep: Any, body: Any, *, hbar: float = 1, form: str = "anti
         N, dim = int(rep.N), int(rep.dim)
         gens = rep.generators()
     elif isinstance(rep, Mapping):
-        form = _validate.form(form)
         N, gens = operator_mapping(rep, "rep")
         if form == "hermitian":
             gens = {p: (1j / hbar) * M for p, M in gens.items()}

@@ -100,6 +100,9 @@ class Propagator:
             if "max_dense_dim" in unknown:
                 where += " (the largest dense block is hyperrotor.options['quantum_max_dense_dim'], one home for spectrum and evolve)"
             _validate.unknown_option(where, unknown[0], list(allowed))
+        for key, (default, _) in RESULT_OPTIONS.items():  # switches: "no" or 0 would act by their truth value
+            if key in given:
+                _validate.flag(key, given[key], allow_none=default is None)
         return {k: given.get(k, d) for k, (d, _) in allowed.items()}
 
     def propagate(self, mat: sps.csr_matrix, v0: np.ndarray, t: np.ndarray, hbar: float,

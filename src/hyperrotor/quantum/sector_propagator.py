@@ -403,6 +403,12 @@ class SectorPropagator:
                 b.embed(out, C)
         return out
 
+    def apply_blocks(self) -> list[int]:
+        """The dimensions of the blocks that :meth:`apply` diagonalizes (dense ``eigh``, once) and multiplies
+        every column by (the one-dimensional blocks are phases): what a caller of :meth:`apply` prices
+        (:func:`~hyperrotor.quantum.otoc`) before any work."""
+        return [b.n for b in self._blocks if b.engine is not None]
+
     def _stepping_phases(self, t: np.ndarray) -> dict:
         r"""``{"krylov_phase": ..., "expm_phase": ...}``: :math:`\sum_b \|H_b\|\,|t_\text{end} - t_0|/|\hbar|` over
         the blocks propagated by Lanczos and by ``expm_multiply``, whose numbers of products grow like it
@@ -429,10 +435,12 @@ class SectorPropagator:
         last state of the previous one.
         """
         qutip = _lazy.qutip
+        store_states = _validate.flag("store_states", store_states, allow_none=True)
+        store_final_state = _validate.flag("store_final_state", store_final_state)
         vec = unit_state(psi0, self.dim)
         t = _validate.time_grid(t, allow_decreasing=False)
         e_ops = e_ops_list(e_ops, self.dims)
-        store = bool(store_states) if store_states is not None else not e_ops
+        store = store_states if store_states is not None else not e_ops
         _pricing.check("evolve", dim=self.dim, n_times=t.size, states=store, **self._stepping_phases(t))
         ropts = {"store_states": store_states, "store_final_state": store_final_state, "normalize_output": False}
         result = qutip.solver.Result(e_ops, ropts, solver=f"hyperrotor.evolve[{self.method}]", stats=dict(self.stats))

@@ -42,6 +42,7 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
         threshold is ``rtol * max(1, max|E|)``, ``rtol`` defaulting to
         ``options["quantum_level_rtol"]`` (1e-9: far above the round-off of
         ``eigh``, ~``1e-15 * dim * max|E|``, and below any physical splitting of interest).
+        ``atol >= 0``; ``0 <= rtol < 1``; both are checked before any work.
     rep : Representation, keyword-only, optional
         The representation ``H`` was built from (default: the one
         :func:`~hyperrotor.quantum.rotor_hamiltonian` recorded on ``H``). When it
@@ -69,6 +70,8 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
     >>> levels.tolist(), degeneracies.tolist()
     ([1.0, 2.0], [1, 2])
     """
+    atol = _validate.positive("atol", atol, allow_none=True, allow_zero=True)
+    rtol = _validate.tolerance("rtol", rtol, allow_none=True, allow_zero=True)
     mat, _ = hermitian_matrix(H)
     rep = rep if rep is not None else representation_of(H)
     if rep is not None:
@@ -105,11 +108,11 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
 
 
 def _levels(E: np.ndarray, atol: float | None, rtol: float | None) -> Spectrum:
-    if atol is None:
-        r = options["quantum_level_rtol"] if rtol is None else _validate.positive("rtol", rtol, allow_zero=True)
+    if atol is None:  # (atol and rtol are checked by spectrum)
+        r = options["quantum_level_rtol"] if rtol is None else rtol
         tol = r * max(1.0, float(np.max(np.abs(E))))
     else:
-        tol = _validate.positive("atol", atol, allow_zero=True)
+        tol = atol
     cuts = np.nonzero(np.diff(E) > tol)[0] + 1
     groups = np.split(E, cuts)
     return Spectrum(np.array([g.mean() for g in groups]), np.array([g.size for g in groups], dtype=int))
