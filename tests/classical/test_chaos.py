@@ -1,5 +1,6 @@
 """Lyapunov exponents: tangent map, integrable vs generic bodies, spectrum structure, scale-out."""
 import math
+import re
 
 import numpy as np
 import pytest
@@ -287,6 +288,19 @@ def test_a_long_orbit_runs_in_time_segments_bit_for_bit(monkeypatch, history, sp
         assert (cut.history is None) == (not history)
         if history:
             assert np.array_equal(cut.history, ref.history)
+
+
+@pytest.mark.parametrize("spectrum", [False, True])
+def test_tangent_vectors_leaving_double_precision_are_an_error_not_nan(spectrum):
+    """A chaotic orbit (lambda ~ 0.6) renormalised every 2000 time units: the tangent vectors grow like
+    exp(1200) (and the contracting ones shrink like exp(-1200)) between renormalisations. Before: NaN exponents,
+    silently. Now a ValueError naming renorm_interval and a length that works; that length gives finite exponents."""
+    m = np.exp(np.random.default_rng(1).uniform(math.log(0.3), math.log(3.0), n5))
+    with pytest.raises(ValueError, match=r"renorm_interval = 2000\.0.*about 100 / w_max = ([0-9.]+) or less") as err:
+        lyapunov(m, np.ones(n5), 4000.0, renorm_interval=2000.0, spectrum=spectrum)
+    hint = float(re.search(r"100 / w_max = ([0-9.e+-]+)", str(err.value)).group(1))
+    ok = lyapunov(m, np.ones(n5), 4 * hint, renorm_interval=hint, spectrum=spectrum).exponents
+    assert np.all(np.isfinite(ok)) and np.max(ok) > 0.1  # the chaotic orbit's positive exponent
 
 
 @pytest.mark.slow

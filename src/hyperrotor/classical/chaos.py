@@ -216,6 +216,8 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
                 client=client, chunk_size=chunk_size, progress=progress if len(segments) == 1 else False, desc=desc,
             )
             acc = out[:, -1]
+            if not np.all(np.isfinite(acc)):  # (checked per segment: a long run stops at the first bad one)
+                raise _range_error(renorm_interval, tau, moments_rows, Ls, scale)
             stored.append(out)
             if bar is not None:
                 bar.update(r)
@@ -227,6 +229,19 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     sums[order] = sorted_sums
     t = tau * stride * np.arange(1, nstore + 1)
     return t, sums / t[None, :, None]
+
+
+def _range_error(renorm_interval, tau, moments_rows, Ls, scale) -> ValueError:
+    """The error for tangent vectors that left double precision between two renormalisations."""
+    with np.errstate(over="ignore"):
+        w_top = float(np.max(rate_bound(moments_rows, Ls) * scale))
+    hint = f" (about 100 / w_max = {100.0 / w_top:.3g} or less" if w_top > 0 else " ("
+    return ValueError(
+        f"lyapunov: the tangent vectors left double precision between two renormalisations (renorm_interval = "
+        f"{_validate.fmt(renorm_interval)}, every {_validate.fmt(tau)} in time): they grow or shrink like "
+        f"exp(lambda * {_validate.fmt(tau)}), and exp(+-709) is the range of a double, so the exponents would be "
+        f"NaN or infinite; use a smaller renorm_interval{hint}, the default is 1.0), w_max = {w_top:.3g} being the "
+        f"largest angular velocity reachable on the orbit")
 
 
 @dataclass(frozen=True)
@@ -354,7 +369,9 @@ def lyapunov(
     ------
     ValueError
         bad shapes or values (named), unknown method, a run over the budget
-        ``options["lyapunov_max_work"]`` (with its estimate).
+        ``options["lyapunov_max_work"]`` (with its estimate); a ``renorm_interval`` so long
+        that the tangent vectors leave double precision between renormalisations (growth
+        :math:`e^{\lambda\tau}` beyond :math:`e^{709}`: the exponents would be NaN).
     TypeError
         non-numeric input, a ``client`` that is not a dask client.
 
