@@ -201,3 +201,24 @@ def test_casimirs_of_a_normal_form_with_very_different_magnitudes(N, components)
     batch = body.casimirs(np.broadcast_to(L, (2, 3, L.size)), of="L")
     assert batch.shape == (2, 3, N // 2)
     np.testing.assert_allclose(batch, np.broadcast_to(exact, batch.shape), rtol=4 * N * EPS, atol=0)
+
+
+# ----------------------------------------------------------------------------
+# times so long that double precision rounds the phases E t / hbar (evolve at t = 1e300 returned a state, silently)
+# ----------------------------------------------------------------------------
+@pytest.mark.parametrize("entry", ["evolve", "otoc", "SectorPropagator.evolve"])
+def test_phases_rounded_beyond_1e_minus_6_are_named(so3_rotor, entry):
+    from hyperrotor.quantum._krylov import row_bound
+    from hyperrotor.quantum.sector_propagator import PHASE_ROUNDING_WARN
+
+    rep, H, W, V = so3_rotor  # hbar = 0.7
+    bound = row_bound(H.data.as_scipy() if hasattr(H.data, "as_scipy") else H.full())
+    t_star = PHASE_ROUNDING_WARN * 0.7 / (np.finfo(float).eps * bound)  # where eps ||H|| t / hbar = 1e-6
+    psi = np.ones(rep.dim) / np.sqrt(rep.dim)
+    call = {"evolve": lambda t: hq.evolve(H, psi, [0.0, t], hbar=0.7, method="eigen"),
+            "otoc": lambda t: hq.otoc(H, W, V, [0.0, t], hbar=0.7),
+            "SectorPropagator.evolve": lambda t: hq.SectorPropagator(H, hbar=0.7).evolve(psi, [0.0, t])}[entry]
+    call(0.5 * t_star)  # below: silent (warnings are errors in the tests)
+    with pytest.warns(hq.PhaseRoundingWarning, match=r"rounded by up to ~2e-06 radians") as record:
+        call(2.0 * t_star)
+    assert len(record) == 1 and f"{entry.split('.')[-1]}:" in str(record[0].message)

@@ -94,6 +94,7 @@ SIZELESS = {
     "StepBudgetError": "exception class",
     "UnreachableAccuracyError": "exception class",
     "AccuracyWarning": "warning class",
+    "PhaseRoundingWarning": "warning class",
     "UnknownOptionError": "exception class",
     "ParseError": "exception class",
     "options": "the option table (its sizes are budgets, validated on assignment)",

@@ -30,7 +30,7 @@ from .._parallel import interruptible, progress_bar
 from ..classical.simulate import simulate
 from ..conventions import n_planes, planes
 from .coherent import coherent_state
-from .sector_propagator import SectorPropagator, unit_state
+from .sector_propagator import SectorPropagator, unit_state, warn_phase_rounding
 from .gelfand_tsetlin import DEFAULT_MAX_DIM, gt_size, irrep
 from .hamiltonian import operator_matrix_and_dims, rotor_hamiltonian
 
@@ -203,6 +203,7 @@ def otoc(H: Any, W: Any, V: Any, t: Any, *, state: Any = None, samples: int | No
     if sizes.size:
         _pricing.check("dense_diagonalization", dim=int(sizes.max()), complex=cplx)
     price = {"dim": dim, "squares": float(np.sum(sizes**2)), "cubes": float(np.sum(sizes**3)), "complex": cplx}
+    warn_phase_rounding("otoc", U.spectral_bound, float(np.max(np.abs(t))), U.hbar)
     stderr = None
     if state is not None:
         is_ket = (hasattr(state, "isket") and state.isket) or np.ndim(state) == 1 or np.shape(state)[1:] == (1,)

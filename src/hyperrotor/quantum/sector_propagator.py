@@ -58,7 +58,33 @@ from ._sector_blocks import (
 from .hamiltonian import blocks_of, hermitian_matrix, representation_of
 from .propagators import PROPAGATORS, Auto, ExpmMultiply, Krylov, propagator_class
 
-__all__ = ["SectorPropagator"]
+__all__ = ["SectorPropagator", "PhaseRoundingWarning"]
+
+#: relative rounding (radians) of the phases E t / hbar above which a propagation warns (PhaseRoundingWarning)
+PHASE_ROUNDING_WARN = 1e-6
+
+
+class PhaseRoundingWarning(UserWarning):
+    r"""The times are so long that double precision rounds the phases :math:`E t/\hbar` of the state by more
+    than ``PHASE_ROUNDING_WARN`` = 1e-6 radians (about :math:`\epsilon\,\|H\|\,|t|/\hbar`; from
+    :meth:`SectorPropagator.evolve`, :func:`~hyperrotor.quantum.evolve` and :func:`~hyperrotor.quantum.otoc`).
+
+    Any propagation in double precision computes :math:`e^{-iE_k t/\hbar}` with a phase error of about
+    :math:`\epsilon |E_k t|/\hbar` (and the eigenvalues carry :math:`\epsilon\|H\|` themselves): at
+    :math:`t = 10^{17}` for :math:`\|H\| \sim 10` the relative phases, and so every superposition, are noise.
+    """
+
+
+def warn_phase_rounding(entry: str, bound: float, span: float, hbar: float) -> None:
+    """:class:`PhaseRoundingWarning` when ``eps * bound * span / |hbar|`` exceeds ``PHASE_ROUNDING_WARN``
+    (``bound`` >= the spectral radius of H, ``span`` the longest time from the start)."""
+    err = float(np.finfo(float).eps) * bound * span / abs(hbar)
+    if err > PHASE_ROUNDING_WARN:
+        warn(f"{entry}: the phases E t / hbar of the state are rounded by up to ~{err:.2g} radians at the latest "
+             f"time (eps x ||H|| ~ {bound:.3g} x |t| ~ {span:.3g} / hbar): over ~{PHASE_ROUNDING_WARN:g} the "
+             f"relative phases of the eigencomponents, and every value that depends on them, lose that accuracy "
+             f"(above ~1 radian they are noise); double precision cannot do better at these times",
+             PhaseRoundingWarning)
 
 #: Below this populated dimension the blocks run in the calling thread (threads cost more than they give).
 _SERIAL_DIM = 4096
@@ -403,6 +429,13 @@ class SectorPropagator:
                 b.embed(out, C)
         return out
 
+    @property
+    def spectral_bound(self) -> float:
+        """The largest absolute row sum of ``H`` (:func:`~._krylov.row_bound`): a bound of its spectral radius."""
+        if getattr(self, "_spectral_bound", None) is None:
+            self._spectral_bound = row_bound(self.matrix)
+        return self._spectral_bound
+
     def apply_blocks(self) -> list[int]:
         """The dimensions of the blocks that :meth:`apply` diagonalizes (dense ``eigh``, once) and multiplies
         every column by (the one-dimensional blocks are phases): what a caller of :meth:`apply` prices
@@ -442,6 +475,8 @@ class SectorPropagator:
         e_ops = e_ops_list(e_ops, self.dims)
         store = store_states if store_states is not None else not e_ops
         _pricing.check("evolve", dim=self.dim, n_times=t.size, states=store, **self._stepping_phases(t))
+        if t.size > 1:
+            warn_phase_rounding("evolve", self.spectral_bound, float(t[-1] - t[0]), self.hbar)
         ropts = {"store_states": store_states, "store_final_state": store_final_state, "normalize_output": False}
         result = qutip.solver.Result(e_ops, ropts, solver=f"hyperrotor.evolve[{self.method}]", stats=dict(self.stats))
         ket_dims = [self.dims[0], [1]]
