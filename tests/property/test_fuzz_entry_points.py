@@ -467,6 +467,7 @@ NOT_FUZZED = {
     "textbook_so3": "hbar and coordinates only (as angular_momentum_operators)",
     "StepBudgetError": "an exception class", "UnreachableAccuracyError": "an exception class",
     "AccuracyWarning": "an exception class (a warning category)",
+    "PhaseRoundingWarning": "an exception class (a warning category)",
     "BudgetError": "an exception class",
     "UnknownOptionError": "an exception class", "ParseError": "an exception class",
     "LyapunovResult": "a result record", "Spectrum": "a result record (NamedTuple)",

@@ -62,6 +62,7 @@ EXAMPLES = {
     "StepBudgetError": lambda: hr.StepBudgetError("over budget"),
     "UnreachableAccuracyError": lambda: hr.UnreachableAccuracyError("rtol out of reach"),
     "AccuracyWarning": lambda: hr.AccuracyWarning("accurate to about 1e-7"),
+    "PhaseRoundingWarning": lambda: hq.PhaseRoundingWarning("rounded by ~2e-06 radians"),
     "BudgetError": lambda: hr.BudgetError("over budget"),
     "UnknownOptionError": lambda: hr.UnknownOptionError("unknown option 'x'"),
     "ParseError": lambda: hr.ParseError("bad text"),
