@@ -503,10 +503,11 @@ class Inertia:
         ``Inertia.symbolic(3).subs("I_12", 2)`` replaces the positive symbol ``I_12``; a name the
         inertia does not hold in ``old`` is a ``ParseError`` listing the names it holds.
         """
-        held = set().union(*(_parse.to_sympy(v, "moment").free_symbols for v in (*self._values, *(self._J or ()))))
-        pairs = _subs_pairs(args, held)
-        values = [_parse.to_sympy(v, "moment").subs(pairs, **kwargs) for v in self._values]
-        J = None if self._J is None else tuple(_parse.to_sympy(v, "J").subs(pairs, **kwargs) for v in self._J)
+        moments = [_parse.to_sympy(v, "moment") for v in self._values]
+        Js = None if self._J is None else [_parse.to_sympy(v, "J") for v in self._J]
+        pairs = _subs_pairs(args, set().union(*(e.free_symbols for e in (*moments, *(Js or ())))))
+        values = [e.subs(pairs, **kwargs) for e in moments]
+        J = None if Js is None else tuple(e.subs(pairs, **kwargs) for e in Js)
         values = [_as_value(v, f"moment I_{plane_label(p, self._N)}") for v, p in zip(values, self.planes)]
         return Inertia._from_values(values, self._N, J, self.principal_axes)
 

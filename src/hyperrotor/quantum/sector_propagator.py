@@ -39,6 +39,7 @@ threads, or a dask ``client=``).
 from __future__ import annotations
 
 import time as _time
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -429,12 +430,11 @@ class SectorPropagator:
                 b.embed(out, C)
         return out
 
-    @property
+    @cached_property
     def spectral_bound(self) -> float:
-        """The largest absolute row sum of ``H`` (:func:`~._krylov.row_bound`): a bound of its spectral radius."""
-        if getattr(self, "_spectral_bound", None) is None:
-            self._spectral_bound = row_bound(self.matrix)
-        return self._spectral_bound
+        """The largest absolute row sum of ``H`` (:func:`~._krylov.row_bound`): a bound of its spectral radius
+        (computed once, on first use: the phase-rounding check of evolve and otoc)."""
+        return row_bound(self.matrix)
 
     def apply_blocks(self) -> list[int]:
         """The dimensions of the blocks that :meth:`apply` diagonalizes (dense ``eigh``, once) and multiplies
