@@ -10,6 +10,7 @@ import pytest
 import sympy as sp
 
 import hyperrotor as hr
+from hyperrotor.classical.simulate import estimate_cost
 import hyperrotor.quantum as hq
 from hyperrotor.quantum._sector_blocks import Block
 
@@ -53,11 +54,27 @@ def test_otoc_is_refused_by_its_block_work_before_any_diagonalization(monkeypatc
     pytest.param(lambda r: hr.linear_stability([3.0, 2.0, 1.0], (1, 3), 1.0, rtol=r), id="linear_stability"),
     pytest.param(lambda r: hq.spectrum(np.diag([1.0, 2.0, 2.0]), rtol=r), id="spectrum"),
     pytest.param(lambda r: hq.real_form(hq.irrep(3, (1,)), rtol=r), id="real_form"),
+    pytest.param(lambda r: hr.simulate([2.0, 3.0, 4.0], [0.6, 1.0, -0.5], [0.0, 1.0], rtol=r), id="simulate"),
+    pytest.param(lambda r: hr.simulate([2.0, 3.0, 4.0], [0.6, 1.0, -0.5], [0.0, 1.0], method="DOP853", rtol=r),
+                 id="simulate-scipy"),
+    pytest.param(lambda r: estimate_cost([2.0, 3.0, 4.0], [0.6, 1.0, -0.5], [0.0, 1.0], rtol=r),
+                 id="estimate_cost"),
+    pytest.param(lambda r: hr.Scene([2.0, 3.0, 4.0], [0.6, 1.0, -0.5], [0.0, 1.0], rtol=r), id="Scene"),
 ])
 @pytest.mark.parametrize("rtol", [1, 1.0, 2.5, -1e-3, float("inf")])
 def test_a_relative_tolerance_outside_0_1_is_refused(call, rtol):
     with pytest.raises(ValueError, match=r"rtol must be a relative tolerance with 0 <?=? ?rtol < 1, got"):
         call(rtol)
+
+
+@pytest.mark.parametrize("key", ["simulate_rtol", "scene_rtol"])
+@pytest.mark.parametrize("rtol", [1.0, 2.5, 0.0])
+def test_the_default_rtol_options_are_relative_tolerances_too(key, rtol):
+    with pytest.raises(ValueError, match=rf"{key} must be a relative tolerance with 0 < {key} < 1, got"):
+        with hr.options(**{key: rtol}):
+            pass
+    with hr.options(**{key: 1e-7}):
+        assert hr.options[key] == 1e-7
 
 
 def test_tolerances_inside_the_range_keep_their_meaning():
@@ -80,8 +97,9 @@ def test_spectrum_checks_rtol_and_atol_on_every_route():
 # 3. arguments checked on the routes that do not use them
 # ---------------------------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("kwargs, error, match", [
-    (dict(rtol=-1), ValueError, r"rtol must be finite and > 0, got -1"),
-    (dict(rtol="abc"), TypeError, r"rtol must be a positive real number, got 'abc'"),
+    (dict(rtol=-1), ValueError, r"rtol must be a relative tolerance with 0 < rtol < 1, got -1"),
+    (dict(rtol=1.0), ValueError, r"rtol must be a relative tolerance with 0 < rtol < 1, got 1.0"),
+    (dict(rtol="abc"), TypeError, r"rtol must be a relative tolerance, a real number with 0 < rtol < 1, got 'abc'"),
     (dict(method="bogus"), ValueError, r"unknown method 'bogus'; allowed: 'auto', 'splitting2'"),
     (dict(method=5), TypeError, r"method must be one of 'auto'"),
 ])

@@ -69,6 +69,7 @@ register(
     "Tighter than simulate's own default (1e-9) because a scene's attitude and projected points inherit the "
     "error of omega over the whole run, and a picture or a comparison with the minimal=False route should "
     "not show integrator drift; the cost over 1e-9 is ~30% with the order-8 splitting.",
+    check=lambda key, v: _v.tolerance(key, v),
 )
 
 #: The observable names a :class:`Scene` accepts.
@@ -306,7 +307,7 @@ def _check_inputs(body: Any, omega0: Any, t: Any):
 
 
 def _rtol(scene: Scene) -> float:
-    return options["scene_rtol"] if scene.rtol is None else _v.positive("rtol", scene.rtol)
+    return options["scene_rtol"] if scene.rtol is None else _v.tolerance("rtol", scene.rtol)
 
 
 def _check_run_options(scene: Scene) -> None:

@@ -51,7 +51,7 @@ register(
     "rtol of hyperrotor.simulate when neither rtol nor dt is given: a bound on the whole-run error of the "
     "fixed-step methods (max_t |L - L_exact| <= rtol max_t |L|), scipy's local tolerance for the scipy "
     "methods. 1e-9 costs splitting8 about 1.5x the steps of 1e-6 and stays well above round-off.",
-    check=lambda key, v: _validate.positive(key, v),
+    check=lambda key, v: _validate.tolerance(key, v),
 )
 
 #: ``method="auto"``: ``(rtol at least, method)`` from the registry's ``auto_rtol`` (largest first): the
@@ -270,8 +270,8 @@ def simulate(
         exponentially (chaotic) so that ``rtol`` is out of reach within the budget is refused
         with the estimated growth :math:`e^{\lambda T}` and the reachable accuracy. scipy
         methods: scipy's *local* tolerance (the global error is typically 10-1000 times larger
-        over long runs). Default ``hyperrotor.options["simulate_rtol"]`` (1e-9) when neither
-        ``rtol`` nor ``dt`` is given.
+        over long runs). ``0 < rtol < 1`` (a relative error of 1 or more bounds nothing). Default
+        ``hyperrotor.options["simulate_rtol"]`` (1e-9) when neither ``rtol`` nor ``dt`` is given.
     atol : float or array_like (n_planes,), optional
         scipy methods only: absolute tolerance of ``solve_ivp`` on the angular velocities
         :math:`\omega_{ij}` (units of ``omega0``), as in :func:`scipy.integrate.solve_ivp`
@@ -350,7 +350,7 @@ def simulate(
     """
     wall = time.perf_counter()
     max_steps = _table["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
-    rtol = _validate.positive("rtol", rtol, allow_none=True)
+    rtol = _validate.tolerance("rtol", rtol, allow_none=True)
     progress = _validate.flag("progress", progress, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
@@ -437,7 +437,7 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     import warnings
 
     max_steps = _table["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
-    rtol = _validate.positive("rtol", rtol, allow_none=True)
+    rtol = _validate.tolerance("rtol", rtol, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
     problem, _ = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"], _checked(solver, rtol, None))

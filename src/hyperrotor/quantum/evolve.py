@@ -112,7 +112,7 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     given = options.get("store_states") if isinstance(options, dict) else None
     given = _validate.flag("store_states", given, allow_none=True)  # "no" or 0 would act by their truth value
     no_e_ops = e_ops is None or (isinstance(e_ops, (list, tuple, dict)) and not e_ops)
-    store = bool(given) if given is not None else no_e_ops
+    store = given if given is not None else no_e_ops
     if hasattr(H, "shape") and len(H.shape) == 2:  # priced at the door, before any block or solver is built
         _pricing.check("evolve", dim=int(H.shape[0]), n_times=_validate.time_count(t), states=store)
     mat, dims = hermitian_matrix(H)  # checked once here; the propagators take it as it is

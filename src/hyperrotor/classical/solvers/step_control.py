@@ -374,7 +374,7 @@ class ErrorTarget:
     (see the module docstring)."""
 
     def __init__(self, rtol: Any):
-        self.rtol = _validate.positive("rtol", rtol)
+        self.rtol = _validate.tolerance("rtol", rtol)
         self.seconds_per_step: float | None = None
         self.retries = 0
         self.reruns = 0  # (retries: the re-runs at shorter steps)
