@@ -224,7 +224,7 @@ def test_casimirs_of_a_normal_form_with_very_different_magnitudes(N, components)
 # ----------------------------------------------------------------------------
 # times so long that double precision rounds the phases E t / hbar (evolve at t = 1e300 returned a state, silently)
 # ----------------------------------------------------------------------------
-@pytest.mark.parametrize("entry", ["evolve", "otoc", "SectorPropagator.evolve"])
+@pytest.mark.parametrize("entry", ["evolve", "otoc", "SectorPropagator.evolve", "SectorPropagator.apply"])
 def test_phases_rounded_beyond_1e_minus_6_are_named(so3_rotor, entry):
     from hyperrotor.quantum._krylov import row_bound
     from hyperrotor.quantum.sector_propagator import PHASE_ROUNDING_WARN
@@ -235,7 +235,8 @@ def test_phases_rounded_beyond_1e_minus_6_are_named(so3_rotor, entry):
     psi = np.ones(rep.dim) / np.sqrt(rep.dim)
     call = {"evolve": lambda t: hq.evolve(H, psi, [0.0, t], hbar=0.7, method="eigen"),
             "otoc": lambda t: hq.otoc(H, W, V, [0.0, t], hbar=0.7),
-            "SectorPropagator.evolve": lambda t: hq.SectorPropagator(H, hbar=0.7).evolve(psi, [0.0, t])}[entry]
+            "SectorPropagator.evolve": lambda t: hq.SectorPropagator(H, hbar=0.7).evolve(psi, [0.0, t]),
+            "SectorPropagator.apply": lambda t: hq.SectorPropagator(H, hbar=0.7).apply(psi, -t)}[entry]
     call(0.5 * t_star)  # below: silent (warnings are errors in the tests)
     with pytest.warns(hq.PhaseRoundingWarning, match=r"rounded by up to ~2e-06 radians") as record:
         call(2.0 * t_star)

@@ -134,8 +134,8 @@ def _commutator_norms(U: SectorPropagator, W, V, X: np.ndarray, t: np.ndarray) -
     out = np.empty((t.size, X.shape[1]))
     VX = V @ X
     for k, tk in enumerate(t):
-        WtVX = U.apply(W @ U.apply(VX, tk), -tk)  # W(t) V X
-        VWtX = V @ U.apply(W @ U.apply(X, tk), -tk)  # V W(t) X
+        WtVX = U._apply(W @ U._apply(VX, tk), -tk)  # W(t) V X (phases checked at otoc's door)
+        VWtX = V @ U._apply(W @ U._apply(X, tk), -tk)  # V W(t) X
         D = WtVX - VWtX
         out[k] = np.einsum("ij,ij->j", D.conj(), D).real
     return out

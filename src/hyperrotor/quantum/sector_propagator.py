@@ -68,7 +68,8 @@ PHASE_ROUNDING_WARN = 1e-6
 class PhaseRoundingWarning(UserWarning):
     r"""The times are so long that double precision rounds the phases :math:`E t/\hbar` of the state by more
     than ``PHASE_ROUNDING_WARN`` = 1e-6 radians (about :math:`\epsilon\,\|H\|\,|t|/\hbar`; from
-    :meth:`SectorPropagator.evolve`, :func:`~hyperrotor.quantum.evolve` and :func:`~hyperrotor.quantum.otoc`).
+    :meth:`SectorPropagator.evolve`, :meth:`SectorPropagator.apply`, :func:`~hyperrotor.quantum.evolve` and
+    :func:`~hyperrotor.quantum.otoc`).
 
     Any propagation in double precision computes :math:`e^{-iE_k t/\hbar}` with a phase error of about
     :math:`\epsilon |E_k t|/\hbar` (and the eigenvalues carry :math:`\epsilon\|H\|` themselves): at
@@ -402,12 +403,22 @@ class SectorPropagator:
         Returns
         -------
         ndarray of the shape of ``X``, complex.
+
+        Warns
+        -----
+        PhaseRoundingWarning
+            when double precision rounds the phases :math:`E\tau/\hbar` by more than ``PHASE_ROUNDING_WARN``.
         """
+        tau = _validate.real("tau", tau)
+        warn_phase_rounding("SectorPropagator.apply", self.spectral_bound, abs(tau), self.hbar)
+        return self._apply(X, tau)
+
+    def _apply(self, X: Any, tau: float) -> np.ndarray:
+        """:meth:`apply` without the phase check (callers that checked their longest time at their door: otoc)."""
         X = np.asarray(X)
         if X.ndim not in (1, 2) or X.shape[0] != self.dim or X.dtype.kind not in "biufc":
             raise ValueError(f"X must be a numeric vector of length {self.dim} or a ({self.dim}, k) matrix, got "
                              f"{_validate.fmt(X)} of shape {X.shape}")
-        tau = _validate.real("tau", tau)
         X = X.astype(complex)
         out = np.zeros(X.shape, dtype=complex)
         stats: dict = {}
