@@ -270,20 +270,27 @@ def test_chunking_is_bit_identical(monkeypatch, workers, chunk_size):
 
 @pytest.mark.parametrize("history", [False, True])
 @pytest.mark.parametrize("spectrum", [False, 3])
-def test_a_long_orbit_runs_in_time_segments_bit_for_bit(monkeypatch, history, spectrum):
-    """An orbit longer than options["chunk_seconds"] goes on in segments of whole renormalisations (Ctrl-C
-    and progress between them): the same exponents and history as one call, for one orbit and for several."""
+@pytest.mark.parametrize("chunk_seconds", [1e-4, 3e-7], ids=["renormalisations", "pieces"])
+def test_a_long_orbit_runs_in_time_segments_bit_for_bit(monkeypatch, history, spectrum, chunk_seconds):
+    """An orbit longer than options["chunk_seconds"] goes on in segments of whole renormalisations, and a
+    renormalisation longer than that in pieces of its steps (Ctrl-C and progress between them): the same exponents
+    and history as one call, for one orbit and for several."""
     moments, w0 = generic_5d(4, 3)
     kw = dict(spectrum=spectrum, history=history, renorm_interval=0.5, rng=6)
     for omega0 in (w0[0], w0):
         ref = lyapunov(moments, omega0, 20.0, **kw)
-        calls = []
+        calls = []  # (renormalisations, whether the call ends with the Gram-Schmidt step) of every call
         real = chaos._parallel.map_rows
-        monkeypatch.setattr(chaos._parallel, "map_rows", lambda *a, **k: calls.append(k["args"][-3]) or real(*a, **k))
-        with hr.options(chunk_seconds=1e-4):  # ~1.5e4 work units per segment: a few renormalisations each
+        monkeypatch.setattr(chaos._parallel, "map_rows",
+                            lambda *a, **k: calls.append((k["args"][5], k["args"][-1])) or real(*a, **k))
+        with hr.options(chunk_seconds=chunk_seconds):  # 1e-4: ~1.5e4 work units per segment, a few renormalisations
             cut = lyapunov(moments, omega0, 20.0, **kw)
         monkeypatch.setattr(chaos._parallel, "map_rows", real)
-        assert len(calls) > 3 and sum(calls) == 40  # segments of whole renormalisations, all 40 of them
+        assert len(calls) > 3 and sum(r for r, last in calls if last) == 40  # all 40 renormalisations, once each
+        if chunk_seconds < 1e-6:  # 45 work units per piece: every renormalisation in pieces of a few steps
+            assert sum(not last for _, last in calls) >= 40 and all(r == 1 for r, _ in calls)
+        else:
+            assert all(last for _, last in calls)
         assert np.array_equal(cut.exponents, ref.exponents) and np.array_equal(cut.t, ref.t)
         assert (cut.history is None) == (not history)
         if history:
@@ -323,6 +330,32 @@ def test_ctrl_c_interrupts_one_long_orbit_promptly():
     word, delay = interrupted(code, wait=1.5).split()
     assert word == "interrupted"
     assert float(delay) < 2.0, delay  # generous for a loaded machine: the segment is 0.25 s of work
+
+
+@pytest.mark.slow
+def test_ctrl_c_stops_one_long_renormalisation_promptly():
+    """SIGINT during ONE renormalisation of ONE orbit (a regular orbit, renorm_interval = T, ~7 s of work): the
+    caller gets KeyboardInterrupt at once (map_rows waits interruptibly) and the process exits within about one
+    piece of the renormalisation (0.25 s of work); before the pieces, the compiled call went on to its end in the
+    background and the interpreter waited for it at exit (5.6 s after the signal)."""
+    code = (
+        "import atexit, numpy as np, signal, sys, time, hyperrotor as hr\n"
+        "m, w = np.array([2.0, 3.0, 4.0]), np.array([0.6, 1.0, -0.5])\n"
+        "hr.lyapunov(m, w, 1.0)  # JIT\n"
+        "got = []\n"
+        "signal.signal(signal.SIGINT, lambda *a: (got.append(time.perf_counter()), signal.default_int_handler(*a)))\n"
+        "atexit.register(lambda: print('exited', f'{time.perf_counter() - got[0]:.3f}', flush=True))  # (after the "
+        "threads)\n"
+        "print('running', flush=True)\n"
+        "try:\n"
+        "    hr.lyapunov(m, w, 2e6, renorm_interval=2e6, spectrum=True)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', f'{time.perf_counter() - got[0]:.3f}', flush=True)\n"
+        "    sys.exit(3)\n"
+    )
+    word, delay, ended, exit_delay = interrupted(code, wait=1.5).split()
+    assert (word, ended) == ("interrupted", "exited")
+    assert float(delay) < 1.0 and float(exit_delay) < 2.0, (delay, exit_delay)  # generous for a loaded machine
 
 
 def test_sweep_rows_equal_single_body_calls():

@@ -85,13 +85,15 @@ _MIN_LANES = 4
 # the chunk function (top level: pickled to dask workers)
 # ----------------------------------------------------------------------------
 def _benettin_rows(L0, rates, W0, acc0, h, nsub, word_planes, word_coefs, pair_p, pair_q, pair_s, nren, stride,
-                   nstore):
+                   nstore, renormalize=True):
     """Benettin sums ``(rows, nstore, k)`` and final states ``(rows, n)``, ``(rows, k, n)`` for a chunk of orbits.
 
     ``nren`` renormalisations from the states ``L0``, ``W0`` and the sums ``acc0`` (see
     :mod:`.solvers._tangent_kernels`). Orbits with the same number of steps per renormalisation
     advance together in the bodies-innermost kernel (``tangent_run_lanes``, bit-identical to the
-    one-body kernel for each orbit, so the grouping does not change any result).
+    one-body kernel for each orbit, so the grouping does not change any result). ``renormalize=False``:
+    ``nsub`` steps without the Gram-Schmidt step (the first part of a renormalisation cut into pieces; the sums
+    come back as ``acc0``), in the one-body kernel.
     """
     B, n = L0.shape
     k = W0.shape[1]
@@ -102,10 +104,12 @@ def _benettin_rows(L0, rates, W0, acc0, h, nsub, word_planes, word_coefs, pair_p
                 np.ascontiguousarray(acc0[sel]), word_planes, word_coefs, pair_p, pair_q, pair_s,
                 np.ascontiguousarray(h[sel]), np.ascontiguousarray(nsub[sel]), nren, stride)
         outs = (np.zeros((sel.size, nstore, k)), np.empty((sel.size, n)), np.empty((sel.size, k, n)))
-        if sel.size >= _MIN_LANES:
+        if sel.size >= _MIN_LANES and renormalize:
             tangent_run_lanes(*args, _LANES, *outs)
-        else:  # a few orbits: the one-body kernel is faster (same arithmetic)
-            tangent_run(*args, True, *outs)
+        else:  # a few orbits, or no renormalisation: the one-body kernel (same arithmetic)
+            tangent_run(*args, renormalize, *outs)
+        if not renormalize:
+            outs[0][:, -1] = acc0[sel]
         out[sel], Lout[sel], Wout[sel] = outs
     return out, Lout, Wout
 
@@ -193,6 +197,8 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     per_chunk = options["chunk_seconds"] * _WORK_RATE
     per_ren = float(work_rows.max()) / nren if B else 0.0
     seg = nren if per_ren * nren <= per_chunk else max(1, int(per_chunk // max(per_ren, 1.0)))
+    # ... and a renormalisation longer than that in pieces of its steps (the Gram-Schmidt step after the last one)
+    pieces = max(1, min(int(nsub_f.max()) if B else 1, math.ceil(per_ren / max(per_chunk, 1.0))))
     if chunk_size is None and B:
         chunk_size = min(max(1, int(per_chunk // max(per_ren * seg, 1.0))), max(1, math.ceil(B / (4 * threads))))
     # random orthonormal tangent vectors, drawn before chunking (reproducible with a seeded rng)
@@ -206,21 +212,28 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     L, W, acc = Ls[order], W0[order], np.zeros((B, k))
     fixed = (rates[order], h[order], nsub[order])
     segments = [min(seg, nren - s0) for s0 in range(0, nren, seg)]  # renormalisations per segment
-    bar = _parallel.progress_bar(progress, nren, desc, unit="renormalisation") if len(segments) > 1 else None
+    # the steps of each piece of a renormalisation, per orbit (pieces x B; one piece: all of them)
+    cut = [(fixed[2] + pieces - 1 - i) // pieces for i in range(pieces)]
+    split = len(segments) > 1 or pieces > 1
+    bar = _parallel.progress_bar(progress, nren * pieces, desc, unit="piece" if pieces > 1 else "renormalisation") \
+        if split else None
     stored = []
     try:
         for r in segments:
-            out, L, W = _parallel.map_rows(
-                _benettin_rows, (L, fixed[0], W, acc, fixed[1], fixed[2]),
-                args=(word[0], word[1], tables[0], tables[1], tables[2], r, 1 if history else r, r if history else 1),
-                client=client, chunk_size=chunk_size, progress=progress if len(segments) == 1 else False, desc=desc,
-            )
+            for i, steps in enumerate(cut):  # (a piece with no step for some orbits leaves them as they are)
+                last = i == pieces - 1
+                out, L, W = _parallel.map_rows(
+                    _benettin_rows, (L, fixed[0], W, acc, fixed[1], steps),
+                    args=(word[0], word[1], tables[0], tables[1], tables[2], r, 1 if history else r,
+                          r if history else 1, last),
+                    client=client, chunk_size=chunk_size, progress=progress if not split else False, desc=desc,
+                )
+                if bar is not None:
+                    bar.update(r)
             acc = out[:, -1]
             if not np.all(np.isfinite(acc)):  # (checked per segment: a long run stops at the first bad one)
                 raise _range_error(renorm_interval, tau, moments_rows, Ls, scale)
             stored.append(out)
-            if bar is not None:
-                bar.update(r)
     finally:
         if bar is not None:
             bar.close()
@@ -354,8 +367,9 @@ def lyapunov(
     progress : bool or None
         tqdm progress bar (``None``: on a terminal, for runs over a second): orbits done, or
         renormalisations done when the orbits run in time segments (an orbit longer than
-        ``options["chunk_seconds"]`` goes on in segments of whole renormalisations, with the
-        same numbers as one call; Ctrl-C is honoured between segments).
+        ``options["chunk_seconds"]`` goes on in segments of whole renormalisations, a renormalisation
+        longer than that in pieces of its steps, with the same numbers as one call; Ctrl-C is honoured
+        between segments and pieces).
 
     Returns
     -------
