@@ -92,8 +92,8 @@ def _benettin_rows(L0, rates, W0, acc0, h, nsub, word_planes, word_coefs, pair_p
     :mod:`.solvers._tangent_kernels`). Orbits with the same number of steps per renormalisation
     advance together in the bodies-innermost kernel (``tangent_run_lanes``, bit-identical to the
     one-body kernel for each orbit, so the grouping does not change any result). ``renormalize=False``:
-    ``nsub`` steps without the Gram-Schmidt step (the first part of a renormalisation cut into pieces; the sums
-    come back as ``acc0``), in the one-body kernel.
+    ``nsub`` steps without the Gram-Schmidt step (the first pieces of a renormalisation cut into pieces), in the
+    one-body kernel; the sums are then not written (``out`` stays zero).
     """
     B, n = L0.shape
     k = W0.shape[1]
@@ -108,8 +108,6 @@ def _benettin_rows(L0, rates, W0, acc0, h, nsub, word_planes, word_coefs, pair_p
             tangent_run_lanes(*args, _LANES, *outs)
         else:  # a few orbits, or no renormalisation: the one-body kernel (same arithmetic)
             tangent_run(*args, renormalize, *outs)
-        if not renormalize:
-            outs[0][:, -1] = acc0[sel]
         out[sel], Lout[sel], Wout[sel] = outs
     return out, Lout, Wout
 

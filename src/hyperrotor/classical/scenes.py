@@ -69,7 +69,7 @@ register(
     "Tighter than simulate's own default (1e-9) because a scene's attitude and projected points inherit the "
     "error of omega over the whole run, and a picture or a comparison with the minimal=False route should "
     "not show integrator drift; the cost over 1e-9 is ~30% with the order-8 splitting.",
-    check=lambda key, v: _v.tolerance(key, v),
+    check=_v.tolerance,
 )
 
 #: The observable names a :class:`Scene` accepts.

@@ -51,7 +51,7 @@ register(
     "rtol of hyperrotor.simulate when neither rtol nor dt is given: a bound on the whole-run error of the "
     "fixed-step methods (max_t |L - L_exact| <= rtol max_t |L|), scipy's local tolerance for the scipy "
     "methods. 1e-9 costs splitting8 about 1.5x the steps of 1e-6 and stays well above round-off.",
-    check=lambda key, v: _validate.tolerance(key, v),
+    check=_validate.tolerance,
 )
 
 #: ``method="auto"``: ``(rtol at least, method)`` from the registry's ``auto_rtol`` (largest first): the
