@@ -1,9 +1,15 @@
 """Tests of hyperrotor.demo: the quartet demo's physics as library functions (what `hyperrotor demo` prints)."""
+import json
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 import sympy as sp
 
 import hyperrotor as hr
+from hyperrotor._jit import JIT_ENABLED
 from hyperrotor.classical import quartet_matrix, quartet_theta
 from hyperrotor.demo import (DEMO_OMEGA, DEMO_RUNS, compare_quartet_motion, quartet_invariants,
                              quartet_motion_seconds, save_quartet_motion)
@@ -46,3 +52,47 @@ def test_priced_before_it_runs():
     assert short.rate == long.rate == pytest.approx(1.0 * 2 / 1.25)  # max|omega0| max(I) / min(I)
     with hr.options(max_seconds=60.0), pytest.raises(hr.BudgetError, match="max_seconds"):
         compare_quartet_motion(0.5, DEMO_OMEGA, 1e6)
+
+
+#: A child process: ``compare_quartet_motion`` with ``simulate`` wrapped to list, per call, the compiled functions
+#: of hyperrotor (its modules and the generated unrolled ones) that gained a specialisation during the call
+#: (numba compiled it or loaded it from its disk cache); one JSON line.
+_NEW_KERNELS_PER_CALL = """
+import importlib, json, sys
+from hyperrotor.demo import compare_quartet_motion
+from numba.core.registry import CPUDispatcher
+
+def specialisations():
+    return {f"{m}.{k}": len(v.overloads) for m, mod in list(sys.modules.items()) if m.startswith("hyperrotor")
+            for k, v in list(vars(mod).items()) if isinstance(v, CPUDispatcher)}
+
+sim = importlib.import_module("hyperrotor.classical.simulate")  # (the module: the package exports the function)
+calls, real = [], sim.simulate
+def spy(*args, **kw):
+    before = specialisations()
+    out = real(*args, **kw)
+    after = specialisations()
+    calls.append([kw.get("method"), sorted(k for k, n in after.items() if n > before.get(k, 0))])
+    return out
+
+sim.simulate = spy
+compare_quartet_motion(0.5, t_end=20.0, n_times=201)
+print(json.dumps(calls))
+"""
+
+
+@pytest.mark.skipif(not JIT_ENABLED, reason="numba's compiled functions are what the warm-up loads")
+def test_the_timed_splitting_run_needs_no_kernel_its_untimed_first_call_did_not_load():
+    """The demo reports warm wall times: the splitting run's first, untimed call is the same call, so the timed one
+    loads no compiled function (on a fresh installation, numba would compile it inside the timing: the old warm-up,
+    a plain-arithmetic run at a given step, left the compensated kernels and the step control to the timed run,
+    which reported 14 s instead of 0.1 s). Measured in a fresh process, where nothing is loaded yet."""
+    env = {**os.environ, "MPLBACKEND": "Agg"}
+    out = subprocess.run([sys.executable, "-c", _NEW_KERNELS_PER_CALL], capture_output=True, text=True, env=env,
+                         timeout=600)
+    assert out.returncode == 0, out.stderr
+    calls = json.loads(out.stdout.strip().splitlines()[-1])
+    assert [method for method, _ in calls] == ["splitting8", "splitting8", "DOP853"]
+    (_, first), (_, timed), (_, dop) = calls
+    assert first  # (the spy sees what a call loads: in a fresh process the first call loads its kernels)
+    assert timed == [] and dop == []

@@ -175,8 +175,8 @@ def _motion_lines(motion) -> list[str]:
     lines = [f"motion over t in [0, {num(motion.t[-1], 6)}] ({len(motion.t)} output times), reference: closed form "
              "(eqs. 96-110):",
              "  frequencies Omega_1, Omega_2 (after eq. 118) = " + nums(motion.frequencies),
-             f"  (first splitting call, compiling or loading the numba kernel: {motion.warmup_time:.2f} s; "
-             "the wall times below exclude it)"]
+             f"  (a first, untimed call of the splitting run loads or compiles its numba kernels: "
+             f"{motion.warmup_time:.2f} s; the wall times below are of the runs that follow it)"]
     for run in motion.runs.values():
         lines.append(f"  {run.method:<10} rtol={run.rtol:.0e}: max relative error vs closed form = {run.error:.3e}, "
                      f"energy drift = {run.energy_drift:.2e}, Casimir c_2 drift = {run.casimir_drift:.2e}, "
