@@ -2,7 +2,7 @@ r"""scipy's adaptive integrators through :func:`scipy.integrate.solve_ivp` (``"D
 
 ``rtol`` here is scipy's *local* tolerance (per step), not a bound on the whole-run
 error: the global error of these methods grows with the run length, typically to
-10-1000 times ``rtol`` over a few dozen periods (the measured factor is in the table
+10-100 times ``rtol`` over a few dozen periods (10-82x at rtol 1e-10: the measured factor is in the table
 of ``benchmarks/work_precision_classical.py``). ``atol`` is ``simulate(atol=...)``
 (units of omega, scalar or per plane) or by default set per component,
 ``atol_a = rtol * min(max|omega0|, |L0| / I_a)`` (error in :math:`\omega_a` below
@@ -239,7 +239,8 @@ class ScipyIVP(Solver):
                 if specs:
                     t_events = [te / (s * rb) for te in sol.t_events]
                     L_events = [ye[:, :n] * moments * (s * rb) if ye.size else np.empty((0, n)) for ye in sol.y_events]
-                    T_events = ([ye[:, n:].reshape(-1, N, N) for ye in sol.y_events] if with_att else None)
+                    T_events = ([ye[:, n:].reshape(-1, N, N) if ye.size else np.empty((0, N, N))
+                                 for ye in sol.y_events] if with_att else None)  # (no event: scipy's y is 1-D)
         finally:
             if bar is not None:
                 bar.close()
