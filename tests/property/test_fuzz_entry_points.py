@@ -542,10 +542,38 @@ def _names_it(message, name, value):
     return any(w and w in m for w in words)
 
 
+def _call(path, args, kwargs):
+    a, kw = list(args()), dict(kwargs())
+    if path is None:  # bound method: first element of args
+        fn, a = a[0], a[1:]
+        return fn, a, kw, 1
+    return _resolve(path), a, kw, 0
+
+
+#: Parameters with a ``True`` / ``False`` default that take more than a switch (not fuzzed as "flag"), and why.
+NOT_SWITCHES = {
+    "attitude": "simulate(attitude=...): True, False or an initial attitude matrix",
+    "spectrum": "lyapunov(spectrum=...): True, False or the number of leading exponents",
+}
+
+
+def _switches(path, args):
+    """The keyword parameters of an entry whose default is ``True`` or ``False``: switches, fuzzed as "flag" without
+    being listed (a new switch is checked the day it is added; ``"no"`` or ``0`` must not act by their truth)."""
+    try:
+        fn = _call(path, args, dict)[0]
+        params = inspect.signature(fn).parameters.values()
+    except (TypeError, ValueError):
+        return {}
+    return {p.name: "flag" for p in params if isinstance(p.default, bool) and p.name not in NOT_SWITCHES
+            and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
+
+
 def _cases():
     for label, path, args, kwargs, kinds in ENTRIES:
+        kinds = {**_switches(path, args), **kinds} if kinds else kinds
         for where, kind in kinds.items():
-            good = args()[where] if isinstance(where, int) else kwargs()[where]
+            good = args()[where] if isinstance(where, int) else kwargs().get(where)
             for vid, value, must in _bad_values(kind, good if kind.startswith(("arr", "map", "vec", "pts")) else None, False):
                 cid = f"{label}-{where}-{vid}"
                 marks = ()
@@ -557,14 +585,6 @@ def _cases():
 
 
 CASES = list(_cases())
-
-
-def _call(path, args, kwargs):
-    a, kw = list(args()), dict(kwargs())
-    if path is None:  # bound method: first element of args
-        fn, a = a[0], a[1:]
-        return fn, a, kw, 1
-    return _resolve(path), a, kw, 0
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -586,7 +606,7 @@ def _compiled_before_the_clock():
 @pytest.mark.parametrize("label, path, args, kwargs, where, kind, vid, must", CASES)
 def test_bad_value_is_refused_cleanly(label, path, args, kwargs, where, kind, vid, must):
     fn, a, kw, shift = _call(path, args, kwargs)
-    good = a[where - shift] if isinstance(where, int) else kw[where]
+    good = a[where - shift] if isinstance(where, int) else kw.get(where)
     allows_none = _default_is_none(fn, where if isinstance(where, str) else where - shift)
     values = {v: (val, m) for v, val, m in _bad_values(
         kind, good if kind.startswith(("arr", "map", "vec", "pts")) else None, allows_none)}
@@ -612,6 +632,22 @@ def test_bad_value_is_refused_cleanly(label, path, args, kwargs, where, kind, vi
         pytest.fail(f"{label}({name}={fmt(value)}) raised {type(exc).__name__}: {exc}")
     else:
         assert not must, f"{label}({name}={fmt(value)}) accepted a bad value"
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda v: hyperrotor.scene_html_bytes(2, 3, 1, colour=v), "colour"),
+    (lambda v: hyperrotor.scene_html_bytes(2, 3, 1, plotlyjs=v), "plotlyjs"),
+    (lambda v: hyperrotor.quantum.sphere_inner_product(*hyperrotor.quantum.harmonic_polynomial_basis(3, 1)[:2], 3,
+                                                       normalized=v), "normalized"),
+    (lambda v: hyperrotor.quantum.irrep(3, (1,)).weights(return_vectors=v), "return_vectors"),
+])
+@pytest.mark.parametrize("value", [1, 0, "no", None, np.array([True])])
+def test_switches_of_the_entries_not_fuzzed_refuse_what_is_not_a_bool(call, name, value):
+    """The switches of public callables the table above excuses (NOT_FUZZED) or reaches only through a method:
+    ``"no"`` would act as True, ``0`` as False, by their truth value."""
+    with pytest.raises(TypeError, match=f"{name} must be True or False"):
+        call(value)
+    call(True), call(False)  # (both values of the switch are accepted)
 
 
 def test_every_public_callable_is_fuzzed_or_excused():

@@ -115,7 +115,8 @@ def _benettin_rows(L0, rates, W0, acc0, h, nsub, word_planes, word_coefs, pair_p
 # ----------------------------------------------------------------------------
 # shared driver
 # ----------------------------------------------------------------------------
-def _check_common(T, spectrum, method, dt, renorm_interval, n):
+def _check_common(T, spectrum, method, dt, renorm_interval, n, history):
+    _validate.flag("history", history)
     T = _validate.positive("T", T)
     method = _validate.choice("method", method, LYAPUNOV_METHODS)
     dt = _validate.positive("dt", dt, allow_none=True)
@@ -398,7 +399,7 @@ def lyapunov(
     moments = _validate.moments(body, name="body")
     n = moments.size
     w0 = _validate.components("omega0", omega0, n, what="angular velocities omega_ij in plane order")
-    T, method, dt, renorm_interval, k, as_spectrum = _check_common(T, spectrum, method, dt, renorm_interval, n)
+    T, method, dt, renorm_interval, k, as_spectrum = _check_common(T, spectrum, method, dt, renorm_interval, n, history)
     batch = w0.shape[:-1]
     B = int(np.prod(batch)) if batch else 1
     L0 = np.ascontiguousarray(w0.reshape(B, n) * moments)
@@ -480,7 +481,7 @@ def lyapunov_sweep(
     else:
         raise ValueError(f"omega0 must have shape (M, {n}) (shared by the bodies) or ({P}, M, {n}) (per body), "
                          f"got shape {w0.shape}")
-    T, method, dt, renorm_interval, k, as_spectrum = _check_common(T, spectrum, method, dt, renorm_interval, n)
+    T, method, dt, renorm_interval, k, as_spectrum = _check_common(T, spectrum, method, dt, renorm_interval, n, history)
     L0 = np.ascontiguousarray(Wrows * Mrows)
     t, lam = _benettin(np.ascontiguousarray(Mrows), L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov sweep")

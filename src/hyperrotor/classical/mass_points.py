@@ -44,6 +44,7 @@ def second_moment_matrix(masses: Any, positions: Any, *, center: bool = True) ->
         Measure positions from the centre of mass (default), the origin the
         paper assumes for eq. (6); otherwise from the coordinate origin.
     """
+    center = _validate.flag("center", center)
     m, r = check_points(masses, positions)
     if center:
         r = r - (m @ r) / m.sum()

@@ -67,6 +67,7 @@ def scene_html_bytes(n_times: int, n_points: int, n_edges: int, *, colour: bool 
     """
     K, P, E = (float(_v.integer(name, v, minimum=0)) for name, v in
                (("n_times", n_times), ("n_points", n_points), ("n_edges", n_edges)))
+    colour, plotlyjs = _v.flag("colour", colour), _v.flag("plotlyjs", plotlyjs)
     per_frame = ((3 + (1 if colour else 0)) * P + 9 * E) * _BYTES_PER_NUMBER + _FRAME_OVERHEAD
     return K * per_frame + (_PLOTLYJS_BYTES if plotlyjs else 0.0)
 

@@ -387,6 +387,7 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     from .rigid_body import RigidBody
 
     wall = time.perf_counter()
+    minimal = _v.flag("minimal", minimal)
     moments, N, obs, w0, t, sel_planes, cols, pts, ax, T0 = _validate(scene)
     res = SceneResult(t=t, planes=sel_planes)
     need_att = "attitude" in obs or "projection" in obs

@@ -164,6 +164,7 @@ def harmonic_polynomial_basis(N: int, l: int, coordinates: Any = None, *, as_dic
     [x1**2 - x3**2, x1*x2, x2**2 - x3**2, x1*x3, x2*x3]
     """
     N, l = check_dimension(N), _check_degree(l)
+    as_dict = _validate.flag("as_dict", as_dict)
     _check_size(N, l)
     dicts = _harmonic_dicts(N, l)
     if as_dict:
@@ -213,6 +214,7 @@ def sphere_monomial_integral(exponents: Any, *, normalized: bool = False):
     if isinstance(exponents, (str, bytes, Mapping)) or not hasattr(exponents, "__iter__"):
         raise TypeError(f"exponents must be a sequence of integers >= 0, got {_validate.fmt(exponents)}")
     a = tuple(_validate.integer("exponents entry", e, minimum=0) for e in exponents)
+    normalized = _validate.flag("normalized", normalized)
     if not a or min(a) < 0:
         raise ValueError(f"exponents must be a non-empty sequence of integers >= 0, got {exponents!r}")
     if len(a) > 1:
@@ -301,6 +303,7 @@ def sphere_inner_product(p: Any, q: Any, N: int, coordinates: Any = None, *, nor
     SymPy number (exact).
     """
     N = check_dimension(N)
+    normalized = _validate.flag("normalized", normalized)
     coords = coordinate_symbols(N, coordinates)
     (dp, tp), (dq, tq) = _size_bound(p, coords), _size_bound(q, coords)
     _pricing.check("sphere_integral", degree=dp + dq, terms=tp + tq, dense=True)
@@ -396,6 +399,7 @@ def orthonormal_harmonic_basis(N: int, l: int, coordinates: Any = None, *, exact
     measure divide by :math:`\sqrt{|S^{N-1}|}`.
     """
     N, l = check_dimension(N), _check_degree(l)
+    exact = _validate.flag("exact", exact)
     _check_size(N, l, "orthonormal_harmonic_basis")
     coords = coordinate_symbols(N, coordinates)
     polys, norms = _orthogonal(N, l)

@@ -257,6 +257,7 @@ class Representation:
         vectors : ndarray, shape (dim, dim), only with ``return_vectors=True``
             Unitary; column ``a`` has weight ``weights[a]``.
         """
+        return_vectors = _validate.flag("return_vectors", return_vectors)
         H = self.cartan_generators(form="hermitian", format="csr")
         n = self.rank
         diag = all((Hk - sps.diags(Hk.diagonal())).count_nonzero() == 0 for Hk in H)
