@@ -67,8 +67,15 @@ def test_grid_rows_are_parameter_major():
 
 
 def test_empty_ensemble_calls_func_once():
-    out = _parallel.map_rows(logistic_rows, np.empty((0, 3)), args=(5,), progress=False)
-    assert out.shape == (0, 3)
+    calls = []
+
+    def counted(x, steps):
+        calls.append(x.shape)
+        return logistic_rows(x, steps)
+
+    out = _parallel.map_rows(counted, np.empty((0, 3)), args=(5,), progress=False)
+    assert calls == [(0, 3)]  # once, on the empty rows (its result has the shape func gives them)
+    assert out.shape == (0, 3) and out.dtype == np.float64
 
 
 def test_progress_bar_counts_rows(rows, capsys):

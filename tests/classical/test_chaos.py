@@ -233,9 +233,12 @@ def test_spectrum_k_leading_matches_full_spectrum_start():
     full = lyapunov(moments, w0, 50.0, spectrum=True, rng=1).exponents
     three = lyapunov(moments, w0, 50.0, spectrum=3, rng=1).exponents
     assert three.shape == (2, 3)
-    # Gram-Schmidt: the first vectors do not see the later ones; same random start only in
-    # distribution, so compare the leading exponent loosely and the shapes exactly
-    assert np.all(np.abs(three[:, 0] - full[:, 0]) < 0.5 * np.abs(full[:, 0]) + 0.05)
+    # Gram-Schmidt: the first vectors do not see the later ones, so the three are the full spectrum's first three,
+    # but from other random starts (the same seed draws other vectors for another k): finite-time exponents from
+    # different frames differ by O(log / T) (the projections of the start on the Oseledets directions)
+    T = 50.0
+    np.testing.assert_array_less(np.abs(three - full[:, :3]), 2 * math.log(T) / T)
+    assert np.all(np.diff(three, axis=1) <= 0) and np.all(three[:, 0] > 0.1)  # ordered; a chaotic orbit leads
 
 
 # ----------------------------------------------------------------------------

@@ -132,7 +132,9 @@ def test_3d_triangle_inequality_is_physicality():
     # every 3D inertia has the form J_i + J_j; physical iff I_3 <= I_1 + I_2 (and cyclic)
     assert Inertia.from_planes({(1, 2): 1.0, (1, 3): 2.0, (2, 3): 3.0}).is_physical()  # flat: J_1 = 0
     bad = Inertia.from_planes({(1, 2): 1.0, (1, 3): 2.0, (2, 3): 3.5})
-    assert bad.mass_tensor is not None and not bad.is_physical()
+    # J_1 + J_2 = 1, J_1 + J_3 = 2, J_2 + J_3 = 3.5: J_1 = (1 + 2 - 3.5) / 2 < 0 (I_23 > I_12 + I_13)
+    np.testing.assert_allclose(bad.mass_tensor, [-0.25, 1.25, 2.25], rtol=0, atol=scaled_tol(3.5, dim=3))
+    assert not bad.is_physical()
 
 
 def test_symbolic_physicality_undecidable():
@@ -215,7 +217,10 @@ def test_from_points_centre_of_mass():
     b = Inertia.from_points(np.ones(4), pos - [2.0, 0.0], center=False)
     np.testing.assert_allclose(a.moments, b.moments, rtol=1e-14)
     c = Inertia.from_points(np.ones(4), pos, center=False)
-    assert c.moments[0] > a.moments[0]  # parallel-axis theorem
+    # one plane (1, 2): sum m |r|^2; about the centre (2, 0) the points are at distance 1: 4; about the origin
+    # 1 + 9 + 5 + 5 = 20 = 4 + M d^2 with M = 4, d = 2 (parallel-axis theorem)
+    np.testing.assert_allclose(a.moments, [4.0], rtol=0, atol=scaled_tol(20.0, dim=4))
+    np.testing.assert_allclose(c.moments, [4.0 + 4 * 2.0 ** 2], rtol=0, atol=scaled_tol(20.0, dim=4))
 
 
 @pytest.mark.parametrize("masses,positions,msg", [

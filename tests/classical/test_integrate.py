@@ -16,6 +16,7 @@ from hyperrotor.classical.solvers import SOLVERS
 from hyperrotor.classical.solvers.splitting import casimir_shift, splitting_coefficients
 from hyperrotor.classical.solvers.splitting import splitting_word as _splitting_word
 from hyperrotor.conventions import n_planes, structure_constants, to_matrix
+from tolerance import scaled_tol
 
 SPLITTINGS = [m for m in SOLVERS if m.startswith("splitting")]
 SCIPY = ["DOP853", "RK45", "LSODA", "Radau"]
@@ -329,7 +330,8 @@ def test_compensation_rule_and_its_round_off_floor(rng):
     # splitting8 at dt = 0.05 is converged (truncation << 1e-15): what is left is round-off
     plain = np.abs(short.omega - exact).max()
     comp = np.abs(simulate(MOM3, W3, t, method="splitting8", dt=0.05, options={"compensated": True}).omega - exact).max()
-    assert comp < 1e-14 and comp < plain
+    # compensated: at the reference's own floor (its phase rounds like eps |omega| t), far below plain
+    assert comp < 4 * np.finfo(float).eps * (1 + np.abs(W3).max() * t[-1]) * np.abs(exact).max() and comp < plain
     assert plain < 1e-12
 
 
@@ -380,9 +382,12 @@ def test_initial_attitude_is_used(rng):
     inertia, w0 = generic5(rng)
     Q, _ = np.linalg.qr(rng.normal(size=(5, 5)))
     t = np.linspace(0, 2, 5)
-    a = simulate(inertia, w0, t, method="splitting8", dt=0.01, attitude=True).attitude
+    run = simulate(inertia, w0, t, method="splitting8", dt=0.01, attitude=True)
+    a = run.attitude
     b = simulate(inertia, w0, t, method="splitting8", dt=0.01, attitude=Q).attitude
-    np.testing.assert_allclose(b, a @ Q, atol=1e-13)  # dT/dt = W T is linear in T from the right
+    # dT/dt = W T is linear in T from the right: equal to the round-off of the run's flows
+    flows = run.stats["steps"] * run.stats["flows_per_step"]
+    np.testing.assert_allclose(b, a @ Q, rtol=0, atol=scaled_tol(1.0, k=4, dim=5, steps=flows))
     c = simulate(inertia, w0, t, method="DOP853", rtol=1e-12, attitude=Q).attitude
     np.testing.assert_allclose(c, b, atol=1e-8)
 

@@ -55,7 +55,10 @@ def test_reference_densities_normalized_with_exact_means(ensemble):
 
 def test_surmise_means_closed_forms():
     assert R_SURMISE_MEAN["goe"] == pytest.approx(4 - 2 * math.sqrt(3), rel=1e-15)
-    assert R_MEAN["poisson"] == pytest.approx(0.38629436, abs=1e-8)
+    # Poisson: P(r) = 2 / (1 + r)^2 on [0, 1], mean 2 ln 2 - 1; GUE surmise: 2 sqrt(3) / pi - 1 / 2
+    assert R_MEAN["poisson"] == R_SURMISE_MEAN["poisson"] == pytest.approx(2 * math.log(2) - 1, rel=1e-15)
+    assert R_SURMISE_MEAN["gue"] == pytest.approx(2 * math.sqrt(3) / math.pi - 0.5, rel=1e-15)
+    assert quad(lambda r: 2 * r / (1 + r) ** 2, 0, 1)[0] == pytest.approx(R_MEAN["poisson"], abs=1e-12)
 
 
 @pytest.mark.parametrize("ensemble", ENSEMBLES)
