@@ -245,7 +245,7 @@ register(
     "Budget of hyperrotor.lyapunov / lyapunov_sweep: most work per worker thread, in elementary "
     "plane flows times (1 + k * max(1, (N - 2) / 3)) for k tangent vectors (a tangent vector's plane "
     "flow touches N - 2 pairs of components; the factor is 1 in 5D), estimated before the run (about "
-    "10 ns per unit on the reference machine, so 3e10 is ~5 minutes). A run over it is refused with "
+    "7 ns per unit on the reference machine, so 3e10 is ~3 minutes). A run over it is refused with "
     "the estimate; raise it with hr.options(lyapunov_max_work=...) or add workers (client=).",
 )
 
