@@ -6,20 +6,35 @@ import signal
 import subprocess
 import sys
 import time
+from typing import Callable
 
 
-def interrupted(code: str, wait: float) -> str:
+def interrupted(code: str, wait: float | Callable[[list[str]], float], *, latency: bool = False,
+                timeout: float = 60.0):
     """Run ``code`` in a child process, SIGINT it ``wait`` s after it prints 'running'; its stdout
-    (the child must exit with status 3 on KeyboardInterrupt)."""
+    (the child must exit with status 3 on KeyboardInterrupt).
+
+    ``wait`` may be a function of the lines the child printed before 'running' (e.g. a time it measured).
+    ``latency=True``: also the seconds from the signal to the child's next line of output (its
+    ``except KeyboardInterrupt`` printing), as ``(stdout, latency)``. ``timeout`` guards against a hang after
+    the signal; it is not a timing assertion.
+    """
     proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             env={**os.environ, "PYTHONUNBUFFERED": "1"})
     try:
-        assert proc.stdout.readline().strip() == "running"
-        time.sleep(wait)
+        before = []
+        while (line := proc.stdout.readline()).strip() != "running":
+            assert line, f"the child ended before 'running': {before} {proc.stderr.read()}"
+            before.append(line.strip())
+        time.sleep(wait(before) if callable(wait) else wait)
+        sent = time.perf_counter()
         proc.send_signal(signal.SIGINT)
-        out, err = proc.communicate(timeout=60)  # a guard against a hang, not a timing assertion
+        first = proc.stdout.readline()
+        seconds = time.perf_counter() - sent
+        rest, err = proc.communicate(timeout=timeout)
     finally:
         if proc.poll() is None:
             proc.kill()
+    out = first + rest
     assert proc.returncode == 3, (out, err)
-    return out
+    return (out, seconds) if latency else out
