@@ -238,9 +238,10 @@ class ScipyIVP(Solver):
                 sols.append(sol.sol)  # None unless events asked for scipy's dense output
                 if specs:
                     t_events = [te / (s * rb) for te in sol.t_events]
-                    L_events = [ye[:, :n] * moments * (s * rb) if ye.size else np.empty((0, n)) for ye in sol.y_events]
-                    T_events = ([ye[:, n:].reshape(-1, N, N) if ye.size else np.empty((0, N, N))
-                                 for ye in sol.y_events] if with_att else None)  # (no event: scipy's y is 1-D)
+                    # (an event that never fired: scipy's states are 1-D and empty; as (0, state size) here)
+                    y_events = [ye.reshape(-1, sol.y.shape[0]) for ye in sol.y_events]
+                    L_events = [ye[:, :n] * moments * (s * rb) for ye in y_events]
+                    T_events = [ye[:, n:].reshape(-1, N, N) for ye in y_events] if with_att else None
         finally:
             if bar is not None:
                 bar.close()
