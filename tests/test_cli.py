@@ -65,6 +65,31 @@ def test_demo_prints_equations_28_to_37_in_order(capsys):
     assert "(1, 1, 1, 1, 1/4)" in out
 
 
+def test_demo_prints_the_equations_before_the_motion_is_computed(capsys, monkeypatch):
+    """A fresh installation compiles numba's kernels inside the motion (~20 s): the equations come first, and with
+    --progress a line on stderr says what is being computed (the rest of stdout as before)."""
+    import hyperrotor.demo
+
+    seen = []
+    real = hyperrotor.demo.compare_quartet_motion
+
+    def spy(*args, **kwargs):
+        seen.append(dict(zip(("out", "err"), capsys.readouterr())))
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(hyperrotor.demo, "compare_quartet_motion", spy)
+    code, out, err = _run(capsys, ["demo", "--ascii", "--no-png", "--t-end", "1", "--progress"])
+    first = seen[0]
+    assert code == 0 and err == ""
+    assert first["out"].startswith("hyperrotor demo: Euler equations") and "(37)" in first["out"]
+    assert "d omega/dt = " in first["out"] and "motion over" not in first["out"]
+    assert first["err"] == ("computing the motion over t in [0, 1] (closed form, splitting8, DOP853); the first run "
+                           "after installing compiles numba's kernels once (about 20 s)\n")
+    assert out.startswith("motion over t in [0, 1]") and "summary: 10 coupled Euler equations" in out
+    _, rest, err = _run(capsys, ["demo", "--ascii", "--no-png", "--t-end", "1", "--no-progress"])
+    assert seen[1] == {"out": first["out"], "err": ""} and err == "" and rest.startswith("motion over t in [0, 1]")
+
+
 def test_demo_options(capsys):
     code, out, _ = _run(capsys, ["demo", "--ascii", "--no-png", "--kappa", "2", "--axis", "1", "--convention", "standard",
                                  "--omega", "1,0,0,0,0,0,0,0,0,1"])

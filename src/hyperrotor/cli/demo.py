@@ -81,7 +81,12 @@ def run(args: argparse.Namespace) -> int:
                 raise UsageError("--png needs matplotlib (pip install 'hyperrotor[viz]'), or pass --no-png")
         # --- work ------------------------------------------------------------------
         body = RigidBody(inertia, convention=args.convention)
-        out = _demo_text(args, body, inertia, kappa, omega)
+        # the equations at once: the motion below takes ~20 s on a fresh installation (numba compiles its kernels)
+        print("\n".join(_demo_text(args, body, inertia, kappa, omega)), flush=True)
+        if args.progress or (args.progress is None and sys.stderr.isatty()):
+            print(f"computing the motion over t in [0, {num(t_end, 6)}] (closed form, splitting8, DOP853); the first "
+                  "run after installing compiles numba's kernels once (about 20 s)", file=sys.stderr, flush=True)
+        out = []
         with options(max_seconds=max(float(options["max_seconds"]), args.max_seconds or 0.0,
                                      float(options["cli_max_seconds"]))):  # the CLI's budget was checked above
             motion = compare_quartet_motion(kappa, omega, t_end, axis=args.axis)

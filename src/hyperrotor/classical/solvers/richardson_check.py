@@ -170,7 +170,9 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
         marks[count] = steps
         out_idx = np.empty(0, dtype=np.int64)
         grid = np.empty(count + 2)
-        grid[1:] = stops(t, cs, nsub, ah, marks)[0]  # (the marks' times: output times exactly where they are one)
+        times = stops(t, cs, nsub, ah, marks)[0]  # (the marks' times: output times exactly where they are one)
+        for i in range(count + 1):  # (a loop: numba compiles a slice assignment's shape check for seconds)
+            grid[i + 1] = times[i]
     grid[0] = t[0]
     S = marks.size
     total = 0
