@@ -19,8 +19,8 @@ CASES = {  # method, options, ensemble shape, span: > 2e6 plane flows, so the ru
     "splitting4-compensated-one": ("splitting4", dict(compensated=True), (), 60.0),
     "splitting4-plain-ensemble": ("splitting4", dict(compensated=False), (40,), 3.0),
     "splitting4-compensated-ensemble": ("splitting4", dict(compensated=True), (40,), 3.0),
-    "moser-veselov-one": ("moser-veselov", {}, (), 6.0),
-    "moser-veselov-ensemble": ("moser-veselov", {}, (8,), 1.5),
+    "moser-veselov-one": ("moser-veselov", {}, (), 15.0),
+    "moser-veselov-ensemble": ("moser-veselov", {}, (8,), 3.0),
 }
 
 

@@ -153,6 +153,38 @@ def test_jitted_and_python_kernels_agree(rng):
     np.testing.assert_allclose(outs[0][1], outs[2][1], rtol=0, atol=1e-13)
 
 
+@pytest.mark.parametrize("m", [1, 3, 10, 21])
+def test_the_kernels_lu_solve_agrees_with_lapack(m, rng):
+    """The kernel's own LU (partial pivoting, as LAPACK's getrf/getrs): A^{-1} B within eps cond(A) of
+    numpy's solve, on random matrices and on one whose leading pivot is zero; a singular matrix is refused."""
+    for A in (rng.normal(size=(m, m)), np.roll(np.eye(m), 1, axis=0) + 0.1 * np.triu(rng.normal(size=(m, m)), 2)):
+        B = rng.normal(size=(m, 3))
+        LU, X, piv = A.copy(), B.copy(), np.empty(m, dtype=np.int64)
+        assert moser_veselov._lu_factor(LU, piv)
+        moser_veselov._lu_solve(LU, piv, X)
+        ref = np.linalg.solve(A, B)
+        bound = 10 * m * EPS * np.linalg.cond(A) * np.abs(ref).max()
+        np.testing.assert_allclose(X, ref, rtol=0, atol=bound)
+        np.testing.assert_allclose(A @ X, B, rtol=0, atol=10 * m * EPS * np.abs(A).max() * np.abs(X).max())
+    singular = np.outer(rng.normal(size=m), rng.normal(size=m)) if m > 1 else np.zeros((1, 1))
+    singular[:, 0] = 0.0
+    assert not moser_veselov._lu_factor(singular, np.empty(m, dtype=np.int64))
+
+
+def test_the_kernels_cayley_map_is_a_rotation(rng):
+    """Q = (1 - X/2)^{-1} (1 + X/2) of an antisymmetric X: orthogonal, det 1, and Ainv the inverse of 1 - X/2."""
+    N = 6
+    X = rng.normal(size=(N, N))
+    X = X - X.T
+    eye = np.eye(N)
+    LU, Ainv, Q = (np.empty((N, N)) for _ in range(3))
+    assert moser_veselov._cayley(X, eye, LU, np.empty(N, dtype=np.int64), Ainv, Q)
+    np.testing.assert_allclose(Q.T @ Q, eye, rtol=0, atol=100 * N * EPS)
+    assert np.linalg.det(Q) == pytest.approx(1.0, abs=100 * N * EPS)
+    np.testing.assert_allclose(Ainv @ (eye - X / 2), eye, rtol=0, atol=100 * N * EPS)
+    np.testing.assert_allclose(Q, np.linalg.solve(eye - X / 2, eye + X / 2), rtol=0, atol=100 * N * EPS)
+
+
 def test_bad_input():
     w0 = np.ones(10)
     t = [0.0, 1.0]

@@ -38,7 +38,10 @@ product is a rank-2 update, so the :math:`n \times n` Jacobian costs
 :math:`O(nN^2)`. Iterations stop when the Newton update is below ``4 eps``
 relative to :math:`X` (3-4 iterations for :math:`h|W| \lesssim 0.1`); a step
 that does not converge in 30 iterations (:math:`h|W|` of order 1) raises
-``RuntimeError``.
+``RuntimeError``. The kernel solves its small linear systems (:math:`N \times N` and
+:math:`n \times n`) by its own LU with partial pivoting (``_lu_factor``, ``_lu_solve``: LAPACK's
+``getrf``/``getrs`` written out), not ``np.linalg``, whose shape checks and LAPACK wrappers numba
+compiles for seconds (a first run compiled for 15.5 s with them, 9 s without).
 """
 from __future__ import annotations
 
@@ -79,13 +82,90 @@ def mass_tensor_of(body: Any, moments: np.ndarray) -> np.ndarray:
 
 
 @jit
-def _cayley_factors(X, eye, A, Bp):  # pragma: no cover - jitted
-    """``A = 1 - X/2``, ``Bp = 1 + X/2`` (in place): the Cayley map is ``Q = A^{-1} Bp``."""
+def _lu_factor(A, piv):  # pragma: no cover - jitted
+    """LU factorisation of the square ``A`` in place, rows swapped by partial pivoting (``piv[k]``: the row
+    exchanged with row ``k``), as LAPACK's ``getrf``; ``False`` if a pivot is zero (``A`` singular).
+
+    Written out instead of ``np.linalg.solve``/``inv`` in the kernel: numba compiles those with their shape
+    checks and LAPACK wrappers for ~6 s each (a first Moser-Veselov run took 22 s to compile, 10 s without
+    them), and the matrices here are N x N and n x n.
+    """
+    m = A.shape[0]
+    for k in range(m):
+        p = k
+        big = abs(A[k, k])
+        for r in range(k + 1, m):
+            if abs(A[r, k]) > big:
+                big = abs(A[r, k])
+                p = r
+        piv[k] = p
+        if big == 0.0 or not big == big:  # (NaN: a non-finite matrix)
+            return False
+        if p != k:
+            for c in range(m):
+                A[k, c], A[p, c] = A[p, c], A[k, c]
+        for r in range(k + 1, m):
+            f = A[r, k] / A[k, k]
+            A[r, k] = f
+            for c in range(k + 1, m):
+                A[r, c] -= f * A[k, c]
+    return True
+
+
+@jit
+def _lu_solve(LU, piv, X):  # pragma: no cover - jitted
+    """``X <- A^{-1} X`` in place, for every column of ``X``, from ``_lu_factor``'s ``LU`` and ``piv`` (``getrs``;
+    row operations, so that the inner loops run along the rows of ``X``)."""
+    m = LU.shape[0]
+    ncol = X.shape[1]
+    for k in range(m):
+        p = piv[k]
+        if p != k:
+            for c in range(ncol):
+                X[k, c], X[p, c] = X[p, c], X[k, c]
+    for r in range(m):  # L Y = P X (unit lower triangle)
+        for k in range(r):
+            f = LU[r, k]
+            for c in range(ncol):
+                X[r, c] -= f * X[k, c]
+    for r in range(m - 1, -1, -1):  # U X = Y
+        for k in range(r + 1, m):
+            f = LU[r, k]
+            for c in range(ncol):
+                X[r, c] -= f * X[k, c]
+        d = LU[r, r]
+        for c in range(ncol):
+            X[r, c] /= d
+
+
+@jit
+def _cayley(X, eye, LU, piv, Ainv, Q):  # pragma: no cover - jitted
+    """The Cayley map ``Q = A^{-1} (1 + X/2)`` of ``X`` and ``Ainv = A^{-1}``, ``A = 1 - X/2``, in place (``LU``:
+    ``A``'s factors); ``False`` if ``A`` is singular (never for a finite antisymmetric ``X``: its eigenvalues
+    are ``1 - i y/2``)."""
     N = X.shape[0]
     for r in range(N):
         for c in range(N):
-            A[r, c] = eye[r, c] - 0.5 * X[r, c]
-            Bp[r, c] = eye[r, c] + 0.5 * X[r, c]
+            LU[r, c] = eye[r, c] - 0.5 * X[r, c]
+            Q[r, c] = eye[r, c] + 0.5 * X[r, c]
+            Ainv[r, c] = eye[r, c]
+    if not _lu_factor(LU, piv):
+        return False
+    _lu_solve(LU, piv, Ainv)
+    _lu_solve(LU, piv, Q)
+    return True
+
+
+@jit
+def _product(A, B, out, transpose_b):  # pragma: no cover - jitted
+    """``out = A B`` (``A B^T`` with ``transpose_b``) of square matrices (``out`` neither of them)."""
+    N = A.shape[0]
+    for r in range(N):
+        for c in range(N):
+            v = 0.0
+            for k in range(N):
+                v += A[r, k] * (B[c, k] if transpose_b else B[k, c])
+            out[r, c] = v
 
 
 def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL, outT, status,
@@ -112,11 +192,16 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
             outL[b, 0, a] = L0[b, a]
         T = start_attitude(T0, b, with_attitude, outT)
         X = np.zeros((N, N))
-        A = np.empty((N, N))
-        Bp = np.empty((N, N))
         Jac = np.empty((n, n))
         Fv = np.empty(n)
+        dx = np.empty((n, 1))
         eye = np.eye(N)
+        LU = np.empty((N, N))
+        Ainv = np.empty((N, N))
+        Q = np.empty((N, N))
+        W = np.empty((N, N))  # (a product's output)
+        piv = np.empty(N, dtype=np.int64)
+        pivn = np.empty(n, dtype=np.int64)
         step = 0
         failed = False
         corr = np.empty(n)
@@ -133,9 +218,8 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
                     X[pair_j[a], pair_i[a]] = -v
                 converged = False
                 for it in range(_MAX_NEWTON):
-                    _cayley_factors(X, eye, A, Bp)
-                    Ainv = np.linalg.inv(A)
-                    Q = Ainv @ Bp
+                    if not _cayley(X, eye, LU, piv, Ainv, Q):
+                        break
                     for a in range(n):  # F = J Q - Q^T J - h L, plane components
                         i = pair_i[a]
                         j = pair_j[a]
@@ -151,16 +235,20 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
                             dij = Ainv[i, p] * (Q[q, j] + eye[q, j]) - Ainv[i, q] * (Q[p, j] + eye[p, j])
                             dji = Ainv[j, p] * (Q[q, i] + eye[q, i]) - Ainv[j, q] * (Q[p, i] + eye[p, i])
                             Jac[a, c] = 0.5 * (J[i] * dij - J[j] * dji)
-                    dx = np.linalg.solve(Jac, -Fv)
+                    for a in range(n):
+                        dx[a, 0] = -Fv[a]
+                    if not _lu_factor(Jac, pivn):  # (singular: the step fails as a Newton solve that diverged)
+                        break
+                    _lu_solve(Jac, pivn, dx)
                     size = 0.0
                     upd = 0.0
                     for a in range(n):
                         i = pair_i[a]
                         j = pair_j[a]
-                        X[i, j] += dx[a]
-                        X[j, i] -= dx[a]
+                        X[i, j] += dx[a, 0]
+                        X[j, i] -= dx[a, 0]
                         size = max(size, abs(X[i, j]))
-                        upd = max(upd, abs(dx[a]))
+                        upd = max(upd, abs(dx[a, 0]))
                     if not (upd == upd) or upd > 1e3:  # NaN or diverging
                         break
                     if upd <= 4.0 * eps * size or upd <= _X_FLOOR:
@@ -174,9 +262,9 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
                     corr[a] = X[pair_i[a], pair_j[a]] - h * Lm[pair_i[a], pair_j[a]] / moments[a]
                 ratio2 = 1.0
                 hprev = h
-                _cayley_factors(X, eye, A, Bp)  # Q of the converged X
-                Q = np.linalg.solve(A, Bp)
-                Lm = Q @ Lm @ Q.T
+                _cayley(X, eye, LU, piv, Ainv, Q)  # Q of the converged X
+                _product(Q, Lm, W, False)
+                _product(W, Q, Lm, True)
                 for r in range(N):  # keep L exactly antisymmetric
                     Lm[r, r] = 0.0
                     for c in range(r + 1, N):
@@ -184,7 +272,8 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
                         Lm[r, c] = v
                         Lm[c, r] = -v
                 if with_attitude:
-                    T = Q @ T
+                    _product(Q, T, W, False)
+                    T, W = W, T
                 step += 1
             if failed:
                 break
@@ -235,8 +324,8 @@ class MoserVeselov(FixedStepSolver):
     Implicit; symplectic and time-reversible; keeps the Casimirs, the energy and the
     attitude's orthogonality to round-off. Fixed step (``dt`` or chosen once from
     ``rtol``). Needs a mass tensor (:math:`I_{ij} = J_i + J_j`) and no torque. Per step
-    it costs about as much as a few hundred plane flows of a splitting (Newton on the
-    Cayley parameter), so the splittings reach a given error much sooner
+    it costs about as much as :math:`3n(n+2)/2` plane flows of a splitting (Newton on the
+    Cayley parameter; 180 in 5D), so the splittings reach a given error much sooner
     (``benchmarks/work_precision_classical.py``); a reference method.
     """
 
@@ -250,7 +339,9 @@ class MoserVeselov(FixedStepSolver):
         self._J = mass_tensor_of(problem.body, problem.moments)
 
     def flows_per_step(self, problem: Problem) -> int:
-        return 40 * problem.n  # Newton with an n x n Jacobian: about 40 n plane flows per step (measured, 5D)
+        # Newton with an n x n Jacobian (built in O(n N^2), solved in O(n^3)) at 3-4 iterations: a step costs
+        # 22, 208, 710, 3106 of splitting2's plane flows at N = 3, 5, 7, 10 (measured, one body): 3 n (n + 2) / 2
+        return 3 * problem.n * (problem.n + 2) // 2
 
     def advance(self, problem, L, T, t, nsub, members=None, h=None, carry=None):
         outL, outT, self.last_carry = run(L, self._J, problem.moments, step_lengths(t, nsub) if h is None else h,
