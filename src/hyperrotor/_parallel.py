@@ -168,6 +168,7 @@ def progress_bar(progress: bool | None, total: float, desc: str | None = None, *
     ``unit``s; callers advance it with ``bar.update(n)`` and close it. ``leave``
     (default: ``progress is True``) keeps the finished bar on screen.
     """
+    progress = _validate.flag("progress", progress, allow_none=True)  # (the entry points check it first; a backstop)
     if progress is False or total == 0:
         return None
     if progress is None and not (hasattr(sys.stderr, "isatty") and sys.stderr.isatty()):

@@ -346,6 +346,13 @@ def numeric_input(name: str, value: Any) -> None:
             kind = None
     if kind in _NON_NUMERIC_KINDS:
         raise TypeError(f"{name} must be numeric, got {_NON_NUMERIC_KINDS[kind]} {fmt(value)}")
+    if isinstance(value, (list, tuple)) and kind != "O" and _has_bool(value):  # ([True, 2, 3] is an int array)
+        raise TypeError(f"{name} must be numeric, got a boolean entry in {fmt(value)}")
+
+
+def _has_bool(seq: list | tuple) -> bool:
+    """Whether a (nested) list or tuple holds a boolean."""
+    return any(isinstance(x, (bool, np.bool_)) or (isinstance(x, (list, tuple)) and _has_bool(x)) for x in seq)
 
 
 def finite_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = None, dtype: Any = float) -> np.ndarray:

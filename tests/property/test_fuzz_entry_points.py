@@ -558,15 +558,17 @@ NOT_SWITCHES = {
 
 
 def _switches(path, args):
-    """The keyword parameters of an entry whose default is ``True`` or ``False``: switches, fuzzed as "flag" without
-    being listed (a new switch is checked the day it is added; ``"no"`` or ``0`` must not act by their truth)."""
+    """The keyword parameters of an entry whose default is ``True`` or ``False``, and its ``progress`` (True, False or
+    None): switches, fuzzed as "flag" without being listed (a new switch is checked the day it is added; ``"no"`` or
+    ``0`` must not act by their truth: ``ehrenfest_time(progress="no")`` drew a bar)."""
     try:
         fn = _call(path, args, dict)[0]
         params = inspect.signature(fn).parameters.values()
     except (TypeError, ValueError):
         return {}
-    return {p.name: "flag" for p in params if isinstance(p.default, bool) and p.name not in NOT_SWITCHES
-            and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
+    return {p.name: "flag" for p in params
+            if (isinstance(p.default, bool) or (p.name == "progress" and p.default is None))
+            and p.name not in NOT_SWITCHES and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
 
 
 def _cases():

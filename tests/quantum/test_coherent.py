@@ -20,7 +20,7 @@ from scipy.stats import special_ortho_group
 
 from hyperrotor.conventions import n_planes, planes, to_components, to_matrix
 from hyperrotor.quantum import casimir_eigenvalue, irrep
-from hyperrotor.quantum.coherent import apply_rotation, coherent_state, highest_weight_state
+from hyperrotor.quantum.coherent import apply_rotation, coherent_state, highest_weight_state, normal_form_rotation
 from tolerance import norm, scaled_tol
 
 H = Fraction(1, 2)
@@ -155,6 +155,8 @@ def test_highest_weight_state_has_the_highest_weight():
 
 def test_refusals_name_the_problem(rng):
     rep = irrep(5, (2, 0))
+    with pytest.raises(ValueError, match=r"^L has 2 plane components, which matches no so\(N\)"):
+        normal_form_rotation([1.0, 2.0])  # (named to_matrix's "count")
     with pytest.raises(ValueError, match="non-zero"):
         coherent_state(rep, np.zeros(10))
     with pytest.raises(ValueError, match="10 components"):

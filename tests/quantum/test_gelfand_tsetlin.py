@@ -247,7 +247,10 @@ def test_large_so5_irrep():
         (dict(N=5), ValueError, "highest_weight"),
         (dict(N=5, highest_weight=(1, 0), dynkin=[1, 0]), ValueError, "either"),
         (dict(N=5, highest_weight=(20, 10), max_dim=50_000), ValueError, r"irrep: the so\(5\) irrep .*MiB.* would need ~52976 \(dimension\), over the budget max_dim = 50000; raise it with .*max_dim=52976"),
-        (dict(N=5, highest_weight=(1, 0), max_dim=0), TypeError, "max_dim"),
+        (dict(N=5, highest_weight=(1, 0), max_dim=0), ValueError, r"max_dim must be an integer >= 1, got 0"),
+        (dict(N=5, highest_weight=(1, 0), max_dim=-1), ValueError, r"max_dim must be an integer >= 1, got -1"),
+        (dict(N=5, highest_weight=(1, 0), max_dim=2.5), TypeError, r"max_dim must be an integer >= 1, got 2.5"),
+        (dict(N=5, highest_weight=(1, 0), max_dim=True), TypeError, r"max_dim .* got True of type bool"),
     ],
 )
 def test_bad_input(kwargs, exc, match):

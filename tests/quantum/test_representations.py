@@ -268,6 +268,38 @@ def test_bad_input():
         Representation(3, {(1, 2): np.zeros((2, 2))})
     with pytest.raises(ValueError, match="no exact"):
         Representation(2, {(1, 2): np.zeros((1, 1))}).generator((1, 2), exact=True)
+    # chirality: 1.0 failed in a format string, True is not +1
+    for bad in (1.0, True, "1"):
+        with pytest.raises(TypeError, match=r"chirality \(None, \+1 or -1\) must be an integer"):
+            spinor_rep(4, bad)
+    # generator matrices: text reached scipy, NaN was accepted, exact_generators=5 failed at first use
+    P = [(1, 2), (1, 3), (2, 3)]
+    with pytest.raises(TypeError, match=r"generator of plane \(1, 2\) must be a qutip.Qobj"):
+        Representation(3, {p: "a" for p in P})
+    with pytest.raises(ValueError, match=r"generator of plane \(1, 2\) must be finite"):
+        Representation(3, {p: np.full((2, 2), np.nan) for p in P})
+    with pytest.raises(ValueError, match=r"generator of plane \(1, 2\) must be a finite numeric matrix"):
+        Representation(3, {p: sps.csr_matrix(np.full((2, 2), np.inf)) for p in P})
+    with pytest.raises(TypeError, match="exact_generators must be None, a mapping"):
+        Representation(3, {p: np.zeros((2, 2)) for p in P}, exact_generators=5)
+    vec = vector_rep(3)
+    as_lists = Representation(3, {p: vec.generator(p, format="dense").tolist() for p in P})
+    assert as_lists == Representation(3, {p: vec.generator(p) for p in P})  # nested lists: as before
+
+
+def test_ladder_refuses_what_is_not_a_root():
+    """A root with non-integer entries was truncated (1.9 -> 1) and gave another root's operator silently."""
+    rep = irrep(5, (1, 1))
+    for bad in ((1.9, -1.2), (True, False)):
+        with pytest.raises(TypeError, match=r"root\[0\] must be an integer"):
+            rep.ladder(bad)
+    for bad in ("a", 1):
+        with pytest.raises(TypeError, match=r"root must be a sequence of 2 integers"):
+            rep.ladder(bad)
+    with pytest.raises(ValueError, match=r"\(1, -1, 0\) is not a root of so\(5\)"):
+        rep.ladder((1, -1, 0))
+    E = rep.ladder(np.array([1, -1]))  # NumPy integers are integers
+    assert (E != rep.ladder((1, -1))).nnz == 0
 
 
 @pytest.mark.parametrize(

@@ -107,6 +107,8 @@ def test_hamiltonian_bad_input():
         rotor_hamiltonian(rep, [1, 1, 1, 1, 0, 1])
     with pytest.raises(ValueError, match="hbar"):
         rotor_hamiltonian(rep, [1] * 6, hbar=-1)
+    with pytest.raises(TypeError, match=r"body must be numeric, got a boolean entry in \[True, 2"):
+        rotor_hamiltonian(rep, [True, 2, 3, 4, 5, 6])  # (read as I_12 = 1)
 
     class _Other:  # an Inertia-like object of another N
         N, moments = 3, np.ones(3)
@@ -210,6 +212,20 @@ def test_evolve_bad_input(rng):
     np.testing.assert_allclose(np.linalg.norm(res.states[-1].full()), 1.0, atol=1e-13)
     with pytest.raises(ValueError, match="Hermitian"):
         evolve(qutip.Qobj(np.triu(np.ones((5, 5)))), psi, t)
+    # e_ops and c_ops are checked here (their errors came from inside QuTiP)
+    for method in ("auto", "sesolve"):
+        with pytest.raises(ValueError, match=r"e_ops\[0\] has dimension 4, but H has dimension 5"):
+            evolve(H, psi, t, e_ops=[qutip.qeye(4)], method=method)
+    with pytest.raises(TypeError, match="e_ops must be a qutip.Qobj"):
+        evolve(H, psi, t, e_ops="x")
+    with pytest.raises(ValueError, match=r"e_ops\['a'\] must be finite"):
+        evolve(H, psi, t, e_ops={"a": np.full((5, 5), np.nan)})
+    with pytest.raises(TypeError, match="c_ops must be a list of collapse operators"):
+        evolve(H, psi, t, c_ops=qutip.qeye(5))
+    with pytest.raises(ValueError, match=r"c_ops\[0\] has dimension 4, but H has dimension 5"):
+        evolve(H, psi, t, c_ops=[qutip.qeye(4)])
+    with pytest.raises(ValueError, match="dimension >= 1, got a 0 x 0 matrix"):
+        evolve(np.zeros((0, 0)), np.zeros(0), t)
     with pytest.raises(ValueError, match="strictly monotonic"):
         evolve(H, psi, [0.0, 1.0, 1.0])
     with pytest.raises(ValueError, match="strictly monotonic"):
@@ -362,6 +378,8 @@ def test_spectrum_tolerance_and_errors(rng):
     assert spectrum(H, rtol=1e-5)[1].tolist() == [2, 2]
     with pytest.raises(ValueError, match="Hermitian"):
         spectrum(np.array([[0.0, 1.0], [0.0, 0.0]]))
+    with pytest.raises(ValueError, match="dimension >= 1, got a 0 x 0 matrix"):
+        spectrum(np.zeros((0, 0)))  # (was max() of an empty sequence)
     with hyperrotor.options(quantum_max_dense_dim=2), pytest.raises(ValueError, match="quantum_max_dense_dim"):
         spectrum(np.ones((4, 4)))
 

@@ -11,7 +11,6 @@ chooses between renting on the whole space and buying the sectors, and gathers t
 """
 from __future__ import annotations
 
-import weakref
 from typing import Any
 
 import numpy as np
@@ -19,6 +18,7 @@ import scipy.sparse as sps
 
 from .. import _pricing
 from .._parallel import interruptible
+from .._weak_cache import WeakCache
 from .._options import options as _options
 from .propagators import Eigen, Krylov
 from .sectors import nonempty_blocks, restrict
@@ -35,21 +35,16 @@ def sector_bases(rep: Any) -> list | None:
     Kept while ``rep`` lives (a weak reference): every propagator of the same
     representation (several bodies, :func:`~hyperrotor.quantum.ehrenfest_time`) reuses them.
     """
-    hit = _SECTOR_CACHE.get(id(rep))
-    if hit is not None and hit[0]() is rep:
-        return hit[1]
+    return _SECTOR_CACHE.get(rep, _sector_bases)
+
+
+def _sector_bases(rep: Any) -> list | None:
     parts = nonempty_blocks(rep, True)
-    bases = None if parts is None else [B for B, _, _ in parts]
-    try:
-        ref = weakref.ref(rep, lambda _, key=id(rep): _SECTOR_CACHE.pop(key, None))
-    except TypeError:  # pragma: no cover - a representation without weak references
-        return bases
-    _SECTOR_CACHE[id(rep)] = (ref, bases)
-    return bases
+    return None if parts is None else [B for B, _, _ in parts]
 
 
-#: id(rep) -> (weak reference to rep, sector bases)
-_SECTOR_CACHE: dict[int, tuple[Any, list | None]] = {}
+#: rep -> its sector bases, while it lives
+_SECTOR_CACHE = WeakCache()
 
 #: The price of the sector route in the units of the whole-space Krylov work (the propagator's ``_lanczos_work``),
 #: measured on this machine for so(5) (9, 3) (dim 2401, 16 real sectors of ~150, nnz(H) 143,817; CPU times at
@@ -64,8 +59,7 @@ def sector_price(M: sps.csr_matrix, rep: Any) -> float:
     """Estimated work of the sector route of ``M``: build the sectors of ``rep`` (unless cached), restrict
     ``M`` to them and diagonalize ``2^(N-1)`` blocks of ``dim / 2^(N-1)`` (real for a GT irrep)."""
     n_sec = 2.0 ** (rep.N - 1)
-    hit = _SECTOR_CACHE.get(id(rep))
-    build = 0.0 if hit is not None and hit[0]() is rep else _SECTOR_WORK * rep.dim * n_sec
+    build = 0.0 if rep in _SECTOR_CACHE else _SECTOR_WORK * rep.dim * n_sec
     cplx = 1.0 if rep.highest_weight is not None else 4.0
     return build + _RESTRICT_WORK * M.nnz + cplx * n_sec * _SECTOR_EIGH_WORK * (rep.dim / n_sec) ** 3
 

@@ -147,6 +147,7 @@ def normal_form_rotation(L: Any) -> tuple[np.ndarray, np.ndarray]:
     comps = _validate.real_array("L", L, ndim=1)
     if comps.size == 0:
         raise ValueError("L must hold N(N-1)/2 >= 1 plane components, got an empty array")
+    _validate.dimension_from_count(comps.size, name="L")  # (the error names L, not to_matrix's count)
     A = np.asarray(to_matrix(comps, convention="standard"), dtype=float)
     N = A.shape[0]
     T, Z = sla.schur(A, output="real")

@@ -309,6 +309,7 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     elif w.shape != (N // 2,) or not np.any(w):
         raise ValueError(f"weight must have N // 2 = {N // 2} entries, not all zero, got {_validate.fmt(weight)}")
     threshold = _validate.positive("threshold", threshold)
+    progress = _validate.flag("progress", progress, allow_none=True)
     t = _validate.time_grid(t, allow_decreasing=False)
     rtol = options["quantum_ehrenfest_rtol"] if rtol is None else _validate.positive("rtol", rtol)
     hws = [tuple(_highest_weight_entry(l * x) for x in w) for l in ls]

@@ -104,6 +104,9 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     """
     cls = propagator_class(method)
     hbar = _validate.hbar(hbar)
+    if c_ops is not None and not isinstance(c_ops, (list, tuple)):
+        raise TypeError(f"c_ops must be a list of collapse operators (Qobj, scipy.sparse or 2-D arrays), got "
+                        f"{_validate.fmt(c_ops)} of type {type(c_ops).__name__}")
     if c_ops:
         if cls.name not in ("auto", "mesolve"):
             raise ValueError(f"collapse operators need method 'mesolve' (or 'auto'), got method {method!r}")
@@ -122,7 +125,7 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
         opts = cls.resolve_options(options)
         if progress or (progress is None and sys.stderr.isatty()):
             opts.setdefault("progress_bar", "tqdm")
-        return cls(**opts).run(mat, dims, vec, t, e_ops_list(e_ops, dims), c_ops, hbar)
+        return cls(**opts).run(mat, dims, vec, t, e_ops_list(e_ops, dims), e_ops_list(c_ops, dims, "c_ops"), hbar)
     rep = rep if rep is not None else representation_of(H)
     prop = _propagator_for(H, mat, dims, rep=rep, hbar=hbar, method=cls.name, options=options, workers=workers,
                            client=client, progress=progress)

@@ -328,8 +328,7 @@ def _chain_elements(P: np.ndarray, N: int, k: int, index: PatternIndex, Pf: np.n
 
 def _check_max_dim(N: int, m, max_dim, entry: str = "irrep"):
     dim = weyl_dim(N, m)
-    if isinstance(max_dim, bool) or not isinstance(max_dim, (int, np.integer)) or max_dim < 1:
-        raise TypeError(f"max_dim must be a positive integer, got {_validate.fmt(max_dim)}")
+    max_dim = _validate.integer("max_dim", max_dim, minimum=1)  # (TypeError for a non-integer, ValueError below 1)
     if dim > max_dim:
         n_pl = N * (N - 1) // 2
         # rough nnz: each generator has O(N) non-zeros per row

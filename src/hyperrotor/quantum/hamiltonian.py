@@ -96,6 +96,8 @@ def hermitian_matrix(H: Any, name: str = "H") -> tuple[sps.csr_matrix, list]:
     """``(csr, dims)`` of a Hermitian operator; refuses a non-Hermitian one (``options["quantum_hermiticity_rtol"]``)."""
     trusted = representation_of(H) is not None  # rotor_hamiltonian's own H: Hermitian by construction
     mat, dims = operator_matrix_and_dims(H, name)
+    if mat.shape[0] == 0:  # (spectrum failed on max() of no blocks)
+        raise ValueError(f"{name} must be an operator of dimension >= 1, got a 0 x 0 matrix")
     if trusted:
         return mat, dims
     rtol = options["quantum_hermiticity_rtol"]

@@ -62,7 +62,7 @@ from .. import _lazy, _pricing, _validate
 from .._options import options
 from .._parallel import interruptible
 from ..conventions import check_dimension, plane_index, planes, structure_constants
-from .operator_input import as_format, check_antihermitian, check_format, operator_mapping, real_if_possible
+from .operator_input import as_csr, as_format, check_antihermitian, check_format, operator_mapping, real_if_possible
 from .weights import casimir_eigenvalue, check_highest_weight, positive_roots
 
 __all__ = ["Representation"]
@@ -131,7 +131,16 @@ class Representation:
         gens = {}
         dim = None
         for p, M in generators.items():
-            M = sps.csr_matrix(M)
+            if sps.issparse(M):  # (the package's own: no copy; numeric and finite checked)
+                M = sps.csr_matrix(M)
+                if M.dtype.kind not in "biufc" or not np.all(np.isfinite(M.data)):
+                    raise ValueError(f"generator of plane {p} must be a finite numeric matrix, got dtype {M.dtype}"
+                                     f"{'' if M.dtype.kind not in 'biufc' else ' with non-finite entries'}")
+            else:  # a Qobj, an array or nested lists: the package's converter of user operators (numeric, finite)
+                if isinstance(M, (list, tuple)):
+                    _validate.numeric_input(f"generator of plane {p}", M)
+                    M = np.asarray(M)
+                M = as_csr(M, f"generator of plane {p}")
             if M.shape[0] != M.shape[1] or (dim is not None and M.shape[0] != dim):
                 raise ValueError(f"generator of plane {p} has shape {M.shape}; all must be square of one size")
             dim = M.shape[0]
@@ -139,6 +148,9 @@ class Representation:
         self.dim = int(dim)
         self._gens = {p: gens[p] for p in self.planes}
         self.highest_weight = None if highest_weight is None else check_highest_weight(self.N, highest_weight)
+        if not (exact_generators is None or isinstance(exact_generators, Mapping) or callable(exact_generators)):
+            raise TypeError(f"exact_generators must be None, a mapping plane -> SymPy matrix or a function returning "
+                            f"one, got {_validate.fmt(exact_generators)} of type {type(exact_generators).__name__}")
         self._exact = exact_generators
         self.name = name or f"so({self.N}) representation of dimension {self.dim}"
 
@@ -301,7 +313,10 @@ class Representation:
         weights by :math:`\alpha`, and :math:`E_{-\alpha} = \overline{E_\alpha}`
         (entrywise conjugate of the coefficients).
         """
-        alpha = tuple(int(a) for a in root)
+        if isinstance(root, (str, bytes)) or not isinstance(root, (Sequence, np.ndarray)):
+            raise TypeError(f"root must be a sequence of {self.N // 2} integers (a root of so({self.N}), e.g. "
+                            f"{self.roots()[0]}), got {_validate.fmt(root)} of type {type(root).__name__}")
+        alpha = tuple(_validate.integer(f"root[{k}]", a) for k, a in enumerate(root))  # (1.9 was read as 1)
         if alpha not in self.roots():
             raise ValueError(f"{tuple(root)!r} is not a root of so({self.N}); roots: {self.roots()}")
         coeff = _root_coefficients(self.N, alpha)

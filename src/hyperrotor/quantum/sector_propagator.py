@@ -43,7 +43,6 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
-import scipy.sparse as sps
 
 from .. import _lazy, _parallel, _pricing, _validate
 from .._options import options as _options
@@ -57,6 +56,8 @@ from ._sector_blocks import (
     sector_price,
 )
 from .hamiltonian import blocks_of, hermitian_matrix, representation_of
+from .operator_input import as_csr
+from .sectors import check_symmetric
 from .propagators import PROPAGATORS, Auto, ExpmMultiply, Krylov, propagator_class
 
 __all__ = ["SectorPropagator", "PhaseRoundingWarning"]
@@ -119,22 +120,32 @@ def unit_state(psi0: Any, dim: int, name: str = "psi0") -> np.ndarray:
     return vec / nrm
 
 
-def e_ops_list(e_ops: Any, dims) -> Any:
-    """e_ops as QuTiP accepts them, with scipy.sparse / ndarray operators wrapped as Qobj."""
+def e_ops_list(e_ops: Any, dims, name: str = "e_ops") -> Any:
+    """``e_ops`` (or ``c_ops``: ``name``) as QuTiP accepts them: each operator checked (a Qobj, scipy.sparse matrix
+    or 2-D array, square, finite, of ``H``'s dimension) and given as a Qobj with ``H``'s ``dims``; a callable
+    ``f(t, state)`` (QuTiP's e_ops) passes as it is. A list, tuple, dict or one operator; ``None``: none."""
     qutip = _lazy.qutip
+    dim = int(np.prod(dims[0]))
 
-    def conv(op):
-        if sps.issparse(op) or isinstance(op, np.ndarray):
-            return qutip.Qobj(op, dims=dims)
-        return op
+    def conv(op, label):
+        if isinstance(op, qutip.QobjEvo):  # (time-dependent: QuTiP's solvers take it as it is)
+            if op.shape != (dim, dim):
+                raise ValueError(f"{label} has shape {op.shape}, but H has dimension {dim}")
+            return op
+        if callable(op) and not hasattr(op, "isoper"):
+            return op
+        mat = as_csr(op, label)
+        if mat.shape[0] != dim:
+            raise ValueError(f"{label} has dimension {mat.shape[0]}, but H has dimension {dim}")
+        return qutip.Qobj(mat, dims=dims)
 
     if e_ops is None:
         return []
     if isinstance(e_ops, dict):
-        return {k: conv(op) for k, op in e_ops.items()}
+        return {k: conv(op, f"{name}[{k!r}]") for k, op in e_ops.items()}
     if isinstance(e_ops, (list, tuple)):
-        return [conv(op) for op in e_ops]
-    return [conv(e_ops)]
+        return [conv(op, f"{name}[{k}]") for k, op in enumerate(e_ops)]
+    return [conv(e_ops, name)]
 
 
 class SectorPropagator:
@@ -247,6 +258,8 @@ class SectorPropagator:
         self.stats["blocks"] = len(blocks)
         big = max((len(b) for b in blocks if len(b) > 1), default=0)
         sectors = rep is not None and use and big > int(_options["quantum_eigen_max_block"])
+        if sectors:  # before any work, also when the sectors would be bought later (a rep= H does not respect
+            check_symmetric(self.matrix, rep)  # gave wrong states)
         if (rent and sectors and cls is Auto and self.client is None and self.progress is not True
                 and rep.dim <= _options["quantum_eigen_max_block"] * 2 ** (rep.N - 1)):
             # every sector would be diagonalized: for one state a Krylov run on the whole space may cost less

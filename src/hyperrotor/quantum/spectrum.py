@@ -10,7 +10,7 @@ from .. import _pricing, _validate
 from .._options import options
 from .._parallel import interruptible
 from .hamiltonian import blocks_of, hermitian_matrix, representation_of
-from .sectors import nonempty_blocks, restrict
+from .sectors import check_symmetric, nonempty_blocks, restrict
 
 __all__ = ["Spectrum", "spectrum"]
 
@@ -96,6 +96,7 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
     parts = nonempty_blocks(rep, False)  # mat and rep are checked by spectrum
     if parts is None:
         return None
+    check_symmetric(mat, rep)  # (a rep= that H does not respect gave wrong levels)
     # priced once, by the largest sector, before any work (the sectors of GT irreps are real blocks)
     _pricing.check("dense_diagonalization", dim=max((basis.shape[1] for basis, _, _ in parts), default=0),
                    complex=not all(sps.issparse(basis) for basis, _, _ in parts))

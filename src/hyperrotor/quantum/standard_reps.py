@@ -200,8 +200,10 @@ def spinor_rep(N: int, chirality: int | None = None) -> Representation:
     """
     N = check_dimension(N)
     n = N // 2
-    if chirality is not None and (isinstance(chirality, bool) or chirality not in (1, -1)):
-        raise ValueError(f"chirality must be None, +1 or -1, got {chirality!r}")
+    if chirality is not None:  # (1.0 passed the test below and failed in a format string; True is not +1)
+        chirality = _validate.integer("chirality (None, +1 or -1)", chirality)
+        if chirality not in (1, -1):
+            raise ValueError(f"chirality must be None, +1 or -1, got {chirality!r}")
     if N % 2 and chirality is not None:
         raise ValueError(f"so({N}) (odd N) has a single spinor irrep; chirality must be None, got {chirality!r}")
     _pricing.check("spinor_rep", N=N)

@@ -89,13 +89,14 @@ limited to ``options["sectors_dense_max_dim"]`` (no reflection parity, complex b
 Modules: :mod:`.group` (the group of a representation: monomial rotations, the
 reflection, the antiunitary, labels and characters; or dense exponentials),
 :mod:`.construction` (projections, real gauge), :mod:`.spectra` (blocks and spectra). Public in the package for :mod:`~hyperrotor.quantum.spectrum` and
-:mod:`~hyperrotor.quantum.evolve` (trusted inputs, not in ``__all__``):
-:func:`restrict`, :func:`nonempty_blocks`.
+:mod:`~hyperrotor.quantum.evolve` (not in ``__all__``): :func:`check_symmetric` (run by every route that
+splits a Hamiltonian by the sectors of a ``rep``), and on trusted inputs :func:`restrict`, :func:`nonempty_blocks`.
 """
 from .construction import pi_rotation, symmetry_sectors
 from .group import Sector
 from .spectra import (
     SectorSpectra,
+    check_symmetric,
     evolution_blocks,
     nonempty_blocks,
     restrict,

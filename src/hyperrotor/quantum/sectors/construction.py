@@ -13,7 +13,7 @@ from scipy.sparse.csgraph import connected_components
 from ... import _pricing, _validate
 from ..._parallel import interruptible
 from .._gt_monomials import Monomial, gt_rotations
-from .group import Sector, check_dense_dim, group_of
+from .group import Sector, check_dense_dim, eig_text, group_of
 
 __all__ = ["pi_rotation", "symmetry_sectors"]
 
@@ -259,7 +259,7 @@ def sectors_of(rep, complete: bool) -> list[Sector]:
         def project(eigs):
             return _project_dense(g.ops, eigs, dim)
     out = []
-    types_seen = set()
+    types_seen = {}
     for eigs, lab, character in characters:
         B = project(eigs)
         if g.spinorial and N > 2:
@@ -268,11 +268,17 @@ def sectors_of(rep, complete: bool) -> list[Sector]:
             itype = np.prod(eigs) if N % 2 == 0 else 1
             if not complete and itype in types_seen:
                 continue
-            types_seen.add(itype)
+            types_seen[itype] = len(out)
         out.append(Sector(lab, B, g.degeneracy, character, real=g.real))
+    if not complete and len(types_seen) > 1:  # both chiralities (a reducible even-N spinor representation): one
+        for itype, k in types_seen.items():    # sector each, labelled by the eigenvalue of g_(12) g_(34) ...
+            s = out[k]
+            out[k] = Sector((s.label, eig_text(itype)), s.basis, s.degeneracy, s.character, real=s.real)
     if N == 3 and not g.spinorial:
         out.sort(key=lambda s: ("A", "B1", "B2", "B3").index(s.label))
     total = sum(s.dim * (1 if complete else s.degeneracy) for s in out)
     if total != dim:  # pragma: no cover - internal
         raise ArithmeticError(f"sectors of {rep.name} cover {total} of {dim} dimensions (internal error)")
+    if len({s.label for s in out}) != len(out):  # pragma: no cover - internal (sector_spectra keys its levels by them)
+        raise ArithmeticError(f"two sectors of {rep.name} share a label (internal error): {[s.label for s in out]}")
     return out

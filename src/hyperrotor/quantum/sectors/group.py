@@ -21,6 +21,7 @@ import scipy.sparse as sps
 
 from ... import _pricing
 from ..._parallel import interruptible
+from ..._weak_cache import WeakCache
 from .._gt_monomials import Monomial, gt_symmetries
 
 __all__ = ["Sector"]
@@ -167,10 +168,19 @@ def check_dense_dim(rep) -> None:
 
 
 def group_of(rep) -> SignGroup:
-    """The :class:`SignGroup` of a checked ``rep``: monomial for a GT irrep, dense exponentials otherwise."""
+    """The :class:`SignGroup` of a checked ``rep``: monomial for a GT irrep, dense exponentials otherwise
+    (kept while ``rep`` lives: the sectors and :func:`~.spectra.check_symmetric` of one representation share it)."""
+    return _GROUP_CACHE.get(rep, _group_of)
+
+
+def _group_of(rep) -> SignGroup:
     half = is_half_integer(rep)
     group = _gt_group(rep, half) if half is not None else None
     return group if group is not None else _dense_group(rep)
+
+
+#: rep -> its SignGroup, while it lives
+_GROUP_CACHE = WeakCache()
 
 
 def _gt_group(rep, half: bool) -> SignGroup | None:
