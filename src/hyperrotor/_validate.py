@@ -385,6 +385,20 @@ def finite_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = 
     return arr
 
 
+def orthogonal_matrix(name: str, value: Any, N: int, *, batched: bool = False) -> np.ndarray:
+    """``value`` as a finite real orthogonal ``N x N`` matrix (a batch of them, shape ``batch + (N, N)``, when
+    ``batched``): max|T^T T - 1| <= 1e-8, else ``ValueError`` (an attitude; text, booleans, complex and
+    non-finite entries are refused by :func:`finite_array`)."""
+    T = finite_array(name, value)
+    if T.ndim < 2 or T.shape[-2:] != (N, N) or (T.ndim != 2 and not batched):
+        raise ValueError(f"{name} must have shape ({N}, {N}){f' or batch + ({N}, {N})' if batched else ''}, "
+                         f"got {T.shape}")
+    dev = float(np.abs(np.swapaxes(T, -1, -2) @ T - np.eye(N)).max()) if T.size else 0.0
+    if dev > 1e-8:
+        raise ValueError(f"{name} must be orthogonal (max|T^T T - 1| = {dev:.3g})")
+    return T
+
+
 def exact_or_float_array(name: str, value: Any, *, what: str = "numeric array") -> np.ndarray:
     """``value`` as a finite numeric array that keeps exact integers exact: integer input as ``int64``
     (``uint64`` as ``float64``), so that negating or adding entries cannot wrap around (``-np.uint8(1)``

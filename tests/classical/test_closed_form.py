@@ -309,9 +309,10 @@ def test_euler_poinsot_both_regimes_many_periods(I):
     assert seen == {1.0, -1.0}
 
 
-def _mp_euler_poinsot(I, w0, t):
-    """Same formulas at 40 digits with mpmath, textbook map, I sorted ascending, regime by sign."""
-    mpmath.mp.dps = 40
+def _mp_euler_poinsot(I, w0, t, dps=40, period=False):
+    """Same formulas at 40 digits (``dps``) with mpmath, textbook map, I sorted ascending, regime by sign (and the
+    period 4 K(m) / nu with ``period``)."""
+    mpmath.mp.dps = dps
     Itb = [mpmath.mpf(I[2]), mpmath.mpf(I[1]), mpmath.mpf(I[0])]
     W = [mpmath.mpf(w0[2]), -mpmath.mpf(w0[1]), mpmath.mpf(w0[0])]
     assert Itb[0] < Itb[1] < Itb[2]
@@ -334,7 +335,7 @@ def _mp_euler_poinsot(I, w0, t):
         cn, sn, dn = (mpmath.ellipfun(k, u, m=m) for k in ("cn", "sn", "dn"))
         Wt = [s1 * s3 * A * cn, s1 * B * sn, s3 * C * dn]
         out.append([float(Wt[2]), float(-Wt[1]), float(Wt[0])])
-    return np.array(out)
+    return (np.array(out), float(4 * mpmath.ellipk(m) / nu)) if period else np.array(out)
 
 
 def test_euler_poinsot_against_mpmath_1e13():
@@ -351,6 +352,23 @@ def test_euler_poinsot_against_mpmath_1e13():
         scale = np.max(np.abs(w0))
         np.testing.assert_allclose(euler_poinsot(I, w0, t), ref, rtol=0, atol=2e-13 * scale)
         done += 1
+
+
+@pytest.mark.parametrize("tilt", [1e-4, 1e-8, 1e-12, 1e-16])
+def test_euler_poinsot_close_to_the_separatrix_against_mpmath(tilt):
+    """A spin about the middle axis tilted by ``tilt`` (the tennis-racket flip): 1 - m ~ tilt^2 was carried by the
+    float m with an absolute error eps (the period 0.5% off at 1e-8; at 1e-10 m = 1, a constant omega while the body
+    flips) and u0 = F(atan2(...)) lost cos(phi0) ~ tilt to the rounded angle. Now 1 - m exact, K = ellipkm1,
+    u0 from the components (Carlson R_F), sn/cn/dn from 1 - m: omega within 2e-13 over three periods and the
+    period within 1e-13 of mpmath at 60 digits."""
+    I = np.array([3.0, 2.0, 1.0])  # textbook I1 = 1 < I2 = 2 < I3 = 3
+    w0 = np.array([tilt, -1.0, tilt])  # (W1, W2, W3) = (tilt, 1, tilt): L^2 - 2 E I2 = 2 tilt^2 > 0
+    T = euler_poinsot_period(I, w0)
+    t = np.linspace(0.0, 3 * T, 25)
+    ref, T_ref = _mp_euler_poinsot(I, w0, t, dps=60, period=True)
+    assert T == pytest.approx(T_ref, rel=1e-13)
+    np.testing.assert_allclose(euler_poinsot(I, w0, t), ref, rtol=0, atol=2e-13)
+    assert np.ptp(ref[:, 1]) > 1.9  # (the middle-axis component flips sign: -1 -> +1)
 
 
 def test_euler_poinsot_separatrix_and_steady():
@@ -464,6 +482,20 @@ def test_quartet_attitude_against_simulate(convention, axis, N):
     W0 = body.matrix(w0)
     np.testing.assert_allclose(quartet_attitude(1.0, w0, t[:3], axis, convention=convention)[2], expm(W0 * t[2]), rtol=0,
                                atol=scaled_tol(np.linalg.norm(W0) * t[2], dim=N, k=32))  # two eigen/Pade routes
+
+
+def test_quartet_attitude0_is_checked_like_simulates_attitude():
+    """attitude0 was np.asarray(..., float): text parsed, a non-orthogonal matrix and NaN accepted, complex cut."""
+    from hyperrotor.classical import quartet_attitude
+
+    w0 = np.arange(1, 11) * 0.1
+    for bad, exc, msg in ((np.ones((5, 5)), ValueError, r"attitude0 must be orthogonal \(max\|T\^T T - 1\| = 5\)"),
+                          ([["1"] * 5] * 5, TypeError, "attitude0 must be numeric, got text"),
+                          (np.eye(5) * 1j, TypeError, "attitude0 must be real"),
+                          (np.full((5, 5), np.nan), ValueError, "attitude0 must be finite"),
+                          (np.eye(4), ValueError, r"attitude0 must have shape \(5, 5\)")):
+        with pytest.raises(exc, match=msg):
+            quartet_attitude(2.0, w0, [0.0, 1.0], attitude0=bad)
 
 
 def test_detect_closed_form_tolerance_is_an_option():

@@ -211,6 +211,19 @@ def test_from_points_discrete_exact():
     np.testing.assert_allclose([I[(1, 2)], I[(1, 3)], I[(2, 3)]], [10, 2, 8], rtol=0, atol=scaled_tol(10.0, dim=len(pos)))
 
 
+def test_from_points_in_high_dimension_builds_no_rank_4_tensor(rng):
+    """from_points built the N^4 tensor of eq. (3) only to check its symmetries (12 GB at N = 200: a MemoryError
+    from inside NumPy); the moments come from the second-moment matrix: its eigenvalues are the mass tensor."""
+    N, n = 200, 400
+    pos = rng.normal(size=(n, N)) * np.linspace(1.0, 2.0, N)
+    I = Inertia.from_points(np.ones(n), pos)
+    c = pos - pos.mean(axis=0)
+    exact = np.linalg.eigvalsh(c.T @ c)
+    np.testing.assert_allclose(np.sort(I.mass_tensor), exact, rtol=0, atol=scaled_tol(exact.max(), dim=N, k=16))
+    with pytest.raises(hr.BudgetError, match="max_dimension"):
+        Inertia.from_points(np.ones(3), np.ones((3, 1001)))
+
+
 def test_from_points_centre_of_mass():
     pos = np.array([[1.0, 0.0], [3.0, 0.0], [2.0, 1.0], [2.0, -1.0]])
     a = Inertia.from_points(np.ones(4), pos)

@@ -180,6 +180,26 @@ def test_bad_input():
         Scene(GENERIC, w0, T, observables=("attitude",), attitude0=2 * np.eye(5)).evaluate()
     with pytest.raises(ValueError, match="unknown plane"):
         Scene(GENERIC, w0, T, planes=[(3, 1)]).evaluate()
+    # attitude0 and points checked like every numeric input (NaN passed the orthogonality test, text was parsed)
+    with pytest.raises(ValueError, match=r"attitude0 must be finite"):
+        Scene(GENERIC, w0, T, observables=("attitude",), attitude0=np.full((5, 5), np.nan)).evaluate()
+    with pytest.raises(TypeError, match="attitude0 must be numeric, got text"):
+        Scene(GENERIC, w0, T, observables=("attitude",), attitude0=[["1"] * 5] * 5).evaluate()
+    with pytest.raises(TypeError, match="points must be numeric, got a boolean entry"):
+        Scene(GENERIC, w0, T, observables=("projection",), points=[[True, 0.0, 0.0, 0.0, 0.0]]).evaluate()
+
+
+def test_scene_output_is_priced_before_any_work():
+    """evaluate() returned 24 MB under a 1 MB output budget and raised MemoryError from NumPy at 6.7 GiB."""
+    w0 = np.array([0.3, 0.5, 0.7])
+    t = np.linspace(0.0, 1.0, 1000)
+    for minimal in (True, False):
+        with hyperrotor.options(max_output_bytes=10**6), pytest.raises(hyperrotor.BudgetError,
+                                                                          match="max_output_bytes"):
+            Scene([1.0, 2.0, 2.5], w0, t, observables=("projection",), points=np.zeros((1000, 3))).evaluate(
+                minimal=minimal)
+    small = Scene([1.0, 2.0, 2.5], w0, t[:10], observables=("projection",), points=np.eye(3)).evaluate()
+    assert small.projection.shape[0] == 10
 
 
 def test_quartet_projection_closed_form():

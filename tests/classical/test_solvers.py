@@ -320,6 +320,17 @@ def test_terminal_events_on_an_ensemble_are_refused():
         hr.simulate(MOM3, np.ones((2, 3)), [0.0, 1.0], events=g)
 
 
+def test_dense_output_refuses_text_booleans_and_outputs_over_the_budget():
+    tr = hr.simulate([2.0, 3.0, 4.0], [0.1, 1.0, 0.2], [0.0, 2.0])
+    with pytest.raises(TypeError, match="t must be numeric, got text"):
+        tr.sol("1.5")  # (was read as 1.5)
+    with pytest.raises(TypeError, match="t must be numeric, got the boolean True"):
+        tr.sol(True)
+    with hr.options(max_output_bytes=10**5), pytest.raises(hr.BudgetError, match="max_output_bytes"):
+        tr.sol(np.linspace(0.0, 2.0, 10**4))
+    np.testing.assert_array_equal(tr.sol(2.0), tr.L[-1])
+
+
 # ----------------------------------------------------------------------------- dense output
 @pytest.mark.parametrize("method", ALL)
 def test_dense_output_between_and_at_the_output_times(method):
@@ -403,6 +414,12 @@ def test_momenta_beyond_double_precision_are_a_clear_error(method):
     body = [1e-300, 1.0, 1e300]  # |L| ~ 1e300 even with the rates scaled to one: L * L overflows
     with pytest.raises(FloatingPointError, match="overflow double precision .* reaches 1e\\+300"):
         hr.simulate(body, [1.0, 1.0, 1.0], [0.0, 1.0], method=method)
+    tiny = [2e-200, 3e-200, 4e-200]  # |L| ~ 1e-200: L * L underflows (the step control divided by zero)
+    with pytest.raises(FloatingPointError, match="underflow double precision .* at most 3e-200 .* Rescale the moments"):
+        hr.simulate(tiny, [0.1, 1.0, 0.2], [0.0, 1.0], method=method)
+    small = hr.simulate([2e-140, 3e-140, 4e-140], [0.1, 1.0, 0.2], [0.0, 1.0], method=method)  # squares normal:
+    ref = hr.euler_poinsot([2.0, 3.0, 4.0], [0.1, 1.0, 0.2], [0.0, 1.0])  # omega(t) does not depend on the scale
+    np.testing.assert_allclose(small.omega, ref, rtol=0, atol=1e-5)
 
 
 def test_chunked_runs_equal_one_call_and_progress_changes_nothing(rng):

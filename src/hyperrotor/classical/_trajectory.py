@@ -9,7 +9,7 @@ from typing import Any, Callable
 
 import numpy as np
 
-from hyperrotor import _validate
+from hyperrotor import _pricing, _validate
 
 __all__ = ["Trajectory"]
 
@@ -101,11 +101,11 @@ class Trajectory:
         what = _validate.choice("what", what, ("L", "omega", "attitude"))
         if what == "attitude" and self.attitude is None:
             raise ValueError("what='attitude' needs a run with attitude=True (or an initial attitude)")
-        tq = np.asarray(t, dtype=float)
-        if tq.ndim > 1 or not np.all(np.isfinite(tq)):
-            raise ValueError(f"t must be a finite number or 1-D array of times, got {_validate.fmt(t)}")
-        L, T = self._dense(np.atleast_1d(tq) * self._scale)
+        tq = _validate.finite_array("t", t, ndim=(0, 1))  # (text and booleans were read as times)
         batch = self.omega.shape[:-2]
+        width = self.omega.shape[-1] if what != "attitude" else self.attitude.shape[-1] ** 2
+        _pricing.check("closed_form_output", n_times=int(np.prod(batch, dtype=np.int64)) * tq.size, width=width)
+        L, T = self._dense(np.atleast_1d(tq) * self._scale)
         if what == "attitude":
             S = self._signs
             out = (S[:, None] * T * S[None, :]).reshape(batch + (tq.size,) + T.shape[-2:])

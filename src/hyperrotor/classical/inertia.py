@@ -47,7 +47,7 @@ from hyperrotor._lazy import sympy as sp  # SymPy loads on first use (light ``im
 
 from hyperrotor import _parse, _pricing, _validate
 from hyperrotor._options import options, register
-from .mass_points import check_tensor_symmetries, principal_axes, second_moment_matrix, tensor_from_second_moments
+from .mass_points import principal_axes, second_moment_matrix
 from hyperrotor.conventions import (
     check_dimension,
     dimension_from_count,
@@ -367,17 +367,16 @@ class Inertia:
         r"""Principal plane moments of point masses (the discrete eq. (3)).
 
         Computes the second-moment matrix :math:`M_{kl} = \sum_p m_p r^k_p r^l_p`
-        (about the centre of mass unless ``center=False``), the rank-4 tensor of
-        eq. (3) (:func:`inertia_tensor`, whose symmetries are checked), and
-        rotates to principal axes by the eigen-decomposition
-        :math:`M = R\,\mathrm{diag}(m)\,R^{\mathsf T}`; in these axes the tensor
-        only has the plane components :math:`I^{ijij} = (m_i + m_j)/2`, and the
-        result is ``from_mass_tensor(m)``. ``R`` is stored in
+        (about the centre of mass unless ``center=False``) and rotates to principal
+        axes by the eigen-decomposition :math:`M = R\,\mathrm{diag}(m)\,R^{\mathsf T}`;
+        in these axes the rank-4 tensor of eq. (3) (:func:`inertia_tensor`) only has
+        the plane components :math:`I^{ijij} = (m_i + m_j)/2`, and the result is
+        ``from_mass_tensor(m)``. (The :math:`N^4` tensor itself is not built: 12 GB
+        at N = 200.) ``R`` is stored in
         :attr:`principal_axes` (column ``k`` is the principal axis closest to
         input axis ``k``; ``det R = +1``).
         """
         M = second_moment_matrix(masses, positions, center=center)
-        check_tensor_symmetries(tensor_from_second_moments(M))
         vals, R = principal_axes(M)
         vals = np.clip(vals, 0.0, None)  # round-off of flat bodies
         out = cls.from_mass_tensor(vals)

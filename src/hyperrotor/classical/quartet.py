@@ -336,13 +336,11 @@ def quartet_attitude(kappa: float, omega0: Any, t: Any, axis: int = 5, *, attitu
         raise ValueError(f"omega0 must be a single vector of plane components, got shape {w.shape}")
     N = dimension_from_count(w.size)
     axis = _check_axis(axis, N)
+    T0 = None if attitude0 is None else _validate.orthogonal_matrix("attitude0", attitude0, N)
     tt = times(t)
     _pricing.check("closed_form_output", n_times=tt.size, width=N * N)
     T = quartet_attitude_standard(quartet_theta(kappa), w, tt, axis)
     Sg = np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
-    if attitude0 is not None:
-        T0 = np.asarray(attitude0, dtype=float)
-        if T0.shape != (N, N):
-            raise ValueError(f"attitude0 must have shape ({N}, {N}), got {T0.shape}")
+    if T0 is not None:
         T = T @ (Sg[:, None] * T0 * Sg[None, :])
     return Sg[None, :, None] * T * Sg[None, None, :]

@@ -337,7 +337,7 @@ def _validate(scene: Scene):
     if "projection" in obs:
         if scene.points is None:
             raise ValueError("observable 'projection' needs body points (points=..., e.g. hypercube_vertices(N))")
-        pts = np.asarray(scene.points, dtype=float)
+        pts = _v.finite_array("points", scene.points)  # (text, booleans, NaN: refused)
         if pts.ndim != 2 or pts.shape[1] != N:
             raise ValueError(f"points must have shape (P, {N}), got {pts.shape}")
         if isinstance(scene.axes, str):
@@ -345,11 +345,7 @@ def _validate(scene: Scene):
         ax = np.array([_v.integer("axes[k]", a) for a in scene.axes], dtype=int)
         if ax.size == 0 or np.any(ax < 1) or np.any(ax > N):
             raise ValueError(f"projection axes must be in 1..{N}, got {tuple(scene.axes)!r}")
-    T0 = None
-    if scene.attitude0 is not None:
-        T0 = np.asarray(scene.attitude0, dtype=float)
-        if T0.shape != (N, N) or np.max(np.abs(T0.T @ T0 - np.eye(N))) > 1e-8:
-            raise ValueError(f"attitude0 must be an orthogonal {N} x {N} matrix")
+    T0 = None if scene.attitude0 is None else _v.orthogonal_matrix("attitude0", scene.attitude0, N)
     return moments, N, obs, w0, t, sel_planes, cols, pts, ax, T0
 
 
@@ -392,6 +388,9 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     res = SceneResult(t=t, planes=sel_planes)
     need_att = "attitude" in obs or "projection" in obs
     need_omega = "omega" in obs or "L" in obs
+    # the result's arrays, priced on every route before any work (omega and L, attitude, projections, invariants)
+    width = 2 * w0.size + (N * N if need_att else 0) + (0 if pts is None else pts.shape[0] * ax.size) + N
+    _pricing.check("closed_form_output", n_times=t.size, width=width)
 
     if not minimal:
         _pricing.check("simulate", N=N)  # before the body is built

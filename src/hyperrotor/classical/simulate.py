@@ -43,6 +43,8 @@ SIMULATION_METHODS = ("auto", *SOLVERS)
 _LOWER_NAMES = frozenset(m.lower() for m in SOLVERS)
 #: largest scaled momentum (angular velocities of order one): its square must stay finite
 MAX_SCALED_MOMENTUM = 1e150
+#: smallest nonzero scaled momentum: its square must stay a normal number (tiny moments, 1e-200, divided by zero)
+MIN_SCALED_MOMENTUM = 1e-150
 #: smallest time scale: scaled times t * s stay normal numbers even for |omega| in the subnormal range
 #: (below it the scaled momenta, not the times, carry the smallness)
 MIN_SCALE = 2.0 ** -960
@@ -144,12 +146,7 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
         if attitude is True:
             T0 = np.broadcast_to(np.eye(N), (B, N, N))
         else:
-            T0 = _validate.finite_array("attitude", attitude)
-            if T0.ndim < 2 or T0.shape[-2:] != (N, N):
-                raise ValueError(f"initial attitude must have shape ({N}, {N}) or batch + ({N}, {N}), got {T0.shape}")
-            dev = float(np.abs(np.swapaxes(T0, -1, -2) @ T0 - np.eye(N)).max()) if T0.size else 0.0
-            if dev > 1e-8:
-                raise ValueError(f"initial attitude must be orthogonal (max|T^T T - 1| = {dev:.3g})")
+            T0 = _validate.orthogonal_matrix("attitude", attitude, N, batched=True)
             T0 = _broadcast_batch("attitude", T0, 2, batch).reshape(B, N, N)
         T0 = signs[:, None] * T0 * signs[None, :]  # plain convention: T_conv = S T_plain S
     ts = t_user * s
@@ -163,6 +160,13 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
             f"the angular momenta overflow double precision arithmetic: with angular velocities scaled to "
             f"order one (t * {_validate.fmt(s)}) |L| still reaches {big:.3g} (moments up to "
             f"{float(moments.max()):.3g}); squares and products of L must stay finite. Rescale the moments"
+        )
+    if 0.0 < big < MIN_SCALED_MOMENTUM:
+        raise FloatingPointError(
+            f"the angular momenta underflow double precision arithmetic: with angular velocities scaled to "
+            f"order one (t * {_validate.fmt(s)}) |L| is at most {big:.3g} (moments up to "
+            f"{float(moments.max()):.3g}); squares and products of L must stay normal numbers. Rescale the moments "
+            f"(omega(t) does not change when every moment is multiplied by the same factor)"
         )
     return Problem(body=body, moments=moments, N=N, n=n, convention=convention, signs=signs, batch=batch, L0=L0,
                    T0=T0, torque=tq, t=ts, scale=s), t_user
