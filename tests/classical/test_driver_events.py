@@ -29,3 +29,26 @@ def test_events_with_steps_far_too_long_are_reported_not_raised(scale):
     assert np.all(np.diff(te) > 0) and te[0] > 0.0 and te[-1] <= 1.0
     # |L| is conserved by every step, so the event states lie on the run's Casimir sphere
     np.testing.assert_allclose(np.linalg.norm(Le / scale, axis=1), np.linalg.norm(tr.L[0] / scale), rtol=1e-12)
+
+
+@pytest.mark.parametrize("method", ["splitting8", "splitting2", "moser-veselov", "DOP853"])
+@pytest.mark.parametrize("direction", [0, 1, -1])
+def test_a_zero_at_the_first_time_is_an_event_as_in_solve_ivp(method, direction):
+    """g(t0) = 0 was an event for scipy's methods only (solve_ivp's rule: (g <= 0) & (g_new >= 0) upwards, ...):
+    the fixed-step methods skipped it and a terminal event stopped 14 time units later. Now every method reports it
+    when the direction allows (g_new's sign: L[0] < 0 just after t0, so upwards it is not one)."""
+    def g(t, L):
+        return L[0]
+
+    g.direction = direction
+    g.terminal = True
+    t = np.linspace(0.0, 30.0, 7)
+    tr = hr.simulate([2.0, 3.0, 4.0], [0.0, 1.0, 0.2], t, method=method, events=g)
+    ref = hr.simulate([2.0, 3.0, 4.0], [0.0, 1.0, 0.2], t, method="DOP853", rtol=1e-10, events=g)
+    assert tr.t_events[0].size == 1
+    if direction <= 0:
+        assert tr.t_events[0][0] == 0.0 and tr.t[-1] == 0.0
+        np.testing.assert_array_equal(tr.L_events[0][0], [0.0, 3.0, 0.8])
+    else:  # the first upward crossing, where DOP853 finds it
+        assert tr.t_events[0][0] == pytest.approx(ref.t_events[0][0], abs=1e-6)
+    assert ref.t_events[0][0] == pytest.approx(tr.t_events[0][0], abs=1e-6)

@@ -380,6 +380,8 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
         up = (v[:-1] < 0) & (v[1:] >= 0)
         down = (v[:-1] > 0) & (v[1:] <= 0)
         cross = up if sp.direction > 0 else down if sp.direction < 0 else (up | down)
+        if gprev is None and v[0] == 0.0:  # a zero at the run's first time is an event, as in solve_ivp
+            cross[0] = sp.direction == 0 or (v[1] >= 0) == (sp.direction > 0)  # ((g <= 0) & (g_new >= 0) ...)
         for j in np.flatnonzero(cross):
             hits.append((int(j), e))
     hits.sort()
@@ -388,6 +390,15 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
         sp = specs[e]
         y, yT = L[j:j + 1], None if T is None else T[j:j + 1]
         t0, t1 = grid[j], grid[j + 1]
+        if vals[j, e] == 0.0:  # (only at the run's first time: a later zero is the end of the step before)
+            t_events[e].append(t0 / s)
+            L_events[e].append(L[j] * s)
+            if yT is not None:
+                T_events[e].append(yT[0])
+            counts[e] += 1
+            if sp.max_count is not None and counts[e] >= sp.max_count:
+                return t0, vals[-1]
+            continue
         if vals[j + 1, e] == 0.0:
             te = t1
         else:
