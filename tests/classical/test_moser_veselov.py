@@ -185,6 +185,22 @@ def test_the_kernels_cayley_map_is_a_rotation(rng):
     np.testing.assert_allclose(Q, np.linalg.solve(eye - X / 2, eye + X / 2), rtol=0, atol=100 * N * EPS)
 
 
+@pytest.mark.parametrize("moments", [[3.0, 0.1, 1.1], [3.0, 0.01, 1.01]])
+def test_a_negative_mass_tensor_entry_converges_at_every_step(moments):
+    """3D bodies may have a negative J_i (J = (1, 2, -0.9) here): Newton's update then stalls at round-off times
+    max|J| / min I (20, 200), above the old test 4 eps |X|, and every step size failed with 'use a smaller dt'.
+    Now order 2 against DOP853 at rtol 1e-13, and the energy kept to round-off."""
+    w0, t = [1.0, -0.5, 0.3], [0.0, 2.0]
+    assert np.any(Inertia(moments).mass_tensor < 0)
+    ref = simulate(moments, w0, t, method="DOP853", rtol=1e-13).omega[-1]
+    errs = [np.abs(simulate(moments, w0, t, method="moser-veselov", dt=dt).omega[-1] - ref).max()
+            for dt in (1e-2, 1e-3, 1e-4)]
+    assert slope([1e-2, 1e-3, 1e-4], errs) == pytest.approx(2.0, abs=0.1)
+    tr = simulate(moments, w0, np.linspace(0.0, 2.0, 5), method="moser-veselov", dt=1e-3)
+    E = 0.5 * np.sum(np.asarray(moments) * tr.omega**2, axis=-1)
+    np.testing.assert_allclose(E, E[0], rtol=100 * EPS * np.sqrt(2000))
+
+
 def test_bad_input():
     w0 = np.ones(10)
     t = [0.0, 1.0]

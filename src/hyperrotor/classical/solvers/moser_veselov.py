@@ -35,8 +35,9 @@ guess is off by :math:`O(h^3)` and Newton needs one or two iterations fewer). Wi
 :math:`A = 1 - X/2`, :math:`dQ = A^{-1}\,\delta\,(Q + 1)/2` and
 :math:`dF = J\,dQ - (J\,dQ)^{\mathsf T}`; for :math:`\delta = E_{pq}` the
 product is a rank-2 update, so the :math:`n \times n` Jacobian costs
-:math:`O(nN^2)`. Iterations stop when the Newton update is below ``4 eps``
-relative to :math:`X` (3-4 iterations for :math:`h|W| \lesssim 0.1`); a step
+:math:`O(nN^2)`. Iterations stop when the Newton update is below ``4 eps`` times
+:math:`\max(1, \max_i |J_i| / \min I_{ij})` relative to :math:`X` (the round-off of the update: a 3D body
+with a negative :math:`J_i` has :math:`I_{ij} \ll |J|`) (3-4 iterations for :math:`h|W| \lesssim 0.1`); a step
 that does not converge in 30 iterations (:math:`h|W|` of order 1) raises
 ``RuntimeError``. The kernel solves its small linear systems (:math:`N \times N` and
 :math:`n \times n`) by its own LU with partial pivoting (``_lu_factor``, ``_lu_solve``: LAPACK's
@@ -183,7 +184,15 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
     n = L0.shape[1]
     K = hstep.shape[0] + 1
     N = J.shape[0]
-    eps = np.finfo(np.float64).eps
+    # Newton's update reaches round-off times the condition of J Q - Q^T J: with J_i ~ -J_j (a 3D body with a
+    # negative J_i) it is ~ eps max|J| / I_ij, and a test at 4 eps failed every step of [3, 0.1, 1.1]
+    jmax = 0.0
+    for i in range(N):
+        jmax = max(jmax, abs(J[i]))
+    imin = np.inf
+    for a in range(n):
+        imin = min(imin, moments[a])
+    tol = 4.0 * np.finfo(np.float64).eps * max(1.0, jmax / imin)
     for b in prange(B):
         Lm = np.zeros((N, N))
         for a in range(n):
@@ -251,7 +260,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
                         upd = max(upd, abs(dx[a, 0]))
                     if not (upd == upd) or upd > 1e3:  # NaN or diverging
                         break
-                    if upd <= 4.0 * eps * size or upd <= _X_FLOOR:
+                    if upd <= tol * size or upd <= _X_FLOOR:
                         converged = True
                         break
                 if not converged:
