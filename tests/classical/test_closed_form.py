@@ -371,6 +371,16 @@ def test_euler_poinsot_close_to_the_separatrix_against_mpmath(tilt):
     assert np.ptp(ref[:, 1]) > 1.9  # (the middle-axis component flips sign: -1 -> +1)
 
 
+def test_euler_poinsot_flips_for_a_subnormal_distance_to_the_separatrix():
+    """Tilt 1e-160: 1 - m ~ 1e-320 (subnormal) and F(pi/2 | m) = K = ellipkm1(1 - m), finite (R_F(0, 1 - m, 1)
+    overflowed: a constant omega although the period is finite); half a period later w13 has flipped."""
+    I, w0 = np.array([3.0, 2.0, 1.0]), np.array([1e-160, -1.0, 0.0])
+    T = euler_poinsot_period(I, w0)
+    assert np.isfinite(T)
+    half = euler_poinsot(I, w0, [0.5 * T])[0]
+    assert half[1] == pytest.approx(1.0, abs=1e-12) and abs(half[0]) < 1e-150 and abs(half[2]) < 1e-150
+
+
 def test_euler_poinsot_separatrix_and_steady():
     # textbook I = (1, 2, 3): separatrix when 3 * 1 * W3^2 = 1 * 1 * W1^2 (L^2 = 2 E I2)
     I = np.array([3.0, 2.0, 1.0])  # (I12, I13, I23) -> I1=1, I2=2, I3=3

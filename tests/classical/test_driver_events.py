@@ -52,3 +52,16 @@ def test_a_zero_at_the_first_time_is_an_event_as_in_solve_ivp(method, direction)
     else:  # the first upward crossing, where DOP853 finds it
         assert tr.t_events[0][0] == pytest.approx(ref.t_events[0][0], abs=1e-6)
     assert ref.t_events[0][0] == pytest.approx(tr.t_events[0][0], abs=1e-6)
+
+
+@pytest.mark.parametrize("method", ["splitting2", "moser-veselov", "DOP853"])
+@pytest.mark.parametrize("direction", [0, 1, -1])
+def test_a_g_that_stays_zero_is_an_event_at_the_first_time_in_both_directions(method, direction):
+    """A steady rotation keeps L12 = 0 exactly: solve_ivp's rule counts g = g_new = 0 upwards and downwards."""
+    def g(t, L):
+        return L[0]
+
+    g.direction = direction
+    g.terminal = True
+    tr = hr.simulate([2.0, 3.0, 4.0], [0.0, 1.0, 0.0], [0.0, 1.0], method=method, events=g)
+    assert [te.tolist() for te in tr.t_events] == [[0.0]] and tr.t[-1] == 0.0

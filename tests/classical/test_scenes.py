@@ -200,6 +200,11 @@ def test_scene_output_is_priced_before_any_work():
                 minimal=minimal)
     small = Scene([1.0, 2.0, 2.5], w0, t[:10], observables=("projection",), points=np.eye(3)).evaluate()
     assert small.projection.shape[0] == 10
+    # an invariants-only scene is priced as what it returns (one energy per time), not as omega and L
+    with hyperrotor.options(max_output_bytes=10**6):
+        energy = Scene(np.linspace(1.0, 2.0, 45), np.ones(45), np.linspace(0.0, 1.0, 5000),
+                       observables=("energy",)).evaluate()
+    assert energy.path == "invariants" and energy.energy.shape == (5000,)
 
 
 def test_quartet_projection_closed_form():

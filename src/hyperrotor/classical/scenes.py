@@ -388,8 +388,10 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     res = SceneResult(t=t, planes=sel_planes)
     need_att = "attitude" in obs or "projection" in obs
     need_omega = "omega" in obs or "L" in obs
-    # the result's arrays, priced on every route before any work (omega and L, attitude, projections, invariants)
-    width = 2 * w0.size + (N * N if need_att else 0) + (0 if pts is None else pts.shape[0] * ax.size) + N
+    # what the route returns (and the omega it computes on the way), priced before any work
+    width = (("omega" in obs) + ("L" in obs)) * len(cols) + (w0.size if need_omega or need_att else 0) \
+        + (N * N if need_att else 0) + (0 if pts is None else pts.shape[0] * ax.size) \
+        + ("energy" in obs) + ("casimirs" in obs) * (N // 2)
     _pricing.check("closed_form_output", n_times=t.size, width=width)
 
     if not minimal:

@@ -381,7 +381,8 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
         down = (v[:-1] > 0) & (v[1:] <= 0)
         cross = up if sp.direction > 0 else down if sp.direction < 0 else (up | down)
         if gprev is None and v[0] == 0.0:  # a zero at the run's first time is an event, as in solve_ivp
-            cross[0] = sp.direction == 0 or (v[1] >= 0) == (sp.direction > 0)  # ((g <= 0) & (g_new >= 0) ...)
+            cross[0] = sp.direction == 0 or (v[1] >= 0 if sp.direction > 0 else v[1] <= 0)  # ((g <= 0) & (g_new >= 0)
+            # upwards, (g >= 0) & (g_new <= 0) downwards: a g that stays 0 is both)
         for j in np.flatnonzero(cross):
             hits.append((int(j), e))
     hits.sort()

@@ -77,6 +77,7 @@ def check_symmetric(M: sps.csr_matrix, rep) -> None:
     wrong levels and states without a sign: up to 0.5 in a state, 43 in a level). A ``rep`` without a sector
     construction (mixed tensor and spinor parts, over the dense limit) passes: nothing is split by its sectors.
     """
+    _pricing.check("gt_sectors", dim=rep.dim, N=rep.N)  # (the group's price: the sectors' own, checked first)
     try:
         group_of(rep)  # (kept with rep; the sectors use it too)
     except ValueError:  # no sector construction (mixed tensor/spinor, over the dense limit): nothing to split by
