@@ -233,7 +233,7 @@ def test_scene_gif(capsys, tmp_path):
     (["scene", "--lock", "0"], "--lock axes must be in 1..5"),
     (["scene", "--omega", "1,2,3"], "needs N(N-1)/2 = 10 components"),
     (["scene", "--output", "x.jpg"], "--output 'x.jpg' has extension '.jpg'; allowed: .png, .gif, .html"),
-    (["scene", "--N", "2"], "--N must be an integer >= 3, got 2"),
+    (["scene", "--N", "2"], "--N must be an integer in 3..1000, got 2"),
     (["scene", "--frames", "1"], "--frames must be an integer >= 2, got 1"),
 ])
 def test_scene_bad_options(capsys, argv, msg):
@@ -313,7 +313,9 @@ MORE = [
     (["scene", "--max-seconds", "-1"], ["--max-seconds must be finite and > 0, got -1.0"]),
     (["scene", "--max-memory", "lots"], ["argument --max-memory: expected a size such as 2G"]),
     (["scene", "--kappa", "1e300"], ["--kappa must have magnitude <= 1e+100, got 1e+300"]),
-    (["scene", "--N", "1000000000"], ["2^1000000000 points", "budget of 2 GiB"]),
+    (["scene", "--N", "1000000000"], ["--N must be an integer in 3..1000, got 1000000000"]),  # the library's limit
+    (["scene", "--inertia", "box", "--sides=1e100,1,1,1,1"], ["--sides values must be in [1e-50, 1e50]"]),
+    (["scene", "--inertia", "box", "--sides=1e-200,1,1,1,1"], ["--sides values must be in [1e-50, 1e50]"]),
     # an integrated motion is priced before it runs (#22: this ran 506 s with --max-seconds 10)
     (["scene", "--inertia", "box", "--t-end", "1e6", "--max-seconds", "10"],
      ["scene --t-end 1000000 (", "integration steps of splitting8", "over the budget of 10 s (--max-seconds"]),
@@ -566,3 +568,47 @@ def test_force_replaces_a_symlink_never_writes_through_it(capsys, tmp_path, monk
     assert code == 0, err
     assert not (tmp_path / "r.md").is_symlink() and (tmp_path / "r.md").read_text().startswith("# Verification")
     assert (tmp_path / "target.md").read_text() == "someone else's file"
+    (tmp_path / "dangling.md").symlink_to(tmp_path / "nowhere.md")  # a link to nothing: replaced too (was refused
+    code, _, err = _run(capsys, ["verify", "--section", "euler", "-o", "dangling.md", "--force"])  # as not a file)
+    assert code == 0, err
+    assert not (tmp_path / "dangling.md").is_symlink() and not (tmp_path / "nowhere.md").exists()
+
+
+def test_a_repeated_section_is_verified_once(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    outs = []
+    for argv in (["--section", "euler"], ["--section", "euler", "--section", "euler"]):
+        code, out, err = _run(capsys, ["verify", *argv, "-o", "r.md", "--force"])
+        assert code == 0, err
+        outs.append(re.search(r"\((\d+) items\)", out).group(1))
+    assert outs[0] == outs[1]  # (62 items for 31)
+
+
+def test_budget_refusals_are_usage_errors_in_cli_words(capsys, tmp_path, monkeypatch):
+    """scene --N over the library's dimension limit, and a body whose Euler tables exceed the memory budget, were
+    refused by the library during the work: exit 1 with hr.options(...) advice (the docs promise exit 2 and the
+    command-line option). Now before any work; a refusal that still comes from the library is worded alike."""
+    from hyperrotor import _pricing
+    from hyperrotor.cli._common import budget_message
+
+    monkeypatch.chdir(tmp_path)
+    code, _, err = _run(capsys, ["scene", "--N", "5000", "--frames", "2", "--output", "a.png"])
+    assert code == 2 and "--N must be an integer in 3..1000, got 5000" in err
+    code, _, err = _run(capsys, ["scene", "--N=1e400", "--frames", "2", "--output", "a.png"])
+    assert code == 2 and "--N must have magnitude <= 1e+100, got an integer of 401 digits" in err
+    code, _, err = _run(capsys, ["scene", "--N", "460", "--shape", "simplex", "--frames", "2", "--output", "a.png"])
+    assert code == 2 and "GiB of memory, over the budget of 2 GiB (--max-memory" in err and _files(tmp_path) == []
+    with pytest.raises(hr.BudgetError) as info:
+        _pricing.check("RigidBody", N=460)
+    text = budget_message(info.value)
+    assert "hr.options" not in text and "over the budget --max-memory = " in text
+    assert text.endswith("; choose a smaller run or raise --max-memory")
+    with pytest.raises(hr.BudgetError) as info:
+        hr.conventions.check_dimension(5000)
+    assert budget_message(info.value).endswith("the library's limit max_dimension = 1000; choose a smaller run")
+
+
+def test_demo_refuses_a_body_at_rest_before_printing(capsys):
+    for omega in ("0,0,0,0,0,0,0,0,0,0", "1e-170,0,0,0,0,0,0,0,0,0"):
+        code, out, err = _run(capsys, ["demo", "--no-png", "--t-end", "1", f"--omega={omega}"])
+        assert code == 2 and out == "" and "--omega must set the body in motion" in err

@@ -125,6 +125,18 @@ class MotionCost(NamedTuple):
     rate: float     #: bound on the fastest rate of the motion, :math:`\max|\omega_0| \max I / \min I` (>= 1)
 
 
+def _moving(name: str, body, omega0: Any) -> np.ndarray:
+    """``omega0`` (10 components), refused unless it sets the body in motion with a kinetic energy within
+    double precision (the drifts are relative to the energy and |L|^2 at t = 0: 0/0 at rest)."""
+    omega0 = _v.components(name, omega0, 10)
+    energy0 = float(body.energy(omega0))
+    if not energy0 >= np.finfo(float).tiny:
+        raise ValueError(f"{name} must set the body in motion with a kinetic energy within double precision: "
+                         f"{name} = {_v.fmt(omega0)} gives {energy0:.3g} (relative drifts would be 0/0); "
+                         f"use an {name} of ordinary size, e.g. the default")
+    return omega0
+
+
 def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 200.0, *,
                            axis: int = 5) -> MotionCost:
     """Estimated wall seconds of :func:`compare_quartet_motion` (warm kernels), without running it.
@@ -134,7 +146,7 @@ def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
     machine (``benchmarks/pricing.py``). The first call of a process adds the kernel's load (1-3 s).
     """
     body, axis = _body(kappa, axis)
-    omega0 = _v.components("omega0", omega0, 10)
+    omega0 = _moving("omega0", body, omega0)
     t_end = _v.positive("t_end", t_end)
     rate = _fastest_rate(body, omega0)
     (cost,) = _pricing.estimate("compare_quartet_motion", t_end=t_end, rate=rate)
@@ -174,12 +186,7 @@ def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
     from .classical.solvers import FixedStepSolver, solver_for
 
     body, axis = _body(kappa, axis)
-    omega0 = _v.components("omega0", omega0, 10)
-    energy0 = float(body.energy(omega0))
-    if not energy0 >= np.finfo(float).tiny:  # (the drifts are relative to the energy and |L|^2 at t = 0)
-        raise ValueError(f"omega0 must set the body in motion with a kinetic energy within double precision: "
-                         f"omega0 = {_v.fmt(omega0)} gives {energy0:.3g} (relative drifts would be 0/0); "
-                         f"use an omega0 of ordinary size, e.g. the default")
+    omega0 = _moving("omega0", body, omega0)
     t_end = _v.positive("t_end", t_end)
     n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
     _pricing.check("compare_quartet_motion", t_end=t_end, rate=_fastest_rate(body, omega0))

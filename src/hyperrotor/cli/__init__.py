@@ -65,7 +65,8 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from hyperrotor.cli import _files, _signals, bench, demo, scene, verify
-from hyperrotor.cli._common import UsageError
+from hyperrotor._pricing import BudgetError
+from hyperrotor.cli._common import UsageError, budget_message
 
 __all__ = ["main", "build_parser", "Subcommand", "SUBCOMMANDS", "UsageError", "EXIT_CODES"]
 
@@ -216,6 +217,7 @@ def _written_note() -> str:
 
 def _run(argv: list[str], prog: str) -> int:
     debug = "--debug" in argv
+    args = None
     try:
         args = build_parser().parse_args(argv)
         with warnings.catch_warnings(record=True) as caught:  # reported one line each, after the work
@@ -232,6 +234,13 @@ def _run(argv: list[str], prog: str) -> int:
 
             traceback.print_exc()
         _say(prog, f"error: {err}")
+        return EXIT_CODES["usage"]
+    except BudgetError as err:  # a refusal that no subcommand check caught first: still one line, CLI wording
+        if debug:
+            import traceback
+
+            traceback.print_exc()
+        _say(prog, f"error: {budget_message(err, args)}" + _written_note())
         return EXIT_CODES["usage"]
     except _signals.Stop as stop:
         return _stopped(prog, stop)

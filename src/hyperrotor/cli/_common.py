@@ -18,7 +18,8 @@ from hyperrotor._options import options
 from hyperrotor._parallel import progress_bar
 from hyperrotor.cli._signals import bar_shown, checkpoint
 
-__all__ = ["UsageError", "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number", "integer", "number_list",
+__all__ = ["UsageError", "budget_message", "CLI_BUDGETS",
+           "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number", "integer", "number_list",
            "int_list", "choice_of", "byte_size", "size_text", "duration_text", "check_budget", "bar", "have_module",
            "have_matplotlib", "add_common", "check_common"]
 
@@ -86,7 +87,29 @@ def integer(text, option: str, *, minimum: int | None = None, maximum: int | Non
             value = _parse.integer(text, option)
         except (ValueError, TypeError) as err:  # (ParseError is a ValueError)
             raise UsageError(str(err)) from None
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > MAX_MAGNITUDE:  # (1e400, 2**1000:
+        raise UsageError(f"{option} must have magnitude <= {MAX_MAGNITUDE:g}, got an integer of "  # not 400 digits)
+                         f"{len(str(abs(value)))} digits")
     return usage(_validate.integer, option, value, minimum=minimum, maximum=maximum)
+
+
+#: the library's budget options and the command-line options that set them
+CLI_BUDGETS = {"max_steps": "--max-steps", "max_output_bytes": "--max-memory", "max_memory_bytes": "--max-memory",
+               "max_seconds": "--max-seconds"}
+
+
+def budget_message(err: Exception, args: argparse.Namespace | None = None) -> str:
+    """A library budget refusal worded with the command line's options: the advice to raise a Python option
+    (``hr.options(...)``, ``simulate(..., max_steps=...)``) is replaced by the subcommand's own option, when it has
+    one (``args``), else by "choose a smaller run"; a limit without an option is named as the library's limit."""
+    text = str(err).split("; raise it with", 1)[0].split(" (raise it", 1)[0]
+    flags = [f for key, f in CLI_BUDGETS.items()
+             if key in text and (args is None or hasattr(args, f[2:].replace("-", "_")))]
+    for key, flag in CLI_BUDGETS.items():
+        if flag in flags:
+            text = text.replace(f"hr.options['{key}']", flag).replace(f"budget {key} =", f"budget {flag} =")
+    text = re.sub(r"hr\.options\['(\w+)'\]", r"the library's limit \1", text)
+    return text + "; choose a smaller run" + (f" or raise {flags[0]}" if flags else "")
 
 
 def number_list(text: str, option: str, count: int | None = None, *, positive: bool = False) -> np.ndarray:

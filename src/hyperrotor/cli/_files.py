@@ -149,7 +149,7 @@ def output_file(text: str, *, option: str, suffixes: Sequence[str], force: bool)
         if replaces:
             if not force:
                 raise ValueError(f"{option} {text!r} exists; pass --force to replace it, or choose another name")
-            if not path.is_file():
+            if not (path.is_file() or (path.is_symlink() and not path.exists())):  # (a dangling link is replaced)
                 raise ValueError(f"{option} {text!r} exists and is not a regular file; not replacing it")
         suffix = f".part{path.suffix}"
         room = name_max - len(os.fsencode(suffix)) - 8 - len(_STAGING)  # 8: mkstemp's random part

@@ -69,7 +69,10 @@ def run(args: argparse.Namespace) -> int:
     args.axis = integer(args.axis, "--axis", minimum=1, maximum=5)
     t_end = usage(_validate.positive, "--t-end", number(args.t_end, "--t-end"))
     inertia = usage(Inertia.quartet, kappa, axis=args.axis, N=5)
-    cost = quartet_motion_seconds(kappa, omega, t_end, axis=args.axis)
+    try:  # (a body at rest: refused here, before the equations are printed)
+        cost = quartet_motion_seconds(kappa, omega, t_end, axis=args.axis)
+    except ValueError as err:
+        raise UsageError(str(err).replace("omega0", "--omega")) from None
     check_budget(args, f"demo --t-end {num(t_end)} (fastest rate {num(cost.rate, 3)})", cost.seconds,
                  hint="choose a shorter --t-end or smaller --omega")
     with Outputs() as outs:
@@ -88,7 +91,8 @@ def run(args: argparse.Namespace) -> int:
                   "run after installing compiles numba's kernels once (about 20 s)", file=sys.stderr, flush=True)
         out = []
         with options(max_seconds=max(float(options["max_seconds"]), args.max_seconds or 0.0,
-                                     float(options["cli_max_seconds"]))):  # the CLI's budget was checked above
+                                     float(options["cli_max_seconds"])),  # the CLI's budget was checked above,
+                     max_steps=max(int(options["max_steps"]), 2**62)):  # the steps folded into it (--max-seconds)
             motion = compare_quartet_motion(kappa, omega, t_end, axis=args.axis)
         out.extend(_motion_lines(motion))
         out.append("")

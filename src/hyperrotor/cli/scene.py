@@ -15,7 +15,8 @@ import numpy as np
 
 from hyperrotor import BudgetError, _cost_models, _pricing, _validate
 from hyperrotor._options import options
-from hyperrotor.cli._common import (UsageError, add_common, bar, check_budget, check_common, choice_of,
+from hyperrotor.cli._common import (CLI_BUDGETS, UsageError, add_common, bar, budget_message, check_budget,
+                                    check_common, choice_of,
                                     have_matplotlib, have_module, int_list, integer, num, number, number_list,
                                     usage)
 from hyperrotor.cli._files import Outputs, output_file
@@ -69,7 +70,7 @@ def _scene_check(args: argparse.Namespace):
     from hyperrotor import n_planes, planes
 
     check_common(args)
-    N = integer(args.N, "--N", minimum=3)
+    N = integer(args.N, "--N", minimum=3, maximum=int(options["max_dimension"]))  # (the library's limit of N)
     frames = integer(args.frames, "--frames", minimum=2)
     t_end = usage(_validate.positive, "--t-end", number(args.t_end, "--t-end"))
     n = n_planes(N) if N < 10**5 else N * (N - 1) // 2
@@ -101,6 +102,9 @@ def _scene_check(args: argparse.Namespace):
     memory, seconds = (c.amount for c in _pricing.estimate(
         "scene", shape=args.shape, N=N, frames=frames, format=fmt, integrate=args.inertia == "box" or bool(lock),
         colour=bool(colour_axis)))
+    import hyperrotor.classical.rigid_body  # noqa: F401 - registers the body's cost model
+    body_memory, body_seconds = (c.amount for c in _pricing.estimate("RigidBody", N=N))  # its Euler tables
+    memory, seconds = memory + body_memory, seconds + body_seconds
     P, E = _cost_models.scene_size(args.shape, N)
     count = f"2^{N} points, {N} x 2^{N - 1} edges" if args.shape == "cube" and N > 30 else f"{P:.4g} points, {E:.4g} edges"
     what = f"scene --N {N} --shape {args.shape} ({count}, {frames} frames)"
@@ -109,6 +113,9 @@ def _scene_check(args: argparse.Namespace):
     sides = None
     if args.inertia == "box":
         sides = np.arange(1.0, N + 1) if args.sides is None else number_list(args.sides, "--sides", N, positive=True)
+        if np.any(sides < 1e-50) or np.any(sides > 1e50):  # the moments are their squares: they (and L) must stay
+            raise UsageError(f"--sides values must be in [1e-50, 1e50] (the moments are their squares; "  # normal
+                             f"omega(t) does not depend on the scale), got {_validate.fmt(sides.tolist())}")
     omega = 0.1 * np.arange(1, n + 1) if args.omega is None else number_list(args.omega, "--omega")
     if omega.shape != (n,):
         raise UsageError(f"--omega needs N(N-1)/2 = {n} components for N = {N}, got {omega.size}")
@@ -147,9 +154,13 @@ def run(args: argparse.Namespace) -> int:
         t = np.linspace(0.0, s["t_end"], s["frames"])
         proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
         observables = ("projection", "omega") if fmt == ".html" else ("projection",)  # the page shows invariants
-        scene = Scene(RigidBody(inertia), s["omega"], t, observables=observables, points=points, axes=proj_axes,
-                      progress=args.progress)  # a bar while an integrated motion is computed
-        with options(max_steps=s["max_steps"]):
+        # the library's memory budgets as large as the command's, which its estimates were checked against
+        memory = max(float(options["cli_max_memory"]) if args.max_memory is None else float(args.max_memory),
+                     float(options["max_memory_bytes"]), float(options["max_output_bytes"]))
+        with options(max_memory_bytes=memory, max_output_bytes=memory):
+            scene = Scene(RigidBody(inertia), s["omega"], t, observables=observables, points=points, axes=proj_axes,
+                          progress=args.progress)  # a bar while an integrated motion is computed
+        with options(max_steps=s["max_steps"], max_memory_bytes=memory, max_output_bytes=memory):
             if s["integrate"]:
                 _check_motion(args, s, scene)
             try:
@@ -212,18 +223,12 @@ def _check_motion(args: argparse.Namespace, s: dict, scene) -> None:
                  s["seconds"] + (cost.seconds or 0.0), hint="choose a shorter --t-end")
 
 
-#: hr.options budget -> the option of ``hyperrotor scene`` that sets it for one run.
-_CLI_BUDGETS = {"max_steps": "--max-steps", "max_output_bytes": "--max-memory", "max_memory_bytes": "--max-memory",
-                "max_seconds": "--max-seconds"}
-
-
 def _budget_message(err: BudgetError) -> str:
-    """A library budget refusal, worded with the command line's options."""
+    """A library budget refusal of the motion, worded with the command line's options."""
     option = getattr(err, "option", None)
     needed, budget = getattr(err, "needed", None), getattr(err, "budget", None)
-    flag = _CLI_BUDGETS.get(option or "", "--max-seconds")
+    flag = CLI_BUDGETS.get(option or "", "--max-seconds")
     if needed is not None and budget is not None:
         return (f"the motion needs about {needed:.3g} ({option}), over the budget of {budget:.6g} "
                 f"({flag}); choose a shorter --t-end or fewer --frames, or raise {flag}")
-    text = str(err).split("; raise it with", 1)[0].split(" (raise it", 1)[0]
-    return f"{text}; choose a smaller run or raise {flag}"
+    return budget_message(err)

@@ -38,7 +38,7 @@ def run(args: argparse.Namespace) -> int:
         suffix = Path(args.output).suffix.lower()
         kind = next((k for k, sfx in _VERIFY_SUFFIXES.items() if suffix in sfx), "table")
     kind = kind or "table"
-    keys = list(args.section) if args.section else list(SECTIONS)
+    keys = list(dict.fromkeys(args.section)) if args.section else list(SECTIONS)  # (a repeated --section: once)
     with Outputs() as outs:
         out = None
         if args.output is not None:
