@@ -315,6 +315,9 @@ MORE = [
     (["scene", "--kappa", "1e300"], ["--kappa must have magnitude <= 1e+100, got 1e+300"]),
     (["scene", "--N", "1000000000"], ["--N must be an integer in 3..1000, got 1000000000"]),  # the library's limit
     (["scene", "--inertia", "box", "--sides=1e100,1,1,1,1"], ["--sides values must be in [1e-50, 1e50]"]),
+    (["scene", "--max-memory", "0.5"], ["expected a size of at least one byte, got '0.5'"]),  # (was 0 bytes)
+    (["demo", "--png", "q.png", "--no-png"], ["--png 'q.png' and --no-png contradict each other"]),
+    (["demo", "--bogus"], ["unrecognized arguments: --bogus (see 'hyperrotor demo --help')"]),  # (was hyperrotor)
     (["scene", "--inertia", "box", "--sides=1e-200,1,1,1,1"], ["--sides values must be in [1e-50, 1e50]"]),
     # an integrated motion is priced before it runs (#22: this ran 506 s with --max-seconds 10)
     (["scene", "--inertia", "box", "--t-end", "1e6", "--max-seconds", "10"],

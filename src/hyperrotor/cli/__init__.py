@@ -219,7 +219,9 @@ def _run(argv: list[str], prog: str) -> int:
     debug = "--debug" in argv
     args = None
     try:
-        args = build_parser().parse_args(argv)
+        args, extra = build_parser().parse_known_args(argv)
+        if extra:  # (argparse's own message pointed to 'hyperrotor --help', not the subcommand's)
+            raise UsageError(f"unrecognized arguments: {' '.join(extra)} (see 'hyperrotor {args.command} --help')")
         with warnings.catch_warnings(record=True) as caught:  # reported one line each, after the work
             warnings.simplefilter("default")
             code = int(args._run(args))

@@ -152,8 +152,8 @@ def byte_size(text: str) -> int:
     if not m:
         raise argparse.ArgumentTypeError(f"expected a size such as 2G, 500M or 1000000, got {text!r}")
     value = float(m.group(1)) * _BYTE_UNITS[m.group(2).upper()]
-    if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"expected a positive size, got {text!r}")
+    if not math.isfinite(value) or value < 1:  # (0.5 was a budget of 0 bytes)
+        raise argparse.ArgumentTypeError(f"expected a size of at least one byte, got {text!r}")
     return int(value)
 
 

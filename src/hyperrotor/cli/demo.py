@@ -64,6 +64,8 @@ def run(args: argparse.Namespace) -> int:
 
     # --- checks, before any work -------------------------------------------------
     check_common(args)
+    if args.no_png and args.png is not None:
+        raise UsageError(f"--png {args.png!r} and --no-png contradict each other; give one of them")
     kappa = number(args.kappa, "--kappa", exact=True)
     omega = np.array(DEMO_OMEGA, dtype=float) if args.omega is None else number_list(args.omega, "--omega", 10)
     args.axis = integer(args.axis, "--axis", minimum=1, maximum=5)
