@@ -281,8 +281,7 @@ def _incomplete_k(y: float, x: float, m1: float) -> float:
     if j:
         c, s = -c, -s
     c2 = c * c
+    K = float(special.ellipkm1(m1)) if m1 > 0.0 else float("inf")
     if c2 == 0.0:  # psi = +-pi/2: F = +-K (inf on the separatrix; R_F(0, m1, 1) overflows for a subnormal m1)
-        K = float(special.ellipkm1(m1)) if m1 > 0.0 else float("inf")
         return (2.0 * j + (1.0 if s > 0 else -1.0)) * K
-    K = float(special.ellipkm1(m1)) if j else 0.0
-    return 2.0 * j * K + s * float(special.elliprf(c2, c2 + m1 * s * s, 1.0))
+    return (2.0 * j * K if j else 0.0) + s * float(special.elliprf(c2, c2 + m1 * s * s, 1.0))

@@ -392,37 +392,32 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
         y, yT = L[j:j + 1], None if T is None else T[j:j + 1]
         t0, t1 = grid[j], grid[j + 1]
         if vals[j, e] == 0.0:  # (only at the run's first time: a later zero is the end of the step before)
-            t_events[e].append(t0 / s)
-            L_events[e].append(L[j] * s)
-            if yT is not None:
-                T_events[e].append(yT[0])
-            counts[e] += 1
-            if sp.max_count is not None and counts[e] >= sp.max_count:
-                return t0, vals[-1]
-            continue
-        if vals[j + 1, e] == 0.0:
-            te = t1
+            te, Le, Te = t0, L[j], None if yT is None else yT[0]
         else:
-            def f(tau):
-                Lx = solver.advance(problem, y, None, np.array([t0, tau]), np.ones(1, dtype=np.int64))[0]
-                return float(sp.fn(tau / s, Lx[0, -1] * s))
-            f0, f1 = f(t0), f(t1)
-            if f0 == 0.0:
-                te = t0
-            elif (f0 < 0.0) != (f1 < 0.0) and f1 != 0.0:
-                lo, hi = (t0, t1) if t1 > t0 else (t1, t0)
-                te = brentq(f, lo, hi, xtol=4 * np.finfo(float).eps * max(abs(lo), abs(hi), 1e-300),
-                            rtol=4 * np.finfo(float).eps, maxiter=200)
-            else:
-                # the re-integrated step lost the grid's sign change (g ~ 0 at the step's end to
-                # round-off, or a step far too long for the motion, |omega| dt >> 1): the crossing
-                # seen on the grid, at the step's end
+            if vals[j + 1, e] == 0.0:
                 te = t1
-        Lx, Tx = solver.advance(problem, y, yT, np.array([t0, te]), np.ones(1, dtype=np.int64))
+            else:
+                def f(tau):
+                    Lx = solver.advance(problem, y, None, np.array([t0, tau]), np.ones(1, dtype=np.int64))[0]
+                    return float(sp.fn(tau / s, Lx[0, -1] * s))
+                f0, f1 = f(t0), f(t1)
+                if f0 == 0.0:
+                    te = t0
+                elif (f0 < 0.0) != (f1 < 0.0) and f1 != 0.0:
+                    lo, hi = (t0, t1) if t1 > t0 else (t1, t0)
+                    te = brentq(f, lo, hi, xtol=4 * np.finfo(float).eps * max(abs(lo), abs(hi), 1e-300),
+                                rtol=4 * np.finfo(float).eps, maxiter=200)
+                else:
+                    # the re-integrated step lost the grid's sign change (g ~ 0 at the step's end to
+                    # round-off, or a step far too long for the motion, |omega| dt >> 1): the crossing
+                    # seen on the grid, at the step's end
+                    te = t1
+            Lx, Tx = solver.advance(problem, y, yT, np.array([t0, te]), np.ones(1, dtype=np.int64))
+            Le, Te = Lx[0, -1], None if Tx is None else Tx[0, -1]
         t_events[e].append(te / s)
-        L_events[e].append(Lx[0, -1] * s)
-        if Tx is not None:
-            T_events[e].append(Tx[0, -1])
+        L_events[e].append(Le * s)
+        if Te is not None:
+            T_events[e].append(Te)
         counts[e] += 1
         if sp.max_count is not None and counts[e] >= sp.max_count:
             return te, vals[-1]

@@ -87,9 +87,8 @@ def _lu_factor(A, piv):  # pragma: no cover - jitted
     """LU factorisation of the square ``A`` in place, rows swapped by partial pivoting (``piv[k]``: the row
     exchanged with row ``k``), as LAPACK's ``getrf``; ``False`` if a pivot is zero (``A`` singular).
 
-    Written out instead of ``np.linalg.solve``/``inv`` in the kernel: numba compiles those with their shape
-    checks and LAPACK wrappers for ~6 s each (a first Moser-Veselov run took 22 s to compile, 10 s without
-    them), and the matrices here are N x N and n x n.
+    Written out instead of ``np.linalg.solve``/``inv`` in the kernel (the module docstring says why: their
+    compile time); the matrices here are N x N and n x n.
     """
     m = A.shape[0]
     for k in range(m):
@@ -202,8 +201,7 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
         T = start_attitude(T0, b, with_attitude, outT)
         X = np.zeros((N, N))
         Jac = np.empty((n, n))
-        Fv = np.empty(n)
-        dx = np.empty((n, 1))
+        dx = np.empty((n, 1))  # (-F, then the Newton update)
         eye = np.eye(N)
         LU = np.empty((N, N))
         Ainv = np.empty((N, N))
@@ -229,10 +227,10 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
                 for it in range(_MAX_NEWTON):
                     if not _cayley(X, eye, LU, piv, Ainv, Q):
                         break
-                    for a in range(n):  # F = J Q - Q^T J - h L, plane components
+                    for a in range(n):  # -F, F = J Q - Q^T J - h L in plane components (the right side)
                         i = pair_i[a]
                         j = pair_j[a]
-                        Fv[a] = J[i] * Q[i, j] - Q[j, i] * J[j] - h * Lm[i, j]
+                        dx[a, 0] = -(J[i] * Q[i, j] - Q[j, i] * J[j] - h * Lm[i, j])
                     # Jacobian columns: delta = E_pq, dQ = Ainv delta (Q + 1) / 2 (rank 2)
                     for c in range(n):
                         p = pair_i[c]
@@ -244,8 +242,6 @@ def _mv_run(L0, J, moments, pair_i, pair_j, hstep, nsub, T0, with_attitude, outL
                             dij = Ainv[i, p] * (Q[q, j] + eye[q, j]) - Ainv[i, q] * (Q[p, j] + eye[p, j])
                             dji = Ainv[j, p] * (Q[q, i] + eye[q, i]) - Ainv[j, q] * (Q[p, i] + eye[p, i])
                             Jac[a, c] = 0.5 * (J[i] * dij - J[j] * dji)
-                    for a in range(n):
-                        dx[a, 0] = -Fv[a]
                     if not _lu_factor(Jac, pivn):  # (singular: the step fails as a Newton solve that diverged)
                         break
                     _lu_solve(Jac, pivn, dx)
