@@ -38,18 +38,16 @@ import signal
 import sys
 import threading
 
+import _hyperrotor_launch as _launch
+
 from hyperrotor.cli import _files
 
 __all__ = ["Stop", "SIGNALS", "STATUSES", "GRACE", "install", "restore", "checkpoint", "claim", "message",
            "bar_shown"]
 
-#: signal -> (exit status, how it is reported).
-SIGNALS = {
-    signal.SIGINT: (130, "interrupted (Ctrl-C)"),
-    signal.SIGTERM: (143, "terminated (SIGTERM)"),
-}
-if hasattr(signal, "SIGHUP"):  # POSIX only
-    SIGNALS[signal.SIGHUP] = (129, "hung up (SIGHUP)")
+#: signal -> (exit status, how it is reported); defined by the command's launcher, which handles the signals
+#: while the package is being imported (before :func:`install`)
+SIGNALS = _launch.SIGNALS
 
 #: The exit statuses of the signals.
 STATUSES = frozenset(status for status, _ in SIGNALS.values())

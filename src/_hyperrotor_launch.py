@@ -1,0 +1,46 @@
+"""Launcher of the ``hyperrotor`` command (the console script's entry point), outside the package.
+
+Importing :mod:`hyperrotor.cli` imports the package first (NumPy, SciPy, SymPy, numba: about a second),
+and the command's signal handlers (:mod:`hyperrotor.cli._signals`) are installed only after that: a
+Ctrl-C during the imports ended the command with Python's ``KeyboardInterrupt`` traceback. This module
+imports nothing of the package and nothing heavy, so its handlers are in place within milliseconds of the
+start: a signal before the command's own handlers take over ends it at once with one line on stderr and
+the signal's exit status (the table :data:`SIGNALS`, which the command's handlers use too).
+"""
+from __future__ import annotations
+
+import os
+import signal
+import sys
+
+__all__ = ["SIGNALS", "main"]
+
+#: signal -> (exit status, how it is reported): the ``hyperrotor`` command's table (:mod:`hyperrotor.cli._signals`).
+SIGNALS = {
+    signal.SIGINT: (130, "interrupted (Ctrl-C)"),
+    signal.SIGTERM: (143, "terminated (SIGTERM)"),
+}
+if hasattr(signal, "SIGHUP"):  # POSIX only
+    SIGNALS[signal.SIGHUP] = (129, "hung up (SIGHUP)")
+
+
+def _starting(signum, frame) -> None:  # pragma: no cover - runs in the command's process (tests/cli)
+    status, word = SIGNALS[signum]
+    try:
+        os.write(2, f"hyperrotor: {word} while starting; nothing was written\n".encode())
+    except OSError:
+        pass
+    os._exit(status)  # (no unwinding through half-imported modules)
+
+
+def main() -> int:
+    """Install the starting handlers, import the command and run it (its own handlers replace these)."""
+    for signum in SIGNALS:
+        signal.signal(signum, _starting)
+    from hyperrotor.cli import main as command
+
+    return command()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,64 @@
+"""The ``hyperrotor`` command's launcher (``src/_hyperrotor_launch.py``): a signal while the package is still
+being imported (about a second, before the command's own handlers exist) ends the command at once with one line
+on stderr and the signal's status, not Python's ``KeyboardInterrupt`` traceback."""
+import importlib.metadata
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from hyperrotor.cli import EXIT_CODES, _signals
+
+STATUS = {signal.SIGINT: EXIT_CODES["interrupted"], signal.SIGTERM: EXIT_CODES["terminated"]}
+
+
+def _handles(pid: int, sig: int) -> bool:
+    """Whether process ``pid`` has a handler for ``sig`` (Linux: the SigCgt mask of /proc/PID/status)."""
+    try:
+        with open(f"/proc/{pid}/status") as fh:
+            for line in fh:
+                if line.startswith("SigCgt:"):
+                    return bool(int(line.split()[1], 16) >> (sig - 1) & 1)
+    except OSError:
+        pass
+    return False
+
+
+def test_the_console_script_is_the_launcher():
+    (script,) = [e for e in importlib.metadata.entry_points(group="console_scripts") if e.name == "hyperrotor"]
+    assert script.value == "_hyperrotor_launch:main"
+
+
+def test_the_launcher_and_the_command_share_one_table_of_signals():
+    import _hyperrotor_launch
+
+    assert _signals.SIGNALS is _hyperrotor_launch.SIGNALS
+    assert {status for status, _ in _signals.SIGNALS.values()} >= set(STATUS.values())
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/status"), reason="needs /proc (Linux) to see the handlers")
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_while_the_package_is_imported(sig):
+    """Sent as soon as the launcher handles SIGTERM (Python alone does not; the command's handlers come ~1 s
+    later, after the imports): the launcher's line, the status, nothing on stdout, no traceback."""
+    p = subprocess.Popen([sys.executable, "-m", "_hyperrotor_launch", "demo", "--no-png"], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 60
+        while not _handles(p.pid, signal.SIGTERM):
+            assert p.poll() is None and time.monotonic() < deadline, p.communicate()
+            time.sleep(0.001)
+        sent = time.monotonic()
+        p.send_signal(sig)
+        out, err = p.communicate(timeout=60)
+        latency = time.monotonic() - sent
+    finally:
+        if p.poll() is None:
+            p.kill()
+    assert p.returncode == STATUS[sig], err
+    assert "Traceback" not in err and out == ""
+    assert err == f"hyperrotor: {_signals.SIGNALS[sig][1]} while starting; nothing was written\n"
+    assert latency < 4.0  # (~5 ms idle; the bound of tests/cli/test_signals.py for a loaded machine)
