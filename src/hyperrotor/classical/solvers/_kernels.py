@@ -415,17 +415,37 @@ def relative_difference(La, Lb, moments, Lmax, Wmax):  # pragma: no cover - jitt
     out = np.empty((rows, S))
     for b in range(rows):
         for s in range(S):
-            best = 0.0
-            for a in range(n):
-                d = abs(La[b, s, a] - Lb[b, s, a])
-                x = max(d / Lmax[b], d / moments[a] / Wmax[b])
-                if x != x:
-                    best = math.nan
-                    break
-                if x > best:
-                    best = x
-            out[b, s] = best
+            out[b, s] = distance_at(La, Lb, b, s, moments, Lmax[b], Wmax[b])
     return out
+
+
+@jit(inline="always")
+def distance_at(La, Lb, b, s, moments, lm, wm):  # pragma: no cover - jitted
+    """:func:`relative_difference` of row ``b``, sample ``s`` with the scales ``lm``, ``wm`` (inlined: a caller
+    indexes its arrays instead of slicing them, and slices, another array layout, would compile the callee again)."""
+    best = 0.0
+    for a in range(La.shape[2]):
+        d = abs(La[b, s, a] - Lb[b, s, a])
+        x = max(d / lm, d / moments[a] / wm)
+        if x != x:
+            return math.nan
+        if x > best:
+            best = x
+    return best
+
+
+@jit(inline="always")
+def scales_at(L, b, s, moments, lm, wm):  # pragma: no cover - jitted
+    """``(max(lm, max|L[b, s]|), max(wm, max|L[b, s] / moments|))``: :func:`raise_scales` for one row and sample
+    (inlined, as :func:`distance_at`)."""
+    for a in range(L.shape[2]):
+        x = abs(L[b, s, a])
+        if x > lm:
+            lm = x
+        w = x / moments[a]
+        if w > wm:
+            wm = w
+    return lm, wm
 
 
 @jit
@@ -437,13 +457,7 @@ def raise_scales(L, moments, Lmax, Wmax):  # pragma: no cover - jitted
         lm = Lmax[b]
         wm = Wmax[b]
         for s in range(S):
-            for a in range(n):
-                x = abs(L[b, s, a])
-                if x > lm:
-                    lm = x
-                w = x / moments[a]
-                if w > wm:
-                    wm = w
+            lm, wm = scales_at(L, b, s, moments, lm, wm)
         Lmax[b] = lm
         Wmax[b] = wm
 

@@ -18,7 +18,7 @@ import numpy as np
 from hyperrotor._jit import jit
 from hyperrotor._warn import warn
 
-from ._kernels import raise_scales, relative_difference, row_scales
+from ._kernels import distance_at, relative_difference, row_scales, scales_at
 from .base import Problem, step_lengths
 from .chunks import Work, advance_chunked, advance_pair_chunked, merge, refuse_steps, stops
 
@@ -218,13 +218,13 @@ def sample_differences(Lf, L1, L2, moments, Lmax, Wmax, d1, d2, j):  # pragma: n
     companion overflowed). Compiled."""
     finite = True
     for i in range(Lf.shape[1]):
-        raise_scales(Lf[:, i:i + 1], moments, Lmax, Wmax)
-        a = relative_difference(Lf[:, i:i + 1], L1[:, i:i + 1], moments, Lmax, Wmax)
-        b = relative_difference(L1[:, i:i + 1], L2[:, i:i + 1], moments, Lmax, Wmax)
-        for m in range(a.shape[0]):
-            d1[m, j + i] = a[m, 0]
-            d2[m, j + i] = b[m, 0]
-            if not (math.isfinite(a[m, 0]) and math.isfinite(b[m, 0])):
+        for m in range(Lf.shape[0]):
+            Lmax[m], Wmax[m] = scales_at(Lf, m, i, moments, Lmax[m], Wmax[m])
+            a = distance_at(Lf, L1, m, i, moments, Lmax[m], Wmax[m])
+            b = distance_at(L1, L2, m, i, moments, Lmax[m], Wmax[m])
+            d1[m, j + i] = a
+            d2[m, j + i] = b
+            if not (math.isfinite(a) and math.isfinite(b)):
                 finite = False
     return finite
 
@@ -507,6 +507,9 @@ class RichardsonCheck:
         all ``(members, upto - j, n)``): the estimate, and :class:`CheckFailed` when it is over the target
         (called by :meth:`update`, which advances the companions to ``upto`` first, or takes the probe's runs
         as them)."""
+        # (C order, as every other caller passes them: the probe's runs and the companions come in as slices, another
+        # array layout, which would compile the function a second time, ~1.4 s on a cold start)
+        Lf, L1, L2 = (np.ascontiguousarray(x) for x in (Lf, L1, L2))
         if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
         prev, self.j = self.j, upto
@@ -695,7 +698,7 @@ class RichardsonCheck:
                                      or self.d2[:, :j].max() > SECOND_COMPANION_ASYMPTOTIC):
             # companions outside their asymptotic regime show no order: the run's error from the first one's
             # with the method's order, (r^p - 1) instead of the estimate's divisor (r^q - 1)
-            end, q = end * coarser_divisor(q_seen, self.r) / coarser_divisor(p, self.r), p
+            end, q = end * coarser_divisor(float(q_seen), self.r) / coarser_divisor(float(p), self.r), p
         h_new = 0.9 * self.h * (SAFETY * rtol / end) ** (1.0 / q)
         h_new = min(h_new, self.h / 1.25)
         lam = self._growth(upto)
