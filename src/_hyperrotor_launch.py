@@ -33,13 +33,30 @@ def _starting(signum, frame) -> None:  # pragma: no cover - runs in the command'
     os._exit(status)  # (no unwinding through half-imported modules)
 
 
+def _finished(status: int):
+    def handler(signum, frame) -> None:  # pragma: no cover - runs in the command's process
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        os._exit(status)  # (the work is done and reported: the interpreter's teardown is all that is cut short)
+
+    return handler
+
+
 def main() -> int:
-    """Install the starting handlers, import the command and run it (its own handlers replace these)."""
+    """Install the starting handlers, import the command and run it (its own handlers replace these while it
+    runs); once it has returned, a signal during the interpreter's teardown (numba, SymPy, matplotlib: up to a
+    second) ends the process quietly with the command's status."""
     for signum in SIGNALS:
         signal.signal(signum, _starting)
     from hyperrotor.cli import main as command
 
-    return command()
+    status = command()
+    for signum in SIGNALS:
+        signal.signal(signum, _finished(status))
+    return status
 
 
 if __name__ == "__main__":

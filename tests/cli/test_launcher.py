@@ -62,3 +62,17 @@ def test_a_signal_while_the_package_is_imported(sig):
     assert "Traceback" not in err and out == ""
     assert err == f"hyperrotor: {_signals.SIGNALS[sig][1]} while starting; nothing was written\n"
     assert latency < 4.0  # (~5 ms idle; the bound of tests/cli/test_signals.py for a loaded machine)
+
+
+def test_after_the_command_a_signal_ends_the_teardown_with_the_commands_status():
+    """Once the command has returned, the launcher's handlers no longer say 'while starting': a signal during the
+    interpreter's teardown ends the process at once with the command's own status and nothing more on stderr."""
+    code = ("import os, signal, sys, _hyperrotor_launch as launch\n"
+            "import hyperrotor.cli\n"
+            "hyperrotor.cli.main = lambda: 0\n"  # (a command that has just finished its work)
+            "status = launch.main()\n"
+            "os.kill(os.getpid(), signal.SIGINT)\n"
+            "print('not reached')\n"
+            "sys.exit(7)\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert (p.returncode, p.stdout, p.stderr) == (0, "", "")
