@@ -444,6 +444,43 @@ def test_bench_paths_naming():
     assert bench_paths("new/") == (Path("new/hyperrotor-bench.csv"), Path("new/hyperrotor-bench.png"))
 
 
+@pytest.mark.parametrize("stem,ext", [(".csv", ".csv"), (".png", ".png"), ("d/.csv", ".csv"), (".CSV", ".CSV"),
+                                      (" .csv", ".csv"), ("..png", ".png")])
+def test_bench_output_without_a_stem_is_refused_before_any_work(capsys, tmp_path, monkeypatch, stem, ext):
+    """--output .csv wrote the hidden files .csv.csv and .csv.png (d/.csv: d/.csv.csv, ...): a stem with no name
+    before the extension is refused with status 2 and one line, before the bench runs and with no file written."""
+    import hyperrotor.bench
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "d").mkdir()
+    ran = []
+    monkeypatch.setattr(hyperrotor.bench, "work_precision", lambda *a, **kw: ran.append(a) or [])
+    code, out, err = _run(capsys, [*BENCH_QUICK, "--output", stem])
+    assert code == EXIT_CODES["usage"] == 2 and out == "" and ran == []
+    assert _one_line(err) == (f"hyperrotor bench: error: --output needs a file stem or a folder, got {stem!r} "
+                              f"(no name before {ext}); e.g. --output b writes b.csv and b.png\n")
+    assert _files(tmp_path) == ["d"] and _files(tmp_path / "d") == []
+
+
+def test_bench_paths_keep_the_documented_names(tmp_path, monkeypatch):
+    """The refusal of a bare extension leaves every name of the --help as it was (a dot-stem included)."""
+    from hyperrotor.cli._common import UsageError
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "d").mkdir()
+    assert bench_paths("out/b") == (Path("out/b.csv"), Path("out/b.png"))
+    assert bench_paths("b.PNG") == bench_paths("b") == (Path("b.csv"), Path("b.png"))
+    assert bench_paths("d") == bench_paths("d/") == (Path("d/hyperrotor-bench.csv"), Path("d/hyperrotor-bench.png"))
+    assert bench_paths(".") == (Path("hyperrotor-bench.csv"), Path("hyperrotor-bench.png"))
+    assert bench_paths(".hidden") == (Path(".hidden.csv"), Path(".hidden.png"))  # a stem, asked for explicitly
+    (tmp_path / ".csv").mkdir()
+    assert bench_paths(".csv") == (Path(".csv/hyperrotor-bench.csv"), Path(".csv/hyperrotor-bench.png"))  # a folder
+    with pytest.raises(UsageError, match=r"got '\.\.\.' \(a name of dots and spaces only\)"):
+        bench_paths("...")
+    with pytest.raises(UsageError, match="got an empty string"):
+        bench_paths(" ")
+
+
 def test_progress_only_when_asked_or_on_a_terminal(capsys, tmp_path):
     code, _, err = _cli(["scene", "--frames", "4", "--output", "b.png", "--progress"], tmp_path)
     assert code == 0 and "scene: drawing snapshots" in err and "/4 [" in err
@@ -615,3 +652,46 @@ def test_demo_refuses_a_body_at_rest_before_printing(capsys):
     for omega in ("0,0,0,0,0,0,0,0,0,0", "1e-170,0,0,0,0,0,0,0,0,0"):
         code, out, err = _run(capsys, ["demo", "--no-png", "--t-end", "1", f"--omega={omega}"])
         assert code == 2 and out == "" and "--omega must set the body in motion" in err
+
+
+#: The end of the budget refusal of a demo: the options that drive its cost, the largest factor first.
+_KAPPA_ADVICE = ("choose a --kappa of smaller magnitude (the cost grows as kappa^2), a shorter --t-end "
+                 "or a smaller --omega")
+
+
+@pytest.mark.parametrize("kappa,shown,rate", [("1e6", "1000000", "5e+11"), ("1e8", "100000000", "5e+15"),
+                                              ("-1e6", "-1000000", "5e+11")])
+def test_demo_budget_refusal_names_kappa_when_kappa_drives_the_cost(capsys, tmp_path, monkeypatch, kappa, shown,
+                                                                      rate):
+    """A large --kappa with the default --t-end and --omega was refused with the advice 'choose a shorter --t-end or
+    smaller --omega' only, although kappa is what makes the run expensive: the advice names --kappa first."""
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _run(capsys, ["demo", f"--kappa={kappa}"])
+    assert code == EXIT_CODES["usage"] == 2 and out == ""
+    assert _one_line(err).startswith(f"hyperrotor demo: error: demo --kappa {shown} --t-end 200 (fastest rate {rate})"
+                                     " would take about ")
+    assert "days, over the budget of 10 min (--max-seconds, default hr.options['cli_max_seconds']); " in err
+    assert err.endswith("; " + _KAPPA_ADVICE + "\n")
+    assert _files(tmp_path) == []  # no PNG, no temporary file
+
+
+def test_demo_budget_advice_follows_the_cost_model(capsys, tmp_path, monkeypatch):
+    """The advice is true of the cost model: kappa^2 beyond |kappa| = 1, at most a factor 2 below (not named);
+    t_end and max|omega| linear (omega named unless the rate is at its floor of 1)."""
+    from hyperrotor.demo import quartet_motion_seconds
+
+    cost = [quartet_motion_seconds(k, t_end=1e6).seconds for k in (1e3, 1e4)]
+    assert cost[1] / cost[0] == pytest.approx(100, rel=1e-3)
+    low = [quartet_motion_seconds(k, t_end=1e6).seconds for k in (1e-6, 1 / 2, 1)]
+    assert max(low) / min(low) <= 2
+    monkeypatch.chdir(tmp_path)
+    for argv, end in [(["--t-end", "1e9"], "; choose a shorter --t-end or a smaller --omega\n"),  # default kappa 1/2
+                      (["--kappa", "1e-3", "--t-end", "1e9"], "; choose a shorter --t-end or a smaller --omega\n"),
+                      (["--kappa", "3", "--t-end", "1e7"], "; choose a shorter --t-end, a --kappa of smaller magnitude "
+                                                           "(the cost grows as kappa^2) or a smaller --omega\n"),
+                      (["--omega=1e100,1e100,1,1,1,1,1,1,1,1"], "; choose a smaller --omega or a shorter --t-end\n"),
+                      (["--omega=1e-3,0,0,0,0,0,0,0,0,0", "--t-end", "1e9"], "; choose a shorter --t-end\n")]:
+        code, out, err = _run(capsys, ["demo", *argv])
+        assert code == 2 and out == "" and _one_line(err).endswith(end), (argv, err)
+        assert ("--kappa" in err) == ("--kappa" in end)  # the run and the advice name kappa only when it drives
+    assert _files(tmp_path) == []

@@ -30,19 +30,45 @@ def configure(p: argparse.ArgumentParser) -> None:
     p.add_argument("--output", default=BENCH_STEM, metavar="STEM",
                    help=f"where the results go: STEM.csv and STEM.png (default ./{BENCH_STEM}). A trailing .csv "
                         f"or .png is dropped (b.png -> b.csv, b.png); a folder (existing, or written with a "
-                        f"trailing /) gets {BENCH_STEM}.csv and .png inside. Existing files are kept unless --force")
+                        f"trailing /) gets {BENCH_STEM}.csv and .png inside; a STEM with no name before the extension "
+                        f"(.csv, dir/.png) is refused. Existing files are kept unless --force")
     add_common(p, budget=True)
 
 
 def bench_paths(stem: str) -> tuple[Path, Path]:
-    """The CSV and PNG written by ``hyperrotor bench --output stem`` (naming rule of its --help)."""
+    """The CSV and PNG written by ``hyperrotor bench --output stem`` (naming rule of its --help).
+
+    Parameters
+    ----------
+    stem : str
+        The value of ``--output``: a stem (``b``, ``out/b``), a stem with a trailing ``.csv`` or ``.png``
+        (dropped, any case: ``b.png``), or a folder (existing, or written with a trailing ``/``).
+
+    Returns
+    -------
+    tuple of Path
+        The CSV and the PNG.
+
+    Raises
+    ------
+    UsageError
+        An empty stem, or a stem with no name before the extension (``.csv``, ``dir/.png``, ``' .csv'``):
+        it would write hidden or blank-named files such as ``.csv.csv``.
+    """
     if not stem or not stem.strip():
         raise UsageError("--output needs a file stem or a folder, got an empty string")
     path = Path(stem).expanduser()
     if stem.endswith(("/", os.sep)) or path.is_dir():
         path = path / BENCH_STEM
-    elif path.suffix.lower() in (".csv", ".png"):
-        path = path.with_suffix("")
+    else:
+        # (a name that is only the extension, '.csv', has no suffix for pathlib: matched on the text)
+        ext = next((e for e in (".csv", ".png") if path.name.lower().endswith(e)), "")
+        name = path.name[:len(path.name) - len(ext)]
+        if not name.replace(".", "").strip():
+            why = f"no name before {path.name[len(name):]}" if ext else "a name of dots and spaces only"
+            raise UsageError(f"--output needs a file stem or a folder, got {stem!r} ({why}); "
+                             f"e.g. --output b writes b.csv and b.png")
+        path = path.with_name(name)
     return path.with_name(path.name + ".csv"), path.with_name(path.name + ".png")
 
 

@@ -22,6 +22,9 @@ from hyperrotor.demo import DEMO_OMEGA, quartet_invariants, save_quartet_motion
 
 __all__ = ["configure", "run", "DEMO_PNG"]
 
+#: --t-end's default (the paper's quartet over 200 time units)
+DEMO_T_END = 200.0
+
 
 #: Default PNG of ``hyperrotor demo``.
 DEMO_PNG = "hyperrotor-demo.png"
@@ -38,8 +41,8 @@ def configure(p: argparse.ArgumentParser) -> None:
                    help="comma-separated 10 angular velocity components in plane order "
                         f"(default {','.join(map(str, DEMO_OMEGA))}; write --omega=-1,... for a negative first value)")
     p.add_argument("--ascii", action="store_true", help="ASCII instead of Unicode pretty printing")
-    p.add_argument("--t-end", default=200.0,
-                   help="length of the simulated motion, closed form vs numerical (default 200)")
+    p.add_argument("--t-end", default=DEMO_T_END,
+                   help=f"length of the simulated motion, closed form vs numerical (default {DEMO_T_END:g})")
     p.add_argument("--png", default=None, metavar="FILE.png",
                    help=f"where to write the PNG of the motion (needs matplotlib). Default ./{DEMO_PNG}, the "
                         "demo's own file: an earlier demo picture there is replaced, so the command can be run "
@@ -75,8 +78,8 @@ def run(args: argparse.Namespace) -> int:
         cost = quartet_motion_seconds(kappa, omega, t_end, axis=args.axis)
     except ValueError as err:
         raise UsageError(str(err).replace("omega0", "--omega")) from None
-    check_budget(args, f"demo --t-end {num(t_end)} (fastest rate {num(cost.rate, 3)})", cost.seconds,
-                 hint="choose a shorter --t-end or smaller --omega")
+    what, hint = _budget_words(kappa, omega, t_end, inertia, cost.rate)
+    check_budget(args, f"{what} (fastest rate {num(cost.rate, 3)})", cost.seconds, hint=hint)
     with Outputs() as outs:
         png = None
         if not args.no_png:
@@ -108,6 +111,49 @@ def run(args: argparse.Namespace) -> int:
     out.extend(_demo_summary(args, body, omega, t_end, png.path if png is not None else None))
     print("\n".join(out))
     return 0
+
+
+def _budget_words(kappa, omega: np.ndarray, t_end: float, inertia, rate: float) -> tuple[str, str]:
+    """The run and the advice of a demo refused by the time budget, naming the options that drive its cost.
+
+    The cost model (:func:`hyperrotor.demo.quartet_motion_seconds`) is ``a + c * t_end * rate`` with
+    ``rate = max(1, max|omega| * max I / min I)``, and for the quartet body ``max I / min I`` is
+    ``(1 + kappa^2) / 2`` when ``|kappa| >= 1`` (the cost grows as kappa^2), at most 2 when ``|kappa| < 1``.
+
+    Parameters
+    ----------
+    kappa : number or SymPy rational
+        ``--kappa``.
+    omega : ndarray (10,)
+        ``--omega``.
+    t_end : float
+        ``--t-end``.
+    inertia : Inertia
+        The quartet body of ``kappa``.
+    rate : float
+        The fastest rate of the cost model.
+
+    Returns
+    -------
+    what : str
+        The run as options (``demo --kappa 1000000 --t-end 200``; --kappa only when it drives the cost).
+    hint : str
+        ``choose ...``: --t-end always; --kappa when ``max I / min I > 2``, i.e. ``|kappa| > sqrt(3)`` (no
+        ``|kappa| <= 1`` gives more than 2: below that kappa hardly changes the cost); --omega unless the rate is
+        at its floor of 1. The option that multiplies the cost most, against the default run, comes first.
+    """
+    moments = np.asarray(inertia.moments, dtype=float)
+    spread = float(np.max(moments) / np.min(moments))
+    drivers = [(float(t_end) / DEMO_T_END, "a shorter --t-end")]  # (factor over the default run, advice)
+    if spread > 2.0:
+        drivers.append((spread, "a --kappa of smaller magnitude (the cost grows as kappa^2)"))
+    if rate > 1.0:
+        drivers.append((float(np.max(np.abs(omega))) / max(DEMO_OMEGA), "a smaller --omega"))
+    drivers.sort(key=lambda d: -d[0])
+    advice = [a for _, a in drivers]
+    hint = "choose " + (", ".join(advice[:-1]) + " or " + advice[-1] if len(advice) > 1 else advice[0])
+    what = "demo" + (f" --kappa {num(float(kappa))}" if spread > 2.0 else "") + f" --t-end {num(t_end)}"
+    return what, hint
 
 
 def _png_output(args: argparse.Namespace) -> OutputFile:
