@@ -325,9 +325,12 @@ _NON_NUMERIC_KINDS = {"b": "booleans", "M": "datetime64 values", "m": "timedelta
 
 def numeric_input(name: str, value: Any) -> None:
     """Refuse what NumPy would silently turn into numbers: text (``"1.5"``), booleans, datetime64
-    and timedelta64 values, and masked arrays (``np.asarray`` drops the mask).
+    and timedelta64 values, and masked arrays (``np.asarray`` drops the mask), wherever they appear:
+    the value itself, its dtype, or an entry of a (nested) list, tuple or object array, including
+    arrays inside lists (``[np.array([True, False]), 1.0]``, ``np.array([True, 1.0], dtype=object)``).
 
     Raises ``TypeError`` naming the argument; anything else passes (and is converted by the caller).
+    A plain numeric ndarray is judged by its dtype alone (no scan of its entries).
     """
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be numeric, got text {fmt(value)} (text is never read as a number here)")
@@ -342,17 +345,48 @@ def numeric_input(name: str, value: Any) -> None:
     if kind is None and isinstance(value, (list, tuple)):
         try:
             kind = np.asarray(value).dtype.kind
-        except (TypeError, ValueError):  # ragged: the caller's conversion reports it
+        except (TypeError, ValueError):  # ragged: scanned below, else the caller's conversion reports it
             kind = None
     if kind in _NON_NUMERIC_KINDS:
         raise TypeError(f"{name} must be numeric, got {_NON_NUMERIC_KINDS[kind]} {fmt(value)}")
-    if isinstance(value, (list, tuple)) and kind != "O" and _has_bool(value):  # ([True, 2, 3] is an int array)
-        raise TypeError(f"{name} must be numeric, got a boolean entry in {fmt(value)}")
+    # ([True, 2, 3] is an int array, [np.array([True]), 2.0] a float one, an object array keeps True as is)
+    if isinstance(value, (list, tuple)) or (kind == "O" and isinstance(value, np.ndarray)):
+        bad = _non_numeric_entry(value)
+        if bad is not None:
+            raise TypeError(f"{name} must be numeric, got {bad} in {fmt(value)}")
 
 
-def _has_bool(seq: list | tuple) -> bool:
-    """Whether a (nested) list or tuple holds a boolean."""
-    return any(isinstance(x, (bool, np.bool_)) or (isinstance(x, (list, tuple)) and _has_bool(x)) for x in seq)
+def _non_numeric_entry(value: list | tuple | np.ndarray) -> str | None:
+    """What :func:`numeric_input` refuses among the entries of a (nested) list, tuple or object array, described
+    for the message (``"a boolean entry"``), or ``None``. Arrays inside are judged by their dtype (object arrays
+    are scanned); each container is visited once (a list holding itself ends the walk)."""
+    stack, seen = [value], set()
+    while stack:
+        seq = stack.pop()
+        if id(seq) in seen:
+            continue
+        seen.add(id(seq))
+        for x in (seq.flat if isinstance(seq, np.ndarray) else seq):
+            t = type(x)
+            if t is float or t is int:  # (the common entry: one test)
+                continue
+            if isinstance(x, (bool, np.bool_)):
+                return "a boolean entry"
+            if isinstance(x, (list, tuple)):
+                stack.append(x)
+            elif isinstance(x, (str, bytes)):
+                return f"a text entry {fmt(x)} (text is never read as a number here)"
+            elif isinstance(x, np.ma.MaskedArray):
+                return "a masked array entry (its mask would be ignored)"
+            elif isinstance(x, (np.ndarray, np.generic)):
+                k = x.dtype.kind
+                if k == "b":
+                    return "a boolean entry"
+                if k in _NON_NUMERIC_KINDS:
+                    return f"an entry of {_NON_NUMERIC_KINDS[k]} {fmt(x)}"
+                if k == "O" and isinstance(x, np.ndarray):
+                    stack.append(x)
+    return None
 
 
 def finite_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = None, dtype: Any = float) -> np.ndarray:

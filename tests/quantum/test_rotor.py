@@ -246,6 +246,118 @@ def test_evolve_bad_input(rng):
         evolve(H, psi, t, hbar=0)
 
 
+#: Bad QuTiP options of evolve: (options, exception, message); each was passed on unchecked (scipy's int() error,
+#: a zvode warning and a wrong result, or silently accepted: "1e-8" and True read as numbers).
+_BAD_QUTIP_OPTIONS = [
+    ({"nsteps": "x"}, TypeError, r"options\['nsteps'\] must be an integer >= 1, got 'x' of type str"),
+    ({"nsteps": -5}, ValueError, r"options\['nsteps'\] must be an integer >= 1, got -5"),
+    ({"nsteps": True}, TypeError, r"options\['nsteps'\] must be an integer >= 1, got True of type bool"),
+    ({"nsteps": 2.0}, TypeError, r"options\['nsteps'\] must be an integer >= 1, got 2.0 of type float"),
+    ({"atol": "1e-8"}, TypeError, r"options\['atol'\] must be a positive real number, got '1e-8' of type str"),
+    ({"atol": True}, TypeError, r"options\['atol'\] must be a positive real number, got True of type bool"),
+    ({"atol": -1.0}, ValueError, r"options\['atol'\] must be finite and > 0, got -1.0"),
+    ({"rtol": float("nan")}, ValueError, r"options\['rtol'\] must be a relative tolerance .*, got nan"),
+    ({"max_step": -1}, ValueError, r"options\['max_step'\] must be finite and >= 0, got -1.0"),
+    ({"order": 13}, ValueError, r"options\['order'\] must be an integer in 1..12, got 13"),
+    ({"method": "bdf", "order": 6}, ValueError, r"options\['order'\] must be an integer in 1..5, got 6"),
+    ({"normalize_output": "no"}, TypeError, r"options\['normalize_output'\] must be True or False, got 'no'"),
+    ({"method": "rk4"}, ValueError,
+     r"unknown options\['method'\] \(QuTiP's ODE integrator\) 'rk4'; allowed: .*'adams'"),
+    ({"progress_bar": "fancy"}, ValueError, r"options\['progress_bar'\] must be True, False, None or one of QuTiP's "
+                                            r"bars 'text'.*, got 'fancy'"),
+    ({"progress_kwargs": 3}, TypeError, r"options\['progress_kwargs'\] must be a dict .*, got 3 of type int"),
+    ({"nstep": 10}, hyperrotor.UnknownOptionError, r"unknown option 'nstep'; allowed: .*'nsteps'"),
+    ({"krylov_dim": 5}, hyperrotor.UnknownOptionError,
+     r"integrator 'adams' \('krylov_dim' is an option of the integrator\(s\) 'krylov': choose one with "
+     r"options\['method'\]\): unknown option 'krylov_dim'; allowed: .*'nsteps'"),
+]
+
+
+@pytest.mark.parametrize("method", ["sesolve", "mesolve"])
+@pytest.mark.parametrize("options, exc, match", _BAD_QUTIP_OPTIONS)
+def test_evolve_checks_qutip_options_before_any_work(method, options, exc, match):
+    H = rotor_hamiltonian(_spin_rep(1), [1.0, 1.5, 2.5])
+    with pytest.raises(exc, match=match):
+        evolve(H, np.zeros(3), np.linspace(0, 1, 3), method=method, options=options)  # (psi0 = 0: not reached)
+
+
+def test_evolve_qutip_options_good_values_and_progress(rng, capsys):
+    rep = _spin_rep(2)
+    H = rotor_hamiltonian(rep, [1.0, 1.5, 2.5])
+    psi = _random_state(rng, 5)
+    t = np.linspace(0, 1, 4)
+    opts = {"method": "bdf", "order": np.int64(5), "nsteps": 5000, "atol": np.float64(1e-11), "rtol": 1e-9,
+            "store_states": True, "progress_bar": False}
+    res = evolve(H, psi, t, method="sesolve", options=opts, progress=False)
+    np.testing.assert_allclose(_states(res), _exact(H, psi, t), atol=1e-7, rtol=0)
+    res = evolve(H, psi, t, method="sesolve", options={"method": "krylov", "krylov_dim": 5, "store_states": True})
+    np.testing.assert_allclose(_states(res), _exact(H, psi, t), atol=1e-6, rtol=0)
+    evolve(H, psi, t, method="sesolve", options={"progress_bar": "text"})  # (progress=None: QuTiP's text bar)
+    assert "Total run time" in capsys.readouterr().out
+    for progress, bar in ((False, "text"), (True, ""), (True, False)):
+        with pytest.raises(ValueError, match=rf"progress={progress} contradicts options\['progress_bar'\] = "):
+            evolve(H, psi, t, method="sesolve", options={"progress_bar": bar}, progress=progress)
+
+
+def test_mesolve_time_dependent_dephasing_closed_form_and_qutip(rng):
+    """c_op = [H, f] with f(t) = sqrt(g t): in H's eigenbasis rho_ij decays by exp(-(E_i - E_j)^2 g t^2 / 4), so the
+    purity of a pure start is sum_ij p_i p_j exp(-g (E_i - E_j)^2 t^2 / 2); the array form of f gives QuTiP's result."""
+    rep = _spin_rep(1)
+    H = rotor_hamiltonian(rep, [1.0, 1.5, 2.5])
+    psi = qutip.Qobj(_random_state(rng, 3))
+    times = np.linspace(0, 2, 9)
+    g = 2.0
+    opts = {"store_states": True, "atol": 1e-10, "rtol": 1e-8}
+    res = evolve(H, psi, times, e_ops=[H], c_ops=[[H, lambda t: np.sqrt(g * t)]], options=opts)
+    np.testing.assert_allclose(res.expect[0], res.expect[0][0], atol=1e-6)
+    E, vecs = H.eigenstates()
+    p = np.array([abs(v.overlap(psi)) ** 2 for v in vecs])
+    dE2 = (E[:, None] - E[None, :]) ** 2
+    exact = [float(np.sum(np.outer(p, p) * np.exp(-g * dE2 * tau ** 2 / 2))) for tau in times]
+    purity = [(rho ** 2).tr().real for rho in res.states]
+    np.testing.assert_allclose(purity, exact, rtol=0, atol=1e-6)
+    assert exact[-1] < 0.9  # (the coherences have decayed: a check of the check)
+    # an array coefficient (one value per output time, interpolated) as QuTiP's own mesolve does it
+    coeff = np.sqrt(g * times)
+    res2 = evolve(H, psi, times, c_ops=(np.asarray(H.full()), [H, coeff]), method="mesolve", options=opts)
+    ref = qutip.mesolve(H, psi, times, c_ops=[H, [H, coeff]], options={"atol": 1e-10, "rtol": 1e-8})
+    for a, b in zip(res2.states, ref.states):
+        np.testing.assert_allclose(a.full(), b.full(), atol=1e-7, rtol=0)
+
+
+def test_evolve_refuses_bad_time_dependent_c_ops_and_e_ops(rng):
+    rep = _spin_rep(2)
+    H = rotor_hamiltonian(rep, [1.0, 1.5, 2.5])
+    psi = _random_state(rng, 5)
+    t = np.linspace(0, 1, 3)
+    bad_c_ops = [
+        ([[H, "0.5"]], TypeError, r"c_ops\[0\]\[1\] \(a coefficient\) must be a function of t, a qutip.Coefficient "
+                                r"or an array of one value per output time, got the text '0.5'"),
+        ([[H, 0.5]], TypeError, r"c_ops\[0\]\[1\] \(a coefficient\) must be .*got 0.5 of type float; for a constant "
+                              r"rate g pass sqrt\(g\) \* op"),
+        ([[H, np.ones(4)]], ValueError, r"c_ops\[0\]\[1\] \(a coefficient\) must have one value per output time, "
+                                      r"shape \(3,\), got shape \(4,\)"),
+        ([[H, [1.0, np.nan, 1.0]]], ValueError, r"c_ops\[0\]\[1\] \(a coefficient\) must be finite; "
+                                              r"c_ops\[0\]\[1\]\[1\] = nan"),
+        ([[H, np.ones(3, bool)]], TypeError, r"c_ops\[0\]\[1\] must be numeric, got booleans"),
+        ([[qutip.qeye(4), lambda t: 1.0]], ValueError, r"c_ops\[0\]\[0\] has dimension 4, but H has dimension 5"),
+        ([[H, H, H]], TypeError, r"c_ops\[0\] must be .*, got a list of length 3 \(a time-dependent c_ops entry is "
+                               r"a pair \[op, coeff\] or a qutip.QobjEvo\)"),
+        ([H, lambda t: 0.5], TypeError, r"c_ops\[1\] is a function, so it must be QuTiP's f\(t, args\) -> Qobj"),
+        ([qutip.QobjEvo(qutip.qeye([5, 1]))], ValueError, r"c_ops\[0\] has dims \[\[5, 1\], \[5, 1\]\], but H has "
+                                                        r"dims \[\[5\], \[5\]\]"),
+    ]
+    for c_ops, exc, match in bad_c_ops:
+        with pytest.raises(exc, match=match):
+            evolve(H, psi, t, c_ops=c_ops)
+    for method in ("auto", "sesolve"):  # QuTiP's e_ops take no [op, coeff] pairs: a QobjEvo is the time-dependent form
+        with pytest.raises(TypeError, match=r"e_ops\[0\] must be .*, got a list of length 2 \(a time-dependent e_ops "
+                                            r"entry is a qutip.QobjEvo, e.g. QobjEvo\(\[op, f\]\)\)"):
+            evolve(H, psi, t, e_ops=[[H, lambda t: 1.0]], method=method)
+        res = evolve(H, psi, t, e_ops=[qutip.QobjEvo([H, lambda t: 2.0])], method=method)
+        np.testing.assert_allclose(res.expect[0], 2 * qutip.expect(H, qutip.Qobj(psi)), atol=1e-6)
+
+
 # ----------------------------------------------------------------------------
 # symmetry blocks
 # ----------------------------------------------------------------------------

@@ -107,6 +107,47 @@ def test_switches_take_booleans_only():
             hq.spacings(E, unfolded=bad)
 
 
+#: Booleans (and text, masks, dates) that NumPy reads as numbers, hidden where numeric_input did not look: inside
+#: object arrays and inside arrays nested in lists (the entry after it is the message; each was accepted, so True
+#: became the number 1).
+_HIDDEN_NON_NUMBERS = [
+    ([np.array([True, False]), 1.0], r"got a boolean entry in \[\[True, False\], 1.0\]"),
+    (np.array([True, 1.0], dtype=object), r"got a boolean entry in \[True, 1.0\]"),
+    ((np.array([1.0, 2.0]), np.array([True, False])), r"got a boolean entry in \(\[1.0, 2.0\], \[True, False\]\)"),
+    ([1.0, 2.0, np.array(True)], r"got a boolean entry in \[1.0, 2.0, True\]"),
+    (np.array([np.array([True, False]), 1.0], dtype=object), r"got a boolean entry in \[\[True, False\], 1.0\]"),
+    ([[True, 2.0]], r"got a boolean entry in \[\[True, 2.0\]\]"),  # (refused before too: kept)
+    (np.array(["1.5", 2.0], dtype=object), r"got a text entry '1.5' \(text is never read as a number here\)"),
+    ([np.ma.masked_array([1.0, 2.0], mask=[True, False]), 1.0],
+     r"got a masked array entry \(its mask would be ignored"),
+]
+
+
+@pytest.mark.parametrize("value, match", _HIDDEN_NON_NUMBERS)
+def test_numeric_input_finds_booleans_wherever_they_are(value, match):
+    with pytest.raises(TypeError, match=r"x must be numeric, " + match):
+        _validate.numeric_input("x", value)
+
+
+def test_numeric_input_refusals_reach_the_quantum_entry_points():
+    rep = hq.irrep(3, (1,))
+    with pytest.raises(TypeError, match=r"body must be numeric, got a boolean entry in \[1.0, True, 3.0\]"):
+        hq.rotor_hamiltonian(rep, np.array([1.0, True, 3.0], dtype=object))  # (was read as I_13 = 1)
+    with pytest.raises(TypeError, match=r"body must be numeric, got a boolean entry in \[\[True\], 2.0, 3.0\]"):
+        hq.rotor_hamiltonian(rep, [np.array([True]), 2.0, 3.0])
+    H = hq.rotor_hamiltonian(rep, [1.0, 2.0, 3.0])
+    with pytest.raises(TypeError, match=r"psi0 must be numeric, got a boolean entry in \[\[True, False\], 1.0\]"):
+        hq.evolve(H, [np.array([True, False]), 1.0], [0.0, 1.0])  # (was the state (1, 0, 1)/sqrt(2))
+    with pytest.raises(TypeError, match=r"t must be numeric, got a boolean entry in \[0.0, True\]"):
+        hq.evolve(H, [1.0, 0.0, 0.0], np.array([0.0, True], dtype=object))
+    # good input of every kind still passes: numbers in lists, object arrays and nested arrays, a list holding itself
+    loop = [1.0]
+    loop.append(loop)
+    for good in (np.ones(3), [1, 2.0, np.float32(3)], np.array([1.0, 2], dtype=object), [np.ones(2), np.int64(1)],
+                 loop, 1.5, np.float64(2.0)):
+        assert _validate.numeric_input("x", good) is None
+
+
 # ----------------------------------------------------------------------------- sectors
 def _rep_and_H():
     rep = hq.irrep(3, (2,))

@@ -20,7 +20,7 @@ import numpy as np
 
 from .. import _pricing, _validate
 from .hamiltonian import hermitian_matrix, representation_of
-from .propagators import PROPAGATORS, propagator_class
+from .propagators import _QUTIP_BARS, PROPAGATORS, propagator_class
 from .sector_propagator import SectorPropagator, e_ops_list, unit_state
 
 __all__ = ["evolve"]
@@ -43,20 +43,36 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     t : sequence of float
         Strictly increasing output times (as in :func:`hyperrotor.simulate`);
         ``t[0]`` is the time of ``psi0``.
-    e_ops : Qobj, sparse matrix, callable, or list/dict of these, keyword-only
-        Operators whose expectation values are recorded (as in QuTiP).
+    e_ops : Qobj, sparse matrix, ndarray, QobjEvo, callable, or list/dict of these, keyword-only
+        Operators whose expectation values are recorded (as in QuTiP): each of ``H``'s
+        dimension (a ``qutip.QobjEvo`` also of its ``dims``), or a function ``f(t, state)``.
+        QuTiP's e_ops take no ``[op, coeff]`` pairs: a time-dependent one is a ``QobjEvo``.
     method : str, keyword-only, default "auto"
         A key of :data:`PROPAGATORS` (case-insensitive): ``"auto"``,
         ``"eigen"``, ``"krylov"``, ``"expm_multiply"``, ``"sesolve"``,
         ``"mesolve"``. ``"auto"`` is ``"mesolve"`` when ``c_ops`` are given.
-    c_ops : list of Qobj, keyword-only
-        Collapse operators (only with ``"mesolve"``/``"auto"``).
+    c_ops : list, keyword-only
+        Collapse operators (only with ``"mesolve"``/``"auto"``), each of ``H``'s dimension, in
+        the forms QuTiP's ``mesolve`` takes: an operator (Qobj, sparse matrix, 2-D array); a
+        time-dependent pair ``[op, coeff]`` whose ``coeff`` is a function of ``t`` (``f(t)`` or
+        ``f(t, args)``), a ``qutip.Coefficient`` or a 1-D array of one value per entry of ``t``
+        (interpolated), the rate being ``|coeff(t)|**2``; a ``qutip.QobjEvo`` (of ``H``'s
+        ``dims``); or a function ``f(t, args) -> Qobj``. Text coefficients (which QuTiP would
+        compile) are refused.
     options : dict, keyword-only
         The keys of :func:`evolve_options` ``(method)``: :data:`RESULT_OPTIONS`,
         ``blocks``/``block_atol`` for the native methods, and the method's own
         table (Krylov ``atol``, ``krylov_dim``; QuTiP's keys for ``"sesolve"``/
         ``"mesolve"``, where ``atol``/``rtol`` are the ODE tolerances). Unknown keys
-        raise :class:`hyperrotor.UnknownOptionError` naming the allowed ones.
+        raise :class:`hyperrotor.UnknownOptionError` naming the allowed ones. For
+        ``"sesolve"``/``"mesolve"`` the keys are those of QuTiP's solver and of the
+        integrator chosen by ``options["method"]`` (default ``"adams"``; a key of another
+        integrator is refused naming it), checked before any work: ``nsteps``, ``order``,
+        ``krylov_dim`` positive integers, ``atol`` and the step sizes finite numbers > 0
+        (``first_step``/``max_step``/``min_step`` >= 0, 0: automatic), ``rtol`` in (0, 1),
+        switches ``True``/``False``; booleans and text are no numbers. ``progress_bar``
+        picks one of QuTiP's bars (``"text"``, ``"enhanced"``, ``"tqdm"``, ``"html"``, or
+        ``""``/``False`` for none).
     hbar : float, keyword-only, default 1
         Use the same value as in :func:`rotor_hamiltonian`.
     rep : Representation, keyword-only, optional
@@ -64,7 +80,9 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
         :func:`rotor_hamiltonian`), for the symmetry sectors (module docstring).
     progress : bool or None, keyword-only
         A progress bar: of finished blocks (native methods) or QuTiP's bar
-        (``"sesolve"``/``"mesolve"``). ``None``: on a terminal only.
+        (``"sesolve"``/``"mesolve"``, tqdm unless ``options["progress_bar"]`` names
+        another). ``None``: on a terminal only. ``progress`` and ``options["progress_bar"]``
+        may both be given only when they agree (``ValueError`` otherwise).
     workers, client : keyword-only
         Threads or a dask client for the blocks (:class:`SectorPropagator`).
 
@@ -79,10 +97,14 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
 
     Raises
     ------
+    TypeError
+        An option, operator or coefficient of the wrong kind (text or a boolean
+        for a number, a list where an operator belongs, ...).
     ValueError
         Non-Hermitian ``H``; ``psi0`` of the wrong dimension or zero; ``t`` not
         strictly increasing; unknown method; ``c_ops`` with a closed-system
-        method; a block too large for ``"eigen"``.
+        method; an operator or coefficient array of the wrong size; an option
+        value out of range; a block too large for ``"eigen"``.
     hyperrotor.UnknownOptionError
         An option key the method does not have.
 
@@ -112,6 +134,7 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
             raise ValueError(f"collapse operators need method 'mesolve' (or 'auto'), got method {method!r}")
         cls = PROPAGATORS["mesolve"]
     progress = _validate.flag("progress", progress, allow_none=True)
+    opts = None if cls.native else _qutip_options(cls, options, progress)  # checked before any work
     given = options.get("store_states") if isinstance(options, dict) else None
     given = _validate.flag("store_states", given, allow_none=True)  # "no" or 0 would act by their truth value
     no_e_ops = e_ops is None or (isinstance(e_ops, (list, tuple, dict)) and not e_ops)
@@ -122,15 +145,29 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     if not cls.native:
         vec = unit_state(psi0, mat.shape[0])
         t = _validate.time_grid(t, allow_decreasing=False)
-        opts = cls.resolve_options(options)
-        if progress or (progress is None and sys.stderr.isatty()):
-            opts.setdefault("progress_bar", "tqdm")
-        return cls(**opts).run(mat, dims, vec, t, e_ops_list(e_ops, dims), e_ops_list(c_ops, dims, "c_ops"), hbar)
+        if "progress_bar" not in opts and (progress or (progress is None and sys.stderr.isatty())):
+            opts["progress_bar"] = "tqdm"
+        return cls(**opts).run(mat, dims, vec, t, e_ops_list(e_ops, dims),
+                               e_ops_list(c_ops, dims, "c_ops", times=t), hbar)
     rep = rep if rep is not None else representation_of(H)
     prop = _propagator_for(H, mat, dims, rep=rep, hbar=hbar, method=cls.name, options=options, workers=workers,
                            client=client, progress=progress)
     return prop.evolve(psi0, t, e_ops=e_ops, store_states=prop.options["store_states"],
                        store_final_state=prop.options["store_final_state"])
+
+
+def _qutip_options(cls: Any, options: Any, progress: bool | None) -> dict:
+    """The checked ``options`` of a QuTiP method (:meth:`Propagator.resolve_options`); ``progress`` and
+    ``options["progress_bar"]`` (QuTiP's bar kinds) may both be given only when they agree (a bar, or none)."""
+    opts = cls.resolve_options(options)
+    if progress is not None and "progress_bar" in opts:
+        bar = opts["progress_bar"]
+        if progress != (bar is True or bar in _QUTIP_BARS):
+            raise ValueError(
+                f"progress={progress} contradicts options['progress_bar'] = {_validate.fmt(bar)}; give one of them "
+                f"(progress=True shows hyperrotor's tqdm bar, options['progress_bar'] picks one of QuTiP's: "
+                f"{', '.join(map(repr, _QUTIP_BARS))})")
+    return opts
 
 
 _PROPAGATOR_CACHE: dict[int, tuple[Any, str, SectorPropagator]] = {}

@@ -252,15 +252,84 @@ class ExpmMultiply(Propagator):
         return _expm_propagator(mat, v0, t, hbar, stats)
 
 
+#: QuTiP's names of its progress bars (``qutip.ui.progressbar.progress_bars``): the values of
+#: ``options["progress_bar"]`` that show a bar, and those that show none.
+_QUTIP_BARS = ("text", "enhanced", "tqdm", "html")
+_QUTIP_NO_BAR = ("", "base")
+
+#: The algorithms of QuTiP's ``"krylov"`` integrator (``options["algorithm"]``).
+_QUTIP_KRYLOV_ALGORITHMS = ("auto", "arnoldi", "lanczos", "lanczos_fro")
+
+#: The data types of QuTiP's ``"diag"`` integrator (``options["eigensolver_dtype"]``).
+_QUTIP_DTYPES = ("dense", "csr", "dia")
+
+
+def _qutip_progress_bar(name: str, value: Any) -> Any:
+    """``options["progress_bar"]`` of a QuTiP solver: ``True``/``False``/``None`` or one of QuTiP's bar names."""
+    if value is None or isinstance(value, (bool, np.bool_)):
+        return None if value is None else bool(value)
+    allowed = f"True, False, None or one of QuTiP's bars {', '.join(map(repr, (*_QUTIP_BARS, *_QUTIP_NO_BAR)))}"
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be {allowed}, got {_validate.fmt(value)} of type {type(value).__name__}")
+    if value.lower() not in (*_QUTIP_BARS, *_QUTIP_NO_BAR):
+        raise ValueError(f"{name} must be {allowed}, got {_validate.fmt(value)}")
+    return value.lower()
+
+
+def _qutip_mapping(name: str, value: Any) -> dict:
+    if not isinstance(value, dict) or not all(isinstance(k, str) for k in value):
+        raise TypeError(f"{name} must be a dict of keyword arguments (string keys), got {_validate.fmt(value)} "
+                        f"of type {type(value).__name__}")
+    return dict(value)
+
+
+#: How each QuTiP option is checked (``name`` is ``"options['key']"``); ``order``, ``max_order_ns`` and ``max_order_s``
+#: are bounded by the integrator's default, which is its highest order. A key missing here (a newer QuTiP) is checked
+#: by the type of its default (:meth:`_QutipSolver.check_option`).
+_QUTIP_CHECKS: dict[str, Any] = {
+    "atol": lambda n, v: _validate.positive(n, v),
+    "rtol": lambda n, v: _validate.tolerance(n, v),
+    "sub_system_tol": lambda n, v: _validate.positive(n, v),
+    "nsteps": lambda n, v: _validate.integer(n, v, minimum=1),
+    "krylov_dim": lambda n, v: _validate.integer(n, v, minimum=1),  # (QuTiP's default 0 is refused by QuTiP)
+    "first_step": lambda n, v: _validate.positive(n, v, allow_zero=True),  # (0: chosen by the integrator)
+    "max_step": lambda n, v: _validate.positive(n, v, allow_zero=True),
+    "min_step": lambda n, v: _validate.positive(n, v, allow_zero=True),
+    "ifactor": lambda n, v: _validate.positive(n, v),
+    "dfactor": lambda n, v: _validate.positive(n, v),
+    "beta": lambda n, v: _validate.positive(n, v, allow_zero=True),
+    "store_states": lambda n, v: _validate.flag(n, v, allow_none=True),
+    "store_final_state": lambda n, v: _validate.flag(n, v),
+    "normalize_output": lambda n, v: _validate.flag(n, v),
+    "matrix_form": lambda n, v: _validate.flag(n, v),
+    "interpolate": lambda n, v: _validate.flag(n, v),
+    "always_compute_step": lambda n, v: _validate.flag(n, v),
+    "algorithm": lambda n, v: _validate.choice(n, v, _QUTIP_KRYLOV_ALGORITHMS),
+    "eigensolver_dtype": lambda n, v: _validate.choice(n, v, _QUTIP_DTYPES),
+    "progress_bar": _qutip_progress_bar,
+    "progress_kwargs": _qutip_mapping,
+}
+
+
 class _QutipSolver(Propagator):
-    """QuTiP's solver of the same name on ``H / hbar``; its options are QuTiP's (``atol``/``rtol`` are the ODE tolerances)."""
+    """QuTiP's solver of the same name on ``H / hbar``; its options are QuTiP's (``atol``/``rtol`` are the ODE tolerances).
+
+    The options are checked here, before any work: a key must be one of the solver's or of the chosen integrator's
+    (``options["method"]``, default ``"adams"``), and each value is checked by :data:`_QUTIP_CHECKS` (step counts
+    positive integers, tolerances positive finite numbers, switches ``True``/``False``; booleans are no numbers).
+    """
 
     native = False
 
     @classmethod
-    def allowed_options(cls):
+    def solver(cls):
+        """QuTiP's solver class of this method (``qutip.SESolver`` or ``qutip.MESolver``)."""
         qutip = _lazy.qutip
-        solver = qutip.SESolver if cls.name == "sesolve" else qutip.MESolver
+        return qutip.SESolver if cls.name == "sesolve" else qutip.MESolver
+
+    @classmethod
+    def allowed_options(cls):
+        solver = cls.solver()
         keys = dict(RESULT_OPTIONS)
         for k, v in solver.solver_options.items():
             keys.setdefault(k, (v, "QuTiP solver option"))
@@ -271,8 +340,42 @@ class _QutipSolver(Propagator):
 
     @classmethod
     def resolve_options(cls, given):
-        super().resolve_options(given)  # refuses unknown keys with the allowed list
-        return dict(given or {})
+        """``given`` checked key by key (the class docstring), with the values as QuTiP takes them."""
+        super().resolve_options(given)  # refuses a non-dict and keys of no integrator, with the allowed list
+        given = dict(given or {})
+        solver = cls.solver()
+        integrators = solver.avail_integrators()
+        default = solver.solver_options["method"]
+        method = _validate.choice("options['method'] (QuTiP's ODE integrator)", given.get("method", default),
+                                  tuple(integrators), case_insensitive=False)
+        own = getattr(integrators[method], "integrator_options", {})
+        allowed = {**RESULT_OPTIONS, **solver.solver_options, **own}  # (the solver's keys and the integrator's)
+        for key in sorted(set(given) - set(allowed), key=str):  # a key of another integrator
+            owners = [m for m, integ in integrators.items() if key in getattr(integ, "integrator_options", {})]
+            _validate.unknown_option(
+                f"evolve options of method {cls.name!r} with QuTiP's integrator {method!r} ({key!r} is an option "
+                f"of the integrator(s) {', '.join(map(repr, owners))}: choose one with options['method'])",
+                key, list(allowed))
+        defaults = {**solver.solver_options, **own}
+        return {key: method if key == "method" else cls.check_option(key, value, defaults.get(key))
+                for key, value in given.items()}
+
+    @staticmethod
+    def check_option(key: str, value: Any, default: Any) -> Any:
+        """``value`` of the QuTiP option ``key`` checked (``default``: QuTiP's default of the key), as QuTiP takes
+        it; ``TypeError``/``ValueError`` naming ``options[key]``, the value and what is allowed."""
+        name = f"options[{key!r}]"
+        if key in ("order", "max_order_ns", "max_order_s"):
+            top = int(default) if isinstance(default, int) and not isinstance(default, bool) and default > 0 else None
+            return _validate.integer(name, value, minimum=1, maximum=top)
+        check = _QUTIP_CHECKS.get(key)
+        if check is not None:
+            return check(name, value)
+        if isinstance(default, bool):  # a key of a newer QuTiP: by the type of its default
+            return _validate.flag(name, value)
+        if isinstance(default, (int, float)):
+            return _validate.real(name, value)
+        return value
 
     def run(self, mat, dims, vec, t, e_ops, c_ops, hbar):
         qutip = _lazy.qutip

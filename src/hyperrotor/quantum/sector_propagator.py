@@ -120,24 +120,78 @@ def unit_state(psi0: Any, dim: int, name: str = "psi0") -> np.ndarray:
     return vec / nrm
 
 
-def e_ops_list(e_ops: Any, dims, name: str = "e_ops") -> Any:
-    """``e_ops`` (or ``c_ops``: ``name``) as QuTiP accepts them: each operator checked (a Qobj, scipy.sparse matrix
-    or 2-D array, square, finite, of ``H``'s dimension) and given as a Qobj with ``H``'s ``dims``; a callable
-    ``f(t, state)`` (QuTiP's e_ops) passes as it is. A list, tuple, dict or one operator; ``None``: none."""
+def e_ops_list(e_ops: Any, dims, name: str = "e_ops", *, times: Any = None) -> Any:
+    """``e_ops`` (or ``c_ops``: ``name``) as QuTiP accepts them, each entry checked.
+
+    An operator (a Qobj, scipy.sparse matrix or 2-D array) must be square, finite and of ``H``'s dimension; it is
+    given as a Qobj with ``H``'s ``dims``. A ``qutip.QobjEvo`` (time-dependent) must have ``H``'s shape and ``dims``
+    and passes as it is. A callable passes as it is: for ``e_ops`` QuTiP's ``f(t, state)``; for ``c_ops`` QuTiP's
+    ``f(t, args) -> Qobj``, made a ``QobjEvo`` here to check its shape. With ``times`` (the output grid of a QuTiP
+    solver, given for ``c_ops``) an entry may also be QuTiP's time-dependent pair ``[op, coeff]``: ``op`` as above,
+    ``coeff`` a function of ``t`` (``f(t)`` or ``f(t, args)``, QuTiP's styles), a ``qutip.Coefficient``, or a 1-D
+    finite array of one value per entry of ``times`` (interpolated by QuTiP); text coefficients (which QuTiP would
+    compile) are refused. A list, tuple, dict or one operator; ``None``: none.
+    """
     qutip = _lazy.qutip
     dim = int(np.prod(dims[0]))
+    pairs = times is not None
+    kinds = ("a qutip.Qobj, a scipy.sparse matrix, a 2-D ndarray, a qutip.QobjEvo"
+             + (", a pair [op, coeff]" if pairs else "") + " or a callable")
 
-    def conv(op, label):
-        if isinstance(op, qutip.QobjEvo):  # (time-dependent: QuTiP's solvers take it as it is)
-            if op.shape != (dim, dim):
-                raise ValueError(f"{label} has shape {op.shape}, but H has dimension {dim}")
-            return op
-        if callable(op) and not hasattr(op, "isoper"):
-            return op
+    def evo(op, label):
+        if op.shape != (dim, dim):
+            raise ValueError(f"{label} has shape {op.shape}, but H has dimension {dim}")
+        if list(op.dims) != list(dims):
+            raise ValueError(f"{label} has dims {op.dims}, but H has dims {dims}")
+        return op
+
+    def static(op, label):
         mat = as_csr(op, label)
         if mat.shape[0] != dim:
             raise ValueError(f"{label} has dimension {mat.shape[0]}, but H has dimension {dim}")
         return qutip.Qobj(mat, dims=dims)
+
+    def coefficient(c, label):
+        from qutip.core.coefficient import Coefficient  # (qutip.core.coefficient is also a function's name)
+
+        if isinstance(c, Coefficient) or (callable(c) and not hasattr(c, "isoper")):
+            return c
+        allowed = "a function of t, a qutip.Coefficient or an array of one value per output time"
+        if isinstance(c, (str, bytes)):
+            raise TypeError(f"{label} (a coefficient) must be {allowed}, got the text {_validate.fmt(c)} "
+                            f"(text is never compiled here)")
+        _validate.numeric_input(label, c)
+        arr = np.asarray(c) if isinstance(c, (np.ndarray, list, tuple)) else None
+        if arr is None or arr.dtype.kind not in "iufc":
+            hint = "; for a constant rate g pass sqrt(g) * op" if arr is None and np.isscalar(c) else ""
+            raise TypeError(f"{label} (a coefficient) must be {allowed}, got {_validate.fmt(c)} of type "
+                            f"{type(c).__name__}{hint}")
+        if arr.shape != (len(times),):
+            raise ValueError(f"{label} (a coefficient) must have one value per output time, shape ({len(times)},), "
+                             f"got shape {arr.shape}")
+        if not np.all(np.isfinite(arr)):
+            k = int(np.argmax(~np.isfinite(arr)))
+            raise ValueError(f"{label} (a coefficient) must be finite; {label}[{k}] = {_validate.fmt(arr[k])}")
+        return arr
+
+    def conv(op, label):
+        if isinstance(op, qutip.QobjEvo):  # (time-dependent: QuTiP's solvers take it as it is)
+            return evo(op, label)
+        if callable(op) and not hasattr(op, "isoper"):
+            if name != "c_ops":
+                return op
+            try:
+                return evo(qutip.QobjEvo(op), label)
+            except (TypeError, ValueError) as exc:  # (QobjEvo calls it once: a function of t that is no operator)
+                raise TypeError(f"{label} is a function, so it must be QuTiP's f(t, args) -> Qobj (a time-dependent "
+                                f"rate is the pair [op, coeff] in c_ops): {exc}") from None
+        if isinstance(op, (list, tuple)):
+            if pairs and len(op) == 2:
+                return [static(op[0], f"{label}[0]"), coefficient(op[1], f"{label}[1]")]
+            what = (f"a time-dependent {name} entry is a pair [op, coeff] or a qutip.QobjEvo" if pairs else
+                    f"a time-dependent {name} entry is a qutip.QobjEvo, e.g. QobjEvo([op, f])")
+            raise TypeError(f"{label} must be {kinds}, got a {type(op).__name__} of length {len(op)} ({what})")
+        return static(op, label)
 
     if e_ops is None:
         return []
