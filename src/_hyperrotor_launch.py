@@ -13,7 +13,7 @@ import os
 import signal
 import sys
 
-__all__ = ["SIGNALS", "main"]
+__all__ = ["SIGNALS", "handled", "main"]
 
 #: signal -> (exit status, how it is reported): the ``hyperrotor`` command's table (:mod:`hyperrotor.cli._signals`).
 SIGNALS = {
@@ -45,18 +45,32 @@ def _finished(status: int):
     return handler
 
 
+def handled() -> list:
+    """The signals of :data:`SIGNALS` the command handles: all but those it inherited ignored (``nohup`` ignores
+    SIGHUP, a non-interactive shell SIGINT for a background job ``&``), which stay ignored."""
+    return [s for s in SIGNALS if signal.getsignal(s) is not signal.SIG_IGN]
+
+
 def main() -> int:
     """Install the starting handlers, import the command and run it (its own handlers replace these while it
-    runs); once it has returned, a signal during the interpreter's teardown (numba, SymPy, matplotlib: up to a
-    second) ends the process quietly with the command's status."""
-    for signum in SIGNALS:
+    runs); once it has ended (returned or raised ``SystemExit``: ``--help``, ``--version``), a signal during the
+    interpreter's teardown (numba, SymPy, matplotlib: up to a second) ends the process quietly with the command's
+    status."""
+    signals = handled()
+    for signum in signals:
         signal.signal(signum, _starting)
-    from hyperrotor.cli import main as command
+    status = 1
+    try:
+        from hyperrotor.cli import main as command
 
-    status = command()
-    for signum in SIGNALS:
-        signal.signal(signum, _finished(status))
-    return status
+        status = command()
+        return status
+    except SystemExit as exc:
+        status = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+        raise
+    finally:
+        for signum in signals:
+            signal.signal(signum, _finished(status))
 
 
 if __name__ == "__main__":

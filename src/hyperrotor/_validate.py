@@ -62,12 +62,13 @@ CONVENTIONS = ("paper", "standard")
 # ----------------------------------------------------------------------------
 # message formatting
 # ----------------------------------------------------------------------------
-def fmt(value: Any) -> str:
+def fmt(value: Any, _depth: int = 0) -> str:
     """Plain text of ``value`` for an error message.
 
     NumPy scalars print as Python numbers (``2.0``, not ``np.float64(2.0)``),
-    floats with ``repr`` precision, containers element by element; anything else
-    falls back to ``repr`` (shortened past 80 characters).
+    floats with ``repr`` precision, containers element by element (past 12 entries
+    the first 6 and their count; nested deeper than 4 levels, or holding themselves,
+    by their size); anything else falls back to ``repr`` (shortened past 80 characters).
     """
     if isinstance(value, np.generic):
         value = value.item()
@@ -83,13 +84,18 @@ def fmt(value: Any) -> str:
         return repr(value)
     if isinstance(value, np.ndarray):
         if value.size <= 12:
-            return fmt(value.tolist())
+            return fmt(value.tolist(), _depth)
         return f"<array of shape {value.shape}, dtype {value.dtype}>"
-    if isinstance(value, tuple):
-        inner = ", ".join(fmt(v) for v in value)
+    if isinstance(value, (list, tuple)):
+        if _depth >= 4:
+            return f"<{type(value).__name__} of {len(value)} entries>"
+        shown = [fmt(v, _depth + 1) for v in value[:6 if len(value) > 12 else 12]]
+        if len(value) > 12:
+            shown.append(f"... ({len(value)} entries)")
+        inner = ", ".join(shown)
+        if isinstance(value, list):
+            return f"[{inner}]"
         return f"({inner},)" if len(value) == 1 else f"({inner})"
-    if isinstance(value, list):
-        return "[" + ", ".join(fmt(v) for v in value) + "]"
     text = repr(value)
     return text if len(text) <= 80 else text[:77] + "..."
 
@@ -114,6 +120,24 @@ def integer(name: str, value: Any, *, minimum: int | None = None, maximum: int |
     if (minimum is not None and value < minimum) or (maximum is not None and value > maximum):
         raise ValueError(f"{name} must be an integer{_range_text(minimum, maximum)}, got {value}")
     return value
+
+
+def whole_number(name: str, value: Any, *, minimum: int | None = None, maximum: int | None = None) -> int:
+    """:func:`integer`, also accepting a float with an integral value (``1e5``, as options of other packages such as
+    QuTiP's ``nsteps`` are often written); booleans, fractions, infinities and NaN are refused."""
+    if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
+        value = int(value)
+    return integer(name, value, minimum=minimum, maximum=maximum)
+
+
+def mapping(name: str, value: Any, example: str = "") -> dict:
+    """A mapping of option names (strings) to values, as a new ``dict`` (``None``: an empty one)."""
+    if value is None:
+        return {}
+    if not isinstance(value, Mapping) or not all(isinstance(k, str) for k in value):
+        raise TypeError(f"{name} must be a mapping of option names to values{example}, got {fmt(value)} of type "
+                        f"{type(value).__name__}")
+    return dict(value)
 
 
 def _range_text(minimum: int | None, maximum: int | None) -> str:
@@ -356,6 +380,11 @@ def numeric_input(name: str, value: Any) -> None:
             raise TypeError(f"{name} must be numeric, got {bad} in {fmt(value)}")
 
 
+#: entry types :func:`_non_numeric_entry` passes at once (exact types: bool, a subclass of int, is not among them)
+_PLAIN_NUMBERS = frozenset({float, int, complex, np.float64, np.float32, np.float16, np.longdouble, np.int64, np.int32,
+                            np.int16, np.int8, np.uint64, np.uint32, np.uint16, np.uint8, np.complex128, np.complex64})
+
+
 def _non_numeric_entry(value: list | tuple | np.ndarray) -> str | None:
     """What :func:`numeric_input` refuses among the entries of a (nested) list, tuple or object array, described
     for the message (``"a boolean entry"``), or ``None``. Arrays inside are judged by their dtype (object arrays
@@ -367,8 +396,7 @@ def _non_numeric_entry(value: list | tuple | np.ndarray) -> str | None:
             continue
         seen.add(id(seq))
         for x in (seq.flat if isinstance(seq, np.ndarray) else seq):
-            t = type(x)
-            if t is float or t is int:  # (the common entry: one test)
+            if type(x) in _PLAIN_NUMBERS:  # (the common entries: one test)
                 continue
             if isinstance(x, (bool, np.bool_)):
                 return "a boolean entry"

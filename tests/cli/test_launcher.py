@@ -76,3 +76,42 @@ def test_after_the_command_a_signal_ends_the_teardown_with_the_commands_status()
             "sys.exit(7)\n")
     p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert (p.returncode, p.stdout, p.stderr) == (0, "", "")
+
+
+def test_after_help_or_version_a_signal_ends_the_teardown_quietly_too():
+    """--version ends the command with SystemExit(0): the teardown's handlers are installed all the same."""
+    code = ("import os, signal, sys, _hyperrotor_launch as launch\n"
+            "sys.argv = ['hyperrotor', '--version']\n"
+            "try:\n"
+            "    launch.main()\n"
+            "except SystemExit as exc:\n"
+            "    print('exit', exc.code, flush=True)\n"
+            "    os.kill(os.getpid(), signal.SIGINT)\n"
+            "    print('not reached')\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0 and p.stdout.splitlines()[-1] == "exit 0" and p.stderr == "", (p.stdout, p.stderr)
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGHUP") or not os.path.exists("/proc/self/status"),
+                    reason="POSIX with /proc (Linux)")
+def test_an_inherited_ignored_sighup_stays_ignored():
+    """nohup's SIG_IGN for SIGHUP is kept by the launcher and by the command: a hang-up does not end the run."""
+    p = subprocess.Popen([sys.executable, "-m", "_hyperrotor_launch", "demo", "--no-png"], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True,
+                         preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_IGN))
+    try:
+        deadline = time.monotonic() + 60
+        while not _handles(p.pid, signal.SIGTERM):
+            assert p.poll() is None and time.monotonic() < deadline, p.communicate()
+            time.sleep(0.001)
+        p.send_signal(signal.SIGHUP)  # (while the package imports: the launcher's phase)
+        time.sleep(0.5)
+        assert p.poll() is None, p.communicate()
+        assert not _handles(p.pid, signal.SIGHUP)  # (the command's handlers, if installed by now, left it alone)
+        p.send_signal(signal.SIGTERM)
+        out, err = p.communicate(timeout=60)
+    finally:
+        if p.poll() is None:
+            p.kill()
+    assert p.returncode == STATUS[signal.SIGTERM], err
+    assert "hung up" not in err and "Traceback" not in err

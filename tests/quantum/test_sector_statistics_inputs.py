@@ -252,3 +252,22 @@ def test_register_propagator_takes_a_propagator_class_only():
         with pytest.raises(TypeError, match="cls must be"):
             hq.register_propagator(bad)
     assert hq.PROPAGATORS == before
+
+
+def test_refusal_messages_stay_short_and_finite():
+    """The message of a refused input is built by _validate.fmt: a list holding itself, deep nesting and a million
+    entries give a short TypeError (were RecursionError, RecursionError and a 5 MB message)."""
+    loop = [1.0, True]
+    loop.append(loop)
+    deep = [True, 1.0]
+    for _ in range(3000):
+        deep = [deep]
+    long = [0.5] * 10**6 + [True]
+    for value, shown in ((loop, r"\[1.0, True, \[1.0, True, \[1.0, True, \[1.0, True, <list of 3 entries>\]\]\]\]"),
+                         (deep, r"\[\[\[\[<list of 1 entries>\]\]\]\]"),
+                         (long, r"\[0.5, 0.5, 0.5, 0.5, 0.5, 0.5, \.\.\. \(1000001 entries\)\]")):
+        with pytest.raises(TypeError, match=r"^x must be numeric, got a boolean entry in " + shown + "$") as info:
+            _validate.numeric_input("x", value)
+        assert len(str(info.value)) < 200
+    assert _validate.fmt(list(range(12))) == str(list(range(12)))  # (up to 12 entries: all of them)
+    assert _validate.fmt((1.5,)) == "(1.5,)" and _validate.fmt(tuple(range(13))) == "(0, 1, 2, 3, 4, 5, ... (13 entries))"

@@ -174,12 +174,7 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
 
 def _solver_options(value: Any) -> dict:
     """The ``options=`` mapping of :func:`simulate` (the chosen method's option table), checked."""
-    if value is None:
-        return {}
-    if not isinstance(value, Mapping) or not all(isinstance(k, str) for k in value):
-        raise TypeError(f"options must be a mapping of option names to values (e.g. {{'compensated': True}}), "
-                        f"got {_validate.fmt(value)}")
-    return dict(value)
+    return _validate.mapping("options", value, " (e.g. {'compensated': True})")
 
 
 def _choose_solver(method, rtol, dt, torque, solver_options: dict) -> Solver:

@@ -144,7 +144,7 @@ def install(prog: str) -> bool:
     _State.prog, _State.signum, _State.stopping = prog, None, False
     _State.done = threading.Event()
     _State.reporter = threading.Lock()
-    _State.previous = {s: signal.signal(s, _handler) for s in SIGNALS}
+    _State.previous = {s: signal.signal(s, _handler) for s in _launch.handled()}  # (inherited SIG_IGN stays)
     _State.unraisablehook, sys.unraisablehook = sys.unraisablehook, _unraisable
     return True
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from .. import _pricing, _validate
 from .hamiltonian import hermitian_matrix, representation_of
-from .propagators import _QUTIP_BARS, PROPAGATORS, propagator_class
+from .propagators import PROPAGATORS, propagator_class, qutip_bars
 from .sector_propagator import SectorPropagator, e_ops_list, unit_state
 
 __all__ = ["evolve"]
@@ -55,10 +55,11 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
         Collapse operators (only with ``"mesolve"``/``"auto"``), each of ``H``'s dimension, in
         the forms QuTiP's ``mesolve`` takes: an operator (Qobj, sparse matrix, 2-D array); a
         time-dependent pair ``[op, coeff]`` whose ``coeff`` is a function of ``t`` (``f(t)`` or
-        ``f(t, args)``), a ``qutip.Coefficient`` or a 1-D array of one value per entry of ``t``
-        (interpolated), the rate being ``|coeff(t)|**2``; a ``qutip.QobjEvo`` (of ``H``'s
-        ``dims``); or a function ``f(t, args) -> Qobj``. Text coefficients (which QuTiP would
-        compile) are refused.
+        ``f(t, **args)``; QuTiP 5.3 deprecates ``f(t, args)``), a ``qutip.Coefficient`` or a 1-D
+        array of one value per entry of ``t`` (interpolated), the rate being ``|coeff(t)|**2``;
+        QuTiP's list format of one operator ``[op0, [op1, coeff1], ...]``; a ``qutip.QobjEvo``
+        (of ``H``'s ``dims``); or a function ``f(t) -> Qobj``. Text coefficients (which QuTiP
+        would compile) are refused.
     options : dict, keyword-only
         The keys of :func:`evolve_options` ``(method)``: :data:`RESULT_OPTIONS`,
         ``blocks``/``block_atol`` for the native methods, and the method's own
@@ -68,9 +69,10 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
         ``"sesolve"``/``"mesolve"`` the keys are those of QuTiP's solver and of the
         integrator chosen by ``options["method"]`` (default ``"adams"``; a key of another
         integrator is refused naming it), checked before any work: ``nsteps``, ``order``,
-        ``krylov_dim`` positive integers, ``atol`` and the step sizes finite numbers > 0
-        (``first_step``/``max_step``/``min_step`` >= 0, 0: automatic), ``rtol`` in (0, 1),
-        switches ``True``/``False``; booleans and text are no numbers. ``progress_bar``
+        ``krylov_dim`` positive integers (``1e5`` is read as 100000; ``"krylov"`` needs
+        ``krylov_dim``), ``atol``, ``rtol`` finite numbers >= 0, the step sizes >= 0 (0:
+        automatic; ``max_step`` may be ``inf``), switches ``True``/``False``; booleans and
+        text are no numbers; ``None`` is QuTiP's "its default" for every key. ``progress_bar``
         picks one of QuTiP's bars (``"text"``, ``"enhanced"``, ``"tqdm"``, ``"html"``, or
         ``""``/``False`` for none).
     hbar : float, keyword-only, default 1
@@ -162,11 +164,12 @@ def _qutip_options(cls: Any, options: Any, progress: bool | None) -> dict:
     opts = cls.resolve_options(options)
     if progress is not None and "progress_bar" in opts:
         bar = opts["progress_bar"]
-        if progress != (bar is True or bar in _QUTIP_BARS):
+        bars = qutip_bars()
+        if bar is not None and progress != (bar is True or bar in bars):  # (None: QuTiP's default, no bar)
             raise ValueError(
                 f"progress={progress} contradicts options['progress_bar'] = {_validate.fmt(bar)}; give one of them "
                 f"(progress=True shows hyperrotor's tqdm bar, options['progress_bar'] picks one of QuTiP's: "
-                f"{', '.join(map(repr, _QUTIP_BARS))})")
+                f"{', '.join(map(repr, bars))})")
     return opts
 
 

@@ -30,6 +30,7 @@ written ``None`` are read from :data:`hyperrotor.options` (e.g.
 """
 from __future__ import annotations
 
+import math
 from typing import Any, ClassVar, Iterator
 
 import numpy as np
@@ -252,48 +253,46 @@ class ExpmMultiply(Propagator):
         return _expm_propagator(mat, v0, t, hbar, stats)
 
 
-#: QuTiP's names of its progress bars (``qutip.ui.progressbar.progress_bars``): the values of
-#: ``options["progress_bar"]`` that show a bar, and those that show none.
-_QUTIP_BARS = ("text", "enhanced", "tqdm", "html")
-_QUTIP_NO_BAR = ("", "base")
+#: The values of QuTiP's ``options["progress_bar"]`` that show no bar (every other name of
+#: ``qutip.ui.progressbar.progress_bars`` shows one).
+_QUTIP_NO_BAR = ("", "base", False, None)
 
-#: The algorithms of QuTiP's ``"krylov"`` integrator (``options["algorithm"]``).
-_QUTIP_KRYLOV_ALGORITHMS = ("auto", "arnoldi", "lanczos", "lanczos_fro")
 
-#: The data types of QuTiP's ``"diag"`` integrator (``options["eigensolver_dtype"]``).
-_QUTIP_DTYPES = ("dense", "csr", "dia")
+def qutip_bars() -> tuple:
+    """QuTiP's names of its progress bars that show a bar (lower case: ``"text"``, ``"enhanced"``, ``"tqdm"``,
+    ``"html"`` in QuTiP 5.3), from ``qutip.ui.progressbar.progress_bars``: a bar of a newer QuTiP is accepted too."""
+    from qutip.ui.progressbar import progress_bars
+
+    names = {k.lower() for k in progress_bars if isinstance(k, str) and k.lower() not in _QUTIP_NO_BAR}
+    return tuple(sorted(names))
 
 
 def _qutip_progress_bar(name: str, value: Any) -> Any:
     """``options["progress_bar"]`` of a QuTiP solver: ``True``/``False``/``None`` or one of QuTiP's bar names."""
     if value is None or isinstance(value, (bool, np.bool_)):
         return None if value is None else bool(value)
-    allowed = f"True, False, None or one of QuTiP's bars {', '.join(map(repr, (*_QUTIP_BARS, *_QUTIP_NO_BAR)))}"
+    bars = qutip_bars()
+    allowed = f"True, False, None or one of QuTiP's bars {', '.join(map(repr, (*bars, '', 'base')))}"
     if not isinstance(value, str):
         raise TypeError(f"{name} must be {allowed}, got {_validate.fmt(value)} of type {type(value).__name__}")
-    if value.lower() not in (*_QUTIP_BARS, *_QUTIP_NO_BAR):
+    if value.lower() not in (*bars, "", "base"):
         raise ValueError(f"{name} must be {allowed}, got {_validate.fmt(value)}")
     return value.lower()
 
 
-def _qutip_mapping(name: str, value: Any) -> dict:
-    if not isinstance(value, dict) or not all(isinstance(k, str) for k in value):
-        raise TypeError(f"{name} must be a dict of keyword arguments (string keys), got {_validate.fmt(value)} "
-                        f"of type {type(value).__name__}")
-    return dict(value)
-
-
-#: How each QuTiP option is checked (``name`` is ``"options['key']"``); ``order``, ``max_order_ns`` and ``max_order_s``
-#: are bounded by the integrator's default, which is its highest order. A key missing here (a newer QuTiP) is checked
-#: by the type of its default (:meth:`_QutipSolver.check_option`).
+#: How each QuTiP option is checked (``name`` is ``"options['key']"``; ``None``, QuTiP's "its default", passes
+#: before these); ``order``, ``max_order_ns`` and ``max_order_s`` are bounded by the integrator's default, which is
+#: its highest order. A key missing here (a newer QuTiP) is checked by the type of its default
+#: (:meth:`_QutipSolver.check_option`). Tolerances and step sizes as the integrators take them: ``rtol = 0`` (pure
+#: absolute control), ``atol = 0`` (pure relative), ``max_step = inf`` (no limit) are theirs to take.
 _QUTIP_CHECKS: dict[str, Any] = {
-    "atol": lambda n, v: _validate.positive(n, v),
-    "rtol": lambda n, v: _validate.tolerance(n, v),
+    "atol": lambda n, v: _validate.positive(n, v, allow_zero=True),
+    "rtol": lambda n, v: _validate.positive(n, v, allow_zero=True),
     "sub_system_tol": lambda n, v: _validate.positive(n, v),
-    "nsteps": lambda n, v: _validate.integer(n, v, minimum=1),
-    "krylov_dim": lambda n, v: _validate.integer(n, v, minimum=1),  # (QuTiP's default 0 is refused by QuTiP)
+    "nsteps": lambda n, v: _validate.whole_number(n, v, minimum=1),
+    "krylov_dim": lambda n, v: _validate.whole_number(n, v, minimum=1),  # (QuTiP's default 0 is refused by QuTiP)
     "first_step": lambda n, v: _validate.positive(n, v, allow_zero=True),  # (0: chosen by the integrator)
-    "max_step": lambda n, v: _validate.positive(n, v, allow_zero=True),
+    "max_step": lambda n, v: v if v == math.inf else _validate.positive(n, v, allow_zero=True),
     "min_step": lambda n, v: _validate.positive(n, v, allow_zero=True),
     "ifactor": lambda n, v: _validate.positive(n, v),
     "dfactor": lambda n, v: _validate.positive(n, v),
@@ -304,10 +303,10 @@ _QUTIP_CHECKS: dict[str, Any] = {
     "matrix_form": lambda n, v: _validate.flag(n, v),
     "interpolate": lambda n, v: _validate.flag(n, v),
     "always_compute_step": lambda n, v: _validate.flag(n, v),
-    "algorithm": lambda n, v: _validate.choice(n, v, _QUTIP_KRYLOV_ALGORITHMS),
-    "eigensolver_dtype": lambda n, v: _validate.choice(n, v, _QUTIP_DTYPES),
+    "algorithm": lambda n, v: _validate.choice(n, v, ("auto", "arnoldi", "lanczos", "lanczos_fro")),
+    "eigensolver_dtype": lambda n, v: _validate.choice(n, v, ("dense", "csr", "dia")),
     "progress_bar": _qutip_progress_bar,
-    "progress_kwargs": _qutip_mapping,
+    "progress_kwargs": lambda n, v: _validate.mapping(n, v),
 }
 
 
@@ -346,7 +345,8 @@ class _QutipSolver(Propagator):
         solver = cls.solver()
         integrators = solver.avail_integrators()
         default = solver.solver_options["method"]
-        method = _validate.choice("options['method'] (QuTiP's ODE integrator)", given.get("method", default),
+        method = given.get("method")
+        method = _validate.choice("options['method'] (QuTiP's ODE integrator)", default if method is None else method,
                                   tuple(integrators), case_insensitive=False)
         own = getattr(integrators[method], "integrator_options", {})
         allowed = {**RESULT_OPTIONS, **solver.solver_options, **own}  # (the solver's keys and the integrator's)
@@ -357,14 +357,20 @@ class _QutipSolver(Propagator):
                 f"of the integrator(s) {', '.join(map(repr, owners))}: choose one with options['method'])",
                 key, list(allowed))
         defaults = {**solver.solver_options, **own}
-        return {key: method if key == "method" else cls.check_option(key, value, defaults.get(key))
-                for key, value in given.items()}
+        checked = {key: method if key == "method" else cls.check_option(key, value, defaults.get(key))
+                   for key, value in given.items()}
+        if method == "krylov" and checked.get("krylov_dim") is None:  # (QuTiP's default, 0, fails in the run)
+            raise ValueError("QuTiP's 'krylov' integrator needs options['krylov_dim'], the dimension of its Krylov "
+                             "subspace (an integer >= 1, e.g. 20; at most the Hilbert space's dimension)")
+        return checked
 
     @staticmethod
     def check_option(key: str, value: Any, default: Any) -> Any:
         """``value`` of the QuTiP option ``key`` checked (``default``: QuTiP's default of the key), as QuTiP takes
         it; ``TypeError``/``ValueError`` naming ``options[key]``, the value and what is allowed."""
         name = f"options[{key!r}]"
+        if value is None:  # (QuTiP's "its default", for every key)
+            return None
         if key in ("order", "max_order_ns", "max_order_s"):
             top = int(default) if isinstance(default, int) and not isinstance(default, bool) and default > 0 else None
             return _validate.integer(name, value, minimum=1, maximum=top)
@@ -373,7 +379,9 @@ class _QutipSolver(Propagator):
             return check(name, value)
         if isinstance(default, bool):  # a key of a newer QuTiP: by the type of its default
             return _validate.flag(name, value)
-        if isinstance(default, (int, float)):
+        if isinstance(default, int):
+            return _validate.whole_number(name, value)
+        if isinstance(default, float):
             return _validate.real(name, value)
         return value
 

@@ -43,6 +43,7 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sps
 
 from .. import _lazy, _parallel, _pricing, _validate
 from .._options import options as _options
@@ -126,17 +127,20 @@ def e_ops_list(e_ops: Any, dims, name: str = "e_ops", *, times: Any = None) -> A
     An operator (a Qobj, scipy.sparse matrix or 2-D array) must be square, finite and of ``H``'s dimension; it is
     given as a Qobj with ``H``'s ``dims``. A ``qutip.QobjEvo`` (time-dependent) must have ``H``'s shape and ``dims``
     and passes as it is. A callable passes as it is: for ``e_ops`` QuTiP's ``f(t, state)``; for ``c_ops`` QuTiP's
-    ``f(t, args) -> Qobj``, made a ``QobjEvo`` here to check its shape. With ``times`` (the output grid of a QuTiP
-    solver, given for ``c_ops``) an entry may also be QuTiP's time-dependent pair ``[op, coeff]``: ``op`` as above,
-    ``coeff`` a function of ``t`` (``f(t)`` or ``f(t, args)``, QuTiP's styles), a ``qutip.Coefficient``, or a 1-D
-    finite array of one value per entry of ``times`` (interpolated by QuTiP); text coefficients (which QuTiP would
-    compile) are refused. A list, tuple, dict or one operator; ``None``: none.
+    ``f(t) -> Qobj`` (or ``f(t, **args)``), made a ``QobjEvo`` here to check its shape. With ``times`` (the output
+    grid of a QuTiP solver, given for ``c_ops``) an entry may also be QuTiP's time-dependent pair ``[op, coeff]``:
+    ``op`` a constant operator as above, ``coeff`` a function of ``t`` (``f(t)`` or ``f(t, **args)``; read by
+    ``qutip.coefficient``, so what QuTiP cannot use is refused here), a ``qutip.Coefficient``, or a 1-D finite array
+    of one value per entry of ``times`` (interpolated by QuTiP); text coefficients (which QuTiP would compile) are
+    refused; or QuTiP's list format of one operator, ``[op0, [op1, coeff1], ...]`` (made a ``QobjEvo`` here and
+    checked). A list, tuple, dict or one operator; ``None``: none.
     """
     qutip = _lazy.qutip
     dim = int(np.prod(dims[0]))
     pairs = times is not None
     kinds = ("a qutip.Qobj, a scipy.sparse matrix, a 2-D ndarray, a qutip.QobjEvo"
-             + (", a pair [op, coeff]" if pairs else "") + " or a callable")
+             + (", a pair [op, coeff], QuTiP's list format [op0, [op1, coeff1], ...]" if pairs else "")
+             + " or a callable")
 
     def evo(op, label):
         if op.shape != (dim, dim):
@@ -154,25 +158,33 @@ def e_ops_list(e_ops: Any, dims, name: str = "e_ops", *, times: Any = None) -> A
     def coefficient(c, label):
         from qutip.core.coefficient import Coefficient  # (qutip.core.coefficient is also a function's name)
 
-        if isinstance(c, Coefficient) or (callable(c) and not hasattr(c, "isoper")):
-            return c
         allowed = "a function of t, a qutip.Coefficient or an array of one value per output time"
+        if isinstance(c, Coefficient):
+            return c
+        if callable(c) and not hasattr(c, "isoper"):
+            try:  # (QuTiP's own reading of a function: its signature, f(t) or f(t, **args); mesolve conjugates it)
+                coef = qutip.coefficient(c)
+                coef.conj()
+                return coef
+            except Exception as exc:  # (QuTiP raises several kinds for what is not a coefficient function)
+                raise TypeError(f"{label} (a coefficient) must be {allowed}; QuTiP cannot use "
+                                f"{_validate.fmt(c)}: {exc}") from None
         if isinstance(c, (str, bytes)):
             raise TypeError(f"{label} (a coefficient) must be {allowed}, got the text {_validate.fmt(c)} "
                             f"(text is never compiled here)")
-        _validate.numeric_input(label, c)
-        arr = np.asarray(c) if isinstance(c, (np.ndarray, list, tuple)) else None
-        if arr is None or arr.dtype.kind not in "iufc":
-            hint = "; for a constant rate g pass sqrt(g) * op" if arr is None and np.isscalar(c) else ""
+        if not isinstance(c, (np.ndarray, list, tuple)):
+            hint = "; for a constant rate g pass sqrt(g) * op" if np.isscalar(c) else ""
             raise TypeError(f"{label} (a coefficient) must be {allowed}, got {_validate.fmt(c)} of type "
                             f"{type(c).__name__}{hint}")
+        arr = _validate.finite_array(label, c, ndim=1, dtype=complex if np.iscomplexobj(c) else float)
         if arr.shape != (len(times),):
             raise ValueError(f"{label} (a coefficient) must have one value per output time, shape ({len(times)},), "
                              f"got shape {arr.shape}")
-        if not np.all(np.isfinite(arr)):
-            k = int(np.argmax(~np.isfinite(arr)))
-            raise ValueError(f"{label} (a coefficient) must be finite; {label}[{k}] = {_validate.fmt(arr[k])}")
         return arr
+
+    def operator_like(x):
+        return isinstance(x, (qutip.Qobj, qutip.QobjEvo)) or sps.issparse(x) or (
+            isinstance(x, np.ndarray) and x.ndim == 2)
 
     def conv(op, label):
         if isinstance(op, qutip.QobjEvo):  # (time-dependent: QuTiP's solvers take it as it is)
@@ -183,15 +195,31 @@ def e_ops_list(e_ops: Any, dims, name: str = "e_ops", *, times: Any = None) -> A
             try:
                 return evo(qutip.QobjEvo(op), label)
             except (TypeError, ValueError) as exc:  # (QobjEvo calls it once: a function of t that is no operator)
-                raise TypeError(f"{label} is a function, so it must be QuTiP's f(t, args) -> Qobj (a time-dependent "
-                                f"rate is the pair [op, coeff] in c_ops): {exc}") from None
+                raise TypeError(f"{label} is a function, so it must be QuTiP's f(t) -> Qobj (or f(t, **args); a "
+                                f"time-dependent rate is the pair [op, coeff] in c_ops): {exc}") from None
         if isinstance(op, (list, tuple)):
-            if pairs and len(op) == 2:
-                return [static(op[0], f"{label}[0]"), coefficient(op[1], f"{label}[1]")]
-            what = (f"a time-dependent {name} entry is a pair [op, coeff] or a qutip.QobjEvo" if pairs else
-                    f"a time-dependent {name} entry is a qutip.QobjEvo, e.g. QobjEvo([op, f])")
-            raise TypeError(f"{label} must be {kinds}, got a {type(op).__name__} of length {len(op)} ({what})")
+            if not pairs:
+                raise TypeError(f"{label} must be {kinds}, got a {type(op).__name__} of length {len(op)} (a "
+                                f"time-dependent {name} entry is a qutip.QobjEvo, e.g. QobjEvo([op, f]))")
+            if is_pair(op):
+                return pair(op, label)
+            # QuTiP's list format of one operator, [op0, [op1, coeff1], ...]: each term checked, then a QobjEvo
+            terms = [pair(x, f"{label}[{k}]") if isinstance(x, (list, tuple)) else static(x, f"{label}[{k}]")
+                     for k, x in enumerate(op)]
+            return evo(qutip.QobjEvo(terms, tlist=np.asarray(times, dtype=float)), label)
         return static(op, label)
+
+    def is_pair(op):
+        return len(op) == 2 and not isinstance(op[1], (list, tuple)) and not operator_like(op[1])
+
+    def pair(op, label):
+        if not is_pair(op):
+            raise TypeError(f"{label} must be a pair [op, coeff] (a term of QuTiP's list format; an array coefficient "
+                            f"is a numpy array), got a {type(op).__name__} of length {len(op)}")
+        if isinstance(op[0], qutip.QobjEvo):
+            raise TypeError(f"{label}[0] must be a constant operator (a Qobj, a scipy.sparse matrix or a 2-D "
+                            f"ndarray), got a qutip.QobjEvo: give the product as one QobjEvo")
+        return [static(op[0], f"{label}[0]"), coefficient(op[1], f"{label}[1]")]
 
     if e_ops is None:
         return []
