@@ -371,13 +371,15 @@ def numeric_input(name: str, value: Any) -> None:
             kind = np.asarray(value).dtype.kind
         except (TypeError, ValueError):  # ragged: scanned below, else the caller's conversion reports it
             kind = None
-    if kind in _NON_NUMERIC_KINDS:
-        raise TypeError(f"{name} must be numeric, got {_NON_NUMERIC_KINDS[kind]} {fmt(value)}")
-    # ([True, 2, 3] is an int array, [np.array([True]), 2.0] a float one, an object array keeps True as is)
+    # ([True, 2, 3] is an int array, [np.array([True]), 2.0] a float one, an object array keeps True as is; a
+    # list is walked first, so that the message names the entry, not only the list)
     if isinstance(value, (list, tuple)) or (kind == "O" and isinstance(value, np.ndarray)):
         bad = _non_numeric_entry(value)
         if bad is not None:
-            raise TypeError(f"{name} must be numeric, got {bad} in {fmt(value)}")
+            what, path = bad
+            raise TypeError(f"{name} must be numeric, got {what} in {fmt(value)} ({name}{path})")
+    if kind in _NON_NUMERIC_KINDS:
+        raise TypeError(f"{name} must be numeric, got {_NON_NUMERIC_KINDS[kind]} {fmt(value)}")
 
 
 #: entry types :func:`_non_numeric_entry` passes at once (exact types: bool, a subclass of int, is not among them)
@@ -385,35 +387,49 @@ _PLAIN_NUMBERS = frozenset({float, int, complex, np.float64, np.float32, np.floa
                             np.int16, np.int8, np.uint64, np.uint32, np.uint16, np.uint8, np.complex128, np.complex64})
 
 
-def _non_numeric_entry(value: list | tuple | np.ndarray) -> str | None:
-    """What :func:`numeric_input` refuses among the entries of a (nested) list, tuple or object array, described
-    for the message (``"a boolean entry"``), or ``None``. Arrays inside are judged by their dtype (object arrays
-    are scanned); each container is visited once (a list holding itself ends the walk)."""
-    stack, seen = [value], set()
+def _non_numeric_entry(value: list | tuple | np.ndarray) -> tuple[str, str] | None:
+    """The first entry (in reading order) that :func:`numeric_input` refuses in a (nested) list, tuple or object
+    array: what it is, for the message (``"a boolean entry"``), and where (``"[2][0] = True"``), or ``None``. Arrays
+    inside are judged by their dtype (object arrays are scanned); each container is visited once (a list holding
+    itself ends the walk); iterative (no recursion limit)."""
+
+    def entries(seq):
+        return enumerate(seq.flat if isinstance(seq, np.ndarray) else seq)
+
+    def where(seq, i):  # (the index as written, built only for an entry that is not a plain number)
+        if isinstance(seq, np.ndarray) and seq.ndim > 1:
+            return f"[{', '.join(map(str, np.unravel_index(i, seq.shape)))}]"
+        return f"[{i}]"
+
+    stack, seen = [("", value, entries(value))], {id(value)}
     while stack:
-        seq = stack.pop()
-        if id(seq) in seen:
-            continue
-        seen.add(id(seq))
-        for x in (seq.flat if isinstance(seq, np.ndarray) else seq):
+        path, seq, todo = stack[-1]
+        for i, x in todo:
             if type(x) in _PLAIN_NUMBERS:  # (the common entries: one test)
                 continue
+            here = path + where(seq, i)
             if isinstance(x, (bool, np.bool_)):
-                return "a boolean entry"
-            if isinstance(x, (list, tuple)):
-                stack.append(x)
-            elif isinstance(x, (str, bytes)):
-                return f"a text entry {fmt(x)} (text is never read as a number here)"
-            elif isinstance(x, np.ma.MaskedArray):
-                return "a masked array entry (its mask would be ignored)"
-            elif isinstance(x, (np.ndarray, np.generic)):
+                return "a boolean entry", f"{here} = {fmt(x)}"
+            if isinstance(x, (str, bytes)):
+                return "text", f"{here} = {fmt(x)}; text is never read as a number here"
+            if isinstance(x, np.ma.MaskedArray):
+                return "a masked array entry", f"{here}: its mask would be ignored"
+            if isinstance(x, (np.ndarray, np.generic)):
                 k = x.dtype.kind
                 if k == "b":
-                    return "a boolean entry"
+                    return "a boolean entry", f"{here} = {fmt(x)}"
                 if k in _NON_NUMERIC_KINDS:
-                    return f"an entry of {_NON_NUMERIC_KINDS[k]} {fmt(x)}"
-                if k == "O" and isinstance(x, np.ndarray):
-                    stack.append(x)
+                    return f"an entry of {_NON_NUMERIC_KINDS[k]}", f"{here} = {fmt(x)}"
+                if k != "O" or not isinstance(x, np.ndarray):
+                    continue
+            elif not isinstance(x, (list, tuple)):
+                continue
+            if id(x) not in seen:  # a container: walked next, then the rest of this one
+                seen.add(id(x))
+                stack.append((here, x, entries(x)))
+                break
+        else:
+            stack.pop()
     return None
 
 

@@ -249,15 +249,18 @@ def test_evolve_bad_input(rng):
 #: Bad QuTiP options of evolve: (options, exception, message); each was passed on unchecked (scipy's int() error,
 #: a zvode warning and a wrong result, or silently accepted: "1e-8" and True read as numbers).
 _BAD_QUTIP_OPTIONS = [
-    ({"nsteps": "x"}, TypeError, r"options\['nsteps'\] must be an integer >= 1, got 'x' of type str"),
-    ({"nsteps": -5}, ValueError, r"options\['nsteps'\] must be an integer >= 1, got -5"),
-    ({"nsteps": True}, TypeError, r"options\['nsteps'\] must be an integer >= 1, got True of type bool"),
-    ({"nsteps": 2.5}, TypeError, r"options\['nsteps'\] must be an integer >= 1, got 2.5 of type float"),
+    ({"nsteps": "x"}, TypeError, r"options\['nsteps'\] must be an integer in 1..2147483647, got 'x' of type str"),
+    ({"nsteps": -5}, ValueError, r"options\['nsteps'\] must be an integer in 1..2147483647, got -5"),
+    ({"nsteps": True}, TypeError, r"options\['nsteps'\] must be an integer in 1..2147483647, got True of type bool"),
+    ({"nsteps": 2.5}, TypeError, r"options\['nsteps'\] must be an integer in 1..2147483647, got 2.5 of type float"),
     ({"atol": "1e-8"}, TypeError, r"options\['atol'\] must be a positive real number, got '1e-8' of type str"),
     ({"atol": True}, TypeError, r"options\['atol'\] must be a positive real number, got True of type bool"),
     ({"atol": -1.0}, ValueError, r"options\['atol'\] must be finite and >= 0, got -1.0"),
     ({"rtol": float("nan")}, ValueError, r"options\['rtol'\] must be finite and >= 0, got nan"),
     ({"method": "krylov"}, ValueError, r"QuTiP's 'krylov' integrator needs options\['krylov_dim'\]"),
+    ({"atol": 0, "rtol": 0.0}, ValueError, r"options\['atol'\] and options\['rtol'\] are both 0"),
+    ({"nsteps": 1e20}, ValueError, r"options\['nsteps'\] must be an integer in 1..2147483647, got 1000000000000"),
+    ({"max_step": np.array([np.inf, 1.0])}, TypeError, r"options\['max_step'\] must be a positive real number"),
     ({"max_step": -1}, ValueError, r"options\['max_step'\] must be finite and >= 0, got -1.0"),
     ({"order": 13}, ValueError, r"options\['order'\] must be an integer in 1..12, got 13"),
     ({"method": "bdf", "order": 6}, ValueError, r"options\['order'\] must be an integer in 1..5, got 6"),
@@ -316,6 +319,9 @@ def test_evolve_qutip_options_good_values_and_progress(rng, capsys):
     np.testing.assert_allclose(_states(res), _exact(H, psi, t), atol=1e-6, rtol=0)
     evolve(H, psi, t, method="sesolve", options={"progress_bar": "text"})  # (progress=None: QuTiP's text bar)
     assert "Total run time" in capsys.readouterr().out
+    capsys.readouterr()
+    evolve(H, psi, t, method="sesolve", options={"progress_bar": None}, progress=True)  # (None: as if not given)
+    assert "100%" in capsys.readouterr().err  # (hyperrotor's tqdm bar, on stderr)
     for progress, bar in ((False, "text"), (True, ""), (True, False)):
         with pytest.raises(ValueError, match=rf"progress={progress} contradicts options\['progress_bar'\] = "):
             evolve(H, psi, t, method="sesolve", options={"progress_bar": bar}, progress=progress)
@@ -364,6 +370,11 @@ def test_evolve_refuses_bad_time_dependent_c_ops_and_e_ops(rng):
         ([[H, np.ones(3, bool)]], TypeError, r"c_ops\[0\]\[1\] must be numeric, got booleans"),
         ([[qutip.qeye(4), lambda t: 1.0]], ValueError, r"c_ops\[0\]\[0\] has dimension 4, but H has dimension 5"),
         ([[H, [H, "t"]]], TypeError, r"c_ops\[0\]\[1\]\[1\] \(a coefficient\) must be .*got the text 't'"),
+        ([[]], TypeError, r"c_ops\[0\] must be .*, got an empty list"),
+        ([()], TypeError, r"c_ops\[0\] must be .*, got an empty tuple"),
+        ([[H, qutip.QobjEvo([H, lambda t: 0.5])]], TypeError, r"c_ops\[0\]\[1\] must be a constant operator or a pair "
+                                                             r".*got a qutip.QobjEvo"),
+        ([[H, np.ones((3, 1))]], ValueError, r"c_ops\[0\]\[1\] must have 1 dimension\(s\), got shape \(3, 1\)"),
         ([[H, [H, H, H]]], TypeError, r"c_ops\[0\]\[1\] must be a pair \[op, coeff\] \(a term of QuTiP's list "
                                     r"format; .*\), got a list of length 3"),
         ([[H, np.cos]], TypeError, r"c_ops\[0\]\[1\] \(a coefficient\) must be .*; QuTiP cannot use <ufunc 'cos'>"),

@@ -117,9 +117,13 @@ _HIDDEN_NON_NUMBERS = [
     ([1.0, 2.0, np.array(True)], r"got a boolean entry in \[1.0, 2.0, True\]"),
     (np.array([np.array([True, False]), 1.0], dtype=object), r"got a boolean entry in \[\[True, False\], 1.0\]"),
     ([[True, 2.0]], r"got a boolean entry in \[\[True, 2.0\]\]"),  # (refused before too: kept)
-    (np.array(["1.5", 2.0], dtype=object), r"got a text entry '1.5' \(text is never read as a number here\)"),
+    (np.array(["1.5", 2.0], dtype=object), r"got text in \['1.5', 2.0\] \(x\[0\] = '1.5'; text is never read as a "
+                                           r"number here\)"),
     ([np.ma.masked_array([1.0, 2.0], mask=[True, False]), 1.0],
-     r"got a masked array entry \(its mask would be ignored"),
+     r"got a masked array entry in .* \(x\[0\]: its mask would be ignored\)"),
+    ([[1.0, [2.0, 3.0]], [4.0, [5.0, True]]], r"got a boolean entry in .* \(x\[1\]\[1\]\[1\] = True\)"),
+    (np.array([[1.0, 2.0], [3.0, True]], dtype=object), r"got a boolean entry in .* \(x\[1, 1\] = True\)"),
+    ([0.0] * 20 + ["x"], r"got text in \[0.0, .*\.\.\. \(21 entries\)\] \(x\[20\] = 'x'; text is never"),
 ]
 
 
@@ -263,11 +267,14 @@ def test_refusal_messages_stay_short_and_finite():
     for _ in range(3000):
         deep = [deep]
     long = [0.5] * 10**6 + [True]
-    for value, shown in ((loop, r"\[1.0, True, \[1.0, True, \[1.0, True, \[1.0, True, <list of 3 entries>\]\]\]\]"),
-                         (deep, r"\[\[\[\[<list of 1 entries>\]\]\]\]"),
-                         (long, r"\[0.5, 0.5, 0.5, 0.5, 0.5, 0.5, \.\.\. \(1000001 entries\)\]")):
+    for value, shown in ((loop, r"\[1.0, True, \[1.0, True, \[1.0, True, \[1.0, True, <list of 3 entries>\]\]\]\] "
+                                r"\(x\[1\] = True\)"),
+                         (deep, r"\[\[\[\[<list of 1 entries>\]\]\]\] \(x(\[0\]){3000}\[0\] = True\)"),
+                         (long, r"\[0.5, 0.5, 0.5, 0.5, 0.5, 0.5, \.\.\. \(1000001 entries\)\] "
+                                r"\(x\[1000000\] = True\)")):
         with pytest.raises(TypeError, match=r"^x must be numeric, got a boolean entry in " + shown + "$") as info:
             _validate.numeric_input("x", value)
-        assert len(str(info.value)) < 200
+        assert len(str(info.value)) < 200 + 3 * 3000  # (the deep one's path: 3000 "[0]")
     assert _validate.fmt(list(range(12))) == str(list(range(12)))  # (up to 12 entries: all of them)
-    assert _validate.fmt((1.5,)) == "(1.5,)" and _validate.fmt(tuple(range(13))) == "(0, 1, 2, 3, 4, 5, ... (13 entries))"
+    assert _validate.fmt((1.5,)) == "(1.5,)"
+    assert _validate.fmt(tuple(range(13))) == "(0, 1, 2, 3, 4, 5, ... (13 entries))"

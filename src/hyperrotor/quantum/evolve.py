@@ -72,7 +72,8 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
         ``krylov_dim`` positive integers (``1e5`` is read as 100000; ``"krylov"`` needs
         ``krylov_dim``), ``atol``, ``rtol`` finite numbers >= 0, the step sizes >= 0 (0:
         automatic; ``max_step`` may be ``inf``), switches ``True``/``False``; booleans and
-        text are no numbers; ``None`` is QuTiP's "its default" for every key. ``progress_bar``
+        text are no numbers; ``None`` is QuTiP's "its default" for every key of QuTiP's solver
+        and integrators (``store_states``/``store_final_state`` are the result options above). ``progress_bar``
         picks one of QuTiP's bars (``"text"``, ``"enhanced"``, ``"tqdm"``, ``"html"``, or
         ``""``/``False`` for none).
     hbar : float, keyword-only, default 1
@@ -147,7 +148,7 @@ def evolve(H: Any, psi0: Any, t: Any, *, e_ops: Any = None, method: str = "auto"
     if not cls.native:
         vec = unit_state(psi0, mat.shape[0])
         t = _validate.time_grid(t, allow_decreasing=False)
-        if "progress_bar" not in opts and (progress or (progress is None and sys.stderr.isatty())):
+        if opts.get("progress_bar") is None and (progress or (progress is None and sys.stderr.isatty())):
             opts["progress_bar"] = "tqdm"
         return cls(**opts).run(mat, dims, vec, t, e_ops_list(e_ops, dims),
                                e_ops_list(c_ops, dims, "c_ops", times=t), hbar)

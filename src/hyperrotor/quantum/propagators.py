@@ -280,6 +280,9 @@ def _qutip_progress_bar(name: str, value: Any) -> Any:
     return value.lower()
 
 
+#: the largest step count QuTiP's integrators take (a C int)
+_C_INT_MAX = 2**31 - 1
+
 #: How each QuTiP option is checked (``name`` is ``"options['key']"``; ``None``, QuTiP's "its default", passes
 #: before these); ``order``, ``max_order_ns`` and ``max_order_s`` are bounded by the integrator's default, which is
 #: its highest order. A key missing here (a newer QuTiP) is checked by the type of its default
@@ -289,10 +292,11 @@ _QUTIP_CHECKS: dict[str, Any] = {
     "atol": lambda n, v: _validate.positive(n, v, allow_zero=True),
     "rtol": lambda n, v: _validate.positive(n, v, allow_zero=True),
     "sub_system_tol": lambda n, v: _validate.positive(n, v),
-    "nsteps": lambda n, v: _validate.whole_number(n, v, minimum=1),
-    "krylov_dim": lambda n, v: _validate.whole_number(n, v, minimum=1),  # (QuTiP's default 0 is refused by QuTiP)
+    "nsteps": lambda n, v: _validate.whole_number(n, v, minimum=1, maximum=_C_INT_MAX),
+    "krylov_dim": lambda n, v: _validate.whole_number(n, v, minimum=1, maximum=_C_INT_MAX),  # (QuTiP refuses its 0)
     "first_step": lambda n, v: _validate.positive(n, v, allow_zero=True),  # (0: chosen by the integrator)
-    "max_step": lambda n, v: v if v == math.inf else _validate.positive(n, v, allow_zero=True),
+    "max_step": lambda n, v: (math.inf if isinstance(v, (float, np.floating)) and v == math.inf
+                              else _validate.positive(n, v, allow_zero=True)),
     "min_step": lambda n, v: _validate.positive(n, v, allow_zero=True),
     "ifactor": lambda n, v: _validate.positive(n, v),
     "dfactor": lambda n, v: _validate.positive(n, v),
@@ -361,7 +365,10 @@ class _QutipSolver(Propagator):
                    for key, value in given.items()}
         if method == "krylov" and checked.get("krylov_dim") is None:  # (QuTiP's default, 0, fails in the run)
             raise ValueError("QuTiP's 'krylov' integrator needs options['krylov_dim'], the dimension of its Krylov "
-                             "subspace (an integer >= 1, e.g. 20; at most the Hilbert space's dimension)")
+                             "subspace (an integer >= 1, e.g. 20)")
+        if checked.get("atol") == 0.0 and checked.get("rtol") == 0.0:  # (each alone is a valid control)
+            raise ValueError("options['atol'] and options['rtol'] are both 0: the integrator controls no error (give "
+                             "one of them > 0)")
         return checked
 
     @staticmethod
@@ -373,7 +380,7 @@ class _QutipSolver(Propagator):
             return None
         if key in ("order", "max_order_ns", "max_order_s"):
             top = int(default) if isinstance(default, int) and not isinstance(default, bool) and default > 0 else None
-            return _validate.integer(name, value, minimum=1, maximum=top)
+            return _validate.whole_number(name, value, minimum=1, maximum=top)
         check = _QUTIP_CHECKS.get(key)
         if check is not None:
             return check(name, value)

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import time as _time
 from functools import cached_property
+from numbers import Number
 from typing import Any
 
 import numpy as np
@@ -182,9 +183,13 @@ def e_ops_list(e_ops: Any, dims, name: str = "e_ops", *, times: Any = None) -> A
                              f"got shape {arr.shape}")
         return arr
 
-    def operator_like(x):
+    def operator_like(x):  # (a term of QuTiP's list format; anything else second in a pair is its coefficient)
         return isinstance(x, (qutip.Qobj, qutip.QobjEvo)) or sps.issparse(x) or (
-            isinstance(x, np.ndarray) and x.ndim == 2)
+            isinstance(x, np.ndarray) and x.ndim == 2 and x.shape[0] == x.shape[1] > 1)
+
+    def numbers(x):  # (a list of numbers second in a pair: an array coefficient)
+        return isinstance(x, (list, tuple)) and bool(x) and all(
+            isinstance(v, Number) and not isinstance(v, bool) for v in x)
 
     def conv(op, label):
         if isinstance(op, qutip.QobjEvo):  # (time-dependent: QuTiP's solvers take it as it is)
@@ -201,16 +206,24 @@ def e_ops_list(e_ops: Any, dims, name: str = "e_ops", *, times: Any = None) -> A
             if not pairs:
                 raise TypeError(f"{label} must be {kinds}, got a {type(op).__name__} of length {len(op)} (a "
                                 f"time-dependent {name} entry is a qutip.QobjEvo, e.g. QobjEvo([op, f]))")
+            if not op:
+                raise TypeError(f"{label} must be {kinds}, got an empty {type(op).__name__}")
             if is_pair(op):
                 return pair(op, label)
             # QuTiP's list format of one operator, [op0, [op1, coeff1], ...]: each term checked, then a QobjEvo
-            terms = [pair(x, f"{label}[{k}]") if isinstance(x, (list, tuple)) else static(x, f"{label}[{k}]")
+            terms = [pair(x, f"{label}[{k}]") if isinstance(x, (list, tuple)) else term(x, f"{label}[{k}]")
                      for k, x in enumerate(op)]
             return evo(qutip.QobjEvo(terms, tlist=np.asarray(times, dtype=float)), label)
         return static(op, label)
 
     def is_pair(op):
-        return len(op) == 2 and not isinstance(op[1], (list, tuple)) and not operator_like(op[1])
+        return len(op) == 2 and (numbers(op[1]) or (not isinstance(op[1], (list, tuple)) and not operator_like(op[1])))
+
+    def term(x, label):
+        if isinstance(x, qutip.QobjEvo):
+            raise TypeError(f"{label} must be a constant operator or a pair [op, coeff] (a term of QuTiP's list "
+                            f"format), got a qutip.QobjEvo: give the whole operator as one QobjEvo")
+        return static(x, label)
 
     def pair(op, label):
         if not is_pair(op):
