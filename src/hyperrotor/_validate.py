@@ -371,15 +371,15 @@ def numeric_input(name: str, value: Any) -> None:
             kind = np.asarray(value).dtype.kind
         except (TypeError, ValueError):  # ragged: scanned below, else the caller's conversion reports it
             kind = None
-    # ([True, 2, 3] is an int array, [np.array([True]), 2.0] a float one, an object array keeps True as is; a
-    # list is walked first, so that the message names the entry, not only the list)
+    # (a list NumPy reads as text may hold one text entry among numbers: walked first, to name it)
+    if kind in _NON_NUMERIC_KINDS and not (kind in "US" and isinstance(value, (list, tuple))):
+        raise TypeError(f"{name} must be numeric, got {_NON_NUMERIC_KINDS[kind]} {fmt(value)}")
+    # ([True, 2, 3] is an int array, [np.array([True]), 2.0] a float one, an object array keeps True as is)
     if isinstance(value, (list, tuple)) or (kind == "O" and isinstance(value, np.ndarray)):
         bad = _non_numeric_entry(value)
         if bad is not None:
             what, path = bad
             raise TypeError(f"{name} must be numeric, got {what} in {fmt(value)} ({name}{path})")
-    if kind in _NON_NUMERIC_KINDS:
-        raise TypeError(f"{name} must be numeric, got {_NON_NUMERIC_KINDS[kind]} {fmt(value)}")
 
 
 #: entry types :func:`_non_numeric_entry` passes at once (exact types: bool, a subclass of int, is not among them)
