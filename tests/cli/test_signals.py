@@ -30,7 +30,9 @@ LATENCY_BOUND = 4.0
 
 
 def _start(args, cwd, cache):
-    env = dict(os.environ, MPLBACKEND="Agg", PYTHONWARNINGS="ignore", NUMBA_CACHE_DIR=str(cache))
+    # (PYTHONFAULTHANDLER: a process that aborts, as one did once under CI's load with SIGABRT, prints its stacks)
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONWARNINGS="ignore", NUMBA_CACHE_DIR=str(cache),
+               PYTHONFAULTHANDLER="1")
     return subprocess.Popen([sys.executable, "-m", "hyperrotor.cli", *args], cwd=cwd, env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
@@ -105,7 +107,7 @@ def test_signal_while_drawing_a_gif_keeps_the_old_file(tmp_path, sig):
     _wait_for(p, lambda: any(n.startswith(".x.gif.") for n in os.listdir(work)), "the GIF is reserved")
     time.sleep(1.0)  # well inside the 400 frames (they take tens of seconds)
     latency, out, err = _stop(p, sig)
-    assert p.returncode == STATUS[sig]
+    assert p.returncode == STATUS[sig], err
     assert latency < LATENCY_BOUND
     assert WORD[sig] in _last_line(err) and out == ""
     assert old.read_bytes() == b"old animation"
