@@ -13,7 +13,7 @@ import os
 import signal
 import sys
 
-__all__ = ["SIGNALS", "handled", "main"]
+__all__ = ["SIGNALS", "after_command", "handled", "main"]
 
 #: signal -> (exit status, how it is reported): the ``hyperrotor`` command's table (:mod:`hyperrotor.cli._signals`).
 SIGNALS = {
@@ -31,6 +31,20 @@ def _starting(signum, frame) -> None:  # pragma: no cover - runs in the command'
     except OSError:
         pass
     os._exit(status)  # (no unwinding through half-imported modules)
+
+
+def _ending(signum, frame) -> None:  # pragma: no cover - runs in the command's process (tests/cli)
+    _pending.append(signum)  # (the command has ended; main's finally ends the process with its status)
+
+
+_pending: list = []
+
+
+def after_command(handler):
+    """The handler to put back when the command's own handlers end (:func:`hyperrotor.cli._signals.restore`):
+    in place of the starting handler, one that leaves the signal to :func:`main` (its report, "while starting;
+    nothing was written", would be wrong once the command has run)."""
+    return _ending if handler is _starting else handler
 
 
 def _finished(status: int):
@@ -71,6 +85,8 @@ def main() -> int:
     finally:
         for signum in signals:
             signal.signal(signum, _finished(status))
+        if _pending:  # (a signal between the command's end and the line above)
+            _finished(status)(_pending[0], None)
 
 
 if __name__ == "__main__":

@@ -78,6 +78,26 @@ def test_after_the_command_a_signal_ends_the_teardown_with_the_commands_status()
     assert (p.returncode, p.stdout, p.stderr) == (0, "", "")
 
 
+def test_a_signal_between_the_commands_end_and_the_launchers_is_not_reported_as_starting():
+    """The command's handlers are gone (restored) a few bytecodes before the launcher installs its teardown
+    handlers: a signal there ends the process with the command's status, not 'while starting; nothing was
+    written' (the command has run and may have written)."""
+    code = ("import os, signal, sys, _hyperrotor_launch as launch\n"
+            "import hyperrotor.cli\n"
+            "from hyperrotor.cli import _signals\n"
+            "def command():\n"
+            "    assert _signals.install('hyperrotor')\n"
+            "    _signals.restore()\n"
+            "    os.kill(os.getpid(), signal.SIGINT)\n"  # (in the window: after restore, before main's finally)
+            "    print('returned', flush=True)\n"
+            "    return 3\n"
+            "hyperrotor.cli.main = command\n"
+            "launch.main()\n"
+            "print('not reached')\n")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert (p.returncode, p.stdout, p.stderr) == (3, "returned\n", "")
+
+
 def test_after_help_or_version_a_signal_ends_the_teardown_quietly_too():
     """--version ends the command with SystemExit(0): the teardown's handlers are installed all the same."""
     code = ("import os, signal, sys, _hyperrotor_launch as launch\n"

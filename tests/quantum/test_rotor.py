@@ -372,14 +372,15 @@ def test_evolve_refuses_bad_time_dependent_c_ops_and_e_ops(rng):
         ([[H, [H, "t"]]], TypeError, r"c_ops\[0\]\[1\]\[1\] \(a coefficient\) must be .*got the text 't'"),
         ([[]], TypeError, r"c_ops\[0\] must be .*, got an empty list"),
         ([()], TypeError, r"c_ops\[0\] must be .*, got an empty tuple"),
-        ([[H, qutip.QobjEvo([H, lambda t: 0.5])]], TypeError, r"c_ops\[0\]\[1\] must be a constant operator or a pair "
-                                                             r".*got a qutip.QobjEvo"),
+        ([[H, qutip.QobjEvo([H, lambda t: 0.5])]], TypeError, r"c_ops\[0\]\[1\] must be a constant operator .*may also "
+                                                             r"be a pair \[op, coeff\]\), got a qutip.QobjEvo: give "
+                                                             r"the whole operator as one"),
         ([[H, np.ones((3, 1))]], ValueError, r"c_ops\[0\]\[1\] must have 1 dimension\(s\), got shape \(3, 1\)"),
         ([[H, [H, H, H]]], TypeError, r"c_ops\[0\]\[1\] must be a pair \[op, coeff\] \(a term of QuTiP's list "
                                     r"format; .*\), got a list of length 3"),
         ([[H, np.cos]], TypeError, r"c_ops\[0\]\[1\] \(a coefficient\) must be .*; QuTiP cannot use <ufunc 'cos'>"),
         ([[qutip.QobjEvo(H), lambda t: 1.0]], TypeError, r"c_ops\[0\]\[0\] must be a constant operator .*got a "
-                                                       r"qutip.QobjEvo"),
+                                                       r"qutip.QobjEvo: give the product as one"),
         ([H, lambda t: 0.5], TypeError, r"c_ops\[1\] is a function, so it must be QuTiP's f\(t\) -> Qobj"),
         ([qutip.QobjEvo(qutip.qeye([5, 1]))], ValueError, r"c_ops\[0\] has dims \[\[5, 1\], \[5, 1\]\], but H has "
                                                         r"dims \[\[5\], \[5\]\]"),

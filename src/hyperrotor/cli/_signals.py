@@ -159,7 +159,7 @@ def restore() -> None:
     if _State.signum is None:
         _State.done.set()
         for s, old in _State.previous.items():
-            signal.signal(s, old)
+            signal.signal(s, _launch.after_command(old))
         _State.previous = {}
         if sys.unraisablehook is _unraisable:
             sys.unraisablehook = _State.unraisablehook or sys.__unraisablehook__

@@ -219,20 +219,18 @@ def e_ops_list(e_ops: Any, dims, name: str = "e_ops", *, times: Any = None) -> A
     def is_pair(op):
         return len(op) == 2 and (numbers(op[1]) or (not isinstance(op[1], (list, tuple)) and not operator_like(op[1])))
 
-    def term(x, label):
+    def term(x, label, what="the whole operator"):
         if isinstance(x, qutip.QobjEvo):
-            raise TypeError(f"{label} must be a constant operator or a pair [op, coeff] (a term of QuTiP's list "
-                            f"format), got a qutip.QobjEvo: give the whole operator as one QobjEvo")
+            raise TypeError(f"{label} must be a constant operator (a Qobj, a scipy.sparse matrix or a 2-D ndarray; a "
+                            f"term of QuTiP's list format may also be a pair [op, coeff]), got a qutip.QobjEvo: give "
+                            f"{what} as one QobjEvo")
         return static(x, label)
 
     def pair(op, label):
         if not is_pair(op):
             raise TypeError(f"{label} must be a pair [op, coeff] (a term of QuTiP's list format; an array coefficient "
                             f"is a numpy array), got a {type(op).__name__} of length {len(op)}")
-        if isinstance(op[0], qutip.QobjEvo):
-            raise TypeError(f"{label}[0] must be a constant operator (a Qobj, a scipy.sparse matrix or a 2-D "
-                            f"ndarray), got a qutip.QobjEvo: give the product as one QobjEvo")
-        return [static(op[0], f"{label}[0]"), coefficient(op[1], f"{label}[1]")]
+        return [term(op[0], f"{label}[0]", "the product"), coefficient(op[1], f"{label}[1]")]
 
     if e_ops is None:
         return []
