@@ -33,6 +33,13 @@ Where the work runs
     (``pip install "hyperrotor[distributed]"``), imported here only when a client is
     given.
 
+A second core for one call
+--------------------------
+:func:`on_second_core` starts a short compiled call on a thread of its own while the main thread works on
+(the step control's companion runs beside the run they check: ``classical/solvers/chunks.pair_ahead``), and
+:func:`result` waits for it in slices; where there is no second core, or the caller is not the main thread,
+the caller runs the call itself. The same numbers either way.
+
 Results do not depend on the chunking
 -------------------------------------
 Each row's result is computed by the same compiled arithmetic whichever chunk it
@@ -55,6 +62,7 @@ import contextvars
 import math
 import os
 import queue
+import signal
 import sys
 import threading
 from typing import Any, Callable, Sequence
@@ -64,7 +72,8 @@ import numpy as np
 from . import _validate
 from ._options import options
 
-__all__ = ["map_rows", "grid_rows", "import_distributed", "client_threads", "default_workers", "interruptible"]
+__all__ = ["map_rows", "grid_rows", "import_distributed", "client_threads", "default_workers", "interruptible",
+           "on_second_core", "result"]
 
 _INSTALL_HINT = 'pip install "hyperrotor[distributed]"'
 #: chunks per worker thread when ``chunk_size`` is not given (load balance vs per-task overhead)
@@ -284,6 +293,58 @@ def map_rows(
 
 #: how often (seconds) a caller waiting for worker threads looks up for Ctrl-C
 _WAIT_SLICE = 0.1
+
+
+_SECOND: list = [None, None]  # (process id, its executor of one thread)
+
+
+def on_second_core(func: Callable, *args: Any) -> Any:
+    """``func(*args)`` started on a second thread while the caller works on (a
+    :class:`~concurrent.futures.Future` for :func:`result`), or ``None`` where that would not run in parallel:
+    a process with one core, JIT off (``func``'s kernels would hold the GIL), a caller that is not the main
+    thread (dask's workers, a user's thread pool: their calls would queue for the one thread), or an
+    interpreter shutting down (``atexit`` handlers run after the executors have closed). ``func`` runs in a
+    copy of the caller's :mod:`contextvars` context; it should release the GIL (compiled kernels, already
+    compiled: a compilation there cannot be interrupted, and the process's exit waits for it) and be short
+    (a chunk). The thread belongs to this process (made again in a forked child, where the parent's does not
+    exist); signals are held off while it is handed the call (a ``KeyboardInterrupt`` right after the thread
+    started, before the executor recorded it, left a thread that the interpreter's exit waited for forever)."""
+    from . import _jit  # (numba: only here, where compiled kernels are about to run anyway)
+
+    if (threading.current_thread() is not threading.main_thread() or default_workers() < 2
+            or not _jit.JIT_ENABLED):
+        return None
+    call = (contextvars.copy_context().run, func, *args)
+    try:
+        if _SECOND[0] == os.getpid():
+            return _SECOND[1].submit(*call)
+        import concurrent.futures
+
+        # the first call starts the thread (the executor's only one): with signals held off (~0.1 ms, once)
+        mask = getattr(signal, "pthread_sigmask", None)
+        held = mask(signal.SIG_BLOCK, signal.valid_signals()) if mask is not None else None
+        try:
+            executor = concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="hyperrotor-second")
+            future = executor.submit(*call)
+            _SECOND[:] = [os.getpid(), executor]
+            return future
+        finally:
+            if held is not None:
+                mask(signal.SIG_SETMASK, held)
+    except RuntimeError:  # (the interpreter is shutting down: "cannot schedule new futures after shutdown")
+        return None
+
+
+def result(future: Any) -> Any:
+    """The result of :func:`on_second_core`'s ``future``, waited for in slices of :data:`_WAIT_SLICE` seconds
+    (Ctrl-C reaches the caller meanwhile)."""
+    import concurrent.futures
+
+    while True:
+        try:
+            return future.result(timeout=_WAIT_SLICE)
+        except concurrent.futures.TimeoutError:
+            continue
 
 
 def interruptible(func: Callable, *args: Any) -> Any:

@@ -14,20 +14,22 @@ they size the first chunk of the next call and give the step control its time es
 """
 from __future__ import annotations
 
+import copy
 import math
 import time
 from typing import Any
 
 import numpy as np
 
-from hyperrotor import _pricing
+from hyperrotor import _parallel, _pricing
 from hyperrotor._jit import jit
 from hyperrotor._options import options
 
+from ._kernels import PARALLEL_MIN_BODIES
 from .base import Problem, StepBudgetError
 
-__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "refuse_steps", "step_times", "stops", "merge", "check_finite", "cost_key",
-           "learn", "seconds_per_flow", "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
+__all__ = ["Work", "advance_chunked", "advance_pair_chunked", "pair_ahead", "refuse_steps", "step_times", "stops",
+           "merge", "check_finite", "cost_key", "learn", "seconds_per_flow", "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
 
 #: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
 #: are sized from its measured time to last ``options["chunk_seconds"]``
@@ -40,6 +42,12 @@ MIN_TIMED_CHUNK = 2e-3
 MIN_TIMED_FLOWS = 200_000
 #: seconds per elementary flow assumed before anything of a kind was timed (a 5D splitting, one core)
 DEFAULT_SECONDS_PER_FLOW = 1e-8
+#: a pair of runs expected to take this long (seconds) starts on the second core (:func:`pair_ahead`). A round trip
+#: through its thread costs 60-80 us, but the pair also overlaps the Python around the run: on the 3D top at T = 200
+#: (pairs of ~0.1 ms) 5e-5 gave rtol calls 1.88x / 1.54x the fixed-step run, 1.5e-4 (no thread there) 1.95x / 1.60x
+AHEAD_MIN_SECONDS = 5e-5
+#: the kinds (:func:`cost_key`) of the pair calls that have run in this process (their kernels are compiled)
+_PAIRED: set = set()
 
 
 def cost_key(solver, problem: Problem, B: int | None = None, with_attitude: bool | None = None):
@@ -169,30 +177,63 @@ def _chunk_plan(solver, problem: Problem, rows: int) -> tuple:
     return key, flows, max(1, int(max(FIRST_CHUNK_FLOWS, target / seconds_per_flow(key)) // flows)), target
 
 
+def pair_ahead(solver, problem: Problem, La: np.ndarray, Lb: np.ndarray, grid: np.ndarray, na: np.ndarray,
+               nb: np.ndarray, *, members: np.ndarray | None = None, carries: tuple = (None, None)):
+    """The one call :func:`advance_pair_chunked` would make for two runs, started now on a
+    second core (:func:`hyperrotor._parallel.on_second_core`) while the caller runs something else (the step
+    control's companions beside the run they check: both only read the problem), to hand to it as ``ahead``;
+    or ``None`` where that does not pay: more than one chunk, under :data:`AHEAD_MIN_SECONDS` of work, an
+    ensemble whose kernels use every core already (:data:`~._kernels.PARALLEL_MIN_BODIES` members), one core;
+    or where its kernel may still have to be compiled (no pair call of its kind has run in this process yet:
+    Ctrl-C cannot stop a compilation on another thread, and the process's exit would wait for it).
+    The same numbers as running it then (the same compiled call)."""
+    if problem.B >= PARALLEL_MIN_BODIES:
+        return None
+    key, flows, cap, _ = _chunk_plan(solver, problem, La.shape[0])
+    steps = int(na.sum()) + int(nb.sum())
+    if key not in _PAIRED or steps > cap or steps * flows * seconds_per_flow(key) < AHEAD_MIN_SECONDS:
+        return None
+    own = copy.copy(solver)  # (what the pair's call leaves on its solver, last_carry(ies), is not the run's)
+
+    def both():
+        a, b = own.advance_pair(problem, La, Lb, grid, na, nb, members=members, carries=carries)
+        return a, b, own.last_carries
+
+    return _parallel.on_second_core(both)
+
+
 def advance_pair_chunked(solver, problem: Problem, La: np.ndarray, Lb: np.ndarray, grid: np.ndarray,
                          na: np.ndarray, nb: np.ndarray, *, members: np.ndarray | None = None,
-                         work: Work | None = None, bar: Any = None, carries: tuple = (None, None)) -> tuple:
+                         work: Work | None = None, bar: Any = None, carries: tuple = (None, None),
+                         ahead: Any = None) -> tuple:
     """Two runs of the same members on ``grid`` (``na[k]``, ``nb[k]`` equal steps per interval, from
     ``La`` and ``Lb``): ``(states a, states b, (carry a, carry b))``. Both together within one chunk:
     one :meth:`~.driver.FixedStepSolver.advance_pair` call (counted, checked, on the bar); else each
-    through :func:`advance_chunked`."""
+    through :func:`advance_chunked`. ``ahead``: that call, started by :func:`pair_ahead`."""
     rows = La.shape[0]
-    key, flows, cap, _ = _chunk_plan(solver, problem, rows)
     steps = int(na.sum()) + int(nb.sum())
-    if steps > cap:
-        a, ca = advance_chunked(solver, problem, La, grid, na, members=members, work=work, bar=bar, carry=carries[0])
-        b, cb = advance_chunked(solver, problem, Lb, grid, nb, members=members, work=work, bar=bar, carry=carries[1])
-        return a, b, (ca, cb)
-    t0 = time.perf_counter()
-    a, b = solver.advance_pair(problem, La, Lb, grid, na, nb, members=members, carries=carries)
-    learn(key, time.perf_counter() - t0, steps * flows)
+    if ahead is not None:  # (not timed for the cost model: its time overlapped the run's)
+        a, b, carries = _parallel.result(ahead)
+    else:
+        key, flows, cap, _ = _chunk_plan(solver, problem, rows)
+        if steps > cap:
+            a, ca = advance_chunked(solver, problem, La, grid, na, members=members, work=work, bar=bar,
+                                    carry=carries[0])
+            b, cb = advance_chunked(solver, problem, Lb, grid, nb, members=members, work=work, bar=bar,
+                                    carry=carries[1])
+            return a, b, (ca, cb)
+        t0 = time.perf_counter()
+        a, b = solver.advance_pair(problem, La, Lb, grid, na, nb, members=members, carries=carries)
+        learn(key, time.perf_counter() - t0, steps * flows)
+        _PAIRED.add(key)
+        carries = solver.last_carries
     check_finite(a, grid, problem)
     check_finite(b, grid, problem)
     if work is not None:
         work.add(steps * rows)
     if bar is not None:
         bar.update(steps * rows)
-    return a, b, solver.last_carries
+    return a, b, carries
 
 
 def advance_chunked(solver, problem: Problem, L0: np.ndarray, grid: np.ndarray, nsub: np.ndarray,

@@ -257,6 +257,7 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
     if not specs and cap >= steps and (check is None or (check.out_idx is not None or not problem.with_attitude)
                                        and not check.early_marks.size):
         # one call, no chunk grid: the run (stopping at the check's samples between output times), then the check
+        ahead = check.ahead(check.marks.size) if check is not None else None  # (the companions meanwhile)
         t_start = time.perf_counter()
         if check is not None and check.out_idx is None:
             Ls, Lf = _sampled_run(solver, problem, t, nsub, hs, check)
@@ -272,7 +273,7 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
         if bar is not None:
             bar.update(steps * B)
         if check is not None:
-            check.update(check.marks.size, Lf)
+            check.update(check.marks.size, Lf, ahead)
         return Ls, Ts, t.size
     return _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, flows, cap, target, key,
                    bar, stats, check)
@@ -325,6 +326,7 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
                 marks = np.append(marks, s1)
             grid, ns, h = stops(t, cs, nsub, hs, np.concatenate([[s0], marks]))
             out_pos, sample_pos = out_pos + 1, sample_pos + 1  # (the chunk's start first)
+        ahead = check.ahead(int(new[-1]) + 1) if new.size else None  # (the companions meanwhile)
         Ls, Ts = solver.advance(problem, Lc, Tc, grid, ns, h=h, carry=carry)
         carry = solver.last_carry
         check_finite(Ls, grid, problem)
@@ -335,7 +337,7 @@ def _chunks(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, f
         if bar is not None:
             bar.update((s1 - s0) * B)
         if new.size:
-            check.update(int(new[-1]) + 1, Ls[check.members][:, sample_pos])
+            check.update(int(new[-1]) + 1, Ls[check.members][:, sample_pos], ahead)
         if specs:
             stop = _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_events, L_events,
                                     T_events)

@@ -20,7 +20,7 @@ from hyperrotor._warn import warn
 
 from ._kernels import distance_at, relative_difference, row_scales, scales_at
 from .base import Problem, step_lengths
-from .chunks import Work, advance_chunked, advance_pair_chunked, merge, refuse_steps, stops
+from .chunks import Work, advance_chunked, advance_pair_chunked, merge, pair_ahead, refuse_steps, stops
 
 __all__ = ["RichardsonCheck", "CheckFailed", "AccuracyWarning", "ProbeRuns", "observed_order", "relative_difference",
            "check_bytes", "SAFETY", "ACCEPT", "ASYMPTOTIC", "COMPANION_RATIO"]
@@ -485,8 +485,19 @@ class RichardsonCheck:
         else:
             self.checkpoints, self.early_marks = [S], self.marks[:0]
 
-    def update(self, upto: int, Lf: np.ndarray) -> None:
-        """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones."""
+    def ahead(self, upto: int):
+        """The companions' run to ``marks[upto - 1]`` started on a second core (:func:`~.chunks.pair_ahead`)
+        while the run gets there, for ``update(upto, Lf, ahead)``; or ``None``."""
+        j = self.j
+        if self.given is not None or upto <= j:
+            return None
+        future = pair_ahead(self.solver, self.problem, self.Lc, self.Lc2, self.grid[j:upto + 1], self.nc[j:upto],
+                            self.nc2[j:upto], members=self.members, carries=(self.carry, self.carry2))
+        return None if future is None else (future, j, upto)
+
+    def update(self, upto: int, Lf: np.ndarray, ahead=None) -> None:
+        """The run reached ``marks[:upto]``; ``Lf (members, upto - j, n)`` are its states at the new ones
+        (``ahead``: :meth:`ahead` ``(upto)``, started before the run got there)."""
         j = self.j
         if upto <= j:
             return
@@ -494,9 +505,11 @@ class RichardsonCheck:
             self.judge(upto, Lf, self.given[0][:, j + 1:upto + 1], self.given[1][:, j + 1:upto + 1])
             return
         grid = self.grid[j:upto + 1]
+        if ahead is not None and ahead[1:] != (j, upto):  # (started for another segment: not these companions)
+            raise AssertionError(f"the companions started ahead cover samples {ahead[1:]}, not {(j, upto)}")
         L1, L2, (self.carry, self.carry2) = advance_pair_chunked(
             self.solver, self.problem, self.Lc, self.Lc2, grid, self.nc[j:upto], self.nc2[j:upto], members=self.members,
-            work=self.work, bar=self.bar, carries=(self.carry, self.carry2))
+            work=self.work, bar=self.bar, carries=(self.carry, self.carry2), ahead=None if ahead is None else ahead[0])
         self.Lc, self.Lc2 = L1[:, -1], L2[:, -1]
         if self.L1s is not None:
             self.L1s[:, j:upto] = L1[:, 1:]
@@ -735,5 +748,7 @@ class RichardsonCheck:
         return L[:, pos]
 
     def run_alone(self) -> None:
-        """The check without the run: the checked members advance on their own to every sample."""
-        self.update(self.marks.size, self._members_at_samples(self.problem.L0[self.members], self.members))
+        """The check without the run: the checked members advance on their own to every sample (the companions
+        meanwhile: :meth:`ahead`)."""
+        ahead = self.ahead(self.marks.size)
+        self.update(self.marks.size, self._members_at_samples(self.problem.L0[self.members], self.members), ahead)

@@ -66,7 +66,11 @@ estimate accepts or rejects), but for the *global* error of a fixed-step run:
    takes those as its companions (:math:`c` the smallest ratio over the segments, :math:`c_2 = 2`): its
    check costs no integration step (short runs, whose steps the output grid makes much shorter than
    :math:`h^*`: on 100 output intervals over T = 20 the 3D top and the 5D quartet take 130 steps in all
-   at rtol 1e-6 ... 1e-12, 100 of them the run's). The run
+   at rtol 1e-6 ... 1e-12, 100 of them the run's). The companions depend on the run only where they are
+   compared with it, so with a second core they run there while the run advances (:func:`~.chunks.pair_ahead`:
+   the same compiled calls and numbers, one chunk at a time, from the main thread; the check's integration then
+   costs CPU time, not wall time: rtol calls 1.1-1.4x the fixed-step run at their step instead of 1.4-1.75x
+   where the companions take 0.2 ms or more, ``benchmarks/README.md``). The run
    is accepted when the estimate stays within
    ``ACCEPT * rtol``. It is judged at its end and, a run of :data:`~.richardson_check.EARLY_STOP_FLOWS` or more,
    also at an eighth, a quarter and half of its samples (fixed points, not the ends of its chunks, whose lengths
