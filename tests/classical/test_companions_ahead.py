@@ -123,6 +123,7 @@ def _child(queue):
 
 
 @pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(), reason="needs fork")
+@pytest.mark.filterwarnings("ignore:This process .*is multi-threaded:DeprecationWarning")  # (Python >= 3.12: it is)
 def test_on_second_core_works_in_a_forked_child(monkeypatch):
     """The parent's thread does not exist in a forked child: the child makes its own (the parent's executor
     there, with an idle worker it believes in, would never run the call)."""
