@@ -27,6 +27,12 @@ def _handles(pid: int, sig: int) -> bool:
     return False
 
 
+def _launcher_script(code: str) -> subprocess.CompletedProcess:
+    """``code`` run by a fresh interpreter after ``import os, signal, sys, _hyperrotor_launch as launch``."""
+    return subprocess.run([sys.executable, "-c", "import os, signal, sys, _hyperrotor_launch as launch\n" + code],
+                          capture_output=True, text=True, timeout=120)
+
+
 def test_the_console_script_is_the_launcher():
     (script,) = [e for e in importlib.metadata.entry_points(group="console_scripts") if e.name == "hyperrotor"]
     assert script.value == "_hyperrotor_launch:main"
@@ -67,14 +73,13 @@ def test_a_signal_while_the_package_is_imported(sig):
 def test_after_the_command_a_signal_ends_the_teardown_with_the_commands_status():
     """Once the command has returned, the launcher's handlers no longer say 'while starting': a signal during the
     interpreter's teardown ends the process at once with the command's own status and nothing more on stderr."""
-    code = ("import os, signal, sys, _hyperrotor_launch as launch\n"
-            "import hyperrotor.cli\n"
-            "hyperrotor.cli.main = lambda: 0\n"  # (a command that has just finished its work)
-            "status = launch.main()\n"
-            "os.kill(os.getpid(), signal.SIGINT)\n"
-            "print('not reached')\n"
-            "sys.exit(7)\n")
-    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    p = _launcher_script(
+        "import hyperrotor.cli\n"
+        "hyperrotor.cli.main = lambda: 0\n"  # (a command that has just finished its work)
+        "status = launch.main()\n"
+        "os.kill(os.getpid(), signal.SIGINT)\n"
+        "print('not reached')\n"
+        "sys.exit(7)\n")
     assert (p.returncode, p.stdout, p.stderr) == (0, "", "")
 
 
@@ -82,33 +87,31 @@ def test_a_signal_between_the_commands_end_and_the_launchers_is_not_reported_as_
     """The command's handlers are gone (restored) a few bytecodes before the launcher installs its teardown
     handlers: a signal there ends the process with the command's status, not 'while starting; nothing was
     written' (the command has run and may have written)."""
-    code = ("import os, signal, sys, _hyperrotor_launch as launch\n"
-            "import hyperrotor.cli\n"
-            "from hyperrotor.cli import _signals\n"
-            "def command():\n"
-            "    assert _signals.install('hyperrotor')\n"
-            "    _signals.restore()\n"
-            "    os.kill(os.getpid(), signal.SIGINT)\n"  # (in the window: after restore, before main's finally)
-            "    print('returned', flush=True)\n"
-            "    return 3\n"
-            "hyperrotor.cli.main = command\n"
-            "launch.main()\n"
-            "print('not reached')\n")
-    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    p = _launcher_script(
+        "import hyperrotor.cli\n"
+        "from hyperrotor.cli import _signals\n"
+        "def command():\n"
+        "    assert _signals.install('hyperrotor')\n"
+        "    _signals.restore()\n"
+        "    os.kill(os.getpid(), signal.SIGINT)\n"  # (in the window: after restore, before main's finally)
+        "    print('returned', flush=True)\n"
+        "    return 3\n"
+        "hyperrotor.cli.main = command\n"
+        "launch.main()\n"
+        "print('not reached')\n")
     assert (p.returncode, p.stdout, p.stderr) == (3, "returned\n", "")
 
 
 def test_after_help_or_version_a_signal_ends_the_teardown_quietly_too():
     """--version ends the command with SystemExit(0): the teardown's handlers are installed all the same."""
-    code = ("import os, signal, sys, _hyperrotor_launch as launch\n"
-            "sys.argv = ['hyperrotor', '--version']\n"
-            "try:\n"
-            "    launch.main()\n"
-            "except SystemExit as exc:\n"
-            "    print('exit', exc.code, flush=True)\n"
-            "    os.kill(os.getpid(), signal.SIGINT)\n"
-            "    print('not reached')\n")
-    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    p = _launcher_script(
+        "sys.argv = ['hyperrotor', '--version']\n"
+        "try:\n"
+        "    launch.main()\n"
+        "except SystemExit as exc:\n"
+        "    print('exit', exc.code, flush=True)\n"
+        "    os.kill(os.getpid(), signal.SIGINT)\n"
+        "    print('not reached')\n")
     assert p.returncode == 0 and p.stdout.splitlines()[-1] == "exit 0" and p.stderr == "", (p.stdout, p.stderr)
 
 
