@@ -98,6 +98,27 @@ def test_dask_tasks_see_the_block_that_started_them(dask_client):
     assert out.tolist() == [778] * 8
 
 
+def test_an_in_process_cluster_sees_a_block_that_sets_a_session_value_back_to_its_default():
+    """A dask worker thread in this process reads the session's values: a block that sets a key back to its
+    default must reach it too (the tasks saw the session's value, and evolve(client=) ran Krylov at it)."""
+    dd = pytest.importorskip("dask.distributed")
+    key = "max_steps"
+    default = hr.options._defaults[key]
+    rows = np.arange(4.0)
+    with dd.Client(processes=False, n_workers=1, threads_per_worker=1, dashboard_address=":0") as client:
+        old = hr.options[key]
+        hr.options[key] = default + 5
+        try:
+            with hr.options(**{key: default}):
+                assert key in hr.options.portable()
+                out = _parallel.map_rows(_read_option_named, rows, args=(key,), client=client, chunk_size=2)
+            outside = _parallel.map_rows(_read_option_named, rows, args=(key,), client=client, chunk_size=2)
+        finally:
+            hr.options[key] = old
+    assert out.tolist() == [default] * 4
+    assert outside.tolist() == [default + 5] * 4
+
+
 def _read_option_named(rows, key):
     return np.full(rows.shape[0], hr.options[key], dtype=np.float64)
 

@@ -165,10 +165,15 @@ class Options:
         return {k: local.get(k, self._session[k]) for k in self._defaults}
 
     def portable(self) -> dict[str, tuple[Any, str]]:
-        """The values in force here that differ from their defaults, each with the module that
-        registered it: what a worker process needs to see the same options (:meth:`apply_portable`)."""
+        """The values in force here that differ from their defaults or that a block of this context sets, each
+        with the module that registered it: what a worker needs to see the same options (:meth:`apply_portable`).
+
+        A block's values go even when they equal the defaults: a worker thread of an in-process dask cluster
+        reads this process's session values otherwise (a block setting a key back to its default, inside a
+        session that changed it, reached the tasks with the session's value)."""
+        local = self._local.get()
         here = self.snapshot()
-        return {k: (v, self._owners[k]) for k, v in here.items() if v != self._defaults[k]}
+        return {k: (v, self._owners[k]) for k, v in here.items() if k in local or v != self._defaults[k]}
 
     def apply_portable(self, values: Mapping[str, tuple[Any, str]]):
         """A ``with`` block setting :meth:`portable` values, importing first the modules that
