@@ -337,14 +337,21 @@ _PROBLEM_CACHE: dict = {}
 
 
 def _cached_problem(spec):
+    """``(H, sector bases)`` of ``irrep(N, hw)`` on a worker, checked against the caller's sectors (``layout``:
+    their labels and dimensions, in order): the levels are read back by position."""
     if spec not in _PROBLEM_CACHE:
         from ..gelfand_tsetlin import irrep
 
-        N, hw, moments, hbar = spec
+        N, hw, moments, hbar, layout = spec
         rep = irrep(N, [Fraction(x) for x in hw], max_dim=10**7)
         H = rotor_matrix(rep.generators(format="csr"), np.array(moments), hbar)
+        secs = sectors_of(rep, False)
+        mine = tuple((s.label, s.dim) for s in secs)
+        if mine != layout:  # (a GT irrep is rebuilt exactly; a mismatch would pair levels with other sectors)
+            raise RuntimeError(f"the worker's irrep({N}, {hw}) has the sectors {mine}, the caller's representation "
+                               f"{layout}: no levels returned")
         _PROBLEM_CACHE.clear()
-        _PROBLEM_CACHE[spec] = (H, [(s.basis, s.real) for s in sectors_of(rep, False)])
+        _PROBLEM_CACHE[spec] = (H, [(s.basis, s.real) for s in secs])
     return _PROBLEM_CACHE[spec]
 
 
@@ -373,10 +380,12 @@ def sector_spectra(
         ``docs/scaling-out.md``). ``None`` or 1: one sector after the other, each
         with all BLAS threads.
     client : dask.distributed.Client, optional
-        Run one task per sector on a dask cluster (irreducible ``rep`` only: each
-        worker rebuilds it as ``irrep(N, highest_weight)``, with the Hamiltonian and
-        the sectors, once and caches them; the levels of a sector, labelled by its
-        character, do not depend on the basis).
+        Run one task per sector on a dask cluster (irreducible ``rep`` only). For a
+        Gelfand-Tsetlin irrep each worker rebuilds it as ``irrep(N, highest_weight)``,
+        with the Hamiltonian and the sectors, once and caches them; any other
+        irreducible representation (``vector_rep``, ``harmonic_rep``, ...) has sectors
+        of its own (for even ``N`` the GT basis adds a reflection parity), so its
+        Hamiltonian and sector bases, built here, go with the tasks.
     progress : bool or None
         tqdm bar over sectors (``None``: on a terminal, for runs over a second).
 
@@ -422,12 +431,18 @@ def sector_spectra(
     if client is not None:
         if rep.highest_weight is None:
             raise ValueError(
-                f"client= needs an irreducible representation with a highest weight (the workers rebuild it as "
-                f"irrep(N, highest_weight): sector spectra do not depend on the basis); {rep.name} has none"
+                f"client= needs an irreducible representation with a highest weight (the workers rebuild a "
+                f"Gelfand-Tsetlin irrep as irrep(N, highest_weight)); {rep.name} has none"
             )
-        spec = (rep.N, tuple(str(x) for x in rep.highest_weight), tuple(float(m) for m in moments), hbar)
-        lv = map_rows(_spec_task, idx, args=(spec, width), client=client, chunk_size=1,
-                      progress=progress, desc="sectors")
+        if group_of(rep).monomial:  # a GT irrep: the workers rebuild it from a few numbers
+            layout = tuple((s.label, s.dim) for s in secs)
+            spec = (rep.N, tuple(str(x) for x in rep.highest_weight), tuple(float(m) for m in moments), hbar, layout)
+            lv = map_rows(_spec_task, idx, args=(spec, width), client=client, chunk_size=1,
+                          progress=progress, desc="sectors")
+        else:  # its own sectors: the matrices built here go with the tasks
+            H = rotor_matrix(rep.generators(format="csr"), moments, hbar)
+            lv = map_rows(_levels_task, idx, args=(H, [(s.basis, s.real) for s in secs], width), client=client,
+                          chunk_size=1, progress=progress, desc="sectors")
     else:
         H = rotor_matrix(rep.generators(format="csr"), moments, hbar)  # the matrix of rotor_hamiltonian
         bases = [(s.basis, s.real) for s in secs]
