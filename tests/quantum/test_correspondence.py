@@ -9,6 +9,8 @@ holds for the body-frame operators :math:`\hat L^{b}_a = -\hat L_a`, whose
 Heisenberg equations are the symmetrized Euler equations forward in time:
 classical :math:`L(t) \leftrightarrow \langle \hat L^{b}\rangle(t) = -\langle\hat L\rangle(t)`.
 """
+from fractions import Fraction as F
+
 import numpy as np
 import pytest
 import qutip
@@ -331,3 +333,25 @@ def test_ehrenfest_time_against_brute_force():
         expected = t[k - 1] + (0.15 - dev[k - 1]) / (dev[k] - dev[k - 1]) * (t[k] - t[k - 1])
         assert res.t_E[row] == pytest.approx(expected, abs=1e-6)
     assert res.t_E[1] > res.t_E[0]  # smaller hbar_eff: the state follows the classical orbit longer
+
+
+def test_ehrenfest_time_takes_a_highest_weight_as_the_package_gives_it():
+    """weight= in exact numbers (a representation's highest_weight is Fractions; sympy.Rational too) gives the
+    irreps and levels of the same weight as floats: (1/2) for l = 2, 4 is the so(3) irreps j = 1, 2. Weights that are
+    not integers or half-integers are refused with the entry named."""
+    moments = np.array([1.0, 1.6, 2.3])
+    L0 = np.array([0.5, -0.3, 0.81])
+    t = np.linspace(0.0, 2.0, 5)
+    half = irrep(3, (F(1, 2),)).highest_weight
+    ref = hyperrotor.quantum.ehrenfest_time(moments, L0, [2, 4], t, weight=(0.5,))
+    for w in (half, (sp.Rational(1, 2),), [F(1, 2)]):
+        res = hyperrotor.quantum.ehrenfest_time(moments, L0, [2, 4], t, weight=w)
+        assert res.dims.tolist() == ref.dims.tolist() == [3, 5]
+        np.testing.assert_array_equal(res.quantum, ref.quantum)
+        np.testing.assert_array_equal(res.t_E, ref.t_E)
+    with pytest.raises(ValueError, match="weight entry must be an integer or a half-integer, got 0.3"):
+        hyperrotor.quantum.ehrenfest_time(moments, L0, [2], t, weight=(0.3,))
+    with pytest.raises(ValueError, match="not all zero"):
+        hyperrotor.quantum.ehrenfest_time(moments, L0, [2], t, weight=(F(0),))
+    with pytest.raises(TypeError, match="weight must be a sequence"):
+        hyperrotor.quantum.ehrenfest_time(moments, L0, [2], t, weight="1/2")

@@ -32,6 +32,7 @@ from ..conventions import n_planes, planes
 from .coherent import coherent_state
 from .sector_propagator import SectorPropagator, unit_state, warn_phase_rounding
 from .gelfand_tsetlin import DEFAULT_MAX_DIM, gt_size, irrep
+from .weights import _to_fraction
 from .hamiltonian import operator_matrix_and_dims, rotor_hamiltonian
 
 __all__ = ["EhrenfestResult", "OTOCResult", "ehrenfest_time", "otoc"]
@@ -231,14 +232,6 @@ def otoc(H: Any, W: Any, V: Any, t: Any, *, state: Any = None, samples: int | No
     return OTOCResult(t, values, stderr, samples)
 
 
-def _highest_weight_entry(x: float) -> Fraction:
-    """``x`` as an integer or half-integer (a highest-weight entry), or ValueError."""
-    f = Fraction(float(x)).limit_denominator(2)
-    if abs(float(f) - x) > 1e-12 * max(1.0, abs(x)):
-        raise ValueError(f"l * weight must be integers or half-integers (a highest weight), got the entry {x!r}")
-    return f
-
-
 def _first_crossing(t: np.ndarray, dev: np.ndarray, threshold: float) -> float:
     above = np.nonzero(dev >= threshold)[0]
     if above.size == 0:
@@ -277,7 +270,8 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     t : sequence of float
         Strictly increasing output times from the start, ``t[0]`` the time of ``L0``.
     weight : sequence, keyword-only, default ``(1, 0, ..., 0)``
-        The direction :math:`w` of the highest weights (integers or half-integers).
+        The direction :math:`w` of the highest weights: integers or half-integers (``int``, ``float`` such
+        as ``0.5``, ``Fraction`` or ``sympy.Rational``; a representation's ``highest_weight`` as it is).
     threshold : float, keyword-only, default 0.1
         Relative deviation that defines :math:`t_E`.
     rtol : float, keyword-only, optional
@@ -303,16 +297,21 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
         raise ValueError(f"ls must be a non-empty sequence of integers >= 1, got {_validate.fmt(ls)}")
     _pricing.check("ehrenfest_time", irreps=ls.size)  # (the count alone, before a loop over ls)
     ls = np.array([_validate.integer("ls[k]", x, minimum=1) for x in ls])
-    w = np.zeros(N // 2) if weight is None else _validate.real_array("weight", weight, ndim=1)
     if weight is None:
-        w[0] = 1.0
-    elif w.shape != (N // 2,) or not np.any(w):
-        raise ValueError(f"weight must have N // 2 = {N // 2} entries, not all zero, got {_validate.fmt(weight)}")
+        wq = (Fraction(1),) + (Fraction(0),) * (N // 2 - 1)
+    else:  # exact entries (a representation's highest_weight is Fractions): int, half-integer float, Fraction, Rational
+        if isinstance(weight, (str, bytes)) or not hasattr(weight, "__len__"):
+            raise TypeError(f"weight must be a sequence of N // 2 = {N // 2} integers or half-integers, got "
+                            f"{_validate.fmt(weight)}")
+        wq = tuple(_to_fraction(x, "weight entry") for x in weight)
+        if len(wq) != N // 2 or not any(wq):
+            raise ValueError(f"weight must have N // 2 = {N // 2} entries, not all zero, got {_validate.fmt(weight)}")
+    w = np.array([float(x) for x in wq])
     threshold = _validate.positive("threshold", threshold)
     progress = _validate.flag("progress", progress, allow_none=True)
     t = _validate.time_grid(t, allow_decreasing=False)
     rtol = options["quantum_ehrenfest_rtol"] if rtol is None else _validate.positive("rtol", rtol)
-    hws = [tuple(_highest_weight_entry(l * x) for x in w) for l in ls]
+    hws = [tuple(int(l) * x for x in wq) for l in ls]
     sizes = [gt_size(N, hw) for hw in hws]
     for hw, size in zip(hws, sizes):  # every irrep's size before any work (the classical run compiles and integrates)
         if size > DEFAULT_MAX_DIM:
