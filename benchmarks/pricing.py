@@ -183,6 +183,12 @@ def cases():
     for l in (500, 1000, 2000):
         out.append(("dense_matrix", f"generator of irrep l={l}, dense", dict(dim=2 * l + 1),
                     lambda l=l: hq.irrep(3, (l,)), lambda a: a.generator((1, 2), format="dense")))
+    for N, hw in ((3, (99999,)), (5, (20, 10)), (6, (6, 3, 1)), (7, (3, 2, 1))):
+        sizes = dict(dim=hq.weyl_dimension(N, hw), N=N)
+        out.append(("irrep", f"N={N} {hw}", sizes, lambda: None,
+                    lambda _, N=N, hw=hw: hq.irrep(N, hw, max_dim=10**6).generators(format="csr")))
+        out.append(("gt_patterns", f"N={N} {hw}", sizes, lambda: None,
+                    lambda _, N=N, hw=hw: hq.gt_patterns(N, hw, max_dim=10**6)))
     for N, hw in ((3, (30000,)), (3, (99999,)), (5, (20, 10))):
         out.append(("gt_sectors", f"N={N} {hw}", dict(dim=hq.weyl_dimension(N, hw), N=N),
                     lambda N=N, hw=hw: hq.irrep(N, hw), hq.symmetry_sectors))

@@ -6,6 +6,7 @@ import pytest
 import scipy.sparse as sps
 import sympy as sp
 
+import hyperrotor as hr
 from hyperrotor.conventions import planes, structure_constants
 from hyperrotor.quantum.gelfand_tsetlin import gt_index, gt_patterns, gt_size, irrep
 from hyperrotor.quantum.weights import casimir_eigenvalue, weight_multiplicities, weyl_dimension
@@ -256,6 +257,24 @@ def test_large_so5_irrep():
 def test_bad_input(kwargs, exc, match):
     with pytest.raises(exc, match=match):
         irrep(**kwargs)
+
+
+@pytest.mark.parametrize("build", ["irrep", "gt_patterns"])
+def test_a_raised_max_dim_still_meets_the_memory_budget(build):
+    """max_dim is the dimension guard only: past it, the patterns and generators are priced against
+    max_memory_bytes before anything is allocated (numpy's MemoryError of 268 GiB came first), and a budget that
+    allows them builds the irrep."""
+    import hyperrotor.quantum as hq
+
+    fn = getattr(hq, build)
+    with pytest.raises(hr.BudgetError, match=rf"{build}: .* over the budget hr.options\['max_memory_bytes'\]"):
+        fn(5, (3000, 3000), max_dim=10**13)
+    dim = hq.weyl_dimension(5, (20, 10))
+    with hr.options(max_memory_bytes=10**6):
+        with pytest.raises(hr.BudgetError, match="max_memory_bytes"):
+            fn(5, (20, 10), max_dim=10**6)
+    out = fn(5, (20, 10), max_dim=dim)
+    assert (out.dim if build == "irrep" else out.shape[0]) == dim
 
 
 def test_exact_guard():

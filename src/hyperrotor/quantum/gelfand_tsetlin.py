@@ -326,17 +326,44 @@ def _chain_elements(P: np.ndarray, N: int, k: int, index: PatternIndex, Pf: np.n
     return rows, cols, vals, diag
 
 
+def _pattern_bytes(dim: float, N: float) -> float:
+    """Peak bytes of building the GT patterns of a dimension-``dim`` irrep: float rows of ``sum floor(k/2)``
+    (k = 2..N) entries, three copies at once (peak traced memory 2.4-3.5x one copy: ``benchmarks/pricing.py``)."""
+    return 24.0 * dim * sum(k // 2 for k in range(2, int(N) + 1))
+
+
+def _generator_bytes(dim: float, N: float) -> float:
+    """Rough peak bytes of the sparse generators: ~N non-zeros per row each (5D (20, 10): 7.0, 6D (6, 3, 1): 10.0,
+    measured), 12 bytes per CSR entry, about five times (the commutators that build the planes beyond ``(k, k+1)``
+    and their intermediates: peak traced memory of ``irrep(...).generators(format="csr")``, benchmarks/pricing.py)."""
+    return 60.0 * dim * (N * (N - 1) / 2) * N
+
+
+@_pricing.model("gt_patterns", "ask for a smaller irrep")
+def _gt_patterns_cost(dim, N) -> tuple:
+    return (_pricing.Cost(f"the {dim} Gelfand-Tsetlin patterns of an so({N}) irrep", _pattern_bytes(float(dim), N),
+                          "max_memory_bytes", "bytes"),)
+
+
+@_pricing.model("irrep", "ask for a smaller irrep")
+def _irrep_cost(dim, N) -> tuple:
+    nbytes = _pattern_bytes(float(dim), N) + _generator_bytes(float(dim), N)
+    return (_pricing.Cost(f"a dimension-{dim} irrep of so({N}) (its patterns and {N * (N - 1) // 2} sparse generators)",
+                          nbytes, "max_memory_bytes", "bytes"),)
+
+
 def _check_max_dim(N: int, m, max_dim, entry: str = "irrep"):
+    """The irrep's dimension, refused over ``max_dim`` and then over the memory budget (``entry``'s cost model:
+    ``"irrep"`` or ``"gt_patterns"``), before any allocation."""
     dim = weyl_dim(N, m)
     max_dim = _validate.integer("max_dim", max_dim, minimum=1)  # (TypeError for a non-integer, ValueError below 1)
     if dim > max_dim:
         n_pl = N * (N - 1) // 2
-        # rough nnz: each generator has O(N) non-zeros per row
-        est_bytes = dim * n_pl * N * 20
         raise _pricing.refuse(
             entry, f"the so({N}) irrep {format_weight(m)} (its {n_pl} sparse generators: roughly "
-                   f"{est_bytes / 2**20:.0f} MiB)", dim, "max_dim", "dimension", limit=int(max_dim),
+                   f"{_generator_bytes(dim, N) / 2**20:.0f} MiB)", dim, "max_dim", "dimension", limit=int(max_dim),
             raise_with=f"a larger max_dim (e.g. max_dim={dim}) to build it anyway")
+    _pricing.check(entry, dim=dim, N=N)
     return dim
 
 
