@@ -98,6 +98,27 @@ def test_no_unrolled_kernel_without_a_writable_folder_or_beyond_the_largest_dime
 
 
 @needs_jit
+def test_a_new_kernels_module_gives_a_new_unrolled_module(tmp_path, monkeypatch):
+    """The generated code inlines _kernels.rotation, and numba's cache looks at the generated file only: the
+    file's name carries a hash of _kernels.py, so a changed rotation() is compiled in, never an old one from the
+    cache (the unrolled and generic kernels parted in the last bits after rotation() changed); an unreadable
+    _kernels.py gives the generic kernels."""
+    monkeypatch.setenv("HYPERROTOR_CACHE_DIR", str(tmp_path / "cache"))
+    _unrolled._module.cache_clear()
+    try:
+        first = _unrolled._module(3).__name__
+        monkeypatch.setattr(_unrolled, "_inlined_digest", lambda: "another rotation()")
+        _unrolled._module.cache_clear()
+        second = _unrolled._module(3).__name__
+        assert first != second and first.rsplit("_", 1)[0] == second.rsplit("_", 1)[0]
+        monkeypatch.setattr(_unrolled, "_inlined_digest", lambda: None)
+        _unrolled._module.cache_clear()
+        assert _unrolled.kernel(3, False) is None
+    finally:
+        _unrolled._module.cache_clear()
+
+
+@needs_jit
 @pytest.mark.parametrize("kwargs", [dict(dt=0.04), dict(rtol=1e-7), dict(rtol=1e-12)], ids=["dt", "rtol", "rtol-comp"])
 def test_simulate_runs_the_unrolled_kernel_with_the_generic_numbers(kwargs, rng, monkeypatch):
     """One body and a small ensemble, fixed step and step control (probe and check companions included): the

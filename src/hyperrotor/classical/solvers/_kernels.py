@@ -93,61 +93,60 @@ def rotation_tables(N: int):
     return tables
 
 
-# Taylor coefficients (-1)^k / (2k+1)! and (-1)^k / (2k)!; on |x| <= 0.5 the truncation
-# errors are < 3e-20 (sin, x^17/17!) and < 1e-21 (cos, x^16/16!): below half an ulp.
-_S1, _S2, _S3, _S4 = -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362880.0
-_S5, _S6, _S7 = -1.0 / 39916800.0, 1.0 / 6227020800.0, -1.0 / 1307674368000.0
-_C1, _C2, _C3, _C4 = -0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0
-_C5, _C6, _C7 = -1.0 / 3628800.0, 1.0 / 479001600.0, -1.0 / 87178291200.0
-
-
-@jit(inline="always")
-def sincos_poly(x):  # pragma: no cover - jitted
-    """``(sin x, cos x)`` by the Taylor polynomials above, branch-free (accurate for ``|x| <= 0.5``).
-
-    Inlined into the kernels (numba IR level), so the loops over bodies that call it stay
-    vectorised; every sine and cosine of the splittings comes from here or from libm.
-    """
-    z = x * x
-    z2 = z * z
-    z4 = z2 * z2
-    # Estrin's scheme (short dependency chains; the angle of the next flow waits for this one)
-    ps = (_S1 + z * _S2) + z2 * (_S3 + z * _S4) + z4 * ((_S5 + z * _S6) + z2 * _S7)
-    pc = (_C1 + z * _C2) + z2 * (_C3 + z * _C4) + z4 * ((_C5 + z * _C6) + z2 * _C7)
-    return x + (x * z) * ps, 1.0 + z * pc
-
-
-@jit
-def sincos(x):  # pragma: no cover - jitted
-    """``(sin x, cos x)``: inline polynomials for ``|x| <= 0.5`` (the usual half-angles), libm otherwise."""
-    if abs(x) > 0.5:
-        return math.sin(x), math.cos(x)
-    return sincos_poly(x)
+#: half-angles up to this use the polynomials of :func:`rotation_poly` (libm beyond: :func:`rotation`): the
+#: largest ``x`` at which the first omitted Taylor term of :math:`\sin 2x / 2x` (the larger of the two),
+#: :math:`(2x)^{14}/15!`, stays below :math:`2^{-56}` is 0.2292. The angles of accurate runs are far smaller
+#: (a splitting8 run to 1e-10 turns by ~0.01-0.03 per flow); a shorter range (0.059, 4 terms) sent too many of the
+#: lanes of loose ensembles to libm (benchmarks/README.md, sixteenth pass of step_control.py).
+SMALL_HALF_ANGLE = 0.229
+# Taylor coefficients of sin(2x) / 2x = 1 + sum_k _Ak z^k and (1 - cos 2x) / 2z = 1 + sum_k _Bk z^(k-1), z = x^2:
+# _Ak = (-4)^k / (2k+1)!, _Bk = (-1)^(k+1) 4^k / (2 (2k)!)
+_A1, _A2, _A3 = -4.0 / 6.0, 16.0 / 120.0, -64.0 / 5040.0
+_A4, _A5, _A6 = 256.0 / 362880.0, -1024.0 / 39916800.0, 4096.0 / 6227020800.0
+_B2, _B3, _B4 = -16.0 / 48.0, 64.0 / 1440.0, -256.0 / 80640.0
+_B5, _B6, _B7 = 1024.0 / 7257600.0, -4096.0 / 958003200.0, 16384.0 / 174356582400.0
 
 
 @jit(inline="always")
 def rotation_poly(x):  # pragma: no cover - jitted
-    """``(sin 2x, 1 - cos 2x)`` of a plane rotation from its half-angle ``x`` (:func:`sincos_poly`, branch-free).
+    r"""``(sin 2x, 1 - cos 2x)`` of a plane rotation from its half-angle ``x`` by Taylor polynomials in
+    :math:`z = x^2` (Estrin's scheme), branch-free; accurate (to a few ulps) for ``|x| <=``
+    :data:`SMALL_HALF_ANGLE`.
 
-    ``1 - cos 2x = 2 sin^2 x`` stays accurate for small angles. The bodies-innermost kernels
-    call it for all lanes, then :func:`rotation` again for the lanes with ``|x| > 0.5``.
+    :math:`\sin 2x` and :math:`1 - \cos 2x` come straight from their own series (not as :math:`2\sin x\cos x`,
+    :math:`2\sin^2 x`: two products fewer on the chain from one flow's angle to the next), and :math:`1 - \cos 2x`
+    is summed as it is (:math:`2z - \tfrac{2}{3} z^2 + \dots`), so it stays accurate for small angles and the pair
+    rotates with :math:`c = 1 - v` never rounded. Inlined into the kernels (numba IR level), so the loops over
+    bodies that call it stay vectorised; the bodies-innermost kernels call it for all lanes, then :func:`rotation`
+    again for the lanes beyond :data:`SMALL_HALF_ANGLE` (:func:`redo_wide_lanes`). Every sine and cosine of the
+    splittings comes from here or from libm.
     """
-    sh, chh = sincos_poly(x)
-    return 2.0 * sh * chh, 2.0 * sh * sh
+    z = x * x
+    z2 = z * z
+    z4 = z2 * z2
+    ps = (_A1 + z * _A2) + z2 * (_A3 + z * _A4) + z4 * (_A5 + z * _A6)
+    pv = (_B2 + z * _B3) + z2 * (_B4 + z * _B5) + z4 * (_B6 + z * _B7)
+    xx = x + x
+    zz = z + z
+    return xx + (xx * z) * ps, zz + (zz * z) * pv
 
 
 @jit(inline="always")
 def rotation(x):  # pragma: no cover - jitted
-    """``(sin 2x, 1 - cos 2x)`` from the half-angle ``x`` by :func:`sincos` (libm beyond 0.5)."""
-    sh, chh = sincos(x)
-    return 2.0 * sh * chh, 2.0 * sh * sh
+    """``(sin 2x, 1 - cos 2x)`` from the half-angle ``x``: :func:`rotation_poly` up to
+    :data:`SMALL_HALF_ANGLE`, libm's ``sin x``, ``cos x`` beyond (``2 sin x cos x``, ``2 sin^2 x``)."""
+    if abs(x) <= SMALL_HALF_ANGLE:
+        return rotation_poly(x)
+    sh = math.sin(x)
+    return 2.0 * sh * math.cos(x), 2.0 * sh * sh
 
 
 @jit(inline="always")
 def redo_wide_lanes(X, S, V):  # pragma: no cover - jitted
-    """``S[j], V[j] = rotation(X[j])`` for the lanes whose half-angle is beyond 0.5 (libm, as :func:`sincos`)."""
+    """``S[j], V[j] = rotation(X[j])`` for the lanes whose half-angle is beyond :data:`SMALL_HALF_ANGLE` (libm)
+    (the test of :func:`rotation`, so that every lane gets what a body's own run gets)."""
     for j in range(S.shape[0]):
-        if abs(X[j]) > 0.5:
+        if abs(X[j]) > SMALL_HALF_ANGLE:
             S[j], V[j] = rotation(X[j])
 
 
@@ -335,12 +334,12 @@ def _split_run_ensemble(L0, rates, seq_plane, seq_coef, pair_p, pair_q, pair_s,
                                 Lh[e, j] = snew
                         continue
                     big = False
-                    for j in range(nb):  # polynomial sincos of the half-angles, branch-free (vectorised)
+                    for j in range(nb):  # the rotations by polynomials, branch-free (vectorised)
                         x = fac[r, j] * (Lh[a, j] + Ll[a, j])
                         X[j] = x
                         S[j], V[j] = rotation_poly(x)
-                        big |= x * x > 0.25
-                    if big:  # some half-angle beyond 0.5
+                        big |= abs(x) > SMALL_HALF_ANGLE
+                    if big:  # some half-angle beyond the polynomials' range
                         redo_wide_lanes(X, S, V)
                     for e in range(npair):
                         p = pair_p[a, e]

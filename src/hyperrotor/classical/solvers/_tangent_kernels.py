@@ -48,7 +48,7 @@ import numpy as np
 
 from hyperrotor._jit import jit
 
-from ._kernels import redo_wide_lanes, rotate_lanes, rotation, rotation_poly
+from ._kernels import SMALL_HALF_ANGLE, redo_wide_lanes, rotate_lanes, rotation, rotation_poly
 
 __all__: list[str] = []  # private module
 
@@ -156,7 +156,8 @@ def _tangent_run_lanes(L0, rates, W0, acc0, seq_plane, seq_coef, pair_p, pair_q,
     innermost one: the independent rotations of different bodies overlap in the CPU pipeline
     and vectorise (as ``_kernels._split_run_ensemble``). Every body sees exactly the arithmetic
     of :func:`_tangent_run` (same operations in the same order; the half-angle polynomial is
-    the one of :func:`~hyperrotor.classical.solvers._kernels.sincos`, libm beyond 0.5), so the results
+    the one of :func:`~hyperrotor.classical.solvers._kernels.rotation`: polynomials up to ``SMALL_HALF_ANGLE``, libm
+    beyond), so the results
     agree with it bit for bit, whichever bodies share a block. ``nsub[0]`` is used for all.
     """
     B = L0.shape[0]
@@ -193,13 +194,13 @@ def _tangent_run_lanes(L0, rates, W0, acc0, seq_plane, seq_coef, pair_p, pair_q,
                 for r in range(m):
                     a = seq_plane[r]
                     big = False
-                    for j in range(nb):  # polynomial sincos of the half-angles, branch-free (vectorised)
+                    for j in range(nb):  # the rotations by polynomials, branch-free (vectorised)
                         x = fac[r, j] * L[a, j]
                         X[j] = x
                         S[j], V[j] = rotation_poly(x)
                         F2[j] = 2.0 * fac[r, j]
-                        big |= x * x > 0.25
-                    if big:  # some half-angle beyond 0.5
+                        big |= abs(x) > SMALL_HALF_ANGLE
+                    if big:  # some half-angle beyond the polynomials' range
                         redo_wide_lanes(X, S, V)
                     for e in range(npair):
                         p = pair_p[a, e]

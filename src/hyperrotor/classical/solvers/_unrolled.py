@@ -96,7 +96,7 @@ def _flow_function(npair: int) -> list[str]:
     g = [f"g{e}" for e in range(npair)]
     pairs = [f"x{e}, y{e}" for e in range(npair)]
     lines = ["", "", "@jit", f"def flow(x, ua, {', '.join(g + pairs)}):",
-             "    sh, chh = sincos(x * ua)", "    s = 2.0 * sh * chh", "    v = 2.0 * sh * sh"]
+             "    s, v = rotation(x * ua)"]
     for e in range(npair):
         lines += [f"    ss = s * g{e}",
                   f"    x{e}, y{e} = x{e} + (ss * y{e} - v * x{e}), y{e} - (ss * x{e} + v * y{e})"]
@@ -113,7 +113,7 @@ def source(N: int) -> str:
     text = [f'"""Unrolled splitting kernel for so({N}), written by hyperrotor.classical.solvers._unrolled."""',
             "import numpy as np",
             "from hyperrotor._jit import jit",
-            "from hyperrotor.classical.solvers._kernels import sincos"]
+            "from hyperrotor.classical.solvers._kernels import rotation"]
     text += _flow_function(npair)
     text += ["", "", "@jit", "def run(L0, carry, rates, slot_coef, slot_plane, hstep, nsub, outL):",
              "    B = L0.shape[0]", "    K = hstep.shape[0] + 1", "    R = slot_coef.shape[0]",
@@ -203,6 +203,17 @@ def _folder() -> Path | None:
     return folder if os.access(folder, os.W_OK) else None
 
 
+def _inlined_digest() -> str | None:
+    """Hash of the text of :mod:`._kernels`, whose :func:`~._kernels.rotation` the generated code inlines
+    (``None`` if it cannot be read: no unrolled kernel then, the generic ones give the same numbers)."""
+    from . import _kernels
+
+    try:
+        return hashlib.sha256(Path(_kernels.__file__).read_bytes()).hexdigest()
+    except (OSError, TypeError):
+        return None
+
+
 @lru_cache(maxsize=None)
 def _module(N: int):
     """The generated module for ``N`` (written once, named by its content's hash), or ``None``."""
@@ -212,9 +223,13 @@ def _module(N: int):
     if folder is None:
         return None
     text = source(N)
-    # one file per text and per numba and Python (environments sharing the folder do not invalidate each
-    # other's compiled code)
-    digest = hashlib.sha256(f"{text}{_jit.NUMBA_VERSION}{sys.version}".encode()).hexdigest()[:16]
+    # one file per text, per text of the module it inlines from (numba's cache sees only the generated file: a new
+    # rotation() in _kernels.py left the old one compiled in, while the generic kernels had the new one) and per
+    # numba and Python (environments sharing the folder do not invalidate each other's compiled code)
+    inlined = _inlined_digest()
+    if inlined is None:
+        return None
+    digest = hashlib.sha256(f"{text}{inlined}{_jit.NUMBA_VERSION}{sys.version}".encode()).hexdigest()[:16]
     name = f"hyperrotor_unrolled_so{N}_{digest}"
     path = folder / f"{name}.py"
     try:
