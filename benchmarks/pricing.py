@@ -166,6 +166,18 @@ def cases():
         out.append(("quartet_frequencies", f"N=300, {B} initial conditions", dict(N=300, batch=B),
                     lambda B=B: np.random.default_rng(0).standard_normal((B, 44850)),
                     lambda w: hr.quartet_frequencies(0.5, w, 5)))
+    for N in (300, 600, 900):
+        nw = N * (N - 1) // 2
+        def start(nw=nw):
+            return np.random.default_rng(0).standard_normal(nw)
+
+        out.append(("quartet_solution", f"N={N}, 3 times", dict(d=N - 1), start,
+                    lambda w: hr.quartet_solution(0.5, w, [0.0, 1.0, 2.0])))
+        out.append(("quartet_attitude", f"N={N}, 3 times", dict(d=N, count=2, n_times=3), start,
+                    lambda w: hr.quartet_attitude(0.5, w, [0.0, 1.0, 2.0])))
+        out.append(("closed_form_solution", f"quartet N={N}, 3 times", dict(d=N - 1),
+                    lambda N=N, nw=nw: (hr.Inertia.quartet(0.5, N=N), np.random.default_rng(0).standard_normal(nw)),
+                    lambda x: hr.closed_form_solution(x[0], x[1], [0.0, 1.0, 2.0])))
     for N in (100, 200, 400):
         out.append(("stability_condition", f"N={N}", dict(N=N), lambda: None,
                     lambda _, N=N: hr.stability_condition((1, 2), N)))

@@ -537,3 +537,37 @@ def test_quartet_frequencies_priced_and_quartet_matrix_vectorised():
     with hr.options(max_seconds=1e-8):  # 2 eigenproblems of dimension 6: ~2e-7 s estimated
         with pytest.raises(hr.BudgetError, match="quartet_frequencies"):
             quartet_frequencies(0.5, w, axis)
+
+
+def test_the_quartet_closed_forms_are_priced_and_bounded_in_dimension():
+    """The eigendecompositions behind quartet_solution, quartet_attitude and closed_form_solution (dimension
+    N - 1, N, N - 1) are priced against max_seconds before they run, and N is held to max_dimension like every
+    so(N) constructor (N = 3000 ran 33 s unpriced under max_seconds = 0.01); small cases are untouched."""
+    import hyperrotor as hr
+    from hyperrotor import _pricing
+    from hyperrotor.classical import closed_form_solution, quartet_attitude, quartet_frequencies
+
+    N = 60
+    w = np.random.default_rng(0).normal(size=N * (N - 1) // 2)
+    need = _pricing.estimate("quartet_solution", d=N - 1)[1].amount
+    with hr.options(max_seconds=0.5 * need):
+        with pytest.raises(hr.BudgetError, match=r"quartet_solution: 1 Hermitian eigenproblem\(s\) of dimension 59"):
+            quartet_solution(0.5, w, [0.0, 1.0])
+        with pytest.raises(hr.BudgetError,
+                           match=r"quartet_attitude: 2 Hermitian eigenproblem\(s\) of dimension 60 "
+                                 r"and exp\(W t\) at 2 times"):
+            quartet_attitude(0.5, w, [0.0, 1.0])
+        with pytest.raises(hr.BudgetError, match=r"closed_form_solution: .* dimension 59"):
+            closed_form_solution(hr.Inertia.quartet(0.5, N=N), w, [0.0, 1.0])
+    with hr.options(max_dimension=N - 1):
+        for f in (quartet_solution, quartet_attitude):
+            with pytest.raises(hr.BudgetError, match=r"max_dimension"):
+                f(0.5, w, [0.0, 1.0])
+        with pytest.raises(hr.BudgetError, match=r"max_dimension"):
+            quartet_frequencies(0.5, w)
+    # within the budgets: the closed form and the dispatcher agree, and the flow conserves |x|
+    a = quartet_solution(0.5, w, [0.0, 1.0, 2.0])
+    b, kind = closed_form_solution(hr.Inertia.quartet(0.5, N=N), w, [0.0, 1.0, 2.0])
+    assert kind == "quartet"
+    np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(w).max() * N)
+    np.testing.assert_allclose(np.linalg.norm(a, axis=-1), np.linalg.norm(w), rtol=1e-12 * N)

@@ -131,6 +131,8 @@ def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float | None =
     if kind == "equal":
         return equal_moments_solution(w, tt), kind
     if kind == "quartet":
+        _pricing.check("closed_form_solution", d=dimension_from_count(I.size) - 1,
+                       count=int(np.prod(w.shape[:-1])))
         return quartet_flow(info["theta"], w, tt, info["axis"]), kind
     flat = w.reshape(-1, 3)
     out = np.stack([euler_poinsot(I, x, tt) for x in flat])

@@ -66,6 +66,8 @@ from typing import Any
 import numpy as np
 
 from .. import _pricing, _validate
+from .._cost_models import _eigh_seconds
+from .._parallel import interruptible
 from ..conventions import check_dimension, dimension_from_count
 from ._closed_form_input import plane_vector, times
 from .inertia import Inertia
@@ -112,6 +114,22 @@ def _quartet_frequencies_cost(N: Any, batch: Any = 1) -> tuple:
     return (_pricing.Cost(f"{batch} matrices of dimension {d:.0f}", 24.0 * b * d * d, "max_memory_bytes", "bytes"),
             _pricing.Cost(f"{batch} singular value problems of dimension {d:.0f}", 1e-10 * 8.0 / 3.0 * b * d**3,
                           "max_seconds", "seconds"))
+
+
+@_pricing.model("closed_form_solution", "use fewer dimensions or fewer initial conditions")
+@_pricing.model("quartet_attitude", "use fewer dimensions")
+@_pricing.model("quartet_solution", "use fewer dimensions or fewer initial conditions")
+def _quartet_eigh_cost(d: Any, count: Any = 1, n_times: Any = 0) -> tuple:
+    """``count`` eigendecompositions of Hermitian matrices of dimension ``d`` (the closed forms' ``exp(W t)``):
+    :func:`~hyperrotor._cost_models._eigh_seconds`; ``i W``, its eigenvectors and LAPACK's work copy (16 bytes per
+    entry, four copies); ``n_times``: the matrices ``exp(W t)`` themselves at that many times (the attitude: one
+    complex product of dimension ``d`` each, ~1.5e-11 s per real flop with BLAS, measured by benchmarks/pricing.py)."""
+    d, c, k = float(d), float(count), float(n_times)
+    return (_pricing.Cost(f"{count} complex matrix(es) of dimension {d:.0f}", 64.0 * c * d * d, "max_memory_bytes",
+                          "bytes"),
+            _pricing.Cost(f"{count} Hermitian eigenproblem(s) of dimension {d:.0f}"
+                          + (f" and exp(W t) at {n_times} times" if n_times else ""),
+                          c * (_eigh_seconds(d ** 3) + k * 8.0 * d ** 3 * 1.5e-11), "max_seconds", "seconds"))
 
 
 def plane_axes(N: int) -> tuple[np.ndarray, np.ndarray]:
@@ -172,8 +190,8 @@ def quartet_flow(theta: float, omega0: np.ndarray, tt: np.ndarray, axis: int) ->
     N = dimension_from_count(omega0.shape[-1])
     idx, _, _ = axis_layout(N, axis)
     A = quartet_matrix(omega0, axis)
-    # iA is Hermitian: iA = U diag(lam) U^H, so exp(theta A t) = U diag(exp(-i lam theta t)) U^H
-    lam, U = np.linalg.eigh(1j * A)
+    # iA is Hermitian: iA = U diag(lam) U^H, so exp(theta A t) = U diag(exp(-i lam theta t)) U^H (Ctrl-C: interruptible)
+    lam, U = interruptible(np.linalg.eigh, 1j * A)
     x0 = omega0[..., idx]
     y0 = np.einsum("...ji,...j->...i", U.conj(), x0)  # U^H x0
     phase = np.exp(-1j * theta * tt[:, None] * lam[..., None, :])  # (..., n_t, N-1)
@@ -211,12 +229,13 @@ def quartet_solution(kappa: float, omega0: Any, t: Any, axis: int = 5, N: int | 
     numpy.ndarray, shape (..., n_t, n_planes)
     """
     w = plane_vector(omega0)
-    Nw = dimension_from_count(w.shape[-1])
+    Nw = _validate.dimension(dimension_from_count(w.shape[-1]), name="N of omega0")
     if N is not None and check_dimension(N) != Nw:
         raise ValueError(f"omega0 has {w.shape[-1]} components, i.e. N = {Nw}, but N = {N} was given")
     axis = _check_axis(axis, Nw)
     tt = times(t)
     _pricing.check("closed_form_output", n_times=tt.size, width=w.size)
+    _pricing.check("quartet_solution", d=Nw - 1, count=int(np.prod(w.shape[:-1])))
     return quartet_flow(quartet_theta(kappa), w, tt, axis)
 
 
@@ -251,7 +270,7 @@ def quartet_frequencies(kappa: float, omega0: Any, axis: int = 5) -> np.ndarray:
     eigenvalues of :math:`A` (descending), i.e. of its singular values (:math:`A` is normal).
     """
     w = plane_vector(omega0)
-    N = dimension_from_count(w.shape[-1])
+    N = _validate.dimension(dimension_from_count(w.shape[-1]), name="N of omega0")
     axis = _check_axis(axis, N)
     th = quartet_theta(kappa)
     if N == 5:
@@ -268,7 +287,7 @@ def quartet_frequencies(kappa: float, omega0: Any, axis: int = 5) -> np.ndarray:
     A = quartet_matrix(w, axis)
     # A is real antisymmetric, hence normal: the moduli of its eigenvalues (pairs +-i lambda, and a 0 when
     # N - 1 is odd) are its singular values, descending; a real SVD costs half the complex eigvalsh(1j A)
-    sv = np.linalg.svd(A, compute_uv=False)
+    sv = interruptible(lambda: np.linalg.svd(A, compute_uv=False))  # (Ctrl-C: LAPACK holds the main thread)
     k = (N - 1) // 2
     return abs(th) * sv[..., : 2 * k : 2]
 
@@ -278,9 +297,10 @@ def expm_antisym(W: np.ndarray, tt: np.ndarray) -> np.ndarray:
 
     Shared in the package (the scenes' closed-form attitude route); not public API.
     """
-    lam, U = np.linalg.eigh(1j * W)
+    lam, U = interruptible(np.linalg.eigh, 1j * W)  # (Ctrl-C: LAPACK holds the main thread)
     ph = np.exp(-1j * tt[:, None] * lam[None, :])
-    return np.einsum("ij,kj,lj->kil", U, ph, U.conj()).real
+    # U diag(ph_k) U^H for every time: one batched product (BLAS; einsum's three-operand loop took 10 s at N = 900)
+    return interruptible(lambda: ((U[None, :, :] * ph[:, None, :]) @ U.conj().T).real)
 
 
 def quartet_attitude_standard(theta: float, omega0: np.ndarray, tt: np.ndarray, axis: int) -> np.ndarray:
@@ -334,11 +354,12 @@ def quartet_attitude(kappa: float, omega0: Any, t: Any, axis: int = 5, *, attitu
     w = plane_vector(omega0)
     if w.ndim != 1:
         raise ValueError(f"omega0 must be a single vector of plane components, got shape {w.shape}")
-    N = dimension_from_count(w.size)
+    N = _validate.dimension(dimension_from_count(w.size), name="N of omega0")
     axis = _check_axis(axis, N)
     T0 = None if attitude0 is None else _validate.orthogonal_matrix("attitude0", attitude0, N)
     tt = times(t)
     _pricing.check("closed_form_output", n_times=tt.size, width=N * N)
+    _pricing.check("quartet_attitude", d=N, count=2, n_times=tt.size)  # (exp(Theta W_r t), exp((W0 - Theta W_r) t))
     T = quartet_attitude_standard(quartet_theta(kappa), w, tt, axis)
     Sg = np.array([(-1.0) ** k for k in range(1, N + 1)]) if convention == "paper" else np.ones(N)
     if T0 is not None:
