@@ -380,3 +380,31 @@ def test_numeric_moments_fast_path_and_price():
     with hr.options(max_seconds=1.0):
         with pytest.raises(hr.BudgetError, match="Inertia"):
             hr.Inertia(np.ones(hr.n_planes(1000)))
+
+
+@pytest.mark.parametrize("J", [[1, 2, 3], [1.5, 0, 2], np.array([0.3, 1.1, 2.0, 0.0]), [1, 2.5, 0],
+                               np.array([1, 2, 3, 4], dtype=np.int64), [2**60, 1.0, 3], [1, 2**60 + 1, 3]],
+                         ids=["ints", "floats", "array", "mixed", "int-array", "huge-int-float", "huge-ints"])
+def test_plain_mass_tensors_take_the_fast_path_with_the_same_moments(J):
+    """from_mass_tensor sums plain numbers at once (32 s of SymPy at N = 900 before, one number per plane):
+    the same SymPy values and types, moments and mass tensor as the per-plane path, which SymPy entries take."""
+    fast = Inertia.from_mass_tensor(J)
+    slow = Inertia.from_mass_tensor([sp.Integer(0) + (sp.Integer(int(v)) if isinstance(v, (int, np.integer))
+                                                      else sp.Float(float(v))) for v in J])
+    assert fast.symbolic_moments == slow.symbolic_moments
+    assert [type(v) for v in fast.symbolic_moments] == [type(v) for v in slow.symbolic_moments]
+    np.testing.assert_array_equal(fast.moments, slow.moments)
+    np.testing.assert_array_equal(fast.mass_tensor, slow.mass_tensor)
+    assert fast.is_physical() == slow.is_physical()
+
+
+def test_a_mass_tensor_is_priced_and_checked_as_moments_are():
+    with hr.options(max_seconds=1e-3):
+        with pytest.raises(hr.BudgetError, match="Inertia: the moments of 4950 planes"):
+            Inertia.from_mass_tensor(np.ones(100))
+    with pytest.raises(ValueError, match=r"moment I_12 = J_1 \+ J_2 must be > 0, got 0"):
+        Inertia.from_mass_tensor([0, 0, 1])
+    with pytest.raises(ValueError, match="J_2 must be >= 0"):
+        Inertia.from_mass_tensor([1.0, -1.0, 2.0])
+    with pytest.raises(TypeError):
+        Inertia.from_mass_tensor(np.array([True, False, True]))

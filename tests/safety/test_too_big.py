@@ -173,6 +173,8 @@ def _cases():
         # --- classical
         "Inertia": lambda: hr.Inertia(body(1000)),
         "Inertia.symbolic": lambda: hr.Inertia.symbolic(1000),
+        "Inertia.from_mass_tensor": lambda: hr.Inertia.from_mass_tensor(np.ones(1000)),
+        "Inertia.tensor": lambda: hr.Inertia(np.ones(19900)).tensor(),
         "inertia_tensor": lambda: hr.inertia_tensor([1.0], np.ones((1, 300))),
         "second_moment_matrix": lambda: hr.second_moment_matrix(np.ones(10), np.ones((10, 1000))),
         "RigidBody": lambda: hr.RigidBody(body(1000)),

@@ -111,9 +111,21 @@ def _inertia_cost(n: Any) -> tuple:
     return (_pricing.Cost(f"the moments of {n:.0f} planes as SymPy numbers", 2e-5 * n, "max_seconds", "seconds"),)
 
 
-def _numeric_moments(moments: Any, N: int) -> tuple[tuple, np.ndarray] | None:
+@_pricing.model("Inertia.tensor", "use the plane moments (Inertia.moments) or second_moment_matrix")
+def _tensor_cost(N: Any) -> tuple:
+    """The rank-4 array of :meth:`Inertia.tensor`: ``N^4`` entries of 8 bytes (floats, or pointers to SymPy
+    numbers), zeroed at ~1 ns each, and a Python loop over the planes."""
+    N = float(N)
+    return (_pricing.Cost(f"the rank-4 tensor of dimension {N:.0f} ({N:.0f}^4 entries)", 8.0 * N ** 4,
+                          "max_memory_bytes", "bytes"),
+            _pricing.Cost(f"the rank-4 tensor of dimension {N:.0f} ({N:.0f}^4 entries)",
+                          1e-9 * N ** 4 + 3e-6 * N * (N - 1) / 2, "max_seconds", "seconds"))
+
+
+def _numeric_moments(moments: Any, N: int, *, allow_zero: bool = False) -> tuple[tuple, np.ndarray] | None:
     """Plain real moments (a real ndarray, or a list of Python/NumPy ints and floats) checked at once:
-    ``(SymPy values, float64 array)``, or ``None`` for anything else (the per-value path)."""
+    ``(SymPy values, float64 array)``, or ``None`` for anything else (the per-value path). ``allow_zero``:
+    zeros pass too (the entries of a mass tensor)."""
     if isinstance(moments, np.ndarray):
         if moments.ndim != 1 or moments.dtype.kind not in "iuf":
             return None
@@ -125,7 +137,7 @@ def _numeric_moments(moments: Any, N: int) -> tuple[tuple, np.ndarray] | None:
     else:
         return None
     x = np.asarray(raw, dtype=np.float64)
-    bad = np.flatnonzero(~np.isfinite(x) | (x <= 0))
+    bad = np.flatnonzero(~np.isfinite(x) | ((x < 0) if allow_zero else (x <= 0)))
     if bad.size:  # the per-value path names the first bad plane in its own words
         return None
     if isinstance(raw, np.ndarray):
@@ -353,11 +365,26 @@ class Inertia:
         ``J_i`` may be zero (a flat body) as long as every plane moment is
         positive.
         """
+        if isinstance(J, np.ndarray):  # booleans, dates and masked arrays, as the constructor refuses them
+            _validate.numeric_input("J", J)
         seq = _as_list(J, "J")
         if len(seq) < 2:
             raise ValueError(f"J needs N >= 2 entries, got {_validate.fmt(J)}")
+        N = check_dimension(len(seq))
+        _pricing.check("Inertia", n=n_planes(N))  # (one SymPy number per plane, below)
+        fast = _numeric_moments(J if isinstance(J, np.ndarray) else seq, N, allow_zero=True)
+        if fast is not None and all(not isinstance(v, (int, np.integer)) or abs(int(v)) <= 2**53 for v in seq):
+            Js, Jx = fast  # plain numbers: the sums at once (float sums are the SymPy ones: both round once)
+            i, j = np.triu_indices(N, 1)
+            x = Jx[i] + Jx[j]
+            if np.all(x > 0):  # (else the per-plane path names the first plane that is not positive)
+                x.setflags(write=False)
+                values = tuple(Js[a] + Js[b] if Js[a].is_Integer and Js[b].is_Integer else sp.Float(float(v))
+                               for a, b, v in zip(i.tolist(), j.tolist(), x.tolist()))
+                obj = cls.__new__(cls)
+                obj._init(values, N, tuple(Js), numeric=x)
+                return obj
         Js = tuple(_as_value(v, f"J_{k + 1}", allow_zero=True) for k, v in enumerate(seq))
-        N = len(Js)
         values = [_as_value(Js[i - 1] + Js[j - 1], f"moment I_{plane_label((i, j), N)} = J_{i} + J_{j}")
                   for i, j in planes(N)]
         return cls._from_values(values, N, J=Js)
@@ -602,6 +629,7 @@ class Inertia:
         """
         N = self._N
         sym = self.is_symbolic
+        _pricing.check("Inertia.tensor", N=N)  # (the N^4 array, before it is allocated)
         t = np.zeros((N,) * 4, dtype=object if sym else np.float64)
         if sym:
             t[...] = sp.Integer(0)
