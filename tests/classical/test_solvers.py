@@ -331,6 +331,17 @@ def test_dense_output_refuses_text_booleans_and_outputs_over_the_budget():
     np.testing.assert_array_equal(tr.sol(2.0), tr.L[-1])
 
 
+@pytest.mark.parametrize("method", ["splitting8", "DOP853", "moser-veselov"])
+def test_dense_output_at_no_time_is_empty_for_every_method(method):
+    """sol([]) has the shape of any other query with no time in it, for every method (scipy's route raised
+    numpy's 'need at least one array to concatenate'), for a batch and for the attitude too."""
+    tr = hr.simulate(MOM3, np.stack([W3, 2 * W3]), [0.0, 1.0], method=method, attitude=True,
+                     **cheap_kw(method, 1e-8))
+    assert tr.sol([]).shape == (2, 0, 3) == tr.sol(np.zeros(0), "omega").shape
+    assert tr.sol([], "attitude").shape == (2, 0, 3, 3)
+    assert tr.sol([0.5]).shape == (2, 1, 3)
+
+
 # ----------------------------------------------------------------------------- dense output
 @pytest.mark.parametrize("method", ALL)
 def test_dense_output_between_and_at_the_output_times(method):

@@ -105,6 +105,9 @@ class Trajectory:
         batch = self.omega.shape[:-2]
         width = self.omega.shape[-1] if what != "attitude" else self.attitude.shape[-1] ** 2
         _pricing.check("closed_form_output", n_times=int(np.prod(batch, dtype=np.int64)) * tq.size, width=width)
+        if tq.size == 0:  # no time: nothing to integrate or interpolate, the same empty answer for every method
+            N = self.attitude.shape[-1] if what == "attitude" else None
+            return np.empty(batch + ((0, N, N) if what == "attitude" else (0, self.omega.shape[-1])))
         L, T = self._dense(np.atleast_1d(tq) * self._scale)
         if what == "attitude":
             S = self._signs
