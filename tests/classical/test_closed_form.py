@@ -550,6 +550,7 @@ def test_the_quartet_closed_forms_are_priced_and_bounded_in_dimension():
     N = 60
     w = np.random.default_rng(0).normal(size=N * (N - 1) // 2)
     need = _pricing.estimate("quartet_solution", d=N - 1)[1].amount
+    body = hr.Inertia.quartet(0.5, N=N)
     with hr.options(max_seconds=0.5 * need):
         with pytest.raises(hr.BudgetError, match=r"quartet_solution: 1 Hermitian eigenproblem\(s\) of dimension 59"):
             quartet_solution(0.5, w, [0.0, 1.0])
@@ -558,7 +559,7 @@ def test_the_quartet_closed_forms_are_priced_and_bounded_in_dimension():
                                  r"and exp\(W t\) at 2 times"):
             quartet_attitude(0.5, w, [0.0, 1.0])
         with pytest.raises(hr.BudgetError, match=r"closed_form_solution: .* dimension 59"):
-            closed_form_solution(hr.Inertia.quartet(0.5, N=N), w, [0.0, 1.0])
+            closed_form_solution(body, w, [0.0, 1.0])
     with hr.options(max_dimension=N - 1):
         for f in (quartet_solution, quartet_attitude):
             with pytest.raises(hr.BudgetError, match=r"max_dimension"):
@@ -567,7 +568,7 @@ def test_the_quartet_closed_forms_are_priced_and_bounded_in_dimension():
             quartet_frequencies(0.5, w)
     # within the budgets: the closed form and the dispatcher agree, and the flow conserves |x|
     a = quartet_solution(0.5, w, [0.0, 1.0, 2.0])
-    b, kind = closed_form_solution(hr.Inertia.quartet(0.5, N=N), w, [0.0, 1.0, 2.0])
+    b, kind = closed_form_solution(body, w, [0.0, 1.0, 2.0])
     assert kind == "quartet"
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(w).max() * N)
     np.testing.assert_allclose(np.linalg.norm(a, axis=-1), np.linalg.norm(w), rtol=1e-12 * N)
