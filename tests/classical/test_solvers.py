@@ -1494,3 +1494,52 @@ def test_scipy_atol_is_solve_ivps_atol():
 def test_simulate_takes_everything_after_t_by_keyword():
     with pytest.raises(TypeError, match="positional"):
         hr.simulate(MOM3, W3, [0.0, 1.0], "splitting4")
+
+
+# ----------------------------------------------------------------------------- far from the time origin
+@pytest.mark.parametrize("kw", [dict(rtol=1e-8), dict(method="moser-veselov", rtol=1e-6), dict(method="DOP853"),
+                                dict(method="splitting8", dt=0.1)], ids=["auto", "moser-veselov", "DOP853", "dt"])
+def test_a_run_far_from_the_time_origin_is_the_run_from_zero(kw):
+    """Times are integrated from t[0] (Problem.origin): at t ~ 1e15 floats are 0.125 apart, and the step
+    control's sample times fell onto each other (ZeroDivisionError in check_plan; DOP853 failed at 1e16).
+    The same run as from 0, bit for bit, with events, the torque and dense output in the user's times."""
+    T0 = 1e15
+    x = np.array([0.0, 1.0, 2.5, 4.0])
+    g = lambda t, L: L[1]  # noqa: E731 - an event of the state (L13 goes from 3 to -2.2 by t = 4)
+    seen = []
+
+    def torque(t, w):  # (a torque of the state: the same run; the times it is called at are the user's)
+        seen.append(t)
+        return -0.01 * np.asarray(w)
+
+    far = hr.simulate(MOM3, W3, T0 + x, events=g, attitude=True, **kw)
+    near = hr.simulate(MOM3, W3, x, events=g, attitude=True, **kw)
+    np.testing.assert_array_equal(far.omega, near.omega)
+    np.testing.assert_array_equal(far.attitude, near.attitude)
+    assert far.stats["steps"] == near.stats["steps"] if "steps" in near.stats else True
+    np.testing.assert_array_equal(far.t_events[0], T0 + near.t_events[0])  # (as near as floats at 1e15 can be)
+    assert near.t_events[0].size >= 1
+    np.testing.assert_array_equal(far.sol(T0 + 1.75), near.sol(1.75))
+    if kw.get("method") == "DOP853":  # (a callable torque: the scipy methods)
+        seen.clear()
+        a = hr.simulate(MOM3, W3, T0 + x, torque=torque, **kw)
+        assert min(seen) >= T0 and max(seen) <= T0 + 4.0
+        seen.clear()
+        b = hr.simulate(MOM3, W3, x, torque=torque, **kw)
+        assert min(seen) >= 0.0 and max(seen) <= 4.0
+        np.testing.assert_array_equal(a.omega, b.omega)
+
+
+def test_a_span_below_double_precision_is_the_start_and_times_that_round_together_are_named():
+    """A run turning by less than eps over its span takes one step per interval, no probe and no check (the
+    probe's half steps of a 5e-324 span were 0: a divide-by-zero warning and an 'inf steps' refusal); times
+    that t - t[0] rounds together are refused by name."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tr = hr.simulate(MOM3, W3, [0.0, 5e-324])
+    np.testing.assert_array_equal(tr.omega[-1], W3)
+    assert tr.stats["steps"] == 1 and tr.stats["work"] == 1
+    with pytest.raises(ValueError, match=r"t\[1\] = 0.0 and t\[2\] = 1e-300 are the same time from t\[0\] = -1e\+17"):
+        hr.simulate(MOM3, W3, [-1e17, 0.0, 1e-300])

@@ -50,7 +50,7 @@ class Trajectory:
     """
 
     def __init__(self, t, omega, L, attitude, body, moments, stats, *, dense=None, scale=1.0, signs=None,
-                 events=None):
+                 events=None, origin=0.0):
         self.t = t
         self.omega = omega
         self.L = L
@@ -60,6 +60,7 @@ class Trajectory:
         self.stats = stats
         self._dense = dense
         self._scale = scale
+        self._origin = origin  # the run's time origin, t[0]: dense output works in scaled times from it
         self._signs = signs
         self.t_events = self.L_events = self.omega_events = self.attitude_events = None
         if events is not None:
@@ -108,7 +109,7 @@ class Trajectory:
         if tq.size == 0:  # no time: nothing to integrate or interpolate, the same empty answer for every method
             N = self.attitude.shape[-1] if what == "attitude" else None
             return np.empty(batch + ((0, N, N) if what == "attitude" else (0, self.omega.shape[-1])))
-        L, T = self._dense(np.atleast_1d(tq) * self._scale)
+        L, T = self._dense((np.atleast_1d(tq) - self._origin) * self._scale)
         if what == "attitude":
             S = self._signs
             out = (S[:, None] * T * S[None, :]).reshape(batch + (tq.size,) + T.shape[-2:])

@@ -89,12 +89,12 @@ def _signs(N: int, convention: str, axes: tuple | None) -> np.ndarray:
 class _ScaledTorque:
     """A callable torque ``torque(t, omega)`` in scaled units (a plain object: it pickles with the run)."""
 
-    def __init__(self, torque: Callable, s: float):
-        self.torque, self.s = torque, s
+    def __init__(self, torque: Callable, s: float, origin: float = 0.0):
+        self.torque, self.s, self.origin = torque, s, origin
 
     def __call__(self, tt, w):
         s = self.s
-        return np.asarray(self.torque(tt / s, w * s), dtype=float) / (s * s)
+        return np.asarray(self.torque(tt / s + self.origin, w * s), dtype=float) / (s * s)
 
 
 def _checked(solver, rtol, client) -> float:
@@ -135,7 +135,7 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
     tq = None
     if torque is not None:
         if callable(torque):
-            tq = _ScaledTorque(torque, s)
+            tq = _ScaledTorque(torque, s, float(t_user[0]))
         else:
             tq = _validate.finite_array("torque", torque)
             if tq.ndim == 0 or tq.shape[-1] != n:
@@ -149,10 +149,16 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
             T0 = _validate.orthogonal_matrix("attitude", attitude, N, batched=True)
             T0 = _broadcast_batch("attitude", T0, 2, batch).reshape(B, N, N)
         T0 = signs[:, None] * T0 * signs[None, :]  # plain convention: T_conv = S T_plain S
-    ts = t_user * s
+    origin = float(t_user[0])
+    ts = (t_user - origin) * s  # (from the first output time: the run's own resolution, see Problem.t)
     if not np.all(np.isfinite(ts)):
-        raise ValueError(f"t times max|omega0| overflows double precision (max|t| = {np.abs(t_user).max():.3g}, "
-                         f"max|omega0| = {float(np.abs(w0).max()):.3g})")
+        raise ValueError(f"t - t[0] times max|omega0| overflows double precision (the span "
+                         f"{abs(float(t_user[-1]) - origin):.3g}, max|omega0| = {float(np.abs(w0).max()):.3g})")
+    if ts.size > 1 and not np.all(np.diff(ts) * np.sign(ts[-1]) > 0):
+        k = int(np.flatnonzero(np.diff(ts) * np.sign(ts[-1]) <= 0)[0])
+        raise ValueError(f"t[{k}] = {float(t_user[k])!r} and t[{k + 1}] = {float(t_user[k + 1])!r} are the same "
+                         f"time from t[0] = {origin!r} in double precision (t - t[0] rounds them together): drop "
+                         f"one, or start t nearer to them")
     L0 = np.ascontiguousarray((w0.reshape(B, n) / s) * moments)
     big = float(np.abs(L0).max()) if L0.size else 0.0
     if big > MAX_SCALED_MOMENTUM:
@@ -169,7 +175,7 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
             f"(omega(t) does not change when every moment is multiplied by the same factor)"
         )
     return Problem(body=body, moments=moments, N=N, n=n, convention=convention, signs=signs, batch=batch, L0=L0,
-                   T0=T0, torque=tq, t=ts, scale=s), t_user
+                   T0=T0, torque=tq, t=ts, scale=s, origin=origin), t_user
 
 
 def _solver_options(value: Any) -> dict:
@@ -393,7 +399,7 @@ def _trajectory(solver, problem, control, res, t_user, wall) -> Trajectory:
     stats["wall_time"] = time.perf_counter() - wall
     events = (res.t_events, res.L_events, res.T_events) if res.t_events is not None else None
     return Trajectory(t_user[:K], omega, L, att, problem.body, problem.moments, stats, dense=res.dense, scale=s,
-                      signs=problem.signs, events=events)
+                      signs=problem.signs, events=events, origin=problem.origin)
 
 
 class RunCost(NamedTuple):

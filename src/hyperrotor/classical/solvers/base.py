@@ -64,9 +64,13 @@ class Problem:
     torque : None, ndarray (B, n) or callable
         scaled body torque (constant components or ``torque(t, omega)`` in scaled units).
     t : ndarray (K,)
-        scaled output times (``t_user * scale``), strictly monotonic.
+        scaled output times from the first, ``(t_user - origin) * scale``, strictly monotonic (``t[0] = 0``: a
+        run far from the time origin keeps the resolution of its own span; sample times of the step control
+        at t ~ 1e15, where consecutive floats are 0.125 apart, fell onto each other).
     scale : float
         the power of two ``s``.
+    origin : float
+        the user's first output time; :meth:`user_time` maps scaled times back (events, torques, messages).
     """
 
     body: Any
@@ -82,6 +86,7 @@ class Problem:
     t: np.ndarray
     scale: float
     extra: dict = field(default_factory=dict)
+    origin: float = 0.0
 
     def __post_init__(self):
         # Read-only whatever the caller passed (a body's cached moments are, a user's array is not): numba
@@ -103,6 +108,10 @@ class Problem:
     @property
     def with_attitude(self) -> bool:
         return self.T0 is not None
+
+    def user_time(self, ts: Any) -> Any:
+        """The user's time of the scaled time(s) ``ts`` (``ts / scale + origin``)."""
+        return ts / self.scale + self.origin
 
     @property
     def span(self) -> float:

@@ -163,7 +163,7 @@ def check_finite(Ls: np.ndarray, grid: np.ndarray, problem: Problem) -> None:
         return
     bad = int(np.argmax(~np.all(np.isfinite(Ls), axis=(0, 2))))
     raise FloatingPointError(
-        f"simulate: the solution became non-finite near t = {grid[bad] / problem.scale:.6g} "
+        f"simulate: the solution became non-finite near t = {problem.user_time(grid[bad]):.6g} "
         f"(the inputs overflow double precision; max|L0| = {np.abs(problem.L0).max() * problem.scale:.3g})"
     )
 

@@ -375,7 +375,7 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
             vals[0] = gprev
             continue
         for e, sp in enumerate(specs):
-            vals[i, e] = float(sp.fn(grid[i] / s, L[i] * s))
+            vals[i, e] = float(sp.fn(problem.user_time(grid[i]), L[i] * s))
     hits = []
     for e, sp in enumerate(specs):
         v = vals[:, e]
@@ -401,7 +401,7 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
             else:
                 def f(tau):
                     Lx = solver.advance(problem, y, None, np.array([t0, tau]), np.ones(1, dtype=np.int64))[0]
-                    return float(sp.fn(tau / s, Lx[0, -1] * s))
+                    return float(sp.fn(problem.user_time(tau), Lx[0, -1] * s))
                 f0, f1 = f(t0), f(t1)
                 if f0 == 0.0:
                     te = t0
@@ -416,7 +416,7 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
                     te = t1
             Lx, Tx = solver.advance(problem, y, yT, np.array([t0, te]), np.ones(1, dtype=np.int64))
             Le, Te = Lx[0, -1], None if Tx is None else Tx[0, -1]
-        t_events[e].append(te / s)
+        t_events[e].append(problem.user_time(te))
         L_events[e].append(Le * s)
         if Te is not None:
             T_events[e].append(Te)
@@ -449,7 +449,8 @@ def dense_states(solver, problem, t, nsub, outL, outT, tq, K_done):
     if t.size == 1 or K_done == 1:
         bad = np.flatnonzero(tq != t[0])
         if bad.size:
-            raise ValueError(f"dense output is defined on the run's time span only; t = {tq[bad[0]] / problem.scale:g} is outside")
+            raise ValueError(f"dense output is defined on the run's time span only; t = {problem.user_time(tq[bad[0]]):g} "
+                             f"is outside")
         L[:] = outL[:, :1]
         if T is not None:
             T[:] = outT[:, :1]
@@ -459,8 +460,8 @@ def dense_states(solver, problem, t, nsub, outL, outT, tq, K_done):
     outside = np.flatnonzero((tq < lo) | (tq > hi))
     if outside.size:
         raise ValueError(
-            f"dense output is defined on the run's time span [{lo / problem.scale:g}, {hi / problem.scale:g}] only; "
-            f"got t = {tq[outside[0]] / problem.scale:g}"
+            f"dense output is defined on the run's time span [{problem.user_time(lo):g}, {problem.user_time(hi):g}] "
+            f"only; got t = {problem.user_time(tq[outside[0]]):g}"
         )
     k_of = np.clip(np.searchsorted(sgn * t[:K_done], sgn * tq, side="right") - 1, 0, K_done - 2)
     one = np.ones(1, dtype=np.int64)

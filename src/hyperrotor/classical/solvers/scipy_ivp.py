@@ -218,7 +218,7 @@ class ScipyIVP(Solver):
                     sols.append(None)
                     calls.append(None)
                     continue
-                ev = [_ScaledEvent(sp, s * rb, moments, n) for sp in specs] or None
+                ev = [_ScaledEvent(sp, s * rb, moments, n, problem.origin) for sp in specs] or None
                 kw = {k: v * s * rb for k, v in self.options.items() if v is not None}
                 kw.setdefault("max_step", MAX_STEP_RADIANS / wscale)
                 tb = t * rb
@@ -237,7 +237,7 @@ class ScipyIVP(Solver):
                     Tout[b, :kb] = sol.y[n:].T.reshape(kb, N, N)
                 sols.append(sol.sol)  # None unless events asked for scipy's dense output
                 if specs:
-                    t_events = [te / (s * rb) for te in sol.t_events]
+                    t_events = [te / (s * rb) + problem.origin for te in sol.t_events]
                     # (an event that never fired: scipy's states are 1-D and empty; as (0, state size) here)
                     y_events = [ye.reshape(-1, sol.y.shape[0]) for ye in sol.y_events]
                     L_events = [ye[:, :n] * moments * (s * rb) for ye in y_events]
@@ -283,14 +283,14 @@ class _ScipyDense:
 
     def __call__(self, tq):
         problem, K_done, calls, sols, rbs = self.problem, self.K_done, self.calls, self.sols, self.rbs
-        t, s, moments, n, N, B = problem.t, problem.scale, problem.moments, problem.n, problem.N, problem.B
+        t, moments, n, N, B = problem.t, problem.moments, problem.n, problem.N, problem.B
         with_att = problem.with_attitude
         tq = np.asarray(tq, dtype=float)
         lo, hi = sorted((t[0], t[K_done - 1]))
         bad = np.flatnonzero((tq < lo) | (tq > hi))
         if bad.size:
-            raise ValueError(f"dense output is defined on the run's time span [{lo / s:g}, {hi / s:g}] only; "
-                             f"got t = {tq[bad[0]] / s:g}")
+            raise ValueError(f"dense output is defined on the run's time span [{problem.user_time(lo):g}, "
+                             f"{problem.user_time(hi):g}] only; got t = {problem.user_time(tq[bad[0]]):g}")
         L = np.empty((B, tq.size, n))
         T = np.empty((B, tq.size, N, N)) if with_att else None
         for b in range(B):
@@ -327,13 +327,13 @@ def _extrapolate(total: int, member: int, covered: float, span: float, members_l
 class _ScaledEvent:
     """An event function of ``simulate`` as solve_ivp calls it (one member's scaled state)."""
 
-    def __init__(self, spec, s, moments, n):
-        self.fn, self.s, self.moments, self.n = spec.fn, s, moments, n
+    def __init__(self, spec, s, moments, n, origin=0.0):
+        self.fn, self.s, self.moments, self.n, self.origin = spec.fn, s, moments, n, origin
         self.terminal = spec.max_count is not None and (spec.max_count if spec.max_count > 1 else True)
         self.direction = spec.direction
 
     def __call__(self, tt, y):
-        return float(self.fn(tt / self.s, y[:self.n] * self.moments * self.s))
+        return float(self.fn(tt / self.s + self.origin, y[:self.n] * self.moments * self.s))
 
 
 class DOP853(ScipyIVP):

@@ -388,6 +388,7 @@ class ErrorTarget:
         self.probe_note = ""  # the error growth the probe saw, when faster than PROBE_MAX_POWER allows
         self.roundoff_amplified = False  # the check saw round-off amplified towards rtol: compensated storage
         self.probe_runs: tuple = ()  # probes of the whole run whose two runs the check may take (ProbeRuns)
+        self.still = False  # the run turns by less than eps: one step per output interval, no probe, no check
 
     def __repr__(self) -> str:
         return f"ErrorTarget(rtol={self.rtol!r})"
@@ -425,12 +426,14 @@ class ErrorTarget:
         self.probe_note = ""
         self.roundoff_amplified = False
         self.probe_runs = ()
+        self.still = False
         if B == 0 or span == 0.0:
             return max(span, 1.0)
         wmax_b, sel = self._rates(problem)
         wmax = float(wmax_b.max())
-        if wmax == 0.0 or solver.flows_per_step(problem) == 0:
-            return span  # nothing moves
+        self.still = wmax * span <= _EPS  # (one step over the run turns by less than eps: its error is eps^(p+1))
+        if self.still or solver.flows_per_step(problem) == 0:
+            return span  # nothing moves, or not at double precision: one step per output interval, no check
         p = solver.order
         target = SAFETY * self.rtol
         L0s = problem.L0[sel]
@@ -541,7 +544,8 @@ class ErrorTarget:
     def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None, most: int | None = None
                 ) -> "RichardsonCheck | None":
         """The check of a run at ``nsub`` steps per interval, of every member (up to ``most``: :meth:`_checked`)."""
-        if problem.B == 0 or not nsub.size or int(nsub.sum()) == 0 or solver.flows_per_step(problem) == 0:
+        if (problem.B == 0 or not nsub.size or int(nsub.sum()) == 0 or solver.flows_per_step(problem) == 0
+                or self.still):
             return None
         members = self._checked(problem, most)
         return RichardsonCheck(solver, problem, nsub, self, members, work, bar, probes=self.probe_runs)
