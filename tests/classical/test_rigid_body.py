@@ -305,8 +305,13 @@ def test_lock_errors():
         body.lock(5)
     with pytest.raises(ValueError, match="cannot lock axis 1"):
         body.lock(1).lock(1)
-    with pytest.raises(ValueError, match="cannot lock axis True"):
+    with pytest.raises(TypeError, match="cannot lock axis True: axis labels are integers"):
         body.lock([True])
+    # text is not a sequence of axis labels (its characters were read as axes: a ValueError about '1')
+    with pytest.raises(TypeError, match="axes must be an axis label or an iterable of them, got '12'"):
+        body.lock("12")
+    with pytest.raises(TypeError, match="axes must be a sequence of 4 increasing positive integers, got '1234'"):
+        RigidBody(Inertia.equal(4), axes="1234")
 
 
 def test_lock_keeps_mass_tensor():

@@ -1543,3 +1543,26 @@ def test_a_span_below_double_precision_is_the_start_and_times_that_round_togethe
     assert tr.stats["steps"] == 1 and tr.stats["work"] == 1
     with pytest.raises(ValueError, match=r"t\[1\] = 0.0 and t\[2\] = 1e-300 are the same time from t\[0\] = -1e\+17"):
         hr.simulate(MOM3, W3, [-1e17, 0.0, 1e-300])
+
+
+@pytest.mark.parametrize("method", ["splitting8", "DOP853"])
+def test_what_an_event_function_returns_is_checked_and_named(method):
+    """An event function returning an array (or text) is refused naming the event and the value (numpy's
+    'only 0-dimensional arrays can be converted' came from inside the driver)."""
+    with pytest.raises(TypeError, match=r"event 1: g\(t, L\) must return one real number, got \[1.2, 3.0, -2.0\]"):
+        hr.simulate(MOM3, W3, [0.0, 1.0], method=method, events=[lambda t, L: L[0] - 1.0, lambda t, L: L])
+    with pytest.raises(TypeError, match="event 0: g"):
+        hr.simulate(MOM3, W3, [0.0, 1.0], method=method, events=lambda t, L: "x")
+
+
+def test_what_a_torque_returns_is_checked_and_an_overflowing_l_is_refused():
+    """A callable torque returning text or the wrong number of components is refused by name; omega0 whose
+    L = I omega overflows is refused up front (the output L was inf, with a numpy RuntimeWarning only)."""
+    with pytest.raises(TypeError, match=r"torque\(t, omega\) must return real numbers, one per plane \(3\), got 'x'"):
+        hr.simulate(MOM3, W3, [0.0, 1.0], method="DOP853", torque=lambda t, w: "x")
+    with pytest.raises(TypeError, match=r"one per plane \(3\)"):
+        hr.simulate(MOM3, W3, [0.0, 1.0], method="DOP853", torque=lambda t, w: np.ones(4))
+    with pytest.raises(FloatingPointError, match="L = I omega overflow double precision"):
+        hr.simulate(MOM3, [1e308] * 3, [0.0, 1e-310])
+    tr = hr.simulate(MOM3, [1e300] * 3, [0.0, 1e-310])  # (large, but L stays finite)
+    assert np.all(np.isfinite(tr.L)) and np.all(np.isfinite(tr.omega))

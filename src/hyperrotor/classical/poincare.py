@@ -116,7 +116,10 @@ def poincare_section(
     T = _validate.positive("T", T)
     ij = _validate.plane(plane, N)
     value = _validate.real("value", value)
-    if isinstance(direction, bool) or direction not in (1, -1, 0):
+    if isinstance(direction, bool) or not isinstance(direction, (int, np.integer)):
+        raise TypeError(f"direction must be the integer 1 (upward), -1 (downward) or 0 (both), got "
+                        f"{_validate.fmt(direction)}")
+    if direction not in (1, -1, 0):
         raise ValueError(f"direction must be 1 (upward), -1 (downward) or 0 (both), got {_validate.fmt(direction)}")
     method = _validate.choice("method", method, LYAPUNOV_METHODS)
     dt = _validate.positive("dt", dt, allow_none=True)

@@ -211,6 +211,8 @@ class RigidBody:
         if axes is None:
             axes = tuple(range(1, self.N + 1))
         else:
+            if isinstance(axes, (str, bytes)) or not hasattr(axes, "__iter__"):
+                raise TypeError(f"axes must be a sequence of {self.N} increasing positive integers, got {axes!r}")
             axes = tuple(axes)
             if (
                 len(axes) != self.N
@@ -591,11 +593,15 @@ class RigidBody:
             locked = (int(axes),)
         else:
             try:
+                if isinstance(axes, (str, bytes)):  # (its characters are not axis labels)
+                    raise TypeError
                 locked = tuple(axes)
             except TypeError:
                 raise TypeError(f"axes must be an axis label or an iterable of them, got {axes!r}") from None
         for a in locked:
-            if isinstance(a, bool) or not isinstance(a, (Integral, np.integer)) or int(a) not in self.axes:
+            if isinstance(a, bool) or not isinstance(a, (Integral, np.integer)):
+                raise TypeError(f"cannot lock axis {a!r}: axis labels are integers (the body's axes are {self.axes})")
+            if int(a) not in self.axes:
                 raise ValueError(f"cannot lock axis {a!r}: the body's axes are {self.axes}")
         locked = tuple(sorted(set(int(a) for a in locked)))
         remaining = tuple(a for a in self.axes if a not in locked)

@@ -41,6 +41,7 @@ from typing import Any
 
 import numpy as np
 
+from hyperrotor import _validate
 from hyperrotor._options import options
 from hyperrotor._parallel import progress_bar
 
@@ -133,6 +134,7 @@ class EventSpec:
         if not callable(fn):
             raise TypeError(f"events must be callables g(t, L) -> float (or a list of them), got {fn!r}")
         self.fn = fn
+        self.index = index
         term = getattr(fn, "terminal", False)
         if isinstance(term, (bool, np.bool_)):
             self.max_count = 1 if term else None
@@ -146,6 +148,16 @@ class EventSpec:
         except (TypeError, ValueError):
             raise ValueError(f"event {index}: direction must be a number (<0, 0, >0), got {d!r}") from None
         self.direction = 0.0 if d == 0 else math.copysign(1.0, d)
+
+    def value(self, t: float, L: np.ndarray) -> float:
+        """``g(t, L)`` as a float, or a ``TypeError`` naming the event and what it returned."""
+        v = self.fn(t, L)
+        if np.ndim(v) == 0:
+            try:
+                return float(v)
+            except (TypeError, ValueError):
+                pass
+        raise TypeError(f"event {self.index}: g(t, L) must return one real number, got {_validate.fmt(v)}")
 
 
 def event_specs(events) -> list[EventSpec]:
@@ -375,7 +387,7 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
             vals[0] = gprev
             continue
         for e, sp in enumerate(specs):
-            vals[i, e] = float(sp.fn(problem.user_time(grid[i]), L[i] * s))
+            vals[i, e] = sp.value(problem.user_time(grid[i]), L[i] * s)
     hits = []
     for e, sp in enumerate(specs):
         v = vals[:, e]
@@ -401,7 +413,7 @@ def _events_in_chunk(solver, problem, grid, Ls, Ts, specs, gprev, counts, t_even
             else:
                 def f(tau):
                     Lx = solver.advance(problem, y, None, np.array([t0, tau]), np.ones(1, dtype=np.int64))[0]
-                    return float(sp.fn(problem.user_time(tau), Lx[0, -1] * s))
+                    return sp.value(problem.user_time(tau), Lx[0, -1] * s)
                 f0, f1 = f(t0), f(t1)
                 if f0 == 0.0:
                     te = t0

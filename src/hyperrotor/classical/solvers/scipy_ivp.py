@@ -328,12 +328,12 @@ class _ScaledEvent:
     """An event function of ``simulate`` as solve_ivp calls it (one member's scaled state)."""
 
     def __init__(self, spec, s, moments, n, origin=0.0):
-        self.fn, self.s, self.moments, self.n, self.origin = spec.fn, s, moments, n, origin
+        self.spec, self.s, self.moments, self.n, self.origin = spec, s, moments, n, origin
         self.terminal = spec.max_count is not None and (spec.max_count if spec.max_count > 1 else True)
         self.direction = spec.direction
 
     def __call__(self, tt, y):
-        return float(self.fn(tt / self.s + self.origin, y[:self.n] * self.moments * self.s))
+        return self.spec.value(tt / self.s + self.origin, y[:self.n] * self.moments * self.s)
 
 
 class DOP853(ScipyIVP):
