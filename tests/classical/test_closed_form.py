@@ -572,3 +572,17 @@ def test_the_quartet_closed_forms_are_priced_and_bounded_in_dimension():
     assert kind == "quartet"
     np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * np.abs(w).max() * N)
     np.testing.assert_allclose(np.linalg.norm(a, axis=-1), np.linalg.norm(w), rtol=1e-12 * N)
+
+
+def test_quartet_attitude_prices_the_matrices_at_every_time():
+    """exp(W t) at n_t times is n_t N x N matrices (peak 498 MiB for N = 60 and 3000 times, of which the model
+    counted 1 MiB): refused under a memory budget that peak exceeds, built under one it does not."""
+    import hyperrotor as hr
+    from hyperrotor.classical import quartet_attitude
+
+    N = 60
+    w = np.random.default_rng(1).normal(size=N * (N - 1) // 2)
+    with hr.options(max_memory_bytes=300 * 2**20):
+        with pytest.raises(hr.BudgetError, match="quartet_attitude: .* at 3000 times"):
+            quartet_attitude(0.5, w, np.linspace(0.0, 1.0, 3000))
+        assert quartet_attitude(0.5, w, np.linspace(0.0, 1.0, 300)).shape == (300, N, N)

@@ -408,3 +408,13 @@ def test_a_mass_tensor_is_priced_and_checked_as_moments_are():
         Inertia.from_mass_tensor([1.0, -1.0, 2.0])
     with pytest.raises(TypeError):
         Inertia.from_mass_tensor(np.array([True, False, True]))
+
+
+def test_plain_mass_tensors_whose_moments_overflow_are_refused_by_name():
+    """Plain numbers J_1 + J_2 = 3.4e308 make no float: the fast path built a moment SymPy oo with numpy's
+    overflow warning; refused now, naming the plane and the entries. (SymPy entries stay SymPy: a body of
+    moments 4e599 has exact Euler equations, as before.)"""
+    with pytest.raises(ValueError, match=r"J: moment I_12 = J_1 \+ J_2 = 1.7e\+308 \+ 1.7e\+308 overflows"):
+        Inertia.from_mass_tensor([1.7e308, 1.7e308, 1.0])
+    big = Inertia.from_mass_tensor([sp.Float(1.7e308), sp.Float(1.7e308), sp.Integer(1)])
+    assert big.symbolic_moments[0] == sp.Float(1.7e308) + sp.Float(1.7e308)

@@ -349,8 +349,17 @@ def test_ehrenfest_time_takes_a_highest_weight_as_the_package_gives_it():
         assert res.dims.tolist() == ref.dims.tolist() == [3, 5]
         np.testing.assert_array_equal(res.quantum, ref.quantum)
         np.testing.assert_array_equal(res.t_E, ref.t_E)
-    with pytest.raises(ValueError, match="weight entry must be an integer or a half-integer, got 0.3"):
+    # floats as before: l * w must be (half-)integers, checked after the multiplication
+    quarter = hyperrotor.quantum.ehrenfest_time(moments, L0, [4], t, weight=(0.25,))
+    one = hyperrotor.quantum.ehrenfest_time(moments, L0, [1], t, weight=(1,))
+    assert quarter.dims.tolist() == one.dims.tolist() == [3]
+    np.testing.assert_array_equal(quarter.quantum, one.quantum)
+    with pytest.raises(ValueError, match=r"l \* weight must be integers or half-integers .* got the entry 0.6"):
         hyperrotor.quantum.ehrenfest_time(moments, L0, [2], t, weight=(0.3,))
+    third = hyperrotor.quantum.ehrenfest_time(moments, L0, [3], t, weight=(F(1, 3),))  # (exact: l * w = 1)
+    np.testing.assert_array_equal(third.quantum, one.quantum)
+    with pytest.raises(ValueError, match="integers or half-integers"):
+        hyperrotor.quantum.ehrenfest_time(moments, L0, [2], t, weight=(F(1, 3),))
     with pytest.raises(ValueError, match="not all zero"):
         hyperrotor.quantum.ehrenfest_time(moments, L0, [2], t, weight=(F(0),))
     with pytest.raises(TypeError, match="weight must be a sequence"):

@@ -269,11 +269,13 @@ def test_a_raised_max_dim_still_meets_the_memory_budget(build):
     fn = getattr(hq, build)
     with pytest.raises(hr.BudgetError, match=rf"{build}: .* over the budget hr.options\['max_memory_bytes'\]"):
         fn(5, (3000, 3000), max_dim=10**13)
-    dim = hq.weyl_dimension(5, (20, 10))
+    dim = hq.weyl_dimension(3, (150_000,))  # 300 001, beyond DEFAULT_MAX_DIM
     with hr.options(max_memory_bytes=10**6):
         with pytest.raises(hr.BudgetError, match="max_memory_bytes"):
-            fn(5, (20, 10), max_dim=10**6)
-    out = fn(5, (20, 10), max_dim=dim)
+            fn(3, (150_000,), max_dim=10**6)
+        small = fn(5, (20, 10))  # within the default max_dim, max_dim is the budget (the estimate is an upper one)
+    assert (small.dim if build == "irrep" else small.shape[0]) == hq.weyl_dimension(5, (20, 10))
+    out = fn(3, (150_000,), max_dim=dim)
     assert (out.dim if build == "irrep" else out.shape[0]) == dim
 
 

@@ -49,6 +49,9 @@ class Trajectory:
         ``compensated`` (see :mod:`hyperrotor.classical.solvers.splitting`).
     """
 
+    #: the run's time origin (class default: trajectories pickled before it existed ran from scaled time 0)
+    _origin = 0.0
+
     def __init__(self, t, omega, L, attitude, body, moments, stats, *, dense=None, scale=1.0, signs=None,
                  events=None, origin=0.0):
         self.t = t

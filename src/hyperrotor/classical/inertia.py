@@ -376,7 +376,15 @@ class Inertia:
         if fast is not None and all(not isinstance(v, (int, np.integer)) or abs(int(v)) <= 2**53 for v in seq):
             Js, Jx = fast  # plain numbers: the sums at once (float sums are the SymPy ones: both round once)
             i, j = np.triu_indices(N, 1)
-            x = Jx[i] + Jx[j]
+            with np.errstate(over="ignore"):
+                x = Jx[i] + Jx[j]
+            over = np.flatnonzero(~np.isfinite(x))
+            if over.size:  # (plain numbers whose sum is no float: a SymPy oo moment before)
+                a, b = int(i[over[0]]), int(j[over[0]])
+                raise ValueError(f"J: moment I_{plane_label((a + 1, b + 1), N)} = J_{a + 1} + J_{b + 1} = "
+                                 f"{_validate.fmt(seq[a])} + {_validate.fmt(seq[b])} overflows double precision; "
+                                 f"rescale J (omega(t) does not change when every moment is multiplied by the same "
+                                 f"factor)")
             if np.all(x > 0):  # (else the per-plane path names the first plane that is not positive)
                 x.setflags(write=False)
                 values = tuple(Js[a] + Js[b] if Js[a].is_Integer and Js[b].is_Integer else sp.Float(float(v))

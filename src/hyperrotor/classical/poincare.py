@@ -116,8 +116,8 @@ def poincare_section(
     T = _validate.positive("T", T)
     ij = _validate.plane(plane, N)
     value = _validate.real("value", value)
-    if isinstance(direction, bool) or not isinstance(direction, (int, np.integer)):
-        raise TypeError(f"direction must be the integer 1 (upward), -1 (downward) or 0 (both), got "
+    if isinstance(direction, (bool, np.bool_)) or not isinstance(direction, (int, float, np.integer, np.floating)):
+        raise TypeError(f"direction must be the number 1 (upward), -1 (downward) or 0 (both), got "
                         f"{_validate.fmt(direction)}")
     if direction not in (1, -1, 0):
         raise ValueError(f"direction must be 1 (upward), -1 (downward) or 0 (both), got {_validate.fmt(direction)}")

@@ -166,11 +166,13 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
         raise ValueError(f"t[{k}] = {float(t_user[k])!r} and t[{k + 1}] = {float(t_user[k + 1])!r} are the same "
                          f"time from t[0] = {origin!r} in double precision (t - t[0] rounds them together): drop "
                          f"one, or start t nearer to them")
-    if w0.size and not math.isfinite(math.sqrt(n) * float(np.abs(w0).max()) * float(moments.max())):
-        raise FloatingPointError(  # (the run is scaled, but L = I omega itself, the output, is not)
-            f"the angular momenta L = I omega overflow double precision (max|omega0| = "
-            f"{float(np.abs(w0).max()):.3g}, moments up to {float(moments.max()):.3g}); rescale the moments (omega(t) "
-            f"does not change when every moment is multiplied by the same factor)")
+    with np.errstate(over="ignore"):  # (the run is scaled, but L = I omega itself, the output, is not)
+        Lmax = float(np.abs(w0.reshape(B, n) * moments).max()) if w0.size else 0.0
+    if not math.isfinite(math.sqrt(n) * Lmax):  # (|L| is conserved: no component of L(t) exceeds sqrt(n) max|L0|)
+        raise FloatingPointError(
+            f"the angular momenta L = I omega overflow double precision (max|I omega0| = {Lmax:.3g} over "
+            f"{n} planes); rescale the moments (omega(t) does not change when every moment is multiplied by the same "
+            f"factor)")
     L0 = np.ascontiguousarray((w0.reshape(B, n) / s) * moments)
     big = float(np.abs(L0).max()) if L0.size else 0.0
     if big > MAX_SCALED_MOMENTUM:

@@ -232,6 +232,14 @@ def otoc(H: Any, W: Any, V: Any, t: Any, *, state: Any = None, samples: int | No
     return OTOCResult(t, values, stderr, samples)
 
 
+def _highest_weight_entry(x: float) -> Fraction:
+    """``l * w`` of a float weight entry as an integer or half-integer (a highest-weight entry), or ValueError."""
+    f = Fraction(float(x)).limit_denominator(2)
+    if abs(float(f) - x) > 1e-12 * max(1.0, abs(x)):
+        raise ValueError(f"l * weight must be integers or half-integers (a highest weight), got the entry {x!r}")
+    return f
+
+
 def _first_crossing(t: np.ndarray, dev: np.ndarray, threshold: float) -> float:
     above = np.nonzero(dev >= threshold)[0]
     if above.size == 0:
@@ -270,8 +278,9 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     t : sequence of float
         Strictly increasing output times from the start, ``t[0]`` the time of ``L0``.
     weight : sequence, keyword-only, default ``(1, 0, ..., 0)``
-        The direction :math:`w` of the highest weights: integers or half-integers (``int``, ``float`` such
-        as ``0.5``, ``Fraction`` or ``sympy.Rational``; a representation's ``highest_weight`` as it is).
+        The direction :math:`w` of the highest weights :math:`l\,w` (each an integer or a half-integer):
+        ``int``, ``Fraction`` or ``sympy.Rational`` entries exactly (a representation's ``highest_weight`` as it
+        is), ``float`` entries to 1e-12 (``0.25`` with ``l = 4``).
     threshold : float, keyword-only, default 0.1
         Relative deviation that defines :math:`t_E`.
     rtol : float, keyword-only, optional
@@ -299,11 +308,11 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     ls = np.array([_validate.integer("ls[k]", x, minimum=1) for x in ls])
     if weight is None:
         wq = (Fraction(1),) + (Fraction(0),) * (N // 2 - 1)
-    else:  # exact entries (a representation's highest_weight is Fractions): int, half-integer float, Fraction, Rational
+    else:  # exact numbers stay exact (a representation's highest_weight is Fractions), floats stay floats
         if isinstance(weight, (str, bytes)) or not hasattr(weight, "__len__"):
-            raise TypeError(f"weight must be a sequence of N // 2 = {N // 2} integers or half-integers, got "
-                            f"{_validate.fmt(weight)}")
-        wq = tuple(_to_fraction(x, "weight entry") for x in weight)
+            raise TypeError(f"weight must be a sequence of N // 2 = {N // 2} numbers, got {_validate.fmt(weight)}")
+        wq = tuple(_validate.real("weight entry", x)
+                   if isinstance(x, (float, np.floating)) else _to_fraction(x, "weight entry") for x in weight)
         if len(wq) != N // 2 or not any(wq):
             raise ValueError(f"weight must have N // 2 = {N // 2} entries, not all zero, got {_validate.fmt(weight)}")
     w = np.array([float(x) for x in wq])
@@ -311,7 +320,7 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     progress = _validate.flag("progress", progress, allow_none=True)
     t = _validate.time_grid(t, allow_decreasing=False)
     rtol = options["quantum_ehrenfest_rtol"] if rtol is None else _validate.positive("rtol", rtol)
-    hws = [tuple(int(l) * x for x in wq) for l in ls]
+    hws = [tuple(int(l) * x if isinstance(x, Fraction) else _highest_weight_entry(int(l) * x) for x in wq) for l in ls]
     sizes = [gt_size(N, hw) for hw in hws]
     for hw, size in zip(hws, sizes):  # every irrep's size before any work (the classical run compiles and integrates)
         if size > DEFAULT_MAX_DIM:
