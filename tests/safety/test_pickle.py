@@ -199,3 +199,33 @@ def test_pickles_and_deep_copies_equal(key):
         if d:
             problems.append(f"deepcopy: {d}")
     assert not problems, f"{key} ({type(obj).__name__}): " + "; ".join(problems)
+
+
+#: the results whose fields hold arrays, compared field by field (hyperrotor._equality)
+COMPARED = ["PoincareSection", "StabilityResult", "SceneResult", "LyapunovResult", "LyapunovResult/spectrum+history",
+            "LyapunovResult/sweep", "SectorSpectra", "Spectrum", "OTOCResult", "EhrenfestResult"]
+
+
+@pytest.mark.parametrize("key", COMPARED)
+def test_results_compare_equal_to_their_copies_and_unequal_when_a_value_differs(key):
+    """``==`` of a result with array fields (the generated one of a dataclass or a tuple compared the arrays with
+    ``==`` and NumPy refused their truth value): equal to its pickled copy, unequal once one entry differs."""
+    obj = EXAMPLES[key]()
+    back = pickle.loads(pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL))
+    assert obj == back and not (obj != back)
+    assert obj != "something else"
+    if isinstance(obj, dict):
+        k = next(iter(obj))
+        other = type(obj)({**obj, k: obj[k] + 1.0}, obj.degeneracies)
+    elif isinstance(obj, tuple):
+        k = next(i for i, v in enumerate(obj) if isinstance(v, np.ndarray) and v.size and v.dtype.kind in "fc")
+        other = obj._replace(**{obj._fields[k]: obj[k] + 1.0})
+    else:
+        import dataclasses
+
+        f = next(f.name for f in dataclasses.fields(obj) if isinstance(getattr(obj, f.name), np.ndarray)
+                 and getattr(obj, f.name).size and getattr(obj, f.name).dtype.kind in "fc")
+        other = dataclasses.replace(obj, **{f: getattr(obj, f) + 1.0})
+    assert obj != other and not (obj == other)
+    with pytest.raises(TypeError):
+        hash(obj)

@@ -57,6 +57,7 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _parallel, _pricing, _validate
+from hyperrotor._equality import fields_equal
 from hyperrotor._options import options
 from hyperrotor.conventions import dimension_from_count
 
@@ -282,6 +283,9 @@ class LyapunovResult:
     rng : Any
         The ``rng`` argument of the call (the default seed 0 unless one was given).
     """
+
+    __eq__ = fields_equal  # (field by field: the generated == refuses array fields)
+    __hash__ = None
 
     exponents: np.ndarray
     t: np.ndarray

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _pricing, _validate
+from hyperrotor._equality import fields_equal
 from hyperrotor._options import options
 from hyperrotor.conventions import dimension_from_count, plane_index
 
@@ -38,6 +39,9 @@ class PoincareSection:
     N : int
         dimension of the body.
     """
+
+    __eq__ = fields_equal  # (field by field: the generated == refuses array fields)
+    __hash__ = None
 
     t: np.ndarray
     L: np.ndarray

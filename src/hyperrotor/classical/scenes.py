@@ -48,6 +48,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from .. import _pricing, _validate as _v
+from .._equality import fields_equal
 from .._options import options, register
 from .._validate import axis_signs
 from ..conventions import dimension_from_count, plane_index, planes
@@ -134,6 +135,9 @@ class SceneResult:
     stats : dict
         ``wall_time`` (s) and, when integrated, the :class:`Trajectory` stats.
     """
+
+    __eq__ = fields_equal  # (field by field: the generated == refuses array fields)
+    __hash__ = None
 
     t: np.ndarray
     planes: tuple

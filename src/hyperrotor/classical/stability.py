@@ -69,6 +69,7 @@ from .._lazy import sympy as sp  # SymPy loads on first use (light ``import hype
 
 from ..conventions import check_dimension, dimension_from_count, plane_index, plane_label, planes, structure_constants
 from .. import _pricing, _validate
+from .._equality import fields_equal
 from .._options import options, register
 
 register(
@@ -167,6 +168,9 @@ class StabilityResult:
     reason : str
         Why it is (un)stable.
     """
+
+    __eq__ = fields_equal  # (field by field: the generated == refuses array fields)
+    __hash__ = None
 
     plane: tuple
     omega0: float

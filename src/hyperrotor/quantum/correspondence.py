@@ -25,6 +25,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .. import _pricing, _validate
+from .._equality import fields_equal, fields_unequal
 from .._options import options
 from .._parallel import interruptible, progress_bar
 from ..classical.simulate import simulate
@@ -63,6 +64,9 @@ class OTOCResult(NamedTuple):
         Number of random states of the estimate (``None``: exact).
     """
 
+    __eq__, __ne__ = fields_equal, fields_unequal  # (field by field: a tuple's == refuses array fields)
+    __hash__ = None
+
     t: np.ndarray
     values: np.ndarray
     stderr: np.ndarray | None
@@ -94,6 +98,9 @@ class EhrenfestResult(NamedTuple):
         The classical :math:`L(t)` (:func:`hyperrotor.simulate`).
     threshold : float
     """
+
+    __eq__, __ne__ = fields_equal, fields_unequal  # (field by field: a tuple's == refuses array fields)
+    __hash__ = None
 
     ls: np.ndarray
     hbar: np.ndarray

@@ -7,6 +7,7 @@ import numpy as np
 import scipy.sparse as sps
 
 from .. import _pricing, _validate
+from .._equality import fields_equal, fields_unequal
 from .._options import options
 from .._parallel import interruptible
 from .hamiltonian import blocks_of, hermitian_matrix, representation_of
@@ -17,6 +18,9 @@ __all__ = ["Spectrum", "spectrum"]
 
 class Spectrum(NamedTuple):
     """Result of :func:`spectrum`: distinct levels and their multiplicities (unpacks as ``levels, degeneracies``)."""
+
+    __eq__, __ne__ = fields_equal, fields_unequal  # (field by field: a tuple's == refuses array fields)
+    __hash__ = None
 
     #: increasing distinct energies (the mean of each cluster)
     levels: np.ndarray

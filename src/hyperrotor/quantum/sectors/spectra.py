@@ -15,6 +15,7 @@ import numpy as np
 import scipy.sparse as sps
 
 from ... import _pricing, _validate
+from ..._equality import values_equal
 from ..._weak_cache import WeakCache
 from .._gt_monomials import Monomial
 from ..hamiltonian import hermitian_matrix, rotor_matrix
@@ -41,6 +42,17 @@ class SectorSpectra(dict):
     def __init__(self, levels: dict, degeneracies: dict):
         super().__init__(levels)
         self.degeneracies = dict(degeneracies)
+
+    def __eq__(self, other: object) -> bool:  # (dict's == compares the level arrays with ==, which NumPy refuses)
+        if not isinstance(other, SectorSpectra):
+            return NotImplemented
+        return values_equal(dict(self), dict(other)) and self.degeneracies == other.degeneracies
+
+    def __ne__(self, other: object) -> bool:
+        eq = self.__eq__(other)
+        return eq if eq is NotImplemented else not eq
+
+    __hash__ = None  # (a dict)
 
     def eigenvalues(self) -> np.ndarray:
         """All eigenvalues of the full Hamiltonian, with multiplicity, sorted."""
