@@ -159,6 +159,9 @@ def cases():
         out.append(("casimir_shift", f"N={N}", dict(n=N * (N - 1) // 2),
                     lambda N=N: (_shift_candidates.cache_clear(), _moments(N))[1], hr.casimir_shift))
     for N in (20, 40, 60):
+        out.append(("Inertia.tensor", f"N={N}", dict(N=N), lambda N=N: hr.Inertia(np.ones(N * (N - 1) // 2)),
+                    lambda inertia: inertia.tensor()))
+    for N in (20, 40, 60):
         out.append(("inertia_tensor", f"N={N}, 10 points", dict(N=N, points=10),
                     lambda N=N: np.random.default_rng(0).standard_normal((10, N)),
                     lambda x: hr.inertia_tensor(np.ones(len(x)), x)))

@@ -45,8 +45,6 @@ _EIGH_S = 8.0e-11
 _SYMPY_S = 2.0e-5
 #: seconds per plane pair of the structure-constant table (a Python loop)
 _PAIR_S = 1.3e-6
-#: seconds per entry of an n^3 table converted and sliced (memory bound)
-_TABLE_S = 1.4e-8
 #: seconds per dim^3 of the dense products building the spinor generators
 _DENSE_S = 2.0e-9
 #: seconds per dim^2 of real_form (measured: dominated by dim^2 work up to dim ~1000)
@@ -86,10 +84,10 @@ def _structure_constants(N: Any) -> tuple[Cost, ...]:
 
 @model("linearization")
 def _linearization(N: Any) -> tuple[Cost, ...]:
+    # the int8 table (structure_constants, cached) and the plane's n x n slice of it as floats
     n = _n_planes(N)
-    return (_memory(f"the structure constants of so({N}) as floats ({n:.0f}^3 entries)", 9.0 * n ** 3),
-            _seconds(f"the structure constants of so({N}) as floats ({n:.0f}^3 entries)",
-                     n * n * _PAIR_S + n ** 3 * _TABLE_S))
+    return (_memory(f"the structure constants of so({N}) ({n:.0f}^3 entries)", n ** 3 + 24.0 * n * n),
+            _seconds(f"the structure constants of so({N}) ({n:.0f}^2 plane pairs in Python)", n * n * _PAIR_S))
 
 
 @model("casimir_shift", "use a body with fewer planes")

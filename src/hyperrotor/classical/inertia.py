@@ -114,12 +114,13 @@ def _inertia_cost(n: Any) -> tuple:
 @_pricing.model("Inertia.tensor", "use the plane moments (Inertia.moments) or second_moment_matrix")
 def _tensor_cost(N: Any) -> tuple:
     """The rank-4 array of :meth:`Inertia.tensor`: ``N^4`` entries of 8 bytes (floats, or pointers to SymPy
-    numbers), zeroed at ~1 ns each, and a Python loop over the planes."""
+    numbers), ~1.6e-8 s each (zeroing, and the memory's first touch: 0.21 s at N = 60 with benchmarks/pricing.py),
+    and a Python loop over the planes."""
     N = float(N)
     return (_pricing.Cost(f"the rank-4 tensor of dimension {N:.0f} ({N:.0f}^4 entries)", 8.0 * N ** 4,
                           "max_memory_bytes", "bytes"),
             _pricing.Cost(f"the rank-4 tensor of dimension {N:.0f} ({N:.0f}^4 entries)",
-                          1e-9 * N ** 4 + 3e-6 * N * (N - 1) / 2, "max_seconds", "seconds"))
+                          1.6e-8 * N ** 4 + 3e-6 * N * (N - 1) / 2, "max_seconds", "seconds"))
 
 
 def _numeric_moments(moments: Any, N: int, *, allow_zero: bool = False) -> tuple[tuple, np.ndarray] | None:

@@ -191,9 +191,10 @@ def linearization(body: Any, plane: Any, omega0: float) -> np.ndarray:
     N = dimension_from_count(I.size)
     _pricing.check("linearization", N=N)
     p = plane_index(_plane(plane, N), N)
-    C = structure_constants(N).astype(float)
-    # J[a, d] = Omega * C[d, p, a] * (I_p - I_d) / I_a
-    return _validate.real("omega0", omega0) * C[:, p, :].T * (I[p] - I)[None, :] / I[:, None]
+    # J[a, d] = Omega * C[d, p, a] * (I_p - I_d) / I_a: the plane's slice of the table only (the whole table as
+    # floats, 9 n^3 bytes, was one NumPy call of seconds that held Ctrl-C off at N = 36)
+    Cp = structure_constants(N)[:, p, :].astype(float)
+    return _validate.real("omega0", omega0) * Cp.T * (I[p] - I)[None, :] / I[:, None]
 
 
 @_pricing.model("stability_condition", "ask for a smaller N")
