@@ -125,13 +125,12 @@ def _quartet_eigh_cost(d: Any, count: Any = 1, n_times: Any = 0) -> tuple:
     entry, four copies); ``n_times``: the matrices ``exp(W t)`` themselves at that many times (the attitude: one
     complex product of dimension ``d`` each, ~1.5e-11 s per real flop with BLAS, measured by benchmarks/pricing.py)."""
     d, c, k = float(d), float(count), float(n_times)
+    at = f" and exp(W t) at {n_times} times" if n_times else ""
     # (and the n_times matrices: complex U diag(ph) U^H and its real part, then the products: 48 bytes per entry, the
     # peak traced memory of quartet_attitude at N = 60 and 3000 times)
-    return (_pricing.Cost(f"{count} complex matrix(es) of dimension {d:.0f}"
-                          + (f" and exp(W t) at {n_times} times" if n_times else ""),
+    return (_pricing.Cost(f"{count} complex matrix(es) of dimension {d:.0f}{at}",
                           64.0 * c * d * d + 48.0 * k * d * d, "max_memory_bytes", "bytes"),
-            _pricing.Cost(f"{count} Hermitian eigenproblem(s) of dimension {d:.0f}"
-                          + (f" and exp(W t) at {n_times} times" if n_times else ""),
+            _pricing.Cost(f"{count} Hermitian eigenproblem(s) of dimension {d:.0f}{at}",
                           c * (_eigh_seconds(d ** 3) + k * 8.0 * d ** 3 * 1.5e-11), "max_seconds", "seconds"))
 
 

@@ -161,20 +161,21 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
     if not np.all(np.isfinite(ts)):
         raise ValueError(f"t - t[0] times max|omega0| overflows double precision (the span "
                          f"{abs(float(t_user[-1]) - origin):.3g}, max|omega0| = {float(np.abs(w0).max()):.3g})")
-    if ts.size > 1 and not np.all(np.diff(ts) * np.sign(ts[-1]) > 0):
-        k = int(np.flatnonzero(np.diff(ts) * np.sign(ts[-1]) <= 0)[0])
+    together = np.flatnonzero(np.diff(ts) * np.sign(ts[-1]) <= 0) if ts.size > 1 else ()
+    if len(together):
+        k = int(together[0])
         raise ValueError(f"t[{k}] = {float(t_user[k])!r} and t[{k + 1}] = {float(t_user[k + 1])!r} are the same "
                          f"time from t[0] = {origin!r} in double precision (t - t[0] rounds them together): drop "
                          f"one, or start t nearer to them")
-    with np.errstate(over="ignore"):  # (the run is scaled, but L = I omega itself, the output, is not)
-        Lmax = float(np.abs(w0.reshape(B, n) * moments).max()) if w0.size else 0.0
-    if not math.isfinite(math.sqrt(n) * Lmax):  # (|L| is conserved: no component of L(t) exceeds sqrt(n) max|L0|)
-        raise FloatingPointError(
-            f"the angular momenta L = I omega overflow double precision (max|I omega0| = {Lmax:.3g} over "
-            f"{n} planes); rescale the moments (omega(t) does not change when every moment is multiplied by the same "
-            f"factor)")
     L0 = np.ascontiguousarray((w0.reshape(B, n) / s) * moments)
     big = float(np.abs(L0).max()) if L0.size else 0.0
+    # (the run is scaled, but L = I omega itself, the output, is not; |L| is conserved: no component of L(t)
+    # exceeds sqrt(n) max|L0|)
+    if not math.isfinite(math.sqrt(n) * big * s):
+        raise FloatingPointError(
+            f"the angular momenta L = I omega overflow double precision (max|I omega0| = {big * s:.3g} over "
+            f"{n} planes); rescale the moments (omega(t) does not change when every moment is multiplied by the same "
+            f"factor)")
     if big > MAX_SCALED_MOMENTUM:
         raise FloatingPointError(
             f"the angular momenta overflow double precision arithmetic: with angular velocities scaled to "

@@ -440,25 +440,21 @@ def sector_spectra(
 
     idx = np.arange(len(secs))
     width = max(big, 1)
-    if client is not None:
-        if rep.highest_weight is None:
-            raise ValueError(
-                f"client= needs an irreducible representation with a highest weight (the workers rebuild a "
-                f"Gelfand-Tsetlin irrep as irrep(N, highest_weight)); {rep.name} has none"
-            )
-        if group_of(rep).monomial:  # a GT irrep: the workers rebuild it from a few numbers
-            layout = tuple((s.label, s.dim) for s in secs)
-            spec = (rep.N, tuple(str(x) for x in rep.highest_weight), tuple(float(m) for m in moments), hbar, layout)
-            lv = map_rows(_spec_task, idx, args=(spec, width), client=client, chunk_size=1,
-                          progress=progress, desc="sectors")
-        else:  # its own sectors: the matrices built here go with the tasks
-            H = rotor_matrix(rep.generators(format="csr"), moments, hbar)
-            lv = map_rows(_levels_task, idx, args=(H, [(s.basis, s.real) for s in secs], width), client=client,
-                          chunk_size=1, progress=progress, desc="sectors")
-    else:
+    if client is not None and rep.highest_weight is None:
+        raise ValueError(
+            f"client= needs an irreducible representation with a highest weight (the workers rebuild a "
+            f"Gelfand-Tsetlin irrep as irrep(N, highest_weight)); {rep.name} has none"
+        )
+    if client is not None and group_of(rep).monomial:  # a GT irrep: the workers rebuild it from a few numbers
+        layout = tuple((s.label, s.dim) for s in secs)
+        spec = (rep.N, tuple(str(x) for x in rep.highest_weight), tuple(float(m) for m in moments), hbar, layout)
+        lv = map_rows(_spec_task, idx, args=(spec, width), client=client, chunk_size=1,
+                      progress=progress, desc="sectors")
+    else:  # here, or on a cluster with the matrices built here (another irrep has sectors of its own)
         H = rotor_matrix(rep.generators(format="csr"), moments, hbar)  # the matrix of rotor_hamiltonian
         bases = [(s.basis, s.real) for s in secs]
-        lv = map_rows(_levels_task, idx, args=(H, bases, width, 1 if workers > 1 else None),
-                      workers=workers, chunk_size=1, progress=progress, desc="sectors")
+        blas = 1 if client is None and workers > 1 else None
+        lv = map_rows(_levels_task, idx, args=(H, bases, width, blas), workers=workers, client=client, chunk_size=1,
+                      progress=progress, desc="sectors")  # (workers: threads here; a client has its own)
     levels = {s.label: lv[i, : s.dim].copy() for i, s in enumerate(secs)}
     return SectorSpectra(levels, {s.label: s.degeneracy for s in secs})
