@@ -100,8 +100,8 @@ def test_plot_draws_the_section_coordinates():
     (dict(omega0=np.ones((2, 3))), ValueError, "one orbit"),
     (dict(plane=(3, 1)), ValueError, "plane"),
     (dict(direction=2), ValueError, "direction"),
-    (dict(direction=True), TypeError, "direction must be the number 1"),  # (a bool is not a direction)
-    (dict(direction="1"), TypeError, "direction must be the number 1"),
+    (dict(direction=True), TypeError, "direction must be a real number, got True"),  # (a bool is not a direction)
+    (dict(direction="1"), TypeError, "direction must be a real number, got '1'"),
     (dict(direction=0.5), ValueError, "direction"),
     (dict(T=0.0), ValueError, "T must be"),
     (dict(method="DOP853"), ValueError, "splitting8"),

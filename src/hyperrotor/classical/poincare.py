@@ -120,10 +120,7 @@ def poincare_section(
     T = _validate.positive("T", T)
     ij = _validate.plane(plane, N)
     value = _validate.real("value", value)
-    if isinstance(direction, (bool, np.bool_)) or not isinstance(direction, (int, float, np.integer, np.floating)):
-        raise TypeError(f"direction must be the number 1 (upward), -1 (downward) or 0 (both), got "
-                        f"{_validate.fmt(direction)}")
-    if direction not in (1, -1, 0):
+    if _validate.real("direction", direction) not in (1, -1, 0):  # (TypeError for a bool, text, ...)
         raise ValueError(f"direction must be 1 (upward), -1 (downward) or 0 (both), got {_validate.fmt(direction)}")
     method = _validate.choice("method", method, LYAPUNOV_METHODS)
     dt = _validate.positive("dt", dt, allow_none=True)
