@@ -202,7 +202,7 @@ def test_pickles_and_deep_copies_equal(key):
 
 
 #: the results whose fields hold arrays, compared field by field (hyperrotor._equality)
-COMPARED = ["PoincareSection", "StabilityResult", "SceneResult", "LyapunovResult", "LyapunovResult/spectrum+history",
+COMPARED = ["Scene", "PoincareSection", "StabilityResult", "SceneResult", "LyapunovResult", "LyapunovResult/spectrum+history",
             "LyapunovResult/sweep", "SectorSpectra", "Spectrum", "OTOCResult", "EhrenfestResult"]
 
 
@@ -229,3 +229,19 @@ def test_results_compare_equal_to_their_copies_and_unequal_when_a_value_differs(
     assert obj != other and not (obj == other)
     with pytest.raises(TypeError):
         hash(obj)
+
+
+def test_rigid_bodies_compare_by_what_they_are():
+    """A body equals its pickled copy and a body made alike (``==`` was identity, so a ``Scene`` holding a body
+    never equalled its copy), and differs in moments, convention, axis labels or locked axes; equal bodies hash
+    alike."""
+    body = hr.RigidBody(hr.Inertia.quartet(0.5))
+    back = pickle.loads(pickle.dumps(body))
+    assert body == back and hash(body) == hash(back) and body == hr.RigidBody(hr.Inertia.quartet(0.5))
+    assert body != hr.RigidBody(hr.Inertia.quartet(0.25))
+    assert body != hr.RigidBody(hr.Inertia.quartet(0.5), convention="standard")
+    assert body.lock([5]) == back.lock([5]) and body.lock([5]) != body.lock([4])
+    assert body != body.inertia and body != "a body"
+    scene = hr.Scene(body, np.linspace(0.1, 1.0, 10), T5)
+    assert scene == pickle.loads(pickle.dumps(scene))
+    assert scene != hr.Scene(hr.RigidBody(hr.Inertia.quartet(0.25)), np.linspace(0.1, 1.0, 10), T5)

@@ -633,6 +633,17 @@ class RigidBody:
 
         return linear_stability(self, plane, omega0)
 
+    def __eq__(self, other: object) -> bool:
+        """The same body: equal moments (:meth:`Inertia.__eq__`), convention, axis labels and locked axes."""
+        if not isinstance(other, RigidBody):
+            return NotImplemented
+        return ((self.convention, self.axes, self.ambient_dimension, self.locked_axes)
+                == (other.convention, other.axes, other.ambient_dimension, other.locked_axes)
+                and self.inertia == other.inertia)
+
+    def __hash__(self) -> int:
+        return hash((self.inertia, self.convention, self.axes, self.ambient_dimension, self.locked_axes))
+
     def __repr__(self) -> str:
         extra = f", axes={self.axes}" if self.axes != tuple(range(1, self.N + 1)) else ""
         return f"RigidBody({self.inertia!r}, convention={self.convention!r}{extra})"

@@ -194,6 +194,9 @@ class Scene:
     rtol: float | None = None
     progress: bool | None = None
 
+    __eq__ = fields_equal  # (field by field: body, omega0, t, points may be arrays)
+    __hash__ = None
+
     def __post_init__(self):
         # refuse a bad body, omega0 or t where it is given, not later in evaluate()
         _check_inputs(self.body, self.omega0, self.t)
