@@ -202,8 +202,9 @@ def test_pickles_and_deep_copies_equal(key):
 
 
 #: the results whose fields hold arrays, compared field by field (hyperrotor._equality)
-COMPARED = ["Scene", "PoincareSection", "StabilityResult", "SceneResult", "LyapunovResult", "LyapunovResult/spectrum+history",
-            "LyapunovResult/sweep", "SectorSpectra", "Spectrum", "OTOCResult", "EhrenfestResult"]
+COMPARED = ["Scene", "PoincareSection", "StabilityResult", "SceneResult", "LyapunovResult",
+            "LyapunovResult/spectrum+history", "LyapunovResult/sweep", "SectorSpectra", "Spectrum", "OTOCResult",
+            "EhrenfestResult"]
 
 
 @pytest.mark.parametrize("key", COMPARED)
