@@ -39,6 +39,7 @@ from hyperrotor import _pricing  # noqa: E402
 from hyperrotor.classical.solvers.splitting import _shift_candidates  # noqa: E402
 from hyperrotor.conventions import _structure_constants  # noqa: E402
 from hyperrotor.demo import compare_quartet_motion  # noqa: E402
+from hyperrotor.quantum.operator_products import _term_pairs  # noqa: E402
 
 
 def _moments(N):
@@ -66,7 +67,7 @@ def cases():
         out.append(("linearization", f"N={N}", dict(N=N),
                     lambda N=N: (_structure_constants.cache_clear(), _moments(N))[1],
                     lambda m: hr.linearization(m, (1, 2), 1.0)))
-    for N in (40, 60, 100):
+    for N in (40, 100, 200):
         out.append(("simulate", f"N={N}", dict(N=N), lambda N=N: (_shift_candidates.cache_clear(), _moments(N))[1],
                     lambda m: hr.simulate(m, 1e-3 * np.ones(m.size), [0.0, 1e-3], method="splitting4")))
     for d in (500, 1000, 2000):
@@ -144,6 +145,31 @@ def cases():
     for N in (6, 10, 14):
         out.append(("euler_equations", f"N={N}", dict(N=N), lambda N=N: hr.RigidBody(hr.Inertia.symbolic(N)),
                     lambda b: b.euler_equations()))
+    for N in (10, 20, 30):
+        out.append(("symbolic_rhs", f"N={N}", dict(N=N), lambda N=N: _symbolic_body(N), lambda b: b.symbolic_rhs()))
+    for N in (10, 20, 30):
+        out.append(("contraction_identity", f"N={N}", dict(N=N), lambda: None,
+                    lambda _, N=N: hq.contraction_identity(N)))
+    for label, make in (("operator_matrix(20) x its transpose", lambda: _operator_pair(20, 20)),
+                        ("10 x 10 block of operator_matrix(80)", lambda: _operator_pair(80, 10)),
+                        ("second-order entries, N=8", lambda: _operator_pair(8, 8, square=True))):
+        A, B = make()
+        out.append(("operator_product", label, dict(N=A.shape[0], pairs=_term_pairs(A, B, "eq144"),
+                                                    coords=A[0, 0].N),
+                    lambda A=A, B=B: (A, B), lambda x: hq.operator_product(*x)))
+    for N in (100, 200, 400):
+        out.append(("vector_rep", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hq.vector_rep(N)))
+    for N in (100, 200, 300):
+        out.append(("vector_rep", f"N={N}, exact generators", dict(N=N, exact=True), lambda N=N: hq.vector_rep(N),
+                    lambda rep: rep.exact_generators()))
+    for N in (16, 24, 32):
+        out.append(("adjoint_rep", f"N={N} (structure constants cached)", dict(N=N),
+                    lambda N=N: hr.structure_constants(N), lambda _, N=N: hq.adjoint_rep(N)))
+    for N in (8, 12, 14):
+        out.append(("adjoint_rep", f"N={N}, exact generators", dict(N=N, exact=True), lambda N=N: hq.adjoint_rep(N),
+                    lambda rep: rep.exact_generators()))
+    for N in (16, 19, 22):
+        out.append(("hypercube_vertices", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hr.hypercube_vertices(N)))
     for N, hw in ((3, (500,)), (3, (1500,)), (4, (20, 10)), (5, (6, 3))):
         sizes = dict(rank=len(hw), n_roots=len(hq.positive_roots(N)), dim=hq.weyl_dimension(N, hw), bound=2 * hw[0])
         out.append(("weight_multiplicities", f"N={N} {hw}", sizes, lambda: None,
@@ -254,6 +280,20 @@ def _cli_scene(N):
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     return cpu
+
+
+def _symbolic_body(N):
+    body = hr.RigidBody(hr.Inertia.symbolic(N))
+    body.rhs_tables  # (priced by the model 'RigidBody', not by 'symbolic_rhs')
+    return body
+
+
+def _operator_pair(coords, N, square=False):
+    """An N x N block of operator_matrix(coords) and its transpose (square: entries L_ij L_ji + L_ij, 2nd order)."""
+    M = hq.operator_matrix(coords)[:N, :N].copy()
+    if square:
+        M = np.array([[M[i, j] * M[j, i] + M[i, j] for j in range(N)] for i in range(N)], dtype=object)
+    return M, M.T.copy()
 
 
 def _clear_harmonic_caches():

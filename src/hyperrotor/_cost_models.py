@@ -36,6 +36,12 @@ def _n_planes(N: Any) -> float:
     return N * (N - 1) / 2
 
 
+def _pow2(k: Any) -> float:
+    """``2.0 ** k`` as a float, infinite past the largest float (``2.0 ** 1e6`` raises OverflowError)."""
+    k = _f(k)
+    return 2.0 ** k if k < 1024 else math.inf
+
+
 # ---------------------------------------------------------------------------------------------
 # constants measured by benchmarks/pricing.py on the reference machine (2 cores, one thread)
 # ---------------------------------------------------------------------------------------------
@@ -56,6 +62,9 @@ _HARMONIC_TERM_S = 1.4e-4
 _PY_S = 3.0e-7
 #: seconds per dim^2 of the Lanczos highest-weight search
 _LANCZOS_S = 6.0e-9
+#: seconds per rate difference of the Casimir shift rule (n x V of them, built by blocks: 3.2 s for a body of
+#: 19 900 distinct moments, N = 200), with the rest of a call's set-up that grows like it (6 s in all there)
+_SHIFT_S = 2.0e-8
 #: seconds per output time of evolve (a state Qobj per time, expectation values)
 _EVOLVE_S = 2.6e-5
 #: seconds per unit of the phase ||H|| t / hbar of a block propagated by Lanczos / by expm_multiply (their products
@@ -70,6 +79,12 @@ _ROTATION_PHASE_S = 8.5e-4
 _BLOCK_SQUARE_S = 1.0e-9
 #: bytes held per stored output time of evolve besides the state's entries (Qobj and its data object)
 _QOBJ_BYTES = 360.0
+#: operator_product: seconds per (i, j, k) half-product (two DifferentialOperator compositions and sums, even of
+#: empty operators; measured 5.9e-6 ... 6.4e-6, N = 10, 20) and per pair of composed terms, which grows with the
+#: number of coordinates (the exponent tuples; measured 3.3e-6 + 1.9e-7 per coordinate, 10 ... 80 coordinates)
+_OP_TRIPLE_S = 7.0e-6
+_OP_PAIR_S = 4.0e-6
+_OP_PAIR_COORD_S = 2.0e-7
 
 
 # ---------------------------------------------------------------------------------------------
@@ -93,9 +108,12 @@ def _linearization(N: Any) -> tuple[Cost, ...]:
 @model("casimir_shift", "use a body with fewer planes")
 @model("simulate", "use a body with fewer planes")
 def _simulate(N: Any = None, n: Any = None) -> tuple[Cost, ...]:
-    # the Casimir shift rule compares every rate with every candidate value (n x n floats, twice)
+    # the Casimir shift rule weighs every rate against every candidate value (n x n at most): a table of up to
+    # 2^20 entries kept, beyond it built in blocks of candidates (classical/solvers/splitting.shift_rule)
     n = _n_planes(N) if n is None else _f(n)
-    return (_memory(f"the Casimir shift of {n:.0f} planes (n x n rate differences)", 16.0 * n * n),)
+    return (_memory(f"the Casimir shift of {n:.0f} planes (its table of rate differences)", 16.0 * min(n * n, 2**20)),
+            _seconds(f"the set-up of {n:.0f} planes (the Casimir shift: n x n rate differences)",
+                     0.1 + _SHIFT_S * n * n))
 
 
 def _eigh_seconds(cubes: Any, complex: bool = True) -> float:
@@ -259,6 +277,19 @@ def _closed_form_output(n_times: Any, width: Any) -> tuple[Cost, ...]:
     return (Cost(f"{n_times} output times x {width} values", 22.0 * _mul(n_times, width), "max_output_bytes", "bytes"),)
 
 
+@model("hypercube_vertices", "ask for a smaller N")
+def _hypercube_vertices(N: Any) -> tuple[Cost, ...]:
+    # 2^N rows of N floats; on the way the shifted bits (int64) and a temporary of the same size
+    rows = _pow2(N)
+    entries = rows * _f(N)
+    what = f"the 2^{N} vertices of the {N}-cube ({entries:.3g} coordinates)"
+    return (Cost(what, 8.0 * entries, "max_output_bytes", "bytes"),
+            _memory(what + " and their integer bits", 16.0 * entries + 8.0 * rows),
+            # ~5e-9 s per coordinate, and ~1e-9 s per byte of the two tables when their pages are fresh (measured
+            # 4.4e-9 s per coordinate with recycled pages, N = 16..20; 1.4e-8 ... 3.4e-8 with fresh ones, N = 19..22)
+            _seconds(what, 0.01 + (5e-9 + 16.0 * 1e-9) * entries))
+
+
 @model("ellipsoid_points", "ask for fewer points")
 def _ellipsoid_points(n: Any, N: Any) -> tuple[Cost, ...]:
     return (Cost(f"{n} points in {N} dimensions", 24.0 * _mul(n, N), "max_output_bytes", "bytes"),)
@@ -395,6 +426,68 @@ def _euler_equations(N: Any) -> tuple[Cost, ...]:
     # functions omega_ij(t): measured ~4.4e-5 s per n^2 (N = 6..14) and ~0.01 s of set-up
     n = _n_planes(N)
     return (_seconds(f"the {n:.0f} symbolic Euler equations of so({N})", 0.01 + n * n * 2.2 * _SYMPY_S),)
+
+
+@model("symbolic_rhs", "use rhs (numeric moments) or a body of fewer dimensions")
+def _symbolic_rhs(N: Any) -> tuple[Cost, ...]:
+    # n components, each a sum over the 2(N-2) planes that share an axis with the plane, of products
+    # (I_c - I_b) w_b w_c, divided by I_a: measured 6e-5 ... 8.4e-5 s per n * N (N = 10..40, growing slowly with N
+    # as the sums get longer) and 0.03-0.08 s of set-up (SymPy's first calls)
+    n = _n_planes(N)
+    return (_seconds(f"the {n:.0f} symbolic right-hand sides of so({N}) ({n:.0f} sums of {2 * (_f(N) - 2):.0f} "
+                     f"products)", 0.05 + n * _f(N) * 3.0 * _SYMPY_S * (1.0 + _f(N) / 60.0)),)
+
+
+@model("operator_product", "multiply smaller operator matrices")
+def _operator_product(N: Any, pairs: Any, coords: Any) -> tuple[Cost, ...]:
+    # 2 N^3 compositions of matrix entries (N x N x N, twice) and their sums; `pairs`: the pairs of terms composed
+    # (sum over k of the products of the term counts), each an exponent-tuple operation over the coordinates; the
+    # running sums grow with N (+ N / 200)
+    triples = 2.0 * _f(N) ** 3
+    per_pair = _OP_PAIR_S + _OP_PAIR_COORD_S * _f(coords)
+    return (_seconds(f"the product of two {N} x {N} operator matrices ({_f(pairs):.3g} pairs of terms in {coords} "
+                     f"coordinates)", (triples * _OP_TRIPLE_S + _f(pairs) * per_pair) * (1.0 + _f(N) / 200.0)),)
+
+
+@model("contraction_identity", "use a smaller N")
+def _contraction_identity(N: Any) -> tuple[Cost, ...]:
+    # the operator matrix of so(N) (angular_momentum_operators) and its product with its transpose: 2 terms per
+    # off-diagonal entry, so 2 N (2 (N - 1))^2 pairs of terms in N coordinates (either form)
+    pairs = 8.0 * _f(N) * (_f(N) - 1.0) ** 2
+    product = _operator_product(N=N, pairs=pairs, coords=N)[0].amount
+    generators = _angular_momentum_operators(N)[0].amount
+    return (_seconds(f"the contraction identity of so({N}) (a product of {N} x {N} operator matrices, "
+                     f"{pairs:.3g} pairs of terms)", product + generators),)
+
+
+@model("vector_rep", "use a smaller N")
+def _vector_rep(N: Any, exact: bool = False) -> tuple[Cost, ...]:
+    # one sparse N x N generator per plane (a COO -> CSR conversion and the Representation's checks: its row
+    # pointers are N + 1 int32, plus ~1.5 kB of objects); exact: one SymPy N x N matrix per plane (two entries set;
+    # SymPy keeps ~1.4 kB per matrix, measured N = 100..300)
+    n = _n_planes(N)
+    if exact:
+        return (_memory(f"the {n:.0f} exact SymPy generators of the vector rep of so({N})", n * 1800.0),
+                _seconds(f"the {n:.0f} exact SymPy generators of the vector rep of so({N})", n * 2.5e-5))
+    return (_memory(f"the {n:.0f} sparse generators of the vector rep of so({N})", n * (1500.0 + 4.0 * _f(N))),
+            _seconds(f"the {n:.0f} sparse generators of the vector rep of so({N})", n * 1.0e-4))
+
+
+@model("adjoint_rep", "use a smaller N")
+def _adjoint_rep(N: Any, exact: bool = False) -> tuple[Cost, ...]:
+    # one n x n generator per plane, cut from the structure constants (priced by their own model) as a dense float
+    # slice and converted to CSR; exact: one SymPy n x n matrix per plane, filled entry by entry in Python (SymPy
+    # keeps its 2(N - 2) nonzeros: measured ~3 kB + 63 n bytes per matrix, and one dense n x n list on the way)
+    n = _n_planes(N)
+    if exact:
+        return (_memory(f"the {n:.0f} exact SymPy generators of the adjoint rep of so({N}) ({n:.0f} x {n:.0f} each)",
+                        n * (3000.0 + 80.0 * n) + 8.0 * n * n),
+                _seconds(f"the {n:.0f} exact SymPy generators of the adjoint rep of so({N}) ({n:.0f}^3 entries)",
+                         n ** 3 * 2.5e-6))
+    return (_memory(f"the {n:.0f} generators of the adjoint rep of so({N}) (dense {n:.0f} x {n:.0f} slices)",
+                    24.0 * n * n + n * (1500.0 + 4.0 * n)),
+            _seconds(f"the {n:.0f} generators of the adjoint rep of so({N}) ({n:.0f}^3 dense entries)",
+                     n ** 3 * 5e-9 + n * 1.2e-4))
 
 
 @model("plane_symbols")

@@ -8,6 +8,7 @@ by field with :func:`values_equal` instead; the result classes take it as their 
 from __future__ import annotations
 
 import dataclasses
+import sys
 from typing import Any
 
 import numpy as np
@@ -17,8 +18,17 @@ __all__: list[str] = []  # private module
 
 def values_equal(a: Any, b: Any) -> bool:
     """``a == b`` for the values results hold: arrays equal in shape and entries (NaN equal to NaN, as a result
-    compared with its own copy must be), sequences and mappings item by item, random generators by their state,
-    anything else by its own ``==``."""
+    compared with its own copy must be), scipy sparse matrices in shape and nonzero entries, sequences and
+    mappings item by item, random generators by their state, anything else by its own ``==``."""
+    sparse = sys.modules.get("scipy.sparse")  # (not imported: nothing is a sparse matrix)
+    if sparse is not None and (sparse.issparse(a) or sparse.issparse(b)):
+        if not (sparse.issparse(a) and sparse.issparse(b)) or a.shape != b.shape:
+            return False
+        a, b = (sparse.csr_matrix(x, copy=True) for x in (a, b))
+        for x in (a, b):  # (the same matrix whatever zeros or duplicates it stores)
+            x.sum_duplicates()
+            x.eliminate_zeros()
+        return all(values_equal(x, y) for x, y in ((a.indptr, b.indptr), (a.indices, b.indices), (a.data, b.data)))
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         a, b = np.asarray(a), np.asarray(b)
         if a.shape != b.shape:

@@ -156,6 +156,7 @@ def refuse(entry: str, what: str, amount: float, key: str, unit: str, alternativ
 
 
 def _amount(x: float, unit: str) -> str:
+    x = as_float(x)  # (an exact int beyond the floats: a huge count)
     if not math.isfinite(x):
         return f"more than 1e308 ({unit})"
     if unit == "bytes":

@@ -26,6 +26,7 @@ from . import _parse
 __all__ = [
     "fmt",
     "integer",
+    "sequence",
     "dimension",
     "real",
     "positive",
@@ -68,14 +69,19 @@ def fmt(value: Any, _depth: int = 0) -> str:
     NumPy scalars print as Python numbers (``2.0``, not ``np.float64(2.0)``),
     floats with ``repr`` precision, containers element by element (past 12 entries
     the first 6 and their count; nested deeper than 4 levels, or holding themselves,
-    by their size); anything else falls back to ``repr`` (shortened past 80 characters).
+    by their size); integers beyond 2^128 by their order of magnitude; anything else falls back to ``repr``
+    (shortened past 80 characters).
     """
     if isinstance(value, np.generic):
         value = value.item()
     if isinstance(value, bool) or value is None:
         return repr(value)
     if isinstance(value, Integral):
-        return str(int(value))
+        v = int(value)
+        if abs(v).bit_length() <= 128:
+            return str(v)
+        # (hundreds of digits, or more than str() converts: its order of magnitude)
+        return f"{'-' if v < 0 else ''}~1e+{math.floor(math.log10(abs(v)))} (an integer)"
     if isinstance(value, float):
         return repr(value)
     if isinstance(value, complex):
@@ -130,6 +136,17 @@ def whole_number(name: str, value: Any, *, minimum: int | None = None, maximum: 
     return integer(name, value, minimum=minimum, maximum=maximum)
 
 
+def sequence(name: str, value: Any, what: str) -> tuple:
+    """The entries of ``value`` as a tuple: a list, tuple, array or other iterable, not text and not a single
+    number (``TypeError`` naming ``name`` and what its entries must be, ``what``)."""
+    if not isinstance(value, (str, bytes)):
+        try:
+            return tuple(value)
+        except TypeError:  # (not iterable: a number, None, a 0-d array)
+            pass
+    raise TypeError(f"{name} must be a sequence of {what}, got {fmt(value)} of type {type(value).__name__}")
+
+
 def mapping(name: str, value: Any, example: str = "") -> dict:
     """A mapping of option names (strings) to values, as a new ``dict`` (``None``: an empty one)."""
     if value is None:
@@ -167,13 +184,22 @@ def dimension(N: Any, *, minimum: int = 2, name: str = "N") -> int:
     return N
 
 
+def _float(name: str, value: Any) -> float:
+    """``float(value)`` of a real scalar; an exact number beyond the floats (``10**400``, a huge Fraction) is
+    refused by name (``ValueError``, as ``inf`` is) instead of Python's ``OverflowError``."""
+    try:
+        return float(value)
+    except OverflowError:
+        raise ValueError(f"{name} must be finite, got {fmt(value)}, beyond double precision (about 1.8e308)") from None
+
+
 def real(name: str, value: Any, *, allow_none: bool = False) -> float | None:
     """A finite real number as ``float`` (``None`` passes through when ``allow_none``)."""
     if value is None and allow_none:
         return None
     if not _is_real_scalar(value):
         raise TypeError(f"{name} must be a real number, got {fmt(value)} of type {type(value).__name__}")
-    value = float(value)
+    value = _float(name, value)
     if not math.isfinite(value):
         raise ValueError(f"{name} must be finite, got {fmt(value)}")
     return value
@@ -185,7 +211,7 @@ def positive(name: str, value: Any, *, allow_none: bool = False, allow_zero: boo
         return None
     if not _is_real_scalar(value):
         raise TypeError(f"{name} must be a positive real number, got {fmt(value)} of type {type(value).__name__}")
-    value = float(value)
+    value = _float(name, value)
     ok = value >= 0 if allow_zero else value > 0
     if not (math.isfinite(value) and ok):
         raise ValueError(f"{name} must be finite and {'>= 0' if allow_zero else '> 0'}, got {fmt(value)}")
@@ -202,7 +228,7 @@ def tolerance(name: str, value: Any, *, allow_none: bool = False, allow_zero: bo
     if not _is_real_scalar(value):
         raise TypeError(f"{name} must be a relative tolerance, a real number with {low}, got {fmt(value)} "
                         f"of type {type(value).__name__}")
-    x = float(value)
+    x = _float(name, value)
     if not (math.isfinite(x) and (x >= 0 if allow_zero else x > 0) and x < 1):
         raise ValueError(f"{name} must be a relative tolerance with {low}, got {fmt(value)}")
     return x
@@ -319,10 +345,21 @@ def representation(name: str, value: Any, *, dim: int | None = None, of: str = "
     return value
 
 
+def as_array(name: str, value: Any, *, what: str = "numeric array") -> np.ndarray:
+    """``np.asarray(value)`` (text as an object array, for the caller's dtype test), with ragged nesting
+    (``[0.1, [1.0]]``) refused as a ``TypeError`` naming ``name`` instead of NumPy's "inhomogeneous shape"."""
+    if isinstance(value, (str, bytes)):
+        return np.asarray(value, dtype=object)
+    try:
+        return np.asarray(value)
+    except (TypeError, ValueError):  # (ragged nesting)
+        raise TypeError(f"{name} must be a {what}, got {fmt(value)} of type {type(value).__name__}") from None
+
+
 def real_array(name: str, value: Any, *, ndim: int | tuple[int, ...] | None = None) -> np.ndarray:
     """A finite real float array; complex input is refused (no silent loss of the imaginary part)."""
     numeric_input(name, value)  # before np.asarray, which would drop a mask
-    arr = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray(value, dtype=object)
+    arr = as_array(name, value, what="real numeric array")
     if arr.dtype.kind not in "biuf":
         raise TypeError(f"{name} must be a real numeric array, got {fmt(value)} (dtype {arr.dtype})")
     return finite_array(name, arr, ndim=ndim)
@@ -483,10 +520,7 @@ def exact_or_float_array(name: str, value: Any, *, what: str = "numeric array") 
     is 255; an ``int8`` ``-128`` stays ``-128``), real and complex floats as they are, finite. Text, booleans,
     dates, masked and ragged input are refused with ``name`` (:func:`numeric_input`)."""
     numeric_input(name, value)
-    try:
-        arr = np.asarray(value)
-    except (TypeError, ValueError):  # (ragged nesting)
-        raise TypeError(f"{name} must be a {what}, got {fmt(value)}") from None
+    arr = as_array(name, value, what=what)
     if arr.dtype.kind not in "iufc":
         raise TypeError(f"{name} must be a {what}, got {fmt(value)} of dtype {arr.dtype}")
     if arr.dtype.kind in "iu":
@@ -701,7 +735,7 @@ def ket(name: str, value: Any, dim: int, *, of: str) -> np.ndarray:
     else:
         if not isinstance(value, (str, bytes)):
             numeric_input(name, value)  # booleans and masked arrays (np.asarray drops the mask) are not states
-        vec = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray(value, dtype=object)
+        vec = as_array(name, value, what="ket Qobj or a numeric vector")
         if vec.dtype.kind not in "biufc":
             raise TypeError(f"{name} must be a ket Qobj or a numeric vector, got {fmt(value)}")
         if vec.ndim == 2 and vec.shape[1] == 1:

@@ -255,8 +255,9 @@ def basis_matrix(plane: Sequence[int], N: int, *, convention: str = "paper") -> 
     :math:`(-1)^{i+j} E_{(ij)}`.
     """
     check_convention(convention)
-    k = plane_index(plane, N)
-    i, j = plane
+    N = check_dimension(N)
+    i, j = _validate.plane(plane, N)  # (the pair as read: text "12" and "1,2" too, as plane_index reads them)
+    k = plane_index((i, j), N)
     s = int(plane_signs(N, convention=convention)[k])
     E = np.zeros((N, N), dtype=int)
     E[i - 1, j - 1] = s

@@ -204,7 +204,7 @@ def test_pickles_and_deep_copies_equal(key):
 #: the results whose fields hold arrays, compared field by field (hyperrotor._equality)
 COMPARED = ["Scene", "PoincareSection", "StabilityResult", "SceneResult", "LyapunovResult",
             "LyapunovResult/spectrum+history", "LyapunovResult/sweep", "SectorSpectra", "Spectrum", "OTOCResult",
-            "EhrenfestResult"]
+            "EhrenfestResult", "SpacingDistribution"]
 
 
 @pytest.mark.parametrize("key", COMPARED)
@@ -246,3 +246,57 @@ def test_rigid_bodies_compare_by_what_they_are():
     scene = hr.Scene(body, np.linspace(0.1, 1.0, 10), T5)
     assert scene == pickle.loads(pickle.dumps(scene))
     assert scene != hr.Scene(hr.RigidBody(hr.Inertia.quartet(0.25)), np.linspace(0.1, 1.0, 10), T5)
+
+
+@pytest.mark.parametrize("key", [k for k in EXAMPLES if k.startswith("Trajectory/")])
+def test_trajectories_compare_equal_to_their_copies_and_to_the_same_run(key):
+    """``==`` of a Trajectory was identity: not even its pickled copy was equal. Now its outputs, events, body,
+    moments and stats compare (not the wall time: the same call made twice gives equal trajectories)."""
+    tr = EXAMPLES[key]()
+    back = pickle.loads(pickle.dumps(tr, protocol=pickle.HIGHEST_PROTOCOL))
+    assert tr == back and not (tr != back) and tr != "a trajectory"
+    with pytest.raises(TypeError):
+        hash(tr)
+    changed = pickle.loads(pickle.dumps(tr))
+    changed.omega = changed.omega.copy()
+    changed.omega.flat[-1] += 1e-3
+    assert tr != changed
+    changed = pickle.loads(pickle.dumps(tr))
+    changed.stats = {**changed.stats, "wall_time": 1e9}
+    assert tr == changed
+    changed.stats["method"] = "another"
+    assert tr != changed
+
+
+def test_sectors_compare_by_their_sparse_or_dense_bases():
+    """A Sector's basis is a scipy sparse matrix (Gelfand-Tsetlin irreps) or an array: its generated == raised
+    NumPy's ambiguous truth value; now the bases compare by shape and nonzero entries."""
+    import dataclasses
+
+    import scipy.sparse as sps
+
+    sectors = _sectors()
+    assert sps.issparse(sectors[0].basis)
+    for s in sectors:
+        assert s == pickle.loads(pickle.dumps(s)) and not (s != pickle.loads(pickle.dumps(s)))
+    assert sectors[0] != sectors[1]
+    dense = dataclasses.replace(sectors[0], basis=sectors[0].basis.toarray())
+    assert dense != sectors[0]  # (a sparse and a dense basis are different objects, as for two results)
+    assert dense == dataclasses.replace(sectors[0], basis=sectors[0].basis.toarray())
+    stored_zero = sectors[0].basis.tocsr(copy=True)
+    stored_zero.data = np.append(stored_zero.data, 0.0)
+    stored_zero.indices = np.append(stored_zero.indices, 0 if stored_zero.indices[-1] != 0 else 1)
+    stored_zero.indptr[-1] += 1
+    assert dataclasses.replace(sectors[0], basis=stored_zero) == sectors[0]  # (an explicit zero changes nothing)
+    bumped = sectors[0].basis.tocsr(copy=True)
+    bumped.data[0] += 1e-3
+    assert dataclasses.replace(sectors[0], basis=bumped) != sectors[0]
+
+
+def test_contraction_identities_compare_by_their_exact_matrices():
+    """A tuple's == compared the object arrays of operators and raised NumPy's ambiguous truth value."""
+    ident = EXAMPLES["ContractionIdentity"]()
+    assert ident == pickle.loads(pickle.dumps(ident)) and not (ident != pickle.loads(pickle.dumps(ident)))
+    assert ident != ident._replace(factor=ident.factor + 1) and ident != hq.contraction_identity(4)
+    with pytest.raises(TypeError):
+        hash(ident)

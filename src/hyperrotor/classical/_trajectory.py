@@ -10,6 +10,7 @@ from typing import Any, Callable
 import numpy as np
 
 from hyperrotor import _pricing, _validate
+from hyperrotor._equality import values_equal
 
 __all__ = ["Trajectory"]
 
@@ -121,6 +122,21 @@ class Trajectory:
         if what == "omega":
             out = out / self.moments
         return out[..., 0, :] if tq.ndim == 0 else out
+
+    #: what ``==`` compares (not the dense output, a function of these; not ``stats["wall_time"]``)
+    _COMPARED = ("t", "omega", "L", "attitude", "body", "moments", "t_events", "L_events", "omega_events",
+                 "attitude_events", "_origin", "_scale")
+
+    def __eq__(self, other: object) -> bool:
+        """The same run's results: equal outputs, events, body, moments and stats (but the wall time), as a
+        pickled copy is."""
+        if not isinstance(other, Trajectory):
+            return NotImplemented
+        stats = [{k: v for k, v in x.stats.items() if k != "wall_time"} for x in (self, other)]
+        return values_equal(*stats) and all(values_equal(getattr(self, k), getattr(other, k))
+                                            for k in self._COMPARED)
+
+    __hash__ = None  # (its arrays are mutable)
 
     def __repr__(self) -> str:
         return (f"Trajectory(method={self.stats.get('method')!r}, batch={self.omega.shape[:-2]}, "

@@ -9,18 +9,28 @@ import numpy as np
 
 from .. import _pricing
 from .. import _validate as _v
-from .._options import options
 
 __all__ = ["hypercube_vertices", "simplex_vertices", "ellipsoid_points", "body_edges"]
 
 
 def hypercube_vertices(N: int, half_edge: float = 1.0) -> np.ndarray:
-    """The ``2**N`` vertices ``(+-half_edge, ..., +-half_edge)`` of the N-cube, shape ``(2**N, N)``."""
-    # 2**N rows: refuse an N whose table could not be held, up front (N = 24: 16.8 million vertices)
-    N = _v.integer("N", N, minimum=1, maximum=min(24, options["max_dimension"]))
+    """The ``2**N`` vertices ``(+-half_edge, ..., +-half_edge)`` of the N-cube, shape ``(2**N, N)``.
+
+    Raises ``hyperrotor.BudgetError`` before any allocation when the table (``8 N 2^N`` bytes:
+    N = 22 is 738 MB) is over ``hr.options['max_output_bytes']``, or its working memory (about
+    twice that) over ``hr.options['max_memory_bytes']``; an N over ``hr.options['max_dimension']``
+    is refused too.
+    """
+    N = _v.dimension(N, minimum=1)
     half_edge = _v.positive("half_edge", half_edge)
+    _pricing.check("hypercube_vertices", N=N)  # 2^N rows, priced before the table exists
     bits = (np.arange(2**N)[:, None] >> np.arange(N)[None, ::-1]) & 1
-    return half_edge * (2.0 * bits - 1.0)
+    out = bits.astype(float)  # (in place from here: two tables at the peak, not three)
+    del bits
+    out *= 2.0
+    out -= 1.0
+    out *= half_edge
+    return out
 
 
 def simplex_vertices(N: int, circumradius: float = 1.0) -> np.ndarray:

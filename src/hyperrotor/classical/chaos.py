@@ -150,7 +150,8 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
         sel = np.flatnonzero(inverse.ravel() == u)
         shift[sel] = casimir_shift(uniq[u], Ls[sel])  # homogeneous of degree 0 in L
     rates = 1.0 / moments_rows - shift[:, None]
-    nren = max(1, math.ceil(T / renorm_interval - 1e-9))
+    # (counts as floats until the budget is checked: T / renorm_interval may be beyond any integer, e.g. inf)
+    nren = max(1.0, float(np.ceil(T / renorm_interval - 1e-9)))
     tau = T / nren
     # steps per renormalisation (as floats, for the budget check before any cast)
     if dt is None:
@@ -158,7 +159,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
         with np.errstate(over="ignore"):
             nsub_f = np.where(wmax > 0, np.ceil(tau * scale * wmax / options["lyapunov_step"] * (1 - 1e-12)), 1.0)
     else:
-        nsub_f = np.full(B, math.ceil(tau / dt * (1 - 1e-12)))
+        nsub_f = np.full(B, np.ceil(tau / dt * (1 - 1e-12)))
     nsub_f = np.maximum(nsub_f, 1.0)
     # one word for the whole ensemble (planes whose rate vanishes for every orbit drop out), so
     # that an orbit's arithmetic does not depend on the chunk it falls in
@@ -183,6 +184,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
             "lyapunov_max_work", "work units per worker thread",
             "shorten T, use fewer orbits or add workers (client=)")
     nsub = nsub_f.astype(np.int64)
+    nren = int(nren)
     tables = rotation_tables(N)
     h = tau * scale / nsub  # step in the scaled time of each orbit
     stride = 1 if history else nren

@@ -334,7 +334,11 @@ class RigidBody:
 
         ``omega`` defaults to :meth:`omega_symbols`; ``torque`` are components
         :math:`m_{ij}` (``None`` = torque-free).
+
+        Raises ``hyperrotor.BudgetError`` before any SymPy work when the estimated time
+        (:math:`\sim N^3` products: ~3 s at N = 40) is over ``hr.options['max_seconds']``.
         """
+        _pricing.check("symbolic_rhs", N=self.N)
         w = list(self.omega_symbols() if omega is None else omega)
         w = [_parse.to_sympy(v, f"omega[{k}]", text=False) for k, v in enumerate(w)]
         if len(w) != len(self.planes):
@@ -408,7 +412,10 @@ class RigidBody:
             w = list(omega)
             self._check_len(w)
             return sp.Matrix([I * x for I, x in zip(self.inertia.symbolic_moments, w)])
-        return self._check_omega(omega) * self.inertia.moments
+        w = self._check_omega(omega)
+        with np.errstate(over="ignore"):
+            L = w * self.inertia.moments
+        return _within_double("angular_momentum", L, "omega", w)
 
     def _check_len(self, seq: Sequence) -> None:
         if len(seq) != len(self.planes):
@@ -563,7 +570,18 @@ class RigidBody:
         else:
             L = self._check_omega(values, "L")
         if not is_symbolic(L):
-            return _manakov_traces(L, J, lam if is_symbolic(lam) else _validate.real("lam", lam))
+            lam_value = lam if is_symbolic(lam) else _validate.real("lam", lam)
+            if is_symbolic(lam_value):
+                return _manakov_traces(L, J, lam_value)
+            with np.errstate(over="ignore", invalid="ignore"):
+                out = _manakov_traces(L, J, lam_value)
+            if np.all(np.isfinite(out)):
+                return out
+            if abs(lam_value) * float(np.max(np.abs(J))) ** 2 >= float(np.max(np.abs(L), initial=0.0)):
+                big, sizes = "lam", np.array([lam_value])
+            else:
+                big, sizes = of, (self._check_omega(values) if of == "omega" else L)
+            return _within_double("manakov_integrals", out, big, sizes, "the traces of (L + lam J^2)^k")
         return _manakov_traces(list(L), J, lam)
 
     # ------------------------------------------------------------------ reductions

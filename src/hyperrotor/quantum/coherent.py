@@ -38,6 +38,7 @@ from .. import _pricing, _validate
 from .._options import options
 from ..conventions import n_planes, planes, to_matrix
 from ._krylov import krylov_propagator, row_bound, single_thread_blas
+from .sector_propagator import scaled_state
 
 options.register(
     "quantum_coherent_rtol", 1e-8,
@@ -79,6 +80,7 @@ def generator_expectations(rep: Any, psi: Any, *, hbar: float = 1) -> np.ndarray
     vec = _vector(psi, int(rep.dim))
     if not np.any(vec):
         raise ValueError("psi is the zero vector; expectation values are undefined")
+    vec, _ = scaled_state(vec, "psi")  # (the ratio does not change; |psi|^2 of amplitudes near 1e308 would be inf)
     gens = rep.generators()
     nrm = np.vdot(vec, vec).real
     return np.array([(np.vdot(vec, (-1j * hbar) * (gens[p] @ vec))).real / nrm for p in planes(int(rep.N))])
@@ -150,6 +152,10 @@ def normal_form_rotation(L: Any) -> tuple[np.ndarray, np.ndarray]:
     _validate.dimension_from_count(comps.size, name="L")  # (the error names L, not to_matrix's count)
     A = np.asarray(to_matrix(comps, convention="standard"), dtype=float)
     N = A.shape[0]
+    # the rotation does not depend on |L|: L / 2^e (exact), max |entry| in [1/2, 1), so that nothing below
+    # overflows or underflows (L of 1e308 gave inf in Q^T L Q); lam is scaled back at the end
+    e = int(np.frexp(float(np.max(np.abs(A))))[1]) if np.any(A) else 0
+    A = np.ldexp(A, -e)
     T, Z = sla.schur(A, output="real")
     scale = max(1.0, float(np.max(np.abs(A))))
     blocks, zeros = [], []
@@ -185,6 +191,11 @@ def normal_form_rotation(L: Any) -> tuple[np.ndarray, np.ndarray]:
         target[2 * k, 2 * k + 1], target[2 * k + 1, 2 * k] = lk, -lk
     if np.max(np.abs(B - target)) > 1e-10 * scale:  # pragma: no cover - guards the Schur bookkeeping
         raise RuntimeError("normal form failed: Q^T L Q is not block diagonal")
+    with np.errstate(over="ignore"):
+        lam = np.ldexp(lam, e)
+    if not np.all(np.isfinite(lam)):
+        raise ValueError(f"L too large, max |L| = {float(np.max(np.abs(comps))):.3g}: its normal form's lambda "
+                         f"overflows double precision (about 1.8e308); rescale L first")
     return Q, lam
 
 
@@ -296,8 +307,9 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1, frame: str = "space", r
     psi_w, w = highest_weight_state(rep)
     if not np.any(np.abs(w) > 1e-9):
         raise ValueError("the representation is trivial (highest weight 0); no coherent state points along L")
-    c = float(lam @ w) / float(w @ w)
-    if c <= 0 or np.linalg.norm(lam - c * w) > rtol * np.linalg.norm(lam):
+    unit = lam / float(np.max(np.abs(lam)))  # (only its direction matters: |lam|^2 of 1e308 would be inf)
+    c = float(unit @ w) / float(w @ w)
+    if c <= 0 or np.linalg.norm(unit - c * w) > rtol * np.linalg.norm(unit):
         raise ValueError(
             f"the normal form {np.round(lam, 12).tolist()} of L is not a positive multiple of the highest "
             f"weight {np.round(w, 12).tolist()} of the representation; a coherent state along L exists "

@@ -193,10 +193,18 @@ def rotor_matrix(gens: Mapping, moments: np.ndarray, hbar: float) -> sps.csr_mat
 
     Trusted core (package-internal): ``gens`` are the CSR generators of a checked
     representation keyed by plane, ``moments`` the checked moments in
-    :func:`hyperrotor.planes` order, ``hbar`` a checked float. Refuses an overflow
-    (``ValueError``); a complex result is made exactly Hermitian.
+    :func:`hyperrotor.planes` order, ``hbar`` a checked float. Refuses an overflow and an underflow of
+    :math:`\hbar^2/(2I_a)` below the normal floats (``ValueError``); a complex result is made exactly Hermitian.
     """
     dim = next(iter(gens.values())).shape[0]
+    with np.errstate(under="ignore", over="ignore"):
+        smallest = float(np.min(hbar * hbar / (2.0 * np.asarray(moments, dtype=float)), initial=np.inf))
+    if smallest < np.finfo(float).tiny:  # (subnormal or zero: digits lost, or a Hamiltonian of zeros)
+        raise ValueError(
+            f"the Hamiltonian underflows the float range: hbar = {_validate.fmt(hbar)} and moments up to "
+            f"{_validate.fmt(float(np.max(moments)))} give hbar^2 / (2 I) = {smallest:.3g}, below 2.2e-308; choose "
+            f"units with hbar^2 / I of order one"
+        )
     H = sps.csr_matrix((dim, dim), dtype=float)
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below, with its cause
         for p, m in zip(sorted(gens), moments):  # sorted planes (i, j) are the order of hyperrotor.planes

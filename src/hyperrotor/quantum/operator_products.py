@@ -35,7 +35,8 @@ from typing import Any
 
 import numpy as np
 
-from .. import _parse, _validate
+from .. import _parse, _pricing, _validate
+from .._equality import fields_equal, fields_unequal
 from ..conventions import check_convention, check_dimension
 from .normal_form import WeylElement
 from .operators import DifferentialOperator, operator_matrix
@@ -82,6 +83,12 @@ def operator_product(A: Any, B: Any, *, form: str = "eq144") -> np.ndarray:
     numpy.ndarray (object) of second-order operators (first order when the
     second-order parts cancel, as in :func:`contraction_identity`).
 
+    Raises
+    ------
+    hyperrotor.BudgetError
+        Before any product, when the estimated time (``2 N^3`` entry compositions and the
+        pairs of terms they compose) is over ``hr.options['max_seconds']``.
+
     Notes
     -----
     Printed eq. (144) is eq. (25) with :math:`L \to \mathbb L`, :math:`\omega \to \Omega`
@@ -115,6 +122,7 @@ def operator_product(A: Any, B: Any, *, form: str = "eq144") -> np.ndarray:
     if any(op.coordinates != coords for op in (*A.flat, *B.flat)):
         raise ValueError(f"A and B must act on one set of coordinates, the {coords} of A[0, 0]")
     N = A.shape[0]
+    _pricing.check("operator_product", N=N, pairs=_term_pairs(A, B, form), coords=len(coords))
     out = np.empty((N, N), dtype=object)
     for i in range(N):
         for j in range(N):
@@ -128,6 +136,19 @@ def operator_product(A: Any, B: Any, *, form: str = "eq144") -> np.ndarray:
     return out
 
 
+def _term_pairs(A: np.ndarray, B: np.ndarray, form: str) -> int:
+    """Number of pairs of terms that :func:`operator_product` composes (what its time follows).
+
+    With ``a``, ``b`` the numbers of terms of the entries: ``sum_ijk a_kj b_ik + a_ik b_kj`` (eq144), or
+    ``sum_ijk a_ik b_kj + a_jk b_ki`` (antisymmetrized), i.e. sums over ``k`` of row and column totals.
+    """
+    a = np.array([[len(op.element.terms) for op in row] for row in A], dtype=object)
+    b = np.array([[len(op.element.terms) for op in row] for row in B], dtype=object)
+    if form == "eq144":
+        return int(np.sum(a.sum(axis=1) * b.sum(axis=0)) + np.sum(a.sum(axis=0) * b.sum(axis=1)))
+    return int(2 * np.sum(a.sum(axis=0) * b.sum(axis=1)))
+
+
 ContractionIdentity = namedtuple("ContractionIdentity", ["factor", "holds", "product", "matrix", "definition"])
 ContractionIdentity.__doc__ = """Result of :func:`contraction_identity`.
 
@@ -137,6 +158,9 @@ product : the operator matrix computed from the definition
 matrix : the operator matrix of eq. (143)
 definition : str, the definition used
 """
+# (field by field: a tuple's == compares the object arrays of operators and refused their truth value)
+ContractionIdentity.__eq__, ContractionIdentity.__ne__ = fields_equal, fields_unequal
+ContractionIdentity.__hash__ = None
 
 
 def contraction_identity(N: int, *, convention: str = "paper", form: str = "antisymmetrized",
@@ -178,10 +202,17 @@ def contraction_identity(N: int, *, convention: str = "paper", form: str = "anti
     ContractionIdentity
         ``factor`` is computed (not assumed) from the (1, 2) entries; ``holds``
         says whether ``product == factor * matrix`` exactly in every entry.
+
+    Raises
+    ------
+    hyperrotor.BudgetError
+        Before the operator matrix is built, when the estimated time of the product (it grows
+        like :math:`N^3` to :math:`N^4`: ~2 s at N = 30) is over ``hr.options['max_seconds']``.
     """
     N = check_dimension(N)
     convention = check_convention(convention)
     transpose = _validate.flag("transpose", transpose)
+    _pricing.check("contraction_identity", N=N)  # the products grow like N^3 .. N^4: priced before the matrix
     M = operator_matrix(N, convention=convention, coordinates=coordinates)
     Om = M.T.copy() if transpose else M.copy()
     P = operator_product(M, Om, form=form)

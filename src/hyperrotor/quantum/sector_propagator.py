@@ -100,6 +100,16 @@ _SERIAL_DIM = 4096
 _PLAIN_LANCZOS = 16
 
 
+def scaled_state(vec: np.ndarray, name: str) -> tuple[np.ndarray, int]:
+    """A complex vector divided by the power of two ``2^e`` just above its largest amplitude, and ``e``: exact, and
+    its norm is then finite and accurate however large or small the amplitudes (the zero vector is refused)."""
+    scale = float(np.max(np.abs(vec))) if vec.size else 0.0
+    if scale == 0.0:
+        raise ValueError(f"{name} is the zero vector; it cannot be normalized")
+    e = int(np.frexp(scale)[1])  # (ldexp, not a division: no overflow of 2^e for subnormal scales)
+    return np.ldexp(vec.real, -e) + 1j * np.ldexp(vec.imag, -e), e
+
+
 def unit_state(psi0: Any, dim: int, name: str = "psi0") -> np.ndarray:
     r"""``psi0`` as a unit vector: scaled by :math:`\max_k|\psi_k|` *before* the norm is taken.
 
@@ -108,12 +118,7 @@ def unit_state(psi0: Any, dim: int, name: str = "psi0") -> np.ndarray:
     plain 2-norm is ``inf`` or ``0``. A norm off 1 by more than
     ``options["quantum_psi0_norm_rtol"]`` warns; the zero vector is refused.
     """
-    vec = _validate.ket(name, psi0, dim, of="H")
-    scale = float(np.max(np.abs(vec))) if vec.size else 0.0
-    if scale == 0.0:
-        raise ValueError(f"{name} is the zero vector; it cannot be normalized")
-    e = int(np.frexp(scale)[1])  # scale by the power of two 2^-e: exact, and no overflow for subnormal scales
-    vec = np.ldexp(vec.real, -e) + 1j * np.ldexp(vec.imag, -e)
+    vec, e = scaled_state(_validate.ket(name, psi0, dim, of="H"), name)
     nrm = float(np.linalg.norm(vec))
     norm = float(np.ldexp(nrm, e))  # only reported (may be inf for a huge vector)
     if abs(norm - 1) > _options["quantum_psi0_norm_rtol"]:

@@ -109,18 +109,30 @@ def vector_rep(N: int) -> Representation:
     Real antisymmetric; highest weight :math:`(1, 0, \dots, 0)` for N >= 3
     (so(2): reducible, weights :math:`\pm 1`, ``highest_weight=None``).
     Casimir :math:`\sum E_{(ij)}^2 = -(N-1)\,\mathbb 1`.
+
+    The N(N-1)/2 sparse generators are built at once, priced first (``BudgetError`` over
+    ``hr.options['max_seconds']`` or ``['max_memory_bytes']``: ~6 s at N = 400); the exact
+    SymPy generators are built on demand (:meth:`~.Representation.exact_generators`), priced then.
     """
     N = check_dimension(N)
+    _pricing.check("vector_rep", N=N)
     gens = {}
+    for i, j in planes(N):
+        gens[(i, j)] = sps.csr_matrix(([1.0, -1.0], ([i - 1, j - 1], [j - 1, i - 1])), shape=(N, N))
+    hw = None if N == 2 else _zeros_hw(N)
+    return Representation(N, gens, highest_weight=hw, exact_generators=partial(_vector_exact, N),
+                          name=f"vector rep of so({N})")
+
+
+def _vector_exact(N: int) -> dict:
+    """Exact generators of :func:`vector_rep`: :math:`E_{(ij)}` as SymPy matrices (priced before they are built)."""
+    _pricing.check("vector_rep", N=N, exact=True)
     exact = {}
     for i, j in planes(N):
-        M = sps.csr_matrix(([1.0, -1.0], ([i - 1, j - 1], [j - 1, i - 1])), shape=(N, N))
-        gens[(i, j)] = M
         S = sp.zeros(N, N)
         S[i - 1, j - 1], S[j - 1, i - 1] = 1, -1
         exact[(i, j)] = S
-    hw = None if N == 2 else _zeros_hw(N)
-    return Representation(N, gens, highest_weight=hw, exact_generators=exact, name=f"vector rep of so({N})")
+    return exact
 
 
 def adjoint_rep(N: int) -> Representation:
@@ -129,15 +141,18 @@ def adjoint_rep(N: int) -> Representation:
     Real antisymmetric (C is totally antisymmetric), dimension N(N-1)/2. Highest
     weight: so(2) (0) (trivial), so(3) (1), so(4) reducible (:math:`(1,1) \oplus (1,-1)`,
     ``None``), N >= 5 :math:`(1, 1, 0, \dots)`. Casimir :math:`-2(N-2)`.
+
+    The sparse generators are built at once, priced first (the structure constants by their own
+    model, then the per-plane slices); the exact SymPy generators (:math:`n^3` entries for
+    :math:`n = N(N-1)/2`) are built on demand (:meth:`~.Representation.exact_generators`), priced then.
     """
     N = check_dimension(N)
+    _pricing.check("adjoint_rep", N=N)
     C = structure_constants(N)
-    n = C.shape[0]
-    gens, exact = {}, {}
+    gens = {}
     for a, p in enumerate(planes(N)):
         M = C[a].T.astype(float)  # M[c, b] = C[a, b, c]
         gens[p] = sps.csr_matrix(M)
-        exact[p] = sp.Matrix(n, n, lambda c, b: int(C[a, b, c]))
     if N == 2:
         hw = (0,)
     elif N == 3:
@@ -146,7 +161,16 @@ def adjoint_rep(N: int) -> Representation:
         hw = None
     else:
         hw = _zeros_hw(N, (1, 1))
-    return Representation(N, gens, highest_weight=hw, exact_generators=exact, name=f"adjoint rep of so({N})")
+    return Representation(N, gens, highest_weight=hw, exact_generators=partial(_adjoint_exact, N),
+                          name=f"adjoint rep of so({N})")
+
+
+def _adjoint_exact(N: int) -> dict:
+    """Exact generators of :func:`adjoint_rep`: the structure constants as SymPy integer matrices (priced first)."""
+    _pricing.check("adjoint_rep", N=N, exact=True)
+    C = structure_constants(N)
+    n = C.shape[0]
+    return {p: sp.Matrix(n, n, lambda c, b, a=a: int(C[a, b, c])) for a, p in enumerate(planes(N))}
 
 
 def _gammas(N: int):

@@ -41,6 +41,7 @@ import numpy as np
 from scipy.integrate import trapezoid  # numpy's own is numpy >= 2 only
 
 from .. import _pricing, _validate
+from .._equality import fields_equal
 from .._options import options
 from .._parallel import interruptible
 from .._pricing import refuse
@@ -291,6 +292,9 @@ class SpacingDistribution:
     density: np.ndarray
     counts: np.ndarray
     s: np.ndarray
+
+    __eq__ = fields_equal  # (field by field: the generated == refuses array fields)
+    __hash__ = None
 
     @property
     def centres(self) -> np.ndarray:

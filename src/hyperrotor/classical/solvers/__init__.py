@@ -50,6 +50,9 @@ def solver_for(method: Any, **options: Any) -> Solver:
                             f"solver object ({method!r})")
         return method
     if isinstance(method, type) and issubclass(method, Solver):
+        if method.run is Solver.run or not method.name:  # (the base classes: Solver, FixedStepSolver, Splitting)
+            raise TypeError(f"method {method.__name__} is an abstract base class, not a method; use one of "
+                            f"{', '.join(map(repr, SOLVERS))} or a subclass that implements it")
         return method(**options)
     name = _validate.choice("method", method, tuple(SOLVERS))
     return SOLVERS[name](**options)

@@ -20,6 +20,7 @@ import scipy.linalg as sla
 import scipy.sparse as sps
 
 from ... import _pricing
+from ..._equality import fields_equal
 from ..._parallel import interruptible
 from ..._weak_cache import WeakCache
 from .._gt_monomials import Monomial, gt_symmetries
@@ -71,6 +72,9 @@ class Sector:
     degeneracy: int = 1
     character: dict = field(default_factory=dict)
     real: bool = False
+
+    __eq__ = fields_equal  # (field by field: the generated == refuses the basis, an array or a sparse matrix)
+    __hash__ = None
 
     @property
     def dim(self) -> int:
