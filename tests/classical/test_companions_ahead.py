@@ -12,7 +12,7 @@ import pytest
 
 import hyperrotor as hr
 from hyperrotor import Inertia, RigidBody, _parallel
-from hyperrotor.classical.solvers import chunks, driver, richardson_check
+from hyperrotor.classical.solvers import chunks, richardson_check
 
 J5 = [0.3, 0.55, 0.9, 1.4, 2.1]
 
@@ -67,8 +67,7 @@ def test_companions_ahead_give_the_numbers_of_companions_after(case, rng, monkey
     monkeypatch.setattr(chunks, "AHEAD_MIN_SECONDS", 0.0)  # (every companion run goes ahead ...
     monkeypatch.setattr(chunks, "_PAIRED", _ALL_KINDS())  # ... also the first of its kind)
     if chunk_seconds is not None:  # (chunks of a few dozen steps)
-        for module in (chunks, driver):
-            monkeypatch.setattr(module, "FIRST_CHUNK_FLOWS", 10_000)
+        monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", 10_000)
     started = []
     real = _parallel.on_second_core
 
@@ -149,7 +148,6 @@ def test_the_first_pair_call_of_a_kind_runs_in_the_callers_thread(monkeypatch):
     w0 = np.linspace(-1.0, 1.0, 10)
     with hr.options(chunk_seconds=1e-6):
         monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", 10_000)
-        monkeypatch.setattr(driver, "FIRST_CHUNK_FLOWS", 10_000)
         started = []
 
         def counted(*args, **kwargs):

@@ -189,6 +189,32 @@ def test_casimir_shift_is_the_weighted_median_rate():
     assert casimir_shift(stiff) >= 1e-4
 
 
+def test_casimir_shift_of_a_large_body_builds_its_table_in_blocks(monkeypatch):
+    """The |1/I_a - value| table of the shift rule (n planes x V candidate values) is kept whole only up to
+    _SHIFT_TABLE_ENTRIES entries (3.2 GB at N = 200): beyond, blocks of candidates give the same choice, for
+    bodies with shared and distinct moments, single and ensemble rows, and it is still the weighted median
+    rate of the example above."""
+    from hyperrotor.classical.solvers import splitting
+
+    rng = np.random.default_rng(5)
+    cases = [(Inertia.from_mass_tensor([0.3, 0.55, 0.9, 1.4, 2.1]).moments, np.ones((1, 10)))]
+    for n, B in ((10, 1), (45, 4), (190, 3)):
+        m = np.exp(rng.uniform(np.log(0.3), np.log(3.0), n))
+        m[: n // 3] = m[0]  # a third of the planes share one moment
+        cases.append((m, rng.normal(size=(B, n))))
+    whole = [splitting.shift_rule(m, L) for m, L in cases]
+    splitting._shift_candidates.cache_clear()
+    monkeypatch.setattr(splitting, "_SHIFT_TABLE_ENTRIES", 7)  # (blocks of one candidate and more)
+    try:
+        for (m, L), c in zip(cases, whole):
+            assert splitting._shift_candidates(m.tobytes())[2] is None  # (no table kept)
+            np.testing.assert_array_equal(splitting.shift_rule(m, L), c)
+    finally:
+        splitting._shift_candidates.cache_clear()
+    r = np.sort(1 / cases[0][0])
+    assert whole[0][0] in (r[4], r[5])
+
+
 def test_casimir_shift_leaves_L_unchanged_and_drops_planes():
     """The shifted splitting integrates the same L(t) (checked against the quartet's closed
     form), with only the four axis-5 planes left in the step."""

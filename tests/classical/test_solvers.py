@@ -434,6 +434,32 @@ def test_momenta_beyond_double_precision_are_a_clear_error(method):
     np.testing.assert_allclose(small.omega, ref, rtol=0, atol=1e-5)
 
 
+def test_the_first_chunk_of_a_large_body_is_sized_for_its_dimension(monkeypatch):
+    """Before a kind of call is timed, its chunks are sized from a cost per flow that grows with N (a flow
+    rotates 2(N - 2) components): at N = 100 the 5D figure planned 148 steps of splitting8 in the probe's first
+    call (about 2.5 s: Ctrl-C waited for it), now two (a chunk's time); at N = 5 nothing changes."""
+    from hyperrotor.classical.simulate import _checked, _problem
+    from hyperrotor.classical.solvers import chunks
+
+    monkeypatch.setattr(chunks, "SECONDS_PER_FLOW", {})
+    assert chunks.flow_weight(5) == 1.0 and chunks.flow_weight(3) == 1.0
+    assert chunks.flow_weight(100) > chunks.flow_weight(40) > chunks.flow_weight(8) > 1.0
+    plans = {}
+    for N in (5, 100):
+        n = N * (N - 1) // 2
+        solver = SOLVERS["splitting8"]()
+        problem, _ = _problem(np.linspace(1.0, 2.0, n), np.ones(n), [0.0, 1.0], False, None, 2**40,
+                              _checked(solver, 1e-6, None))
+        solver.prepare(problem)
+        plans[N] = chunks._chunk_plan(solver, problem, 1)
+    key, flows, cap, target = plans[5]
+    assert cap == int(max(chunks.FIRST_CHUNK_FLOWS, target / chunks.DEFAULT_SECONDS_PER_FLOW) // flows)
+    key, flows, cap, target = plans[100]
+    assert chunks.seconds_per_flow(key) == chunks.DEFAULT_SECONDS_PER_FLOW * chunks.flow_weight(100)
+    assert int(max(chunks.FIRST_CHUNK_FLOWS, target / chunks.DEFAULT_SECONDS_PER_FLOW) // flows) >= 100  # (before)
+    assert 1 <= cap <= 2 and cap * flows * chunks.seconds_per_flow(key) <= target
+
+
 def test_chunked_runs_equal_one_call_and_progress_changes_nothing(rng):
     body = RigidBody(Inertia.from_mass_tensor(J5))
     w0 = rng.normal(size=10)
@@ -915,8 +941,7 @@ def test_a_probe_of_the_whole_run_is_the_checks_companions(case, T, rtol, checks
     wmax = float(step_control._orbit_rates(check.problem).max())
     longest = min(step_control.PROBE_FIRST_TURN_WHOLE / wmax, step_control.PROBE_WHOLE_GAPS * (t[1] - t[0]))
     assert len(probe_work) == 1 and 1.0 / wmax < hs.max() <= longest * (1 + 1e-12)
-    from hyperrotor.classical.solvers import chunks, driver  # the same run cut into chunks: the same check
-    monkeypatch.setattr(driver, "FIRST_CHUNK_FLOWS", 2000)
+    from hyperrotor.classical.solvers import chunks  # the same run cut into chunks: the same check
     monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", 2000)
     probe_work.clear()
     with hr.options(chunk_seconds=1e-6):
@@ -1099,7 +1124,7 @@ def test_an_rtol_call_takes_the_same_steps_however_its_chunks_fall(monkeypatch, 
     compensated storage and an AccuracyWarning. Single calls and chunks of ~20 steps (the chunk lengths follow
     the machine's measured speed) give the same result bit for bit, with the same steps, re-runs, work and
     warning: the check judges at fixed samples, and the chunks end there."""
-    from hyperrotor.classical.solvers import chunks, driver, richardson_check
+    from hyperrotor.classical.solvers import chunks, richardson_check
 
     monkeypatch.setattr(richardson_check, "EARLY_STOP_FLOWS", 0.0)
     rng = np.random.default_rng(4007)
@@ -1110,7 +1135,6 @@ def test_an_rtol_call_takes_the_same_steps_however_its_chunks_fall(monkeypatch, 
     runs = []
     for first, seconds in ((chunks.FIRST_CHUNK_FLOWS, 0.25), (4e4, 1e-5)):
         monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", first)
-        monkeypatch.setattr(driver, "FIRST_CHUNK_FLOWS", first)
         chunks.SECONDS_PER_FLOW.clear()
         with hr.options(chunk_seconds=seconds), pytest.warns(hr.AccuracyWarning) as record:
             tr = hr.simulate(moments, W, t, rtol=1e-8)
@@ -1249,7 +1273,7 @@ def test_rtol_runs_in_one_call_and_in_chunks_agree(method, grid, members, rng, c
     from hyperrotor.classical.solvers import richardson_check
 
     seen = checks
-    from hyperrotor.classical.solvers import chunks, driver
+    from hyperrotor.classical.solvers import chunks
     body = RigidBody(Inertia.from_mass_tensor(J5))
     w0 = 0.6 * rng.normal(size=members + (10,))
     t = np.linspace(0.0, 6.0, 13) if grid == "even" else np.cumsum(np.r_[0.0, rng.uniform(0.2, 1.0, 12)])
@@ -1257,7 +1281,6 @@ def test_rtol_runs_in_one_call_and_in_chunks_agree(method, grid, members, rng, c
     rtol = 1e-7 if method != "moser-veselov" else 1e-4  # (order 2: fewer steps)
     for seconds, first in ((1e3, chunks.FIRST_CHUNK_FLOWS), (1e-6, 2000)):  # (a short first chunk: chunks)
         seen.clear()
-        monkeypatch.setattr(driver, "FIRST_CHUNK_FLOWS", first)
         monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", first)
         with hr.options(chunk_seconds=seconds):
             tr = hr.simulate(body, w0, t, method=method, rtol=rtol)

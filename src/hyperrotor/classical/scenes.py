@@ -97,12 +97,9 @@ def locked_axes(omega0: Any, N: int | None = None) -> tuple[int, ...]:
     if omega0 is None or isinstance(omega0, (str, bytes)):
         raise TypeError(f"omega0 must be an array of plane components, got {_v.fmt(omega0)}")
     _v.numeric_input("omega0", omega0)  # booleans, dates, masked arrays (np.asarray drops a mask)
-    try:
-        w = np.asarray(omega0)
-        if w.dtype.kind not in "biufc":
-            raise TypeError
-    except (TypeError, ValueError):
-        raise TypeError(f"omega0 must be a numeric array of plane components, got {_v.fmt(omega0)}") from None
+    w = _v.as_array("omega0", omega0, what="numeric array of plane components")
+    if w.dtype.kind not in "biufc":
+        raise TypeError(f"omega0 must be a numeric array of plane components, got {_v.fmt(omega0)}")
     if w.ndim == 0:
         raise ValueError(f"omega0 must be an array of plane components (shape (n,) or batch + (n,)), got the scalar {_v.fmt(omega0)}")
     N = dimension_from_count(w.shape[-1]) if N is None else _v.dimension(N)
@@ -333,11 +330,14 @@ def _validate(scene: Scene):
         raise TypeError(f"scene must be a hyperrotor.Scene, got {_v.fmt(scene)} of type {type(scene).__name__}")
     moments, N, w0, t = _check_inputs(scene.body, scene.omega0, scene.t)
     _check_run_options(scene)
-    obs = tuple(scene.observables) if not isinstance(scene.observables, str) else (scene.observables,)
-    bad = [o for o in obs if o not in SCENE_OBSERVABLES]
+    obs = ((scene.observables,) if isinstance(scene.observables, str)
+           else _v.sequence("observables", scene.observables, f"names among {', '.join(SCENE_OBSERVABLES)}"))
+    bad = [o for o in obs if not isinstance(o, str) or o not in SCENE_OBSERVABLES]
     if bad or not obs:
-        raise ValueError(f"unknown observable(s) {bad!r}; allowed: {', '.join(SCENE_OBSERVABLES)}")
-    sel_planes = tuple(planes(N)) if scene.planes is None else tuple(_v.plane(p, N) for p in scene.planes)
+        raise ValueError((f"unknown observable(s) {bad!r}" if bad else "observables is empty")
+                         + f"; allowed: {', '.join(SCENE_OBSERVABLES)}")
+    sel_planes = (tuple(planes(N)) if scene.planes is None else tuple(
+        _v.plane(p, N) for p in _v.sequence("planes", scene.planes, "planes (i, j), e.g. [(1, 2), (3, 4)]")))
     cols = np.array([plane_index(p, N) for p in sel_planes], dtype=int)
     pts = None
     ax = None
@@ -378,6 +378,46 @@ def _fill(res: SceneResult, obs, body, omega_full, T, cols, pts, ax, invariants_
     return res
 
 
+def _route(minimal: bool, need_att: bool, need_omega: bool, moments: np.ndarray, N: int, w0: np.ndarray) -> tuple:
+    """The route of :func:`evaluate_scene` (module docstring), decided from the checked inputs without any work:
+    ``(steps, kept axes, kept plane indices, closed form or None)``; ``"+".join(steps)`` is ``SceneResult.path``."""
+    if not minimal:
+        return ["full"], tuple(range(1, N + 1)), np.arange(w0.size), None
+    if not need_att and not need_omega:
+        return ["invariants"], tuple(range(1, N + 1)), np.arange(w0.size), None
+    Z = locked_axes(w0, N)
+    if len(Z) == N:  # at rest
+        return ["closed-form:rest"], (), np.arange(0), None
+    steps = []
+    keep_axes = tuple(k for k in range(1, N + 1) if k not in Z)
+    if Z:
+        steps.append("reduced:axes(" + ",".join(map(str, keep_axes)) + ")")
+        kept = np.array([q for q, p in enumerate(planes(N)) if p[0] in keep_axes and p[1] in keep_axes], dtype=int)
+    else:
+        kept = np.arange(w0.size)
+    info = {"kind": "equal"} if len(keep_axes) == 2 else _cf.detect_closed_form(moments[kept])
+    if info is not None and (not need_att or info["kind"] in ("equal", "quartet")):
+        steps.append("closed-form:" + info["kind"])
+    else:
+        steps.append("integrate")
+        info = None
+    return steps, keep_axes, kept, info
+
+
+def scene_route(scene: Scene, *, minimal: bool = True) -> tuple[str, np.ndarray, np.ndarray]:
+    """The route :func:`evaluate_scene` takes for ``scene`` (its ``SceneResult.path``), without any work, and the
+    body it integrates when the route contains ``"integrate"``: ``(path, moments, omega0)`` of the (reduced) body
+    in the standard convention (empty arrays otherwise). For pricing a scene before it runs (the command line)."""
+    minimal = _v.flag("minimal", minimal)
+    moments, N, obs, w0, *_ = _validate(scene)
+    need_att = "attitude" in obs or "projection" in obs
+    steps, _, kept, info = _route(minimal, need_att, "omega" in obs or "L" in obs, moments, N, w0)
+    if steps == ["full"]:
+        return "full", moments, w0
+    integrated = steps[-1] == "integrate"
+    return "+".join(steps), (moments[kept] if integrated else moments[:0]), (w0[kept] if integrated else w0[:0])
+
+
 def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
     """Evaluate a :class:`Scene` with the least work (``minimal=True``) or fully (``minimal=False``).
 
@@ -401,7 +441,8 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
         + ("energy" in obs) + ("casimirs" in obs) * (N // 2)
     _pricing.check("closed_form_output", n_times=t.size, width=width)
 
-    if not minimal:
+    steps, keep_axes, kept, info = _route(minimal, need_att, need_omega, moments, N, w0)
+    if steps == ["full"]:
         _pricing.check("simulate", N=N)  # before the body is built
         body = _as_body(scene.body)
         traj = simulate(body, w0, t, method=scene.method, rtol=_rtol(scene), progress=scene.progress,
@@ -412,16 +453,14 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
         res.stats["wall_time"] = time.perf_counter() - wall
         return res
 
-    if not need_att and not need_omega:
+    if steps == ["invariants"]:
         body = _as_body(scene.body)
         res.path = "invariants"
         _fill(res, obs, body, None, None, cols, pts, ax, "initial", w0)
         res.stats["wall_time"] = time.perf_counter() - wall
         return res
 
-    steps = []
-    Z = locked_axes(w0, N)
-    if len(Z) == N:  # at rest
+    if steps == ["closed-form:rest"]:
         body = _as_body(scene.body)
         omega = np.zeros((t.size, w0.size))
         T = np.broadcast_to(np.eye(N) if T0 is None else T0, (t.size, N, N)).copy() if need_att else None
@@ -429,20 +468,12 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
         _fill(res, obs, body, omega, T, cols, pts, ax, "initial", w0)
         res.stats["wall_time"] = time.perf_counter() - wall
         return res
-    keep_axes = tuple(k for k in range(1, N + 1) if k not in Z)
-    if Z:
-        steps.append("reduced:axes(" + ",".join(map(str, keep_axes)) + ")")
-        kept = np.array([q for q, p in enumerate(planes(N)) if p[0] in keep_axes and p[1] in keep_axes], dtype=int)
-    else:
-        kept = np.arange(w0.size)
-    M = len(keep_axes)
     I_red = moments[kept]
     w_red = w0[kept]
     tau = t - t[0]
     # solve the (reduced) body in the plain ("standard") convention, then embed and convert
     U = None
-    info = {"kind": "equal"} if M == 2 else _cf.detect_closed_form(I_red)
-    if info is not None and (not need_att or info["kind"] in ("equal", "quartet")):
+    if info is not None:
         if info["kind"] == "equal":
             om_red = np.broadcast_to(w_red, (t.size, w_red.size)).copy()
             if need_att:
@@ -453,16 +484,14 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
             om_red, _ = _cf.closed_form_solution(I_red, w_red, tau)
             if need_att:  # T = exp(Theta W_r t) exp((W0 - Theta W_r) t), see quartet_attitude
                 U = _quartet.quartet_attitude_standard(info["theta"], w_red, tau, info["axis"])
-        steps.append("closed-form:" + info["kind"])
     else:
-        _pricing.check("simulate", N=M)  # the run's price, before any body is built
+        _pricing.check("simulate", N=len(keep_axes))  # the run's price, before any body is built
         red_body = RigidBody(I_red, convention="standard")
         traj = simulate(red_body, w_red, t, method=scene.method, rtol=_rtol(scene), attitude=need_att,
                         progress=scene.progress)
         om_red = traj.omega
         U = traj.attitude
         res.stats.update(traj.stats)
-        steps.append("integrate")
     body = _as_body(scene.body)
     conv = body.convention
     omega = np.zeros((t.size, w0.size))

@@ -434,7 +434,8 @@ class RunCost(NamedTuple):
 
 def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "auto", rtol: float | None = None,
                   dt: float | None = None, attitude: bool | Any = False, torque: Any = None,
-                  max_steps: int | None = None, options: Mapping[str, Any] | None = None) -> RunCost:
+                  max_steps: int | None = None, max_seconds: float | None = None,
+                  options: Mapping[str, Any] | None = None) -> RunCost:
     """Price a :func:`simulate` call before running it (for budgets such as the CLI's ``--max-seconds``).
 
     Same arguments as :func:`simulate`. With ``dt`` nothing is integrated; with ``rtol`` the
@@ -445,8 +446,11 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     ``None``.
 
     Raises :class:`~.solvers.StepBudgetError` when the probe alone exceeds ``max_steps``
-    (default ``hyperrotor.options["max_steps"]``), and the errors of :func:`simulate` for bad
-    input.
+    (default ``hyperrotor.options["max_steps"]``) or, with ``max_seconds``, when its estimated time does (before
+    each of its compiled calls, at the cost per step of this kind of call, learned or
+    :func:`~.solvers.chunks.flow_weight` times a 5D default: at N = 200 a step of splitting8 takes about a second,
+    and a probe of tens of steps is not "a small fraction" of a caller's budget; ``option == "max_seconds"``),
+    and the errors of :func:`simulate` for bad input.
 
     Examples
     --------
@@ -461,6 +465,7 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
     problem, _ = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"], _checked(solver, rtol, None))
+    _pricing.check("simulate", N=problem.N)  # (the set-up simulate would do: priced here as there)
     control = _step_control(solver, rtol, dt)
     if not isinstance(solver, FixedStepSolver):
         return RunCost(None, None, None, solver.name)
@@ -470,7 +475,10 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     solver.prepare(problem)
     if problem.t.size < 2 or problem.B == 0:
         return RunCost(0, 0.0, None, solver.name)
-    work = Work(max_steps)
+    if max_seconds is not None:
+        max_seconds = _validate.positive("max_seconds", max_seconds, allow_zero=True)
+    spf = seconds_per_flow(cost_key(solver, problem))
+    work = Work(max_steps, max_seconds, solver.flows_per_step(problem) * spf)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", UserWarning)  # the slow-run warning: the caller prices the run itself
         h = control.first_step(solver, problem, work)
@@ -479,6 +487,6 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     solver.set_accuracy(problem, control.rtol, int(nsub.sum()))  # the kernel variant the run will use (its cost)
     check = control.checker(solver, problem, nsub, work)
     total = work.done + run + (check.planned_steps if check is not None else 0)
-    seconds = total * solver.flows_per_step(problem) * seconds_per_flow(cost_key(solver, problem))
+    seconds = total * solver.flows_per_step(problem) * seconds_per_flow(cost_key(solver, problem))  # (learned now)
     return RunCost(int(total), float(seconds), float(np.abs(np.diff(problem.t) / nsub).max()) / problem.scale,
                    solver.name)

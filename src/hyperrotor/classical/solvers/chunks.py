@@ -29,7 +29,8 @@ from ._kernels import PARALLEL_MIN_BODIES
 from .base import Problem, StepBudgetError
 
 __all__ = ["Work", "advance_chunked", "advance_pair_chunked", "pair_ahead", "refuse_steps", "step_times", "stops",
-           "merge", "check_finite", "cost_key", "learn", "seconds_per_flow", "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS"]
+           "merge", "check_finite", "cost_key", "learn", "seconds_per_flow", "SECONDS_PER_FLOW", "FIRST_CHUNK_FLOWS",
+           "flow_weight", "first_chunk_flows"]
 
 #: the first chunk of a long run does this many elementary flows (about 10 ms); later chunks
 #: are sized from its measured time to last ``options["chunk_seconds"]``
@@ -40,7 +41,8 @@ SECONDS_PER_FLOW: dict = {}
 MIN_TIMED_CHUNK = 2e-3
 #: ... and calls of fewer flows than this (a few probe steps cost mostly the call itself)
 MIN_TIMED_FLOWS = 200_000
-#: seconds per elementary flow assumed before anything of a kind was timed (a 5D splitting, one core)
+#: seconds per elementary flow assumed before anything of a kind was timed (a 5D splitting, one core; larger N:
+#: :func:`flow_weight` times this)
 DEFAULT_SECONDS_PER_FLOW = 1e-8
 #: a pair of runs expected to take this long (seconds) starts on the second core (:func:`pair_ahead`). A round trip
 #: through its thread costs 60-80 us, but the pair also overlaps the Python around the run: on the 3D top at T = 200
@@ -57,6 +59,20 @@ def cost_key(solver, problem: Problem, B: int | None = None, with_attitude: bool
     return solver.kernel_variant(), problem.N, att, 0 if B < 32 else B.bit_length()
 
 
+def flow_weight(N: int) -> float:
+    """What an elementary flow of so(N) costs relative to one of so(5), before any was timed: it rotates the
+    2(N - 2) components its plane couples, and beyond the caches each costs more (measured with splitting8 on
+    random bodies, 2026-11-29: 2.5x at N = 8, 4x at 12, 10x at 20, 17-23x at 40, 42-47x at 80, 89-93x at 140;
+    this weight ``((N - 2) / 3)^1.2`` is 2.3, 4.2, 8.6, 21, 50, 99 there). The first chunk of a call of a kind
+    not timed yet is sized with it (at N = 200 the 5D figure had put 17 steps, about 20 s, in one call)."""
+    return max(1.0, ((N - 2) / 3.0) ** 1.2)
+
+
+def first_chunk_flows(N: int) -> float:
+    """Flows of the shortest chunk worth timing at dimension ``N`` (:data:`FIRST_CHUNK_FLOWS` at N <= 5)."""
+    return FIRST_CHUNK_FLOWS / flow_weight(N)
+
+
 def learn(key, elapsed: float, flows: float) -> None:
     """Record the seconds per flow of a timed call (calls shorter than :data:`MIN_TIMED_CHUNK` or of
     fewer than :data:`MIN_TIMED_FLOWS` flows are ignored: the call's overhead would dominate)."""
@@ -65,8 +81,9 @@ def learn(key, elapsed: float, flows: float) -> None:
 
 
 def seconds_per_flow(key) -> float:
-    """The learned seconds per flow of ``key``, else :data:`DEFAULT_SECONDS_PER_FLOW`."""
-    return SECONDS_PER_FLOW.get(key, DEFAULT_SECONDS_PER_FLOW)
+    """The learned seconds per flow of ``key``, else :data:`DEFAULT_SECONDS_PER_FLOW` times :func:`flow_weight`."""
+    spf = SECONDS_PER_FLOW.get(key)
+    return DEFAULT_SECONDS_PER_FLOW * flow_weight(key[1]) if spf is None else spf
 
 
 class Work:
@@ -76,8 +93,9 @@ class Work:
     carry the total over the budget before it starts.
     """
 
-    def __init__(self, max_steps: int):
+    def __init__(self, max_steps: int, max_seconds: float | None = None, seconds_per_step: float = 0.0):
         self.max_steps = int(max_steps)
+        self.max_seconds, self.seconds_per_step = max_seconds, float(seconds_per_step)
         self.done = 0.0
 
     def add(self, steps: float) -> None:
@@ -85,11 +103,19 @@ class Work:
 
     def refuse(self, planned: float, what) -> None:
         """Raise :class:`StepBudgetError` when ``done + planned`` exceeds the budget (``what``: the
-        estimate's origin, or a function making it, called only then)."""
+        estimate's origin, or a function making it, called only then); with ``max_seconds`` also when its time
+        at ``seconds_per_step`` (a member's step, from :func:`seconds_per_flow`) does (option ``"max_seconds"``)."""
         total = self.done + float(planned)
         if total > self.max_steps:
             what = what() if callable(what) else what
             raise refuse_steps(f"this run ({what})", total, self.max_steps, "ask for less (shorter t, larger rtol/dt)")
+        if self.max_seconds is not None and total * self.seconds_per_step > self.max_seconds:
+            what = what() if callable(what) else what
+            seconds = total * self.seconds_per_step
+            raise _pricing.refuse("simulate", f"this run ({what}; {total:.3g} steps)", seconds, "max_seconds",
+                                  "seconds", "ask for less (shorter t, larger rtol/dt)", limit=self.max_seconds,
+                                  raise_with="estimate_cost(..., max_seconds=...)", cls=StepBudgetError,
+                                  needed=seconds, budget=self.max_seconds, option="max_seconds")
 
 
 def refuse_steps(what: str, needed: float, budget: float, alternative: str, unit: str = "integration steps"
@@ -174,7 +200,7 @@ def _chunk_plan(solver, problem: Problem, rows: int) -> tuple:
     key = cost_key(solver, problem, B=rows, with_attitude=False)
     flows = max(1, rows * solver.flows_per_step(problem))
     target = float(options["chunk_seconds"])
-    return key, flows, max(1, int(max(FIRST_CHUNK_FLOWS, target / seconds_per_flow(key)) // flows)), target
+    return key, flows, max(1, int(max(first_chunk_flows(problem.N), target / seconds_per_flow(key)) // flows)), target
 
 
 def pair_ahead(solver, problem: Problem, La: np.ndarray, Lb: np.ndarray, grid: np.ndarray, na: np.ndarray,

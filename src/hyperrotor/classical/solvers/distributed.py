@@ -20,16 +20,12 @@ import dataclasses
 import numpy as np
 
 from .base import Problem, RunResult, nsub_for
+from .chunks import cost_key, seconds_per_flow
 from .driver import FixedStepSolver
 from .members import member_problem, member_setup
 from .step_control import CHECK_MEMBERS
 
 __all__ = ["run_distributed"]
-
-#: seconds of compiled work per elementary plane flow (order of magnitude, reference machine):
-#: sets the chunk size so that one chunk runs for about a second
-SECONDS_PER_FLOW = 5e-9
-
 
 def _rows(L0, T0, torque, solver, template, control, max_steps, tq=None):
     """One chunk of members (top-level, picklable): L (and T) of the chunk at the output times, or
@@ -48,7 +44,8 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
     # (the check runs here, before the workers: on up to CHECK_MEMBERS members, not the whole ensemble again)
     worker_solver, worker_control, steps, h, work = member_setup(solver, problem, control, max_steps, CHECK_MEMBERS)
     if steps is not None:
-        per_member = max(1, steps) * solver.flows_per_step(problem) * SECONDS_PER_FLOW
+        # (a chunk of about a second: the cost per flow this process learned, or its default for this N)
+        per_member = max(1, steps) * solver.flows_per_step(problem) * seconds_per_flow(cost_key(solver, problem, B=1))
     else:
         per_member = 0.05  # a scipy solve of a few periods
     chunk = int(max(1, min(B, 1.0 / max(per_member, 1e-12))))

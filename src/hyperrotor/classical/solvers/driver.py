@@ -46,7 +46,7 @@ from hyperrotor._options import options
 from hyperrotor._parallel import progress_bar
 
 from .base import Problem, RunResult, Solver, nsub_for, step_lengths
-from .chunks import FIRST_CHUNK_FLOWS, SECONDS_PER_FLOW, Work, check_finite, cost_key, learn, merge, stops
+from .chunks import SECONDS_PER_FLOW, Work, check_finite, cost_key, first_chunk_flows, learn, merge, stops
 from .richardson_check import CheckFailed
 
 __all__ = ["FixedStepSolver", "run_fixed_step", "EventSpec", "event_specs", "DenseOutput", "dense_states"]
@@ -213,7 +213,7 @@ def run_fixed_step(solver: FixedStepSolver, problem: Problem, control: Any, *, e
                     outT = np.empty((B, K, N, N))
                     outT[:, 0] = problem.T0
                 break
-            if bar is None and (progress or planned * fps > FIRST_CHUNK_FLOWS):
+            if bar is None and (progress or planned * fps > first_chunk_flows(N)):
                 bar = progress_bar(progress, planned + work.done, "simulate", unit="step", leave=False)
             elif bar is not None:
                 bar.reset(total=planned + work.done)
@@ -261,7 +261,8 @@ def _loop(solver, problem, t, nsub, hs, specs, t_events, L_events, T_events, fps
     key = cost_key(solver, problem)
     flows = max(1, B * fps)  # elementary flows per step, whole ensemble
     rate = SECONDS_PER_FLOW.get(key)
-    first = FIRST_CHUNK_FLOWS if rate is None else max(FIRST_CHUNK_FLOWS, target / rate)
+    floor = first_chunk_flows(problem.N)
+    first = floor if rate is None else max(floor, target / rate)
     if specs:
         cap = max(1, min(EVENT_CHUNK_STEPS, int(first // flows)))
     else:
