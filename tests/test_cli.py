@@ -1,4 +1,5 @@
 """Tests of the ``hyperrotor`` command line (``hyperrotor.cli.main``)."""
+import argparse
 import os
 import re
 import subprocess
@@ -91,8 +92,8 @@ def test_demo_prints_the_equations_before_the_motion_is_computed(capsys, monkeyp
 
 
 def test_demo_options(capsys):
-    code, out, _ = _run(capsys, ["demo", "--ascii", "--no-png", "--kappa", "2", "--axis", "1", "--convention", "standard",
-                                 "--omega", "1,0,0,0,0,0,0,0,0,1"])
+    code, out, _ = _run(capsys, ["demo", "--ascii", "--no-png", "--kappa", "2", "--axis", "1", "--convention",
+                                 "standard", "--omega", "1,0,0,0,0,0,0,0,0,1"])
     assert code == 0
     assert "I_12 = 5" in out and "I_45 = 2" in out
     assert re.findall(r"^\[(\d+)\]  ", out, flags=re.M)[0] == "12"
@@ -128,7 +129,8 @@ def test_choices_ignore_case_like_the_python_api():
     from hyperrotor.cli import build_parser
 
     parser = build_parser()
-    assert parser.parse_args(["bench", "--method", "dop853", "--method", "Splitting8"]).method == ["DOP853", "splitting8"]
+    assert parser.parse_args(["bench", "--method", "dop853", "--method", "Splitting8"]).method == ["DOP853",
+                                                                                                  "splitting8"]
     assert parser.parse_args(["demo", "--convention", "STANDARD"]).convention == "standard"
     args = parser.parse_args(["scene", "--shape", "Simplex", "--inertia", "BOX"])
     assert (args.shape, args.inertia) == ("simplex", "box")
@@ -209,8 +211,10 @@ def test_scene_html_is_the_library_page(capsys, tmp_path):
     # booleans, not the 3 MB page, in the assertions (pytest's diff of such a string takes minutes)
     starts_as_html = html.lstrip().lower().startswith(("<!doctype html>", "<html"))  # plotly 5 omits the doctype
     assert starts_as_html and ("Plotly.newPlot" in html) is True
-    loads_nothing = re.search(r"<script[^>]*\bsrc\s*=", html, re.I) is None and re.search(r"<link[^>]*\bhref\s*=", html, re.I) is None
-    assert loads_nothing and len(html) > 3_000_000  # self-contained: plotly.js is inside (the bundle's own text may say src="http)
+    loads_nothing = (re.search(r"<script[^>]*\bsrc\s*=", html, re.I) is None
+                     and re.search(r"<link[^>]*\bhref\s*=", html, re.I) is None)
+    # self-contained: plotly.js is inside (the bundle's own text may say src="http)
+    assert loads_nothing and len(html) > 3_000_000
     assert len(re.findall(r'"name"\s*:\s*"', html)) >= 5  # one animation frame per time (--frames 5)
 
 
@@ -311,11 +315,12 @@ MORE = [
     (["scene", "--N", "5.5"], ["--N must be an integer, got '5.5'"]),
     (["scene", "--colour-axis", "2"], ["--colour-axis 2 is one of the drawn --axes"]),
     (["scene", "--max-seconds", "-1"], ["--max-seconds must be finite and > 0, got -1.0"]),
-    (["scene", "--max-memory", "lots"], ["argument --max-memory: expected a size such as 2G"]),
+    (["scene", "--max-memory", "lots"], ["--max-memory='lots' cannot be read", "a size is a number with an optional "
+                                                                                "unit K, M, G or T"]),
     (["scene", "--kappa", "1e300"], ["--kappa must have magnitude <= 1e+100, got 1e+300"]),
     (["scene", "--N", "1000000000"], ["--N must be an integer in 3..1000, got 1000000000"]),  # the library's limit
     (["scene", "--inertia", "box", "--sides=1e100,1,1,1,1"], ["--sides values must be in [1e-50, 1e50]"]),
-    (["scene", "--max-memory", "0.5"], ["expected a size of at least one byte, got '0.5'"]),  # (was 0 bytes)
+    (["scene", "--max-memory", "0.5"], ["--max-memory must be a size of at least one byte, got '0.5'"]),  # (was 0 B)
     (["demo", "--png", "q.png", "--no-png"], ["--png 'q.png' and --no-png contradict each other"]),
     (["demo", "--bogus"], ["unrecognized arguments: --bogus (see 'hyperrotor demo --help')"]),  # (was hyperrotor)
     (["scene", "--inertia", "box", "--sides=1e-200,1,1,1,1"], ["--sides values must be in [1e-50, 1e50]"]),
@@ -695,3 +700,145 @@ def test_demo_budget_advice_follows_the_cost_model(capsys, tmp_path, monkeypatch
         assert code == 2 and out == "" and _one_line(err).endswith(end), (argv, err)
         assert ("--kappa" in err) == ("--kappa" in end)  # the run and the advice name kappa only when it drives
     assert _files(tmp_path) == []
+
+
+#: The library's budget keywords: a command-line user is told the options (--max-steps), never these.
+_KEYWORDS = re.compile(r"(?<![\w-])(max_steps|max_seconds|max_memory_bytes|max_output_bytes)(?!\w)")
+
+
+def test_budget_refusals_name_the_cli_option_never_the_python_keyword(capsys, tmp_path, monkeypatch):
+    """#46: "the motion needs about 30 (max_steps), over the budget of 10 (--max-steps)", and a run beyond every
+    budget was told "more than any budget max_steps allows; ... or raise --max-steps" (which cannot help)."""
+    from hyperrotor.classical.solvers.base import nsub_for
+    from hyperrotor.cli._common import budget_message
+
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _run(capsys, ["scene", "--inertia", "box", "--max-steps", "10", "--output", "k.png"])
+    assert code == 2 and out == "" and not _KEYWORDS.search(_one_line(err)), err
+    assert "integration steps, over the budget of 10 (--max-steps); " in err and err.endswith("raise --max-steps\n")
+    code, out, err = _run(capsys, ["scene", "--inertia", "box", "--t-end", "1e100", "--output", "k.png"])
+    assert code == 2 and out == "" and not _KEYWORDS.search(_one_line(err)), err
+    assert "more than any --max-steps value allows; choose a smaller run\n" in err and "raise" not in err
+    assert _files(tmp_path) == []
+    with pytest.raises(hr.BudgetError) as info:
+        nsub_for(np.array([0.0, 1e300]), 1e-300)
+    for args, words in [(None, "any --max-steps value allows"),  # a subcommand without --max-steps: what it counts
+                        (argparse.Namespace(max_seconds=None), "any budget of integration steps allows")]:
+        text = budget_message(info.value, args)
+        assert words in text and text.endswith("; choose a smaller run") and not _KEYWORDS.search(text), text
+
+
+def test_a_locked_scene_on_a_closed_form_route_is_not_priced_as_an_integration(capsys, tmp_path, monkeypatch):
+    """#46: scene --lock 1 --t-end 1e8 runs by a closed form (reduced:axes(2,3,4,5)+closed-form:quartet) but was
+    refused for 2.99e9 integration steps; the route the scene takes is priced. A locked box still integrates and is
+    still priced."""
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _run(capsys, ["scene", "--lock", "1", "--t-end", "1e8", "--frames", "2", "--output", "a.png"])
+    assert code == 0, err
+    assert "route 'reduced:axes(2,3,4,5)+closed-form:quartet'" in out
+    code, out, err = _run(capsys, ["scene", "--lock", "1", "--inertia", "box", "--t-end", "1e8", "--frames", "2",
+                                   "--output", "b.png"])
+    assert code == 2 and "integration steps (splitting8), over the budget of 100000000 (--max-steps" in err, err
+    assert _files(tmp_path) == ["a.png"]
+
+
+def test_an_omega_whose_invariants_overflow_is_refused_before_any_work(capsys, tmp_path, monkeypatch):
+    """#46: every --omega value within the stated 1e100, but the Casimirs (degree 4 in L) overflow: exit 1 "failed:
+    ValueError: casimirs: values too large" after the work started. Now exit 2 before it, naming --omega and the
+    range that fits (the library's own computation of the invariants decides)."""
+    monkeypatch.chdir(tmp_path)
+    omega = "--omega=1e99,1,1,1,1,1,1,1,1,1"
+    code, out, err = _run(capsys, ["demo", "--no-png", "--t-end", "1e-100", omega])
+    assert code == 2 and out == "" and _one_line(err).startswith("hyperrotor demo: error: --omega values too large "
+                                                                 "for this body, max |omega| = 1e+99"), err
+    assert "allowed for this body and these proportions: max |omega| <= about 1e76\n" in err
+    code, out, err = _run(capsys, ["demo", "--no-png", "--t-end", "1e-100", "--omega=1e76,1,1,1,1,1,1,1,1,1"])
+    assert code == 0 and "inf" not in out.replace("Manakov", "").lower(), err  # (the bound is one that works)
+    code, out, err = _run(capsys, ["scene", omega, "--output", "ov.html"])
+    assert code == 2 and out == "" and "--omega values too large for this body" in _one_line(err), err
+    assert _files(tmp_path) == []
+
+
+def test_max_memory_is_read_by_the_one_parser(capsys, tmp_path, monkeypatch):
+    """#46: --max-memory had its own regex and float(): 2**31 refused, 1e400 "at least one byte", 1e308 accepted
+    (over the documented 1e100). The number goes through the one parser; the units stay."""
+    from hyperrotor.cli._common import byte_size
+
+    assert [byte_size(t) for t in ("2**31", "2G", "2 GiB", "2gb", "500M", "1/2K", "1000000", "3*2**10")] == \
+        [2**31, 2**31, 2**31, 2**31, 500 * 2**20, 512, 10**6, 3072]
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _run(capsys, ["scene", "--max-memory", "2**31", "--frames", "2", "--output", "a.png"])
+    assert code == 0, err
+    for text, words in [("1e308", "--max-memory must have magnitude <= 1e+100, got 1e+308"),
+                        ("1e400", "--max-memory='1e400' cannot be read: the value is too large for a float"),
+                        ("1e400G", "--max-memory '1e400G': --max-memory='1e400' cannot be read"),
+                        ("0", "--max-memory must be a size of at least one byte, got '0'"),
+                        ("2X", "--max-memory='2X' cannot be read")]:
+        code, out, err = _run(capsys, ["scene", "--max-memory", text, "--output", "b.png"])
+        assert code == 2 and words in _one_line(err), (text, err)
+    assert _files(tmp_path) == ["a.png"]
+
+
+def test_values_double_precision_cannot_hold_are_named_as_typed(capsys):
+    """#46: demo --kappa 1e400 said "--kappa must be finite, got inf", bench --error 1e-400 "got 0.0"."""
+    for argv, words in [(["demo", "--no-png", "--kappa", "1e400"], "--kappa must have magnitude <= 1e+100, got 1e400"),
+                        (["bench", "--error", "1e-400"], "--error 1e-400 is too close to 0 for double precision"),
+                        (["demo", "--no-png", "--omega=1e-400,1,1,1,1,1,1,1,1,1"], "--omega 1e-400 is too close to 0")]:
+        code, out, err = _run(capsys, argv)
+        assert code == 2 and out == "" and words in _one_line(err), (argv, err)
+        assert "inf" not in err and "0.0" not in err
+
+
+@pytest.mark.parametrize("argv,words", [
+    (["demo", "--no-png", "--omega=1,,2,3,4,5,6,7,8,9,10"], "--omega '1,,2,3,4,5,6,7,8,9,10': field 2 of 11 is empty"),
+    (["demo", "--no-png", "--omega=1,2,3,4,5,6,7,8,9,10,"], "field 11 of 11 is empty"),
+    (["scene", "--axes", "1,,2,3"], "--axes '1,,2,3': field 2 of 4 is empty"),
+    (["scene", "--lock", ",1"], "--lock ',1': field 1 of 2 is empty"),
+    (["scene", "--inertia", "box", "--sides=1,2,3, ,5"], "--sides '1,2,3, ,5': field 4 of 5 is empty"),
+])
+def test_an_empty_field_of_a_list_is_refused(capsys, tmp_path, monkeypatch, argv, words):
+    """#46: demo --omega=1,,2,...,10 was read as 10 values, scene --axes 1,,2,3 as 1,2,3."""
+    monkeypatch.chdir(tmp_path)
+    code, out, err = _run(capsys, argv)
+    assert code == 2 and out == "" and words in _one_line(err), err
+    assert _files(tmp_path) == []
+
+
+def test_verify_writes_its_report_in_one_call(monkeypatch, capsys):
+    """#46: `verify | head -1` under pipefail exited 141 one time in three: print() wrote the report, then "\n",
+    and a reader gone after the first line broke the second write."""
+    class Recorder:
+        encoding = "utf-8"
+
+        def __init__(self):
+            self.writes = []
+
+        def write(self, text):
+            self.writes.append(text)
+            return len(text)
+
+        def flush(self):
+            pass
+
+        def isatty(self):
+            return False
+
+    rec = Recorder()
+    monkeypatch.setattr(sys, "stdout", rec)
+    assert main(["verify", "--section", "euler"]) == 0
+    assert len(rec.writes) == 1 and rec.writes[0].endswith("\n") and rec.writes[0].count("\n") > 5, rec.writes[:3]
+
+
+def test_demo_summary_is_true_of_the_body_run(capsys):
+    """#46: demo --kappa 1 (all ten moments equal) said "the six planes without axis 5 have constant omega" and
+    listed ten planes."""
+    code, out, _ = _run(capsys, ["demo", "--no-png", "--kappa", "1", "--t-end", "1"])
+    summary = out.split("\nsummary: ")[1].split("\n")[0]
+    assert code == 0 and "six planes" not in summary
+    assert "all plane moments are equal" in summary and "dw/dt = 0 on all 10 planes" in summary
+    code, out, _ = _run(capsys, ["demo", "--no-png", "--t-end", "1"])
+    summary = out.split("\nsummary: ")[1].split("\n")[0]
+    assert "the six planes without axis 5 have constant omega for this body (12, 13, 14, 23, 24, 34);" in summary
+    code, out, _ = _run(capsys, ["demo", "--no-png", "--t-end", "1", "--omega=1,2,3,0,0,0,0,0,0,0"])
+    summary = out.split("\nsummary: ")[1].split("\n")[0]
+    assert summary.endswith("(12, 13, 14, 23, 24, 34); at this omega also 15, 25, 35, 45 (dw/dt = 0 here);")

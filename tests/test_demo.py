@@ -96,3 +96,19 @@ def test_the_timed_splitting_run_needs_no_kernel_its_untimed_first_call_did_not_
     (_, first), (_, timed), (_, dop) = calls
     assert first  # (the spy sees what a call loads: in a fresh process the first call loads its kernels)
     assert timed == [] and dop == []
+
+
+@pytest.mark.parametrize("kappa, says", [(0.5, "the four planes with axis 5 oscillate"),
+                                         (1.0, "equal moments, every omega constant"),
+                                         (-1.0, "equal moments, every omega constant")])
+def test_the_pictures_title_says_what_the_body_does(monkeypatch, tmp_path, kappa, says):
+    """kappa^2 = 1 makes every moment 2: nothing oscillates, and the title said four planes did."""
+    from hyperrotor import plotting
+
+    seen = {}
+    monkeypatch.setattr(plotting, "save_motion_comparison", lambda path, *a, title, **k: seen.setdefault("t", title))
+    motion = compare_quartet_motion(kappa, t_end=2.0)
+    save_quartet_motion(motion, tmp_path / "q.png")
+    assert seen["t"].endswith(says)
+    if kappa ** 2 == 1:
+        assert np.abs(np.diff(motion.exact, axis=0)).max() == 0.0  # (constant indeed)

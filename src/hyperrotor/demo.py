@@ -235,5 +235,6 @@ def save_quartet_motion(motion: QuartetMotion, path: Any, *, format: str | None 
     return save_motion_comparison(
         path, motion.t, motion.exact, {name: run.omega for name, run in motion.runs.items()}, components=osc,
         labels=labels, scale=motion.scale, marked=DEMO_RUNS[0][0],
-        title=f"5D quartet body (kappa = {motion.kappa:.6g}, axis {axis}): the four planes with axis "
-              f"{axis} oscillate", format=format)
+        title=f"5D quartet body (kappa = {motion.kappa:.6g}, axis {axis}): "
+              + (f"the four planes with axis {axis} oscillate" if motion.kappa ** 2 != 1  # (else all moments are 2)
+                 else "equal moments, every omega constant"), format=format)

@@ -221,3 +221,77 @@ def test_signals_inside_matplotlib_and_pillow_wait_for_a_safe_point():
 
     assert _signals._deferred(frame_in("matplotlib.transforms")) and _signals._deferred(frame_in("PIL.Image"))
     assert not _signals._deferred(frame_in("hyperrotor.plotting")) and not _signals._deferred(frame_in("__main__"))
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_during_one_long_compiled_call_ends_the_command_within_the_grace(tmp_path, sig):
+    """#46: the watchdog was started by the Python-level handler, which Python runs only between bytecodes: during
+    one long compiled call (a numba kernel, ~10 s at scene --N 200 --inertia box) nothing happened until it returned.
+    The handlers are installed as the command installs them, an output file is reserved, and the main thread spends
+    ~30 s in one numba call that releases the GIL (as the package's kernels do): SIGINT 1 s into it ends the process
+    GRACE later with the signal's status, the one line, and no temporary file."""
+    work = tmp_path / "work"
+    work.mkdir()
+    script = tmp_path / "long_call.py"
+    script.write_text(f"""
+import time
+import numba
+from hyperrotor.cli import _files, _signals
+
+@numba.njit(nogil=True, cache=False)
+def spin(n):  # floating-point recurrence: LLVM cannot shorten it
+    x = 0.0
+    for i in range(n):
+        x = x * 0.999999 + 1e-9 * i
+    return x
+
+spin(10)  # compiled before the clock starts
+start = time.perf_counter()
+spin(10**7)
+rate = 10**7 / (time.perf_counter() - start)
+out = _files.output_file({str(work / "x.png")!r}, option="--output", suffixes=(".png",), force=False)
+_signals.install("hyperrotor scene")
+print("running", flush=True)
+spin(int(30 * rate))  # ~30 s without returning to Python
+print("the call returned before the process ended", flush=True)
+""")
+    env = dict(os.environ, PYTHONWARNINGS="ignore", PYTHONFAULTHANDLER="1")
+    p = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         env=env)
+    try:
+        assert p.stdout.readline().strip() == "running", p.communicate()
+        assert any(n.startswith(".x.png.") for n in os.listdir(work))  # the temporary file of the output exists
+        time.sleep(1.0)
+        latency, out, err = _stop(p, sig)
+    finally:
+        if p.poll() is None:
+            p.kill()
+    assert latency < 2.5, (latency, err)  # the grace is 0.7 s; before, the rest of the call (~29 s)
+    assert p.returncode == STATUS[sig], (out, err)
+    assert err == f"hyperrotor scene: {WORD[sig]}; unfinished output files were removed, existing files left as " \
+                  "they were\n"
+    assert out == "" and os.listdir(work) == []  # no .part file left by the watchdog's exit
+
+
+def test_the_signal_listener_ends_with_the_command():
+    """The thread that reads the wakeup pipe (one per command) ends when the command ends without a signal, and the
+    previous wakeup fd is put back: in-process commands (tests, notebooks) leave nothing behind."""
+    import threading
+
+    from hyperrotor.cli import _signals
+
+    def wakeup_fd():
+        fd = signal.set_wakeup_fd(-1)
+        signal.set_wakeup_fd(fd)
+        return fd
+
+    before = wakeup_fd()
+    for _ in range(3):
+        assert _signals.install("x")
+        assert wakeup_fd() not in (before, -1)  # the command's pipe while it runs
+        _signals.restore()
+        assert wakeup_fd() == before
+    deadline = time.monotonic() + 5
+    while any(t.name == "hyperrotor-signal-listener" for t in threading.enumerate()):
+        assert time.monotonic() < deadline, threading.enumerate()
+        time.sleep(0.01)

@@ -35,7 +35,8 @@ Conventions of every subcommand
   (SIGINT), 143 terminated (SIGTERM), 129 hung up (SIGHUP), each within a
   second whatever the command is doing, numba compiling included
   (:mod:`hyperrotor.cli._signals`; while the package is imported, the console script's launcher
-  ``_hyperrotor_launch``, outside the package); 141 standard output closed early (``hyperrotor demo | head -1``): the command
+  ``_hyperrotor_launch``, outside the package); 141 standard output closed early
+  (``hyperrotor demo | head -1``): the command
   stops quietly with the status a shell reports for a program ended by
   SIGPIPE, as ``yes | head -1`` does (so ``set -o pipefail`` treats both alike).
   ``--debug`` adds the Python traceback to an error.

@@ -9,7 +9,8 @@ from __future__ import annotations
 import argparse
 import math
 import re
-from typing import Callable
+import warnings
+from typing import Any, Callable
 
 import numpy as np
 
@@ -20,8 +21,8 @@ from hyperrotor.cli._signals import bar_shown, checkpoint
 
 __all__ = ["UsageError", "budget_message", "CLI_BUDGETS",
            "num", "nums", "usage", "MAX_MAGNITUDE", "bounded", "number", "integer", "number_list",
-           "int_list", "choice_of", "byte_size", "size_text", "duration_text", "check_budget", "bar", "have_module",
-           "have_matplotlib", "add_common", "check_common"]
+           "int_list", "check_invariants_fit", "choice_of", "byte_size", "size_text", "duration_text", "check_budget",
+           "bar", "have_module", "have_matplotlib", "add_common", "check_common"]
 
 
 class UsageError(ValueError):
@@ -68,15 +69,38 @@ def number(text, option: str, *, exact: bool = False):
     bounded before any work. A number that is already parsed (an option's
     default) is passed through. Returns a float of magnitude at most
     :data:`MAX_MAGNITUDE`, or with ``exact`` a ``sympy.Rational``. Refusals are
-    :class:`UsageError` naming ``option`` (exit status 2).
+    :class:`UsageError` naming ``option`` (exit status 2); a value that double
+    precision cannot hold (``1e400``, or ``1e-400``, which would round to 0) is
+    named as typed.
     """
-    if isinstance(text, str):
-        try:
-            text = _parse.number(text, option, exact=exact)
-        except (_parse.ParseError, TypeError) as err:
-            raise UsageError(str(err)) from None
-    bounded(option, float(text))
-    return text
+    if not isinstance(text, str):
+        bounded(option, float(text))
+        return text
+    try:
+        value = _parse.number(text, option, exact=exact)
+    except (_parse.ParseError, TypeError) as err:
+        raise UsageError(str(err)) from None
+    typed = text.strip()
+    if exact and abs(value) > MAX_MAGNITUDE:  # (compared exactly: 1e400 is no float)
+        raise UsageError(f"{option} must have magnitude <= {MAX_MAGNITUDE:g}, got {typed}")
+    f = float(value)
+    if f == 0.0 and not _is_zero(text, option, value, exact):
+        raise UsageError(f"{option} {typed} is too close to 0 for double precision: it would round to 0 (a nonzero "
+                         "magnitude must be at least about 5e-324)")
+    bounded(option, f)
+    return value
+
+
+def _is_zero(text: str, option: str, value, exact: bool) -> bool:
+    """Whether the number ``text`` (read as ``value``, a float 0.0 unless ``exact``) is exactly zero."""
+    if exact:
+        return value == 0
+    if len(text) <= _parse._DECIMAL_LENGTH and _parse._DECIMAL.fullmatch(text):
+        return True  # (a short plain decimal, exponent of two digits at most, is 0.0 only when it is 0: no SymPy)
+    try:
+        return bool(_parse.expression(text, option, symbols=False).is_zero)
+    except (_parse.ParseError, TypeError) as err:  # (it was read once already)
+        raise UsageError(str(err)) from None
 
 
 def integer(text, option: str, *, minimum: int | None = None, maximum: int | None = None) -> int:
@@ -96,25 +120,50 @@ def integer(text, option: str, *, minimum: int | None = None, maximum: int | Non
 #: the library's budget options and the command-line options that set them
 CLI_BUDGETS = {"max_steps": "--max-steps", "max_output_bytes": "--max-memory", "max_memory_bytes": "--max-memory",
                "max_seconds": "--max-seconds"}
+#: what each budget counts, for a refusal whose subcommand has no option for it
+_BUDGET_WORDS = {"max_steps": "integration steps", "max_output_bytes": "output memory",
+                 "max_memory_bytes": "memory", "max_seconds": "time"}
 
 
 def budget_message(err: Exception, args: argparse.Namespace | None = None) -> str:
     """A library budget refusal worded with the command line's options: the advice to raise a Python option
     (``hr.options(...)``, ``simulate(..., max_steps=...)``) is replaced by the subcommand's own option, when it has
-    one (``args``), else by "choose a smaller run"; a limit without an option is named as the library's limit."""
+    one (``args``), else by "choose a smaller run"; a limit without an option is named as the library's limit.
+    No budget keyword of the library (``max_steps``) is left in the text. A run beyond every budget ("more than any
+    budget ... allows") is not told to raise one."""
     text = str(err).split("; raise it with", 1)[0].split(" (raise it", 1)[0]
     flags = [f for key, f in CLI_BUDGETS.items()
              if key in text and (args is None or hasattr(args, f[2:].replace("-", "_")))]
+    beyond = "more than any budget" in text
     for key, flag in CLI_BUDGETS.items():
         if flag in flags:
-            text = text.replace(f"hr.options['{key}']", flag).replace(f"budget {key} =", f"budget {flag} =")
+            text = (text.replace(f"hr.options['{key}']", flag).replace(f"budget {key} =", f"budget {flag} =")
+                    .replace(f"any budget {key} allows", f"any {flag} value allows"))
+        else:
+            text = text.replace(f"any budget {key} allows", f"any budget of {_BUDGET_WORDS[key]} allows")
     text = re.sub(r"hr\.options\['(\w+)'\]", r"the library's limit \1", text)
+    for key, flag in CLI_BUDGETS.items():  # a keyword left anywhere else: the option, or what it counts
+        text = re.sub(rf"(?<!limit )(?<![\w-]){key}(?!\w)", flag if flag in flags else _BUDGET_WORDS[key], text)
+    if beyond:
+        return text + "; choose a smaller run"
     return text + "; choose a smaller run" + (f" or raise {flags[0]}" if flags else "")
+
+
+def _fields(text: str, option: str, what: str) -> list[str]:
+    """The comma-separated fields of ``text`` (none for an empty text); an empty field is refused, naming it."""
+    if not text.strip():
+        return []
+    fields = text.split(",")
+    for k, v in enumerate(fields, start=1):
+        if not v.strip():
+            raise UsageError(f"{option} {text!r}: field {k} of {len(fields)} is empty; give comma-separated "
+                             f"{what} with nothing empty between the commas")
+    return fields
 
 
 def number_list(text: str, option: str, count: int | None = None, *, positive: bool = False) -> np.ndarray:
     """Comma-separated numbers (each as :func:`number`; exactly ``count`` when given; ``> 0`` with ``positive``)."""
-    arr = np.array([number(v, option) for v in text.split(",") if v.strip()], dtype=float)
+    arr = np.array([number(v, option) for v in _fields(text, option, "numbers")], dtype=float)
     if count is not None and arr.size != count:
         raise UsageError(f"{option} needs {count} comma-separated numbers, got {arr.size} ({text!r})")
     bad = [float(v) for v in arr if positive and v <= 0]
@@ -124,8 +173,47 @@ def number_list(text: str, option: str, count: int | None = None, *, positive: b
 
 
 def int_list(text: str, option: str) -> list[int]:
-    """Comma-separated integers (``1,2,3``), each as :func:`integer`."""
-    return [integer(v, option) for v in text.split(",") if v.strip()]
+    """Comma-separated integers (``1,2,3``), each as :func:`integer`; an empty text is no integer."""
+    return [integer(v, option) for v in _fields(text, option, "integers")]
+
+
+def check_invariants_fit(option: str, omega: np.ndarray, invariants: Callable[[np.ndarray], Any], *,
+                         body_options: str = "") -> None:
+    """Refuse (:class:`UsageError`, before any work) an angular velocity whose invariants overflow double precision.
+
+    ``invariants(w)``: the library's computation of the invariants the command shows (e.g. ``RigidBody.energy``
+    and ``.casimirs``, whose own check raises ``ValueError`` "values too large ... overflows double precision";
+    a result that is not finite counts alike). Every value of ``option`` may be within :data:`MAX_MAGNITUDE` while
+    the Casimirs, of degree up to N in ``L = I omega``, are not: the message names ``option`` and the largest
+    ``max|omega|`` (a power of ten) that fits for this body, found with the same computation; when none does,
+    the body's options ``body_options`` (``--kappa``) are named.
+    """
+    def fits(w: np.ndarray) -> bool:
+        try:
+            with warnings.catch_warnings(), np.errstate(all="ignore"):
+                warnings.simplefilter("ignore")
+                values = invariants(w)
+        except ValueError:
+            return False
+        values = values if isinstance(values, tuple) else (values,)
+        return all(np.all(np.isfinite(np.asarray(v, dtype=float))) for v in values)
+
+    omega = np.asarray(omega, dtype=float)
+    peak = float(np.max(np.abs(omega))) if omega.size else 0.0
+    if peak == 0.0 or fits(omega):
+        return
+    unit = omega / peak
+    low, high = -300, max(math.ceil(math.log10(peak)), -299)  # 10**low * unit fits (checked), 10**high does not
+    if not fits(unit * 10.0**low):
+        raise UsageError(f"{option} with this body: its invariants (energy, Casimirs) overflow double precision for "
+                         f"every --omega" + (f"; choose a {body_options} of smaller magnitude" if body_options else ""))
+    while high - low > 1:
+        mid = (low + high) // 2
+        low, high = (mid, high) if fits(unit * 10.0**mid) else (low, mid)
+    raise UsageError(f"{option} values too large for this body, max |{option[2:]}| = {_validate.fmt(peak)}: its "
+                     f"invariants (energy, Casimirs, products of up to N components of L = I omega) would overflow "
+                     "double precision; allowed for this body and these proportions: "
+                     f"max |{option[2:]}| <= about 1e{low}")
 
 
 def choice_of(allowed) -> Callable[[str], str]:
@@ -144,17 +232,35 @@ def choice_of(allowed) -> Callable[[str], str]:
 
 
 _BYTE_UNITS = {"": 1, "K": 2**10, "M": 2**20, "G": 2**30, "T": 2**40}
+#: a size: the number (read by :func:`number`) and an optional binary unit, K, M, G or T, with or without
+#: B or iB (or B alone), any case
+_SIZE = re.compile(r"(?P<number>.*?)\s*(?:(?P<unit>[KMGT])(?:i?B)?|B)?\s*", re.IGNORECASE | re.DOTALL)
 
 
-def byte_size(text: str) -> int:
-    """``--max-memory``: bytes, or a number with K, M, G or T (binary units), e.g. ``4G``."""
-    m = re.fullmatch(r"\s*([0-9.]+(?:[eE][+-]?[0-9]+)?)\s*([KMGT]?)(?:i?B)?\s*", text, flags=re.I)
-    if not m:
-        raise argparse.ArgumentTypeError(f"expected a size such as 2G, 500M or 1000000, got {text!r}")
-    value = float(m.group(1)) * _BYTE_UNITS[m.group(2).upper()]
-    if not math.isfinite(value) or value < 1:  # (0.5 was a budget of 0 bytes)
-        raise argparse.ArgumentTypeError(f"expected a size of at least one byte, got {text!r}")
-    return int(value)
+def byte_size(text, option: str = "--max-memory") -> int:
+    """``--max-memory``: bytes, or a number with K, M, G or T (binary units), e.g. ``4G``, ``500MiB``, ``2**31``.
+
+    The number is read as every number option is (:func:`number`: the one parser, magnitude at most
+    :data:`MAX_MAGNITUDE`); the result must be at least one byte. Refusals are :class:`UsageError` naming
+    ``option``.
+    """
+    if not isinstance(text, str):  # (already read)
+        return int(text)
+    m = _SIZE.fullmatch(text)
+    unit = (m.group("unit") or "").upper()
+    try:
+        value = number(m.group("number"), option)
+    except UsageError as err:
+        msg = str(err)
+        if "cannot be read" in msg:
+            msg += "; a size is a number with an optional unit K, M, G or T (binary), e.g. 2G, 500M or 2**31"
+        if m.group("number").strip() != text.strip():  # (the number part is named as typed, with its unit)
+            msg = f"{option} {text!r}: {msg}"
+        raise UsageError(msg) from None
+    size = value * _BYTE_UNITS[unit]
+    if not size >= 1:  # (0.5 was a budget of 0 bytes)
+        raise UsageError(f"{option} must be a size of at least one byte, got {text!r}")
+    return int(size)
 
 
 def size_text(n: float) -> str:
@@ -254,8 +360,9 @@ def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool
                        help="refuse a run estimated to take longer (default hr.options['cli_max_seconds'] "
                             f"= {options['cli_max_seconds']:g} s)")
     if memory:
-        g.add_argument("--max-memory", type=byte_size, default=None, metavar="SIZE",
-                       help="refuse a run estimated to need more memory, e.g. 4G (default "
+        g.add_argument("--max-memory", default=None, metavar="SIZE",
+                       help="refuse a run estimated to need more memory: bytes or a number with K, M, G or T "
+                            "(binary units), e.g. 4G, 500M, 2**31 (default "
                             f"hr.options['cli_max_memory'] = {size_text(options['cli_max_memory'])})")
     if steps:
         g.add_argument("--max-steps", default=None, metavar="N",
@@ -264,6 +371,9 @@ def add_common(p: argparse.ArgumentParser, *, budget: bool = False, memory: bool
 
 
 def check_common(args: argparse.Namespace) -> None:
-    """Check the common options (a positive --max-seconds, stored back as a float)."""
+    """Check the common options (a positive --max-seconds, stored back as a float; --max-memory, stored back as
+    bytes, an int)."""
     if getattr(args, "max_seconds", None) is not None:
         args.max_seconds = usage(_validate.positive, "--max-seconds", number(args.max_seconds, "--max-seconds"))
+    if getattr(args, "max_memory", None) is not None:
+        args.max_memory = byte_size(args.max_memory, "--max-memory")

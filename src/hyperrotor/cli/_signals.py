@@ -23,13 +23,24 @@ by one, leave a broken bar as well). A :class:`Stop` dropped in any other such c
 ``__del__``) is not printed (the command's ``sys.unraisablehook``); the next safe point or the
 watchdog acts on the signal.
 
-Either way a watchdog thread, started by the first signal, ends the process
-:data:`GRACE` seconds later if it is still alive (the flag was set where no
-safe point comes soon, e.g. during a long compile; or the interpreter's exit
-waits for worker threads to finish a compiled chunk): it removes every
-unfinished output file (under the lock that serialises commits, so a file is
-complete at its target or absent), reports the signal on stderr in one line
-unless the command already did, and exits with the signal's status.
+Either way a watchdog ends the process :data:`GRACE` seconds after the first
+signal if it is still alive (the flag was set where no safe point comes soon,
+e.g. during a long compile; the main thread is inside one long compiled call,
+a numba kernel or a LAPACK routine, where Python does not run the handler at
+all until the call returns; or the interpreter's exit waits for worker threads
+to finish a compiled chunk): it removes every unfinished output file (under
+the lock that serialises commits, so a file is complete at its target or
+absent), reports the signal on stderr in one line unless the command already
+did, and exits with the signal's status.
+
+The watchdog does not wait for the Python-level handler: :func:`install`
+starts a listener thread that reads a pipe registered with
+:func:`signal.set_wakeup_fd`, where the C-level handler writes the signal's
+number at once, whatever the main thread is doing; the listener starts the
+grace period there and then. (Where no wakeup pipe can be registered, the
+handler starts it, as a fallback.) This works while the main thread is in code
+that releases the GIL (numba's kernels, compiled ``nogil``, NumPy's sorts and
+linear algebra); C code that holds the GIL keeps every Python thread waiting.
 """
 from __future__ import annotations
 
@@ -80,6 +91,10 @@ class _State:
     reporter = threading.Lock()    # taken by whoever reports the signal: the command or the watchdog
     previous: dict = {}
     unraisablehook = None          # sys.unraisablehook before the command
+    armed = False                  # the watchdog's grace period has started (once per command)
+    arming = threading.Lock()      # serialises the listener and the handler starting it
+    wakeup_w: int | None = None    # the write end of the wakeup pipe (signal.set_wakeup_fd), while registered
+    wakeup_previous = -1           # the wakeup fd before the command
 
 
 def message(signum: int) -> str:
@@ -100,11 +115,23 @@ def _deferred(frame) -> bool:
     return False
 
 
-def _watchdog() -> None:
-    if _State.done.wait(GRACE):
+def _arm(signum: int) -> None:
+    """Start the watchdog's grace period (any thread; once per command): the first signal's number is kept."""
+    with _State.arming:
+        if _State.armed:
+            return
+        _State.armed = True
+        if _State.signum is None:  # (the listener may come first: the handler then sees the signal as recorded)
+            _State.signum = signum
+    threading.Thread(target=_watchdog, args=(_State.done,), name="hyperrotor-signal-watchdog", daemon=True).start()
+
+
+def _watchdog(done: threading.Event) -> None:
+    if done.wait(GRACE):
         return
     # GRACE seconds after the signal the process is still alive: the signal was not acted on (deferred
-    # with no safe point since), or the interpreter's exit waits (worker threads finishing a chunk)
+    # with no safe point since, or the main thread is inside one long compiled call), or the interpreter's
+    # exit waits (worker threads finishing a chunk)
     _State.stopping = True
     _files.discard_all()
     signum = _State.signum
@@ -120,9 +147,7 @@ def _watchdog() -> None:
 def _handler(signum, frame) -> None:
     if _State.stopping:
         return
-    if _State.signum is None:
-        _State.signum = signum
-        threading.Thread(target=_watchdog, name="hyperrotor-signal-watchdog", daemon=True).start()
+    _arm(signum)  # (usually the listener has done it already, when the signal arrived)
     if not _deferred(frame):
         _State.stopping = True
         raise Stop(_State.signum)
@@ -141,12 +166,64 @@ def install(prog: str) -> bool:
     """Install the handlers (main thread only; returns False elsewhere, where Python's defaults stay)."""
     if threading.current_thread() is not threading.main_thread():
         return False
-    _State.prog, _State.signum, _State.stopping = prog, None, False
+    _State.prog, _State.signum, _State.stopping, _State.armed = prog, None, False, False
     _State.done = threading.Event()
     _State.reporter = threading.Lock()
+    _State.arming = threading.Lock()
     _State.previous = {s: signal.signal(s, _handler) for s in _launch.handled()}  # (inherited SIG_IGN stays)
+    _listen(frozenset(_State.previous))
     _State.unraisablehook, sys.unraisablehook = sys.unraisablehook, _unraisable
     return True
+
+
+def _listen(signals: frozenset) -> None:
+    """Register a wakeup pipe (:func:`signal.set_wakeup_fd`) and start the thread that arms the watchdog the
+    moment one of ``signals`` arrives, even while the main thread is inside a long compiled call."""
+    try:
+        r, w = os.pipe()
+    except OSError:
+        return
+    try:
+        os.set_blocking(w, False)  # (required by set_wakeup_fd; a full pipe drops the byte, never blocks)
+        _State.wakeup_previous = signal.set_wakeup_fd(w, warn_on_full_buffer=False)
+    except (OSError, ValueError, AttributeError):  # (Windows wants a socket): the handler arms the watchdog
+        os.close(r)
+        os.close(w)
+        return
+    _State.wakeup_w = w
+    threading.Thread(target=_listener, args=(r, signals), name="hyperrotor-signal-listener", daemon=True).start()
+
+
+def _listener(r: int, signals: frozenset) -> None:
+    """Read signal numbers from the wakeup pipe until its write end is closed (:func:`restore`): the first of
+    ``signals`` arms the watchdog. It keeps reading afterwards, so later signals never find the pipe closed."""
+    try:
+        while True:
+            try:
+                data = os.read(r, 64)
+            except InterruptedError:
+                continue
+            except OSError:
+                return
+            if not data:  # the command ended without a signal: restore() closed the write end
+                return
+            for signum in data:
+                if signum in signals and not _State.done.is_set():
+                    _arm(signum)
+    finally:
+        os.close(r)
+
+
+def _unlisten() -> None:
+    """Unregister the wakeup pipe (the previous wakeup fd back) and close its write end: the listener ends."""
+    w, _State.wakeup_w = _State.wakeup_w, None
+    if w is None:
+        return
+    try:
+        signal.set_wakeup_fd(_State.wakeup_previous)
+    except (OSError, ValueError):
+        signal.set_wakeup_fd(-1)
+    os.close(w)
 
 
 def restore() -> None:
@@ -158,6 +235,7 @@ def restore() -> None:
     """
     if _State.signum is None:
         _State.done.set()
+        _unlisten()
         for s, old in _State.previous.items():
             signal.signal(s, _launch.after_command(old))
         _State.previous = {}

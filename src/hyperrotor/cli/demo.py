@@ -14,8 +14,8 @@ from pathlib import Path
 import numpy as np
 
 from hyperrotor import _validate
-from hyperrotor.cli._common import (UsageError, add_common, check_budget, check_common, choice_of, have_matplotlib,
-                                    integer, num, number, number_list, nums, usage)
+from hyperrotor.cli._common import (UsageError, add_common, check_budget, check_common, check_invariants_fit,
+                                    choice_of, have_matplotlib, integer, num, number, number_list, nums, usage)
 from hyperrotor.cli._files import OutputFile, Outputs, output_file
 from hyperrotor.conventions import CONVENTIONS
 from hyperrotor.demo import DEMO_OMEGA, quartet_invariants, save_quartet_motion
@@ -80,6 +80,8 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(str(err).replace("omega0", "--omega")) from None
     what, hint = _budget_words(kappa, omega, t_end, inertia, cost.rate)
     check_budget(args, f"{what} (fastest rate {num(cost.rate, 3)})", cost.seconds, hint=hint)
+    check_invariants_fit("--omega", omega, lambda w: quartet_invariants(RigidBody(inertia), w),
+                         body_options="--kappa")  # (the invariants printed: all within double precision)
     with Outputs() as outs:
         png = None
         if not args.no_png:
@@ -215,16 +217,35 @@ def _demo_text(args, body, inertia, kappa, omega) -> list[str]:
 def _demo_summary(args, body, omega, t_end, png) -> list[str]:
     from hyperrotor import planes
 
-    steady = [f"{i}{j}" for (i, j), r in zip(planes(5), body.rhs(omega)) if r == 0.0]
+    names = [f"{i}{j}" for i, j in planes(5)]
+    constant = [n for n, c in zip(names, _constant_planes(body)) if c]  # for every omega, by the moments
+    here = [name for name, r in zip(names, body.rhs(omega)) if r == 0.0 and name not in constant]  # at this omega
+    also = (f"; at this omega also {', '.join(here)} (dw/dt = 0 here)" if here else "")
+    if len(constant) == len(names):  # kappa^2 = 1: all moments equal (eq. 82)
+        first = ("summary: the 10 Euler equations decouple for this body (kappa^2 = 1: all plane moments are equal, "
+                 "eq. 82): every omega_ij is constant (dw/dt = 0 on all 10 planes), no plane oscillates;")
+    else:
+        without = [n for n, p in zip(names, planes(5)) if args.axis not in p]
+        which = (f"the six planes without axis {args.axis}" if constant == without
+                 else f"the planes {', '.join(constant)}" if constant else "no plane")
+        first = (f"summary: 10 coupled Euler equations; {which} have constant omega for this body"
+                 + (f" ({', '.join(constant)})" if constant == without else "") + also + ";")
     return [
         "",
-        "summary: 10 coupled Euler equations; the six planes without axis "
-        f"{args.axis} have constant omega for this body ({', '.join(steady)} have dw/dt = 0 here);",
+        first,
         "  invariants: energy, 2 Casimirs (eq. 38; the energy is not one of them), "
         "Manakov traces (mass-tensor body).",
         f"  motion: closed form (eqs. 96-110, corrected signs) vs Lie-Poisson splitting (order 8) and "
         f"scipy DOP853 over t in [0, {num(t_end, 6)}]" + (f"; picture: {png}" if png else "") + ".",
     ]
+
+
+def _constant_planes(body) -> list[bool]:
+    """For each plane: whether its omega is constant for every omega (its Euler equation's coefficients, the
+    moment differences of the body's tables ``rhs_tables``, all zero; compared exactly, on the symbolic moments)."""
+    I = body.inertia.symbolic_moments
+    left, right, _ = body.rhs_tables
+    return [all(I[r] == I[q] for q, r in zip(left[a], right[a])) for a in range(len(body.planes))]
 
 
 def _motion_lines(motion) -> list[str]:

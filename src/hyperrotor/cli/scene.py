@@ -10,15 +10,16 @@ model ``"scene"`` of :mod:`hyperrotor._pricing`, an integrated motion by
 from __future__ import annotations
 
 import argparse
+import re
 
 import numpy as np
 
 from hyperrotor import BudgetError, _cost_models, _pricing, _validate
 from hyperrotor._options import options
 from hyperrotor.cli._common import (CLI_BUDGETS, UsageError, add_common, bar, budget_message, check_budget,
-                                    check_common, choice_of,
+                                    check_common, check_invariants_fit, choice_of, duration_text,
                                     have_matplotlib, have_module, int_list, integer, num, number, number_list,
-                                    usage)
+                                    size_text, usage)
 from hyperrotor.cli._files import Outputs, output_file
 from hyperrotor.cli._signals import checkpoint
 
@@ -106,7 +107,8 @@ def _scene_check(args: argparse.Namespace):
     body_memory, body_seconds = (c.amount for c in _pricing.estimate("RigidBody", N=N))  # its Euler tables
     memory, seconds = memory + body_memory, seconds + body_seconds
     P, E = _cost_models.scene_size(args.shape, N)
-    count = f"2^{N} points, {N} x 2^{N - 1} edges" if args.shape == "cube" and N > 30 else f"{P:.4g} points, {E:.4g} edges"
+    count = (f"2^{N} points, {N} x 2^{N - 1} edges" if args.shape == "cube" and N > 30
+             else f"{P:.4g} points, {E:.4g} edges")
     what = f"scene --N {N} --shape {args.shape} ({count}, {frames} frames)"
     hint = "use a smaller --N" + (", --shape simplex" if args.shape == "cube" else "") + " or fewer --frames"
     check_budget(args, what, seconds, memory, hint)
@@ -121,7 +123,8 @@ def _scene_check(args: argparse.Namespace):
         raise UsageError(f"--omega needs N(N-1)/2 = {n} components for N = {N}, got {omega.size}")
     omega = np.where([any(k in p for k in lock) for p in planes(N)], 0.0, omega)
     max_steps = options["max_steps"] if args.max_steps is None else integer(args.max_steps, "--max-steps", minimum=1)
-    return {"N": N, "frames": frames, "integrate": args.inertia == "box" or bool(lock), "max_steps": max_steps, "t_end": t_end, "axes": axes, "colour_axis": colour_axis or None,
+    return {"N": N, "frames": frames, "integrate": args.inertia == "box" or bool(lock), "max_steps": max_steps,
+            "t_end": t_end, "axes": axes, "colour_axis": colour_axis or None,
             "sides": sides, "omega": omega, "format": fmt, "seconds": seconds, "memory": memory, "kappa": kappa,
             "axis": axis}
 
@@ -146,27 +149,32 @@ def run(args: argparse.Namespace) -> int:
             inertia = Inertia.equal(N, 1.0)
         else:
             inertia = usage(Inertia.box, 1.0, s["sides"])
-        # --- work ------------------------------------------------------------------
-        points = {"cube": lambda: hypercube_vertices(N),
-                  "simplex": lambda: simplex_vertices(N),
-                  "ellipsoid": lambda: ellipsoid_points(np.linspace(1.0, 0.4, N), _cost_models.SCENE_ELLIPSOID_POINTS, rng=0)}[
-            args.shape]()
-        t = np.linspace(0.0, s["t_end"], s["frames"])
-        proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
-        observables = ("projection", "omega") if fmt == ".html" else ("projection",)  # the page shows invariants
         # the library's memory budgets as large as the command's, which its estimates were checked against
         memory = max(float(options["cli_max_memory"]) if args.max_memory is None else float(args.max_memory),
                      float(options["max_memory_bytes"]), float(options["max_output_bytes"]))
         with options(max_memory_bytes=memory, max_output_bytes=memory):
-            scene = Scene(RigidBody(inertia), s["omega"], t, observables=observables, points=points, axes=proj_axes,
+            body = RigidBody(inertia)
+        if fmt == ".html":  # the page shows the energy and the Casimirs: they must fit in double precision
+            check_invariants_fit("--omega", s["omega"], lambda w: (body.energy(w), body.casimirs(w)),
+                                 body_options={"quartet": "--kappa", "box": "--sides"}.get(args.inertia, ""))
+        # --- work ------------------------------------------------------------------
+        points = {"cube": lambda: hypercube_vertices(N),
+                  "simplex": lambda: simplex_vertices(N),
+                  "ellipsoid": lambda: ellipsoid_points(np.linspace(1.0, 0.4, N), _cost_models.SCENE_ELLIPSOID_POINTS,
+                                                        rng=0)}[args.shape]()
+        t = np.linspace(0.0, s["t_end"], s["frames"])
+        proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
+        observables = ("projection", "omega") if fmt == ".html" else ("projection",)  # the page shows invariants
+        with options(max_memory_bytes=memory, max_output_bytes=memory):
+            scene = Scene(body, s["omega"], t, observables=observables, points=points, axes=proj_axes,
                           progress=args.progress)  # a bar while an integrated motion is computed
         with options(max_steps=s["max_steps"], max_memory_bytes=memory, max_output_bytes=memory):
-            if s["integrate"]:
-                _check_motion(args, s, scene)
             try:
+                if s["integrate"]:
+                    _check_motion(args, s, scene)
                 res = scene.evaluate()
             except BudgetError as err:  # the library's advice names Python options; name the CLI's
-                raise UsageError(_budget_message(err)) from None
+                raise UsageError(_budget_message(err, args)) from None
         checkpoint()
         kind = "points" if args.shape == "ellipsoid" else args.shape
         edges = body_edges(points, kind)
@@ -201,19 +209,27 @@ def _draw(args, s: dict, path, res, edges, title: str) -> None:
 def _check_motion(args: argparse.Namespace, s: dict, scene) -> None:
     """Price the integrated motion (:func:`hyperrotor.classical.simulate.estimate_cost`) before it runs.
 
-    Adds its estimated seconds to the drawing's and checks both budgets
-    (--max-seconds, --max-steps); the estimate uses the full body (a locked
-    run integrates a smaller one: an upper bound). With ``rtol`` the library
-    probes a short leading window (milliseconds; the first call also loads or
-    compiles the kernel).
+    Only when the scene's route integrates (:func:`hyperrotor.classical.scenes.scene_route`, decided without any
+    work): a locked or special body whose route is a closed form (``reduced:axes(2,3,4,5)+closed-form:quartet``)
+    costs no integration steps, and a locked body's run is priced on the reduced body it integrates. Adds the
+    estimated seconds to the drawing's and checks both budgets (--max-seconds, --max-steps). With ``rtol`` the
+    library probes a short leading window (milliseconds for small bodies; held to --max-steps and to the seconds
+    the drawing leaves of --max-seconds: at N = 200 each of its steps takes about a second; the first call also
+    loads or compiles the kernel). A refusal by the library is a :class:`BudgetError` (the caller words it with
+    the command line's options).
     """
+    from hyperrotor.classical.scenes import scene_route
     from hyperrotor.classical.simulate import estimate_cost
 
-    try:
-        cost = estimate_cost(scene.rigid_body, s["omega"], scene.t, method=scene.method, rtol=scene.rtol,
-                             attitude=True)
-    except BudgetError as err:
-        raise UsageError(_budget_message(err)) from None
+    path, moments, omega = scene_route(scene)
+    if "integrate" not in path.split("+"):
+        return
+    max_s = args.max_seconds if args.max_seconds is not None else float(options["cli_max_seconds"])
+    rtol = options["scene_rtol"] if scene.rtol is None else scene.rtol  # (what evaluate_scene integrates at)
+    left = max(max_s - s["seconds"], 0.0)
+    with options(max_seconds=max(left, 1e-9)):  # (the library's set-up models too: at N = 200 about 8 s)
+        cost = estimate_cost(moments, omega, scene.t, method=scene.method, rtol=rtol, attitude=True,
+                             max_steps=s["max_steps"], max_seconds=left)
     what = f"scene --t-end {num(s['t_end'])}"
     if cost.steps is not None and cost.steps > s["max_steps"]:
         raise UsageError(f"{what}: the motion needs about {cost.steps:.3g} integration steps ({cost.method}), "
@@ -223,12 +239,25 @@ def _check_motion(args: argparse.Namespace, s: dict, scene) -> None:
                  s["seconds"] + (cost.seconds or 0.0), hint="choose a shorter --t-end")
 
 
-def _budget_message(err: BudgetError) -> str:
-    """A library budget refusal of the motion, worded with the command line's options."""
+#: how a budget of the library is counted, by its option name
+_UNITS = {"max_steps": "integration steps", "max_output_bytes": "bytes of output", "max_memory_bytes": "bytes",
+          "max_seconds": "s"}
+
+
+def _budget_message(err: BudgetError, args: argparse.Namespace | None = None) -> str:
+    """A library budget refusal of the motion, worded with the command line's options (never the library's
+    keyword: ``max_steps`` is ``--max-steps``)."""
     option = getattr(err, "option", None)
     needed, budget = getattr(err, "needed", None), getattr(err, "budget", None)
-    flag = CLI_BUDGETS.get(option or "", "--max-seconds")
-    if needed is not None and budget is not None:
-        return (f"the motion needs about {needed:.3g} ({option}), over the budget of {budget:.6g} "
-                f"({flag}); choose a shorter --t-end or fewer --frames, or raise {flag}")
-    return budget_message(err)
+    flag = CLI_BUDGETS.get(option or "")
+    if flag and needed is not None and budget is not None and np.isfinite(needed):
+        if option in ("max_output_bytes", "max_memory_bytes"):
+            amount, limit = size_text(needed), size_text(budget)
+        elif option == "max_seconds":
+            amount, limit = duration_text(needed), duration_text(budget)
+        else:  # (the unit the library counted in: integration steps, or a scipy method's evaluations)
+            unit = re.search(r"would need ~\S+ \(([^)]+)\)", str(err))
+            amount, limit = f"{needed:.3g} {unit.group(1) if unit else _UNITS[option]}", f"{budget:.6g}"
+        return (f"the motion needs about {amount}, over the budget of {limit} ({flag}); choose a shorter --t-end "
+                f"or fewer --frames, or raise {flag}")
+    return budget_message(err, args)

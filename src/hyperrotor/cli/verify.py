@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from hyperrotor.cli._common import UsageError, add_common, bar, check_common
@@ -59,7 +60,10 @@ def run(args: argparse.Namespace) -> int:
                 pbar.update()
         text = render(verdicts, kind)
         if out is None:
-            print(text)
+            # one write of the whole report (print wrote the text, then "\n": a reader that leaves after the first
+            # line, `| head -1`, could close the pipe between the two, and the second write ended in status 141)
+            sys.stdout.write(text + "\n")
+            sys.stdout.flush()
             return 0
         out.tmp.write_text(text if text.endswith("\n") else text + "\n", encoding="utf-8")
         outs.commit()
