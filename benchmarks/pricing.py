@@ -147,6 +147,8 @@ def cases():
                     lambda b: b.euler_equations()))
     for N in (10, 20, 30):
         out.append(("symbolic_rhs", f"N={N}", dict(N=N), lambda N=N: _symbolic_body(N), lambda b: b.symbolic_rhs()))
+        out.append(("symbolic_rhs", f"N={N}, numeric moments", dict(N=N, numeric=True),
+                    lambda N=N: _numeric_body(N), lambda b: b.symbolic_rhs()))
     for N in (10, 20, 30):
         out.append(("contraction_identity", f"N={N}", dict(N=N), lambda: None,
                     lambda _, N=N: hq.contraction_identity(N)))
@@ -280,6 +282,12 @@ def _cli_scene(N):
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
     return cpu
+
+
+def _numeric_body(N):
+    body = hr.RigidBody(np.linspace(1.0, 2.0, N * (N - 1) // 2))
+    body.rhs_tables
+    return body
 
 
 def _symbolic_body(N):

@@ -63,7 +63,8 @@ _PY_S = 3.0e-7
 #: seconds per dim^2 of the Lanczos highest-weight search
 _LANCZOS_S = 6.0e-9
 #: seconds per rate difference of the Casimir shift rule (n x V of them, built by blocks: 3.2 s for a body of
-#: 19 900 distinct moments, N = 200), with the rest of a call's set-up that grows like it (6 s in all there)
+#: 19 900 distinct moments, N = 200), with the rest of a call's set-up that grows like it (6 s in all there; and
+#: 1e-4 s per plane of what grows more slowly: 0.2 s at N = 40, a millisecond for a 3D body)
 _SHIFT_S = 2.0e-8
 #: seconds per output time of evolve (a state Qobj per time, expectation values)
 _EVOLVE_S = 2.6e-5
@@ -113,7 +114,7 @@ def _simulate(N: Any = None, n: Any = None) -> tuple[Cost, ...]:
     n = _n_planes(N) if n is None else _f(n)
     return (_memory(f"the Casimir shift of {n:.0f} planes (its table of rate differences)", 16.0 * min(n * n, 2**20)),
             _seconds(f"the set-up of {n:.0f} planes (the Casimir shift: n x n rate differences)",
-                     0.1 + _SHIFT_S * n * n))
+                     1e-3 + 1e-4 * n + _SHIFT_S * n * n))
 
 
 def _eigh_seconds(cubes: Any, complex: bool = True) -> float:
@@ -429,13 +430,14 @@ def _euler_equations(N: Any) -> tuple[Cost, ...]:
 
 
 @model("symbolic_rhs", "use rhs (numeric moments) or a body of fewer dimensions")
-def _symbolic_rhs(N: Any) -> tuple[Cost, ...]:
+def _symbolic_rhs(N: Any, numeric: bool = False) -> tuple[Cost, ...]:
     # n components, each a sum over the 2(N-2) planes that share an axis with the plane, of products
     # (I_c - I_b) w_b w_c, divided by I_a: measured 6e-5 ... 8.4e-5 s per n * N (N = 10..40, growing slowly with N
-    # as the sums get longer) and 0.03-0.08 s of set-up (SymPy's first calls)
+    # as the sums get longer) and 0.03-0.08 s of set-up (SymPy's first calls); with numeric moments (SymPy Floats)
+    # about 3x that (the review of session 46 measured 3.9-4.4x the symbolic model at N = 20..30)
     n = _n_planes(N)
     return (_seconds(f"the {n:.0f} symbolic right-hand sides of so({N}) ({n:.0f} sums of {2 * (_f(N) - 2):.0f} "
-                     f"products)", 0.05 + n * _f(N) * 3.0 * _SYMPY_S * (1.0 + _f(N) / 60.0)),)
+                     f"products)", 0.05 + (9.0 if numeric else 3.0) * n * _f(N) * _SYMPY_S * (1.0 + _f(N) / 60.0)),)
 
 
 @model("operator_product", "multiply smaller operator matrices")

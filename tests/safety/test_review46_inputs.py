@@ -125,3 +125,60 @@ def test_exact_numbers_beyond_the_floats_are_refused_by_name():
 def test_abstract_solver_classes_are_not_methods(cls):
     with pytest.raises(TypeError, match=f"method {cls.__name__} is an abstract base class"):
         hr.simulate(BODY3, [0.1, 0.2, 0.3], [0.0, 1.0], method=cls, dt=0.1)
+
+
+# ------------------------------------------------------------------ found by the review of the session's diff
+def test_manakov_integrals_of_a_symbolic_mass_tensor_with_numeric_L_stay_symbolic():
+    import sympy as sp
+
+    J = sp.symbols("J1:5", positive=True)
+    body = hr.RigidBody(hr.Inertia.from_mass_tensor(J))
+    out = body.manakov_integrals(np.arange(1.0, 7.0), 0.5, of="L")
+    assert len(out) == 3 and all(isinstance(x, sp.Expr) for x in out)
+    values = dict(zip(J, (1, 2, 3, 4)))
+    numeric = hr.RigidBody(hr.Inertia.from_mass_tensor([1.0, 2.0, 3.0, 4.0])).manakov_integrals(
+        np.arange(1.0, 7.0), 0.5, of="L")
+    np.testing.assert_allclose([float(x.subs(values)) for x in out], numeric, rtol=1e-13)
+
+
+def test_a_small_time_budget_still_runs_a_small_body():
+    """The set-up model of simulate had a floor of 0.1 s: under max_seconds = 0.05 every call was refused."""
+    with hr.options(max_seconds=0.05):
+        tr = hr.simulate(BODY3, [0.1, 0.2, 0.3], np.linspace(0.0, 1.0, 5), method="splitting8", dt=0.1)
+        assert tr.omega.shape == (5, 3)
+        assert hr.casimir_shift([1.0, 2.0, 3.0]) > 0
+
+
+def test_ehrenfest_degrees_may_be_sympy_integers():
+    import sympy as sp
+
+    res = hq.ehrenfest_time(BODY3, [0.1, 0.2, 1.0], [sp.Integer(1), sp.Integer(2)], [0.0, 1.0])
+    assert list(res.ls) == [1, 2]
+
+
+def test_the_same_run_in_a_different_number_of_chunks_is_equal(monkeypatch):
+    """stats["chunks"] follows the machine's speed (chunks are sized from measured times), like the wall time."""
+    from hyperrotor.classical.solvers import chunks
+
+    t = np.linspace(0.0, 2.0, 3)
+    one = hr.simulate(BODY3, [0.1, 0.2, 0.3], t, method="splitting8", dt=0.01)
+    monkeypatch.setattr(chunks, "FIRST_CHUNK_FLOWS", 500)  # (a short first chunk, then chunks of ~1 us)
+    with hr.options(chunk_seconds=1e-6):
+        many = hr.simulate(BODY3, [0.1, 0.2, 0.3], t, method="splitting8", dt=0.01)
+    assert many.stats["chunks"] != one.stats["chunks"] and many == one
+
+
+def test_equal_symbolic_bodies_hash_alike():
+    import sympy as sp
+
+    a, b = sp.symbols("a b", positive=True)
+    one, two = hr.RigidBody([(a + b) ** 2, a, b]), hr.RigidBody([a**2 + 2 * a * b + b**2, a, b])
+    assert one == two and hash(one) == hash(two) and len({one, two}) == 1
+
+
+def test_estimate_cost_checks_its_time_budget_first():
+    from hyperrotor.classical.simulate import estimate_cost
+
+    for bad, kind in (("abc", TypeError), (-1.0, ValueError), (float("nan"), ValueError)):
+        with pytest.raises(kind, match="max_seconds"):
+            estimate_cost(BODY3, [0.1, 0.2, 0.3], [0.0], method="DOP853", rtol=1e-6, max_seconds=bad)

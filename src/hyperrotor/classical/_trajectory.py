@@ -123,16 +123,17 @@ class Trajectory:
             out = out / self.moments
         return out[..., 0, :] if tq.ndim == 0 else out
 
-    #: what ``==`` compares (not the dense output, a function of these; not ``stats["wall_time"]``)
+    #: what ``==`` compares (not the dense output, a function of these; not the stats that follow the machine's
+    #: speed, :data:`_TIMED`)
     _COMPARED = ("t", "omega", "L", "attitude", "body", "moments", "t_events", "L_events", "omega_events",
                  "attitude_events", "_origin", "_scale")
 
     def __eq__(self, other: object) -> bool:
-        """The same run's results: equal outputs, events, body, moments and stats (but the wall time), as a
-        pickled copy is."""
+        """The same run's results: equal outputs, events, body, moments and stats (but the wall time and the number
+        of compiled calls, which follow the machine's speed), as a pickled copy is."""
         if not isinstance(other, Trajectory):
             return NotImplemented
-        stats = [{k: v for k, v in x.stats.items() if k != "wall_time"} for x in (self, other)]
+        stats = [{k: v for k, v in x.stats.items() if k not in _TIMED} for x in (self, other)]
         return values_equal(*stats) and all(values_equal(getattr(self, k), getattr(other, k))
                                             for k in self._COMPARED)
 
@@ -141,6 +142,11 @@ class Trajectory:
     def __repr__(self) -> str:
         return (f"Trajectory(method={self.stats.get('method')!r}, batch={self.omega.shape[:-2]}, "
                 f"len(t)={self.t.size}, n_planes={self.omega.shape[-1]}, attitude={self.attitude is not None})")
+
+
+#: stats that follow the machine's speed, not the run: its wall time and how many compiled calls (chunks, sized from
+#: measured times) it took
+_TIMED = frozenset({"wall_time", "chunks"})
 
 
 def _nested(events: list, f: Callable) -> list:

@@ -556,7 +556,7 @@ class Inertia:
     def __hash__(self) -> int:
         if self._numeric is not None:
             return hash((self._N, tuple(self._numeric.tolist())))
-        return hash((self._N, self._values))
+        return hash((self._N, "symbolic"))  # (== simplifies differences: (a + b)^2 equals a^2 + 2ab + b^2)
 
     def __repr__(self) -> str:
         body = ", ".join(f"{plane_label(p, self._N)}: {v}" for p, v in zip(self.planes, self._values))

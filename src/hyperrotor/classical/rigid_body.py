@@ -338,7 +338,7 @@ class RigidBody:
         Raises ``hyperrotor.BudgetError`` before any SymPy work when the estimated time
         (:math:`\sim N^3` products: ~3 s at N = 40) is over ``hr.options['max_seconds']``.
         """
-        _pricing.check("symbolic_rhs", N=self.N)
+        _pricing.check("symbolic_rhs", N=self.N, numeric=not self.inertia.is_symbolic)
         w = list(self.omega_symbols() if omega is None else omega)
         w = [_parse.to_sympy(v, f"omega[{k}]", text=False) for k, v in enumerate(w)]
         if len(w) != len(self.planes):
@@ -571,7 +571,7 @@ class RigidBody:
             L = self._check_omega(values, "L")
         if not is_symbolic(L):
             lam_value = lam if is_symbolic(lam) else _validate.real("lam", lam)
-            if is_symbolic(lam_value):
+            if is_symbolic(lam_value) or self.inertia.is_symbolic:  # (SymPy traces: nothing overflows)
                 return _manakov_traces(L, J, lam_value)
             with np.errstate(over="ignore", invalid="ignore"):
                 out = _manakov_traces(L, J, lam_value)

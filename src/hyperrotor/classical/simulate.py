@@ -461,6 +461,7 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     import warnings
 
     max_steps = _table["max_steps"] if max_steps is None else _validate.integer("max_steps", max_steps, minimum=1)
+    max_seconds = _validate.positive("max_seconds", max_seconds, allow_none=True, allow_zero=True)
     rtol = _validate.tolerance("rtol", rtol, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
     solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
@@ -475,8 +476,6 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     solver.prepare(problem)
     if problem.t.size < 2 or problem.B == 0:
         return RunCost(0, 0.0, None, solver.name)
-    if max_seconds is not None:
-        max_seconds = _validate.positive("max_seconds", max_seconds, allow_zero=True)
     spf = seconds_per_flow(cost_key(solver, problem))
     work = Work(max_steps, max_seconds, solver.flows_per_step(problem) * spf)
     with warnings.catch_warnings():

@@ -171,12 +171,12 @@ def install(prog: str) -> bool:
     _State.reporter = threading.Lock()
     _State.arming = threading.Lock()
     _State.previous = {s: signal.signal(s, _handler) for s in _launch.handled()}  # (inherited SIG_IGN stays)
-    _listen(frozenset(_State.previous))
+    _listen(frozenset(_State.previous), _State.done)
     _State.unraisablehook, sys.unraisablehook = sys.unraisablehook, _unraisable
     return True
 
 
-def _listen(signals: frozenset) -> None:
+def _listen(signals: frozenset, done: threading.Event) -> None:
     """Register a wakeup pipe (:func:`signal.set_wakeup_fd`) and start the thread that arms the watchdog the
     moment one of ``signals`` arrives, even while the main thread is inside a long compiled call."""
     try:
@@ -191,12 +191,14 @@ def _listen(signals: frozenset) -> None:
         os.close(w)
         return
     _State.wakeup_w = w
-    threading.Thread(target=_listener, args=(r, signals), name="hyperrotor-signal-listener", daemon=True).start()
+    threading.Thread(target=_listener, args=(r, signals, done), name="hyperrotor-signal-listener", daemon=True).start()
 
 
-def _listener(r: int, signals: frozenset) -> None:
+def _listener(r: int, signals: frozenset, done: threading.Event) -> None:
     """Read signal numbers from the wakeup pipe until its write end is closed (:func:`restore`): the first of
-    ``signals`` arms the watchdog. It keeps reading afterwards, so later signals never find the pipe closed."""
+    ``signals`` arms the watchdog of the command whose end is ``done`` (a byte read after that command ended,
+    while a next command runs, arms nothing). It keeps reading afterwards, so later signals never find the pipe
+    closed."""
     try:
         while True:
             try:
@@ -208,7 +210,7 @@ def _listener(r: int, signals: frozenset) -> None:
             if not data:  # the command ended without a signal: restore() closed the write end
                 return
             for signum in data:
-                if signum in signals and not _State.done.is_set():
+                if signum in signals and not done.is_set():
                     _arm(signum)
     finally:
         os.close(r)

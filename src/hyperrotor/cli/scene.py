@@ -227,9 +227,17 @@ def _check_motion(args: argparse.Namespace, s: dict, scene) -> None:
     max_s = args.max_seconds if args.max_seconds is not None else float(options["cli_max_seconds"])
     rtol = options["scene_rtol"] if scene.rtol is None else scene.rtol  # (what evaluate_scene integrates at)
     left = max(max_s - s["seconds"], 0.0)
-    with options(max_seconds=max(left, 1e-9)):  # (the library's set-up models too: at N = 200 about 8 s)
-        cost = estimate_cost(moments, omega, scene.t, method=scene.method, rtol=rtol, attitude=True,
-                             max_steps=s["max_steps"], max_seconds=left)
+    try:
+        with options(max_seconds=max(left, 1e-9)):  # (the library's set-up models too: at N = 200 about 8 s)
+            cost = estimate_cost(moments, omega, scene.t, method=scene.method, rtol=rtol, attitude=True,
+                                 max_steps=s["max_steps"], max_seconds=left)
+    except BudgetError as err:
+        if getattr(err, "option", None) != "max_seconds" and "'max_seconds'" not in str(err):
+            raise
+        need = str(err).split(": ", 1)[-1].split(", over the budget", 1)[0]  # ("<what> would need ~<amount>")
+        raise UsageError(f"scene --t-end {num(s['t_end'])}: {need}, over the {duration_text(left)} that --max-seconds "
+                         f"{duration_text(max_s)} leaves after the drawing's {duration_text(s['seconds'])}; choose a "
+                         "shorter --t-end or fewer --frames, or raise --max-seconds") from None
     what = f"scene --t-end {num(s['t_end'])}"
     if cost.steps is not None and cost.steps > s["max_steps"]:
         raise UsageError(f"{what}: the motion needs about {cost.steps:.3g} integration steps ({cost.method}), "

@@ -308,10 +308,11 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     norm0 = float(np.linalg.norm(L0))
     if norm0 == 0.0:
         raise ValueError("L0 must be non-zero")
+    _validate.numeric_input("ls", ls)  # (booleans, text, masked arrays named; SymPy and NumPy integers pass)
     given = ls
-    ls = np.atleast_1d(_validate.exact_or_float_array("ls", ls, what="sequence of integers >= 1"))
+    ls = np.atleast_1d(_validate.as_array("ls", ls, what="sequence of integers >= 1"))
     if ls.ndim != 1 or ls.size == 0:
-        raise ValueError(f"ls must be a non-empty sequence of integers >= 1, got {_validate.fmt(ls)}")
+        raise ValueError(f"ls must be a non-empty sequence of integers >= 1, got {_validate.fmt(given)}")
     _pricing.check("ehrenfest_time", irreps=ls.size)  # (the count alone, before a loop over ls)
     # (entries as given: [1, 2.5] names ls[1] = 2.5, not the 1.0 of the float array NumPy made of it)
     ls = np.array([_validate.integer(f"ls[{k}]", x, minimum=1)
