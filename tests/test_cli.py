@@ -330,10 +330,10 @@ MORE = [
     (["scene", "--inertia", "box", "--t-end", "1e6", "--max-steps", "1000"],
      ["integration steps (splitting8), over the budget of 1000 (--max-steps", "raise --max-steps"]),
     (["scene", "--inertia", "box", "--max-steps", "5"], ["over the budget of 5 (--max-steps"]),
-    # a body of 19 900 planes: its set-up is priced against what the drawing leaves of --max-seconds (the run's
-    # pricing took 42-48 s and 5 GB, session 46); the message names the budget the user typed, not the remainder
+    # a body of 19 900 planes: the pricing's own probe is held to what the drawing leaves of --max-seconds (the
+    # run's pricing took 42-48 s and 5 GB, session 46); the message names the budget typed, not the remainder
     (["scene", "--N", "200", "--shape", "simplex", "--frames", "2", "--inertia", "box", "--max-seconds", "12"],
-     ["the set-up of 19900 planes", "that --max-seconds 12 s leaves after the drawing's", "raise --max-seconds"]),
+     ["the step control's probe of", "that --max-seconds 12 s leaves after the drawing's", "raise --max-seconds"]),
     (["scene", "--N", "3", "--inertia", "box", "--max-seconds", "0.5"], ["would take about", "--max-seconds"]),
     (["demo", "--omega=1e100,1e100,1,1,1,1,1,1,1,1"], ["fastest rate 1.6e+100", "budget of 10 min"]),
     (["demo", "--kappa", "1e50"], ["fastest rate 5e+99", "budget"]),

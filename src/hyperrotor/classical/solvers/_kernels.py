@@ -63,30 +63,18 @@ def rotation_tables(N: int):
     included, so one kind of table means one compiled kernel (a writeable copy compiled the
     ensemble kernel a second time, ~8 s).
     """
-    from hyperrotor.conventions import planes
-
-    ps = planes(N)
-    idx = {p: k for k, p in enumerate(ps)}
-    n = len(ps)
-    m = max(N - 2, 0)
-    pair_p = np.zeros((n, m), dtype=np.int64)
-    pair_q = np.zeros((n, m), dtype=np.int64)
-    pair_s = np.zeros((n, m), dtype=np.float64)
-
-    def comp(r, c):  # matrix entry (r, c) of L, 1-based, r != c -> (component index, sign)
-        return (idx[(r, c)], 1.0) if r < c else (idx[(c, r)], -1.0)
-
-    for a, (i, j) in enumerate(ps):
-        col = 0
-        for k in range(1, N + 1):
-            if k in (i, j):
-                continue
-            p, sp_ = comp(i, k)
-            q, sq = comp(j, k)
-            pair_p[a, col], pair_q[a, col], pair_s[a, col] = p, q, sp_ * sq
-            col += 1
-    plane_i = np.array([i - 1 for i, _ in ps], dtype=np.int64)
-    plane_j = np.array([j - 1 for _, j in ps], dtype=np.int64)
+    plane_i, plane_j = (x.astype(np.int64) for x in np.triu_indices(N, 1))  # (0-based, in the paper's order)
+    n = plane_i.size
+    # component index and sign of every matrix entry (r, c) of L, r != c: the plane (min, max), + above the diagonal
+    comp = np.zeros((N, N), dtype=np.int64)
+    comp[plane_i, plane_j] = comp[plane_j, plane_i] = np.arange(n)
+    sign = np.triu(np.ones((N, N)), 1) - np.tril(np.ones((N, N)), -1)
+    # the other axes k of each plane, ascending: its N - 2 rotated pairs (L_ik, L_jk)
+    axes = np.arange(N)
+    others = np.broadcast_to(axes, (n, N))[(axes != plane_i[:, None]) & (axes != plane_j[:, None])].reshape(n, N - 2)
+    pair_p = np.ascontiguousarray(comp[plane_i[:, None], others])
+    pair_q = np.ascontiguousarray(comp[plane_j[:, None], others])
+    pair_s = sign[plane_i[:, None], others] * sign[plane_j[:, None], others]
     tables = pair_p, pair_q, pair_s, plane_i, plane_j
     for arr in tables:
         arr.setflags(write=False)
