@@ -36,6 +36,7 @@ import numpy as np  # noqa: E402
 import hyperrotor as hr  # noqa: E402
 import hyperrotor.quantum as hq  # noqa: E402
 from hyperrotor import _pricing  # noqa: E402
+from hyperrotor.classical.solvers._kernels import rotation_tables  # noqa: E402
 from hyperrotor.classical.solvers.splitting import _shift_candidates  # noqa: E402
 from hyperrotor.conventions import _structure_constants  # noqa: E402
 from hyperrotor.demo import compare_quartet_motion  # noqa: E402
@@ -68,7 +69,9 @@ def cases():
                     lambda N=N: (_structure_constants.cache_clear(), _moments(N))[1],
                     lambda m: hr.linearization(m, (1, 2), 1.0)))
     for N in (40, 100, 200):
-        out.append(("simulate", f"N={N}", dict(N=N), lambda N=N: (_shift_candidates.cache_clear(), _warm(), _moments(N))[2],
+        out.append(("simulate", f"N={N}", dict(N=N),
+                    lambda N=N: (_warm(), _shift_candidates.cache_clear(), rotation_tables.cache_clear(),
+                                 _moments(N))[3],
                     lambda m: hr.simulate(m, 1e-3 * np.ones(m.size), [0.0, 1e-3], method="splitting4")))
     for d in (500, 1000, 2000):
         out.append(("dense_diagonalization", f"dim={d}", dict(dim=d), lambda d=d: _herm(d), hq.spectrum))

@@ -107,14 +107,26 @@ def _linearization(N: Any) -> tuple[Cost, ...]:
 
 
 @model("casimir_shift", "use a body with fewer planes")
-@model("simulate", "use a body with fewer planes")
-def _simulate(N: Any = None, n: Any = None) -> tuple[Cost, ...]:
+def _casimir_shift(N: Any = None, n: Any = None) -> tuple[Cost, ...]:
     # the Casimir shift rule weighs every rate against every candidate value (n x n at most): a table of up to
     # 2^20 entries kept, beyond it built in blocks of candidates (classical/solvers/splitting.shift_rule)
     n = _n_planes(N) if n is None else _f(n)
     return (_memory(f"the Casimir shift of {n:.0f} planes (its table of rate differences)", 16.0 * min(n * n, 2**20)),
             _seconds(f"the set-up of {n:.0f} planes (the Casimir shift: n x n rate differences)",
                      1e-3 + _SHIFT_S * n * n))
+
+
+@model("simulate", "use a body with fewer planes")
+def _simulate(N: Any = None, n: Any = None) -> tuple[Cost, ...]:
+    # the Casimir shift (above), the index tables of the flows (3 x n x (N - 2) entries, _kernels.rotation_tables)
+    # and, for the step control's rate bound, of the coupled triples (9 entries per triple i < j < k: about
+    # 12 N^3 bytes, step_control._triples)
+    n = _n_planes(N) if n is None else _f(n)
+    N = _f(N) if N is not None else (1.0 + math.sqrt(1.0 + 8.0 * n)) / 2.0
+    (shift_memory, seconds) = _casimir_shift(n=n)
+    tables = 24.0 * n * max(N - 2.0, 0.0) + 12.0 * N**3
+    return (_memory(f"the set-up of {n:.0f} planes (the Casimir shift's table, the flows' and the triples' index "
+                    f"tables)", shift_memory.amount + tables), seconds)
 
 
 def _eigh_seconds(cubes: Any, complex: bool = True) -> float:

@@ -1607,3 +1607,23 @@ def test_large_momenta_in_one_plane_run_and_old_trajectories_keep_their_dense_ou
     old = pickle.loads(pickle.dumps(run))
     del old.__dict__["_origin"]  # (as an older version pickled it)
     np.testing.assert_array_equal(old.sol(0.7), run.sol(0.7))
+
+
+def test_an_interrupt_inside_numbas_dispatch_is_raised_as_the_interrupt():
+    """A SIGINT whose handler runs in the Python hooks of numba's dispatch (_numba_unpickle) came out of simulate as
+    a SystemError "returned a result with an exception set" (CI, test_ctrl_c_interrupts_the_step_selection):
+    the interrupt in its cause chain is raised instead; other SystemErrors pass."""
+    from hyperrotor._jit import interrupts_as_raised
+
+    def dispatch_error(inner):
+        try:
+            raise inner
+        except BaseException as exc:
+            raise SystemError("<function _numba_unpickle> returned a result with an exception set") from exc
+
+    with pytest.raises(KeyboardInterrupt):
+        with interrupts_as_raised():
+            dispatch_error(KeyboardInterrupt())
+    with pytest.raises(SystemError, match="returned a result"):
+        with interrupts_as_raised():
+            dispatch_error(ValueError("not an interrupt"))

@@ -104,6 +104,13 @@ def _as_value(v: Any, what: str, *, allow_zero: bool = False) -> sp.Expr:
     raise TypeError(f"{what} must be a real number or a SymPy expression, got {_validate.fmt(v)} of type {type(v).__name__}")
 
 
+def _floats_if_inexact(J: list) -> list:
+    """A mass tensor of SymPy Floats as Python floats (the same numbers: both are IEEE doubles rounded once), so that
+    :meth:`Inertia.from_mass_tensor` sums it with NumPy (a box of N = 200 took 5 s of SymPy per-plane checks);
+    exact or symbolic entries as they are."""
+    return [float(v) for v in J] if all(isinstance(v, sp.Float) for v in J) else J
+
+
 @_pricing.model("Inertia", "use a body of fewer dimensions")
 def _inertia_cost(n: Any) -> tuple:
     """One SymPy number per plane (~20 microseconds each for plain numbers, ~100 for other input)."""
@@ -430,7 +437,7 @@ class Inertia:
         a = [_as_value(v, f"side length a_{k + 1}") for k, v in enumerate(_as_list(side_lengths, "side_lengths"))]
         if len(a) < 2:
             raise ValueError(f"side_lengths: a box needs N >= 2 side lengths, got {len(a)}")
-        return cls.from_mass_tensor([M * x**2 / 12 for x in a])
+        return cls.from_mass_tensor(_floats_if_inexact([M * x**2 / 12 for x in a]))
 
     @classmethod
     def ellipsoid(cls, mass: Any, semi_axes: Any) -> "Inertia":
@@ -444,7 +451,7 @@ class Inertia:
         N = len(a)
         if N < 2:
             raise ValueError(f"semi_axes: an ellipsoid needs N >= 2 semi-axes, got {N}")
-        return cls.from_mass_tensor([M * x**2 / (N + 2) for x in a])
+        return cls.from_mass_tensor(_floats_if_inexact([M * x**2 / (N + 2) for x in a]))
 
     @classmethod
     def ball(cls, N: int, mass: Any, radius: Any) -> "Inertia":

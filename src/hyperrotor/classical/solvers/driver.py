@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _validate
+from hyperrotor._jit import interrupts_as_raised
 from hyperrotor._options import options
 from hyperrotor._parallel import progress_bar
 
@@ -124,7 +125,8 @@ class FixedStepSolver(Solver):
         return type(self)
 
     def run(self, problem: Problem, control: Any, *, events=None, max_steps: int, progress=None):
-        return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
+        with interrupts_as_raised():  # (Ctrl-C inside numba's dispatch: a KeyboardInterrupt, not a SystemError)
+            return run_fixed_step(self, problem, control, events=events, max_steps=max_steps, progress=progress)
 
 
 class EventSpec:
