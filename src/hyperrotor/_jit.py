@@ -12,10 +12,9 @@ into explicit output arguments, wrapped by ``jit`` at import.
 """
 from __future__ import annotations
 
-import contextlib
 import os
 
-__all__ = ["jit", "JIT_ENABLED", "CACHE_ENABLED", "NUMBA_VERSION", "prange", "interrupts_as_raised"]
+__all__ = ["jit", "JIT_ENABLED", "CACHE_ENABLED", "NUMBA_VERSION", "prange"]
 
 try:  # pragma: no cover - depends on the platform
     import numba as _numba
@@ -47,21 +46,3 @@ if JIT_ENABLED:
     prange = _numba.prange
 else:
     prange = range
-
-
-@contextlib.contextmanager
-def interrupts_as_raised():
-    """A Ctrl-C (or any other ``BaseException`` a signal handler raises) that lands in the Python hooks of numba's
-    dispatch (``_numba_unpickle``, called on every call of some compiled functions) comes out as a ``SystemError``
-    "returned a result with an exception set" whose cause chain holds the interrupt: re-raised as that interrupt
-    (a test of Ctrl-C during the step selection saw it once in CI). Other errors pass unchanged."""
-    try:
-        yield
-    except SystemError as exc:
-        seen, cause = set(), exc
-        while cause is not None and id(cause) not in seen:
-            seen.add(id(cause))
-            if not isinstance(cause, Exception):  # (KeyboardInterrupt, SystemExit, the command line's Stop)
-                raise cause.with_traceback(cause.__traceback__) from exc
-            cause = cause.__cause__ or cause.__context__
-        raise

@@ -1613,7 +1613,7 @@ def test_an_interrupt_inside_numbas_dispatch_is_raised_as_the_interrupt():
     """A SIGINT whose handler runs in the Python hooks of numba's dispatch (_numba_unpickle) came out of simulate as
     a SystemError "returned a result with an exception set" (CI, test_ctrl_c_interrupts_the_step_selection):
     the interrupt in its cause chain is raised instead; other SystemErrors pass."""
-    from hyperrotor._jit import interrupts_as_raised
+    from hyperrotor._parallel import interrupts_as_raised
 
     def dispatch_error(inner):
         try:

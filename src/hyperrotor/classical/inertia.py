@@ -108,7 +108,11 @@ def _floats_if_inexact(J: list) -> list:
     """A mass tensor of SymPy Floats as Python floats (the same numbers: both are IEEE doubles rounded once), so that
     :meth:`Inertia.from_mass_tensor` sums it with NumPy (a box of N = 200 took 5 s of SymPy per-plane checks);
     exact or symbolic entries as they are."""
-    return [float(v) for v in J] if all(isinstance(v, sp.Float) for v in J) else J
+    if not all(isinstance(v, sp.Float) for v in J):
+        return J
+    floats = [float(v) for v in J]
+    # (beyond the floats, 1e600 or 1e-400: the SymPy path, whose messages name the moment that does not fit)
+    return floats if all(math.isfinite(x) and (x != 0.0 or v == 0) for x, v in zip(floats, J)) else J
 
 
 @_pricing.model("Inertia", "use a body of fewer dimensions")

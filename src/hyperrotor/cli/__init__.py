@@ -67,6 +67,7 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from hyperrotor.cli import _files, _signals, bench, demo, scene, verify
+from hyperrotor._parallel import interrupts_as_raised
 from hyperrotor._pricing import BudgetError
 from hyperrotor.cli._common import UsageError, budget_message
 
@@ -224,8 +225,9 @@ def _run(argv: list[str], prog: str) -> int:
         args, extra = build_parser().parse_known_args(argv)
         if extra:  # (argparse's own message pointed to 'hyperrotor --help', not the subcommand's)
             raise UsageError(f"unrecognized arguments: {' '.join(extra)} (see 'hyperrotor {args.command} --help')")
-        with warnings.catch_warnings(record=True) as caught:  # reported one line each, after the work
-            warnings.simplefilter("default")
+        # (a Stop raised by the handler inside numba's dispatch comes out as a SystemError: re-raised as the Stop)
+        with warnings.catch_warnings(record=True) as caught, interrupts_as_raised():
+            warnings.simplefilter("default")  # (the warnings reported one line each, after the work)
             code = int(args._run(args))
         _signals.checkpoint()  # a signal that could not be acted on during the work
         for w in caught:

@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _validate
-from hyperrotor._jit import interrupts_as_raised
+from hyperrotor._parallel import interrupts_as_raised
 from hyperrotor._options import options
 from hyperrotor._parallel import progress_bar
 
