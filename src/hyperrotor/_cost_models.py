@@ -329,14 +329,17 @@ def _dense_matrix(dim: Any, count: Any = 1) -> tuple[Cost, ...]:
 
 
 # --- the command line ----------------------------------------------------------------------
-#: Cost constants of ``hyperrotor scene`` (seconds, measured by the cli helper on the shared 2-core
+#: Cost constants of ``hyperrotor scene`` (seconds; first measured by the cli helper on a shared, loaded 2-core
 #: machine: --N 12 cube PNG 15.8 s wall against 13.7 s estimated; pages (.html) cube N = 5, 8, 10:
-#: 4.1, 9.1, 46 s against 6.4, 15.6, 55 s, 0.26, 0.32, 0.56 GB peak against 0.30, 0.35, 0.44 GB):
+#: 4.1, 9.1, 46 s against 6.4, 15.6, 55 s, 0.26, 0.32, 0.56 GB peak against 0.30, 0.35, 0.44 GB; refitted in
+#: session 46 on an idle 2-core AMD EPYC, where they had become 4-5x high: the default PNG 1.3-1.55 s, a GIF of 60
+#: frames 5.2 s, --N 12 PNG 2.8 s, pages N = 5 / 10 1.3 / 13.2 s, now estimated 1.6-2.3x those, room for a slower
+#: or loaded machine):
 #: start-up (imports), per drawn frame, per drawn edge and point of a frame, per frame-plane of the
 #: motion, per cube vertex and axis^2 (finding the edges), and ~14 copies of a page's text.
-SCENE_COST = {"start": 5.0, "frame_png": 0.35, "frame_gif": 0.1, "frame_html": 0.01, "edge": 3.5e-5,
-              "point": 1e-5, "html_edge": 1.5e-4, "html_point": 5e-5, "html_copies": 14,
-              "motion": 2e-7, "cube_edges": 2e-6}
+SCENE_COST = {"start": 2.0, "frame_png": 0.15, "frame_gif": 0.1, "frame_html": 0.01, "edge": 1.5e-5,
+              "point": 1e-5, "html_edge": 6e-5, "html_point": 2e-5, "html_copies": 14,
+              "motion": 2e-7, "cube_edges": 1e-6}
 #: Pillow keeps every RGBA frame of a GIF until the file is written
 GIF_FRAME_BYTES = 540 * 480 * 4
 #: points of the ellipsoid body of ``hyperrotor scene --shape ellipsoid``
