@@ -47,14 +47,15 @@ _SETTINGS = {  # method -> (keyword, values): hyperrotor's integrators by step, 
 #: Methods of :func:`work_precision` (the keys of its settings table).
 BENCH_METHODS = tuple(_SETTINGS)
 
-#: Seconds of one call of every setting of a method together (best of 2, measured with
-#: ``hyperrotor bench`` on the shared 2-core machine, 46 s wall in all); used by
-#: :func:`estimate_seconds` only, to refuse absurd runs before they start.
+#: Seconds of one call of every setting of a method together: about twice the best of 3 measured on an idle
+#: 2-core AMD EPYC (session 46: ``hyperrotor bench`` 7.7 s wall; first measured on a shared, loaded machine, 46 s,
+#: where these were 3-8x higher and the estimate 4x the run here); used by :func:`estimate_seconds` only, to refuse
+#: absurd runs before they start.
 _TYPICAL_SECONDS = {
-    "quartet": {"splitting2": 0.15, "splitting4": 0.13, "splitting6": 0.06, "splitting8": 0.05,
-                "splitting10": 0.06, "moser-veselov": 3.1, "DOP853": 2.5, "RK45": 1.1},
-    "euler-poinsot": {"splitting2": 0.02, "splitting4": 0.02, "splitting6": 0.015, "splitting8": 0.01,
-                      "splitting10": 0.015, "moser-veselov": 0.9, "DOP853": 1.6, "RK45": 0.45},
+    "quartet": {"splitting2": 0.07, "splitting4": 0.07, "splitting6": 0.03, "splitting8": 0.02,
+                "splitting10": 0.02, "moser-veselov": 0.75, "DOP853": 1.3, "RK45": 0.5},
+    "euler-poinsot": {"splitting2": 0.01, "splitting4": 0.01, "splitting6": 0.01, "splitting8": 0.01,
+                      "splitting10": 0.01, "moser-veselov": 0.08, "DOP853": 0.6, "RK45": 0.18},
 }
 
 
@@ -146,12 +147,12 @@ def estimate_seconds(problems: Sequence[str], methods: Sequence[str] | None = No
 
     Each setting is called ``repeats + 1`` times (one warm-up); the per-call
     times of :data:`_TYPICAL_SECONDS` were measured on a 2-core machine (the
-    estimate is good to a factor of about 3), plus a few seconds for the imports
+    estimate is good to a factor of about 3, about 2x on an idle machine), plus a few seconds for the imports
     and the first numba kernel load.
     """
     methods = list(_SETTINGS) if methods is None else list(methods)
     per_call = sum(_TYPICAL_SECONDS.get(p, {}).get(m, 1.0) for p in problems for m in methods)
-    return 5.0 + (int(repeats) + 1) * per_call
+    return 3.0 + (int(repeats) + 1) * per_call
 
 
 def work_precision(problem: str = "quartet", methods: Sequence[str] | None = None, *, repeats: int = 2,
