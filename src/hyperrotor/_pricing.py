@@ -47,7 +47,8 @@ class BudgetError(ValueError):
     """A request whose estimated cost exceeds a budget of :data:`hyperrotor.options`.
 
     Raised before any work by :func:`hyperrotor._pricing.check`; the message names the
-    entry point, the estimate, the budget (``hr.options['<key>']``) and how to raise it.
+    entry point, the estimate, the budget (``hr.options['<key>']``) and how to raise it. Built by
+    :func:`refuse`, it also carries them: ``what``, ``needed`` (in ``unit``), ``budget`` and ``option`` (the key).
     ``StepBudgetError`` (runs of :func:`hyperrotor.simulate`) is a subclass.
     """
 
@@ -151,8 +152,15 @@ def refuse(entry: str, what: str, amount: float, key: str, unit: str, alternativ
         budget = key
     how = f"hr.options({key}=...)" if raise_with is None else raise_with
     tail = f" or {alternative}" if alternative else ""
-    return cls(f"{entry}: {what} would need ~{_amount(amount, unit)}, over the budget {budget} = {limit!r}; "
-               f"raise it with {how}{tail}", **attributes)
+    err = cls(f"{entry}: {what} would need ~{_amount(amount, unit)}, over the budget {budget} = {limit!r}; "
+              f"raise it with {how}{tail}", **attributes)
+    # the figures beside the text, for a caller that words the refusal its own way (the command line): they pickle
+    # with the exception (its __dict__)
+    err.what, err.unit = what, unit
+    for name, value in (("needed", amount), ("budget", limit), ("option", key)):
+        if getattr(err, name, None) is None:
+            setattr(err, name, value)
+    return err
 
 
 def _amount(x: float, unit: str) -> str:

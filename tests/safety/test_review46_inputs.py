@@ -182,3 +182,19 @@ def test_estimate_cost_checks_its_time_budget_first():
     for bad, kind in (("abc", TypeError), (-1.0, ValueError), (float("nan"), ValueError)):
         with pytest.raises(kind, match="max_seconds"):
             estimate_cost(BODY3, [0.1, 0.2, 0.3], [0.0], method="DOP853", rtol=1e-6, max_seconds=bad)
+
+
+def test_refusals_carry_their_figures_through_a_pickle():
+    """A caller that words a refusal its own way (the command line) reads the figures, not the text: every refusal
+    built by _pricing.refuse carries what, needed, unit, budget and option, also after a pickle round trip."""
+    import pickle
+
+    with hr.options(max_seconds=1e-9), pytest.raises(hr.BudgetError) as info:
+        hr.simulate(np.ones(4950), np.ones(4950), [0.0, 1.0], dt=0.1)
+    with pytest.raises(hr.StepBudgetError) as steps:
+        hr.simulate(BODY3, [0.1, 0.2, 0.3], np.linspace(0.0, 1e6, 3), dt=1e-3, max_steps=10)
+    for err, option, unit in ((info.value, "max_seconds", "seconds"), (steps.value, "max_steps", "integration steps")):
+        back = pickle.loads(pickle.dumps(err))
+        for e in (err, back):
+            assert (e.option, e.unit, e.budget) == (option, unit, 1e-9 if option == "max_seconds" else 10)
+            assert e.needed > e.budget and e.what and f"{e.what} would need ~" in str(e)

@@ -412,9 +412,7 @@ def scene_route(scene: Scene, *, minimal: bool = True) -> tuple[str, np.ndarray,
     moments, N, obs, w0, *_ = _validate(scene)
     need_att = "attitude" in obs or "projection" in obs
     steps, _, kept, info = _route(minimal, need_att, "omega" in obs or "L" in obs, moments, N, w0)
-    if steps == ["full"]:
-        return "full", moments, w0
-    integrated = steps[-1] == "integrate"
+    integrated = steps[-1] in ("integrate", "full")  # ("full": the whole body, kept is every plane)
     return "+".join(steps), (moments[kept] if integrated else moments[:0]), (w0[kept] if integrated else w0[:0])
 
 

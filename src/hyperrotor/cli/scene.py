@@ -10,7 +10,6 @@ model ``"scene"`` of :mod:`hyperrotor._pricing`, an integrated motion by
 from __future__ import annotations
 
 import argparse
-import re
 
 import numpy as np
 
@@ -232,12 +231,12 @@ def _check_motion(args: argparse.Namespace, s: dict, scene) -> None:
             cost = estimate_cost(moments, omega, scene.t, method=scene.method, rtol=rtol, attitude=True,
                                  max_steps=s["max_steps"], max_seconds=left)
     except BudgetError as err:
-        if getattr(err, "option", None) != "max_seconds" and "'max_seconds'" not in str(err):
+        if getattr(err, "option", None) != "max_seconds":
             raise
-        need = str(err).split(": ", 1)[-1].split(", over the budget", 1)[0]  # ("<what> would need ~<amount>")
-        raise UsageError(f"scene --t-end {num(s['t_end'])}: {need}, over the {duration_text(left)} that --max-seconds "
-                         f"{duration_text(max_s)} leaves after the drawing's {duration_text(s['seconds'])}; choose a "
-                         "shorter --t-end or fewer --frames, or raise --max-seconds") from None
+        raise UsageError(f"scene --t-end {num(s['t_end'])}: {err.what} would need about {duration_text(err.needed)}, "
+                         f"over the {duration_text(left)} that --max-seconds {duration_text(max_s)} leaves after the "
+                         f"drawing's {duration_text(s['seconds'])}; choose a shorter --t-end or fewer --frames, or "
+                         "raise --max-seconds") from None
     what = f"scene --t-end {num(s['t_end'])}"
     if cost.steps is not None and cost.steps > s["max_steps"]:
         raise UsageError(f"{what}: the motion needs about {cost.steps:.3g} integration steps ({cost.method}), "
@@ -264,8 +263,8 @@ def _budget_message(err: BudgetError, args: argparse.Namespace | None = None) ->
         elif option == "max_seconds":
             amount, limit = duration_text(needed), duration_text(budget)
         else:  # (the unit the library counted in: integration steps, or a scipy method's evaluations)
-            unit = re.search(r"would need ~\S+ \(([^)]+)\)", str(err))
-            amount, limit = f"{needed:.3g} {unit.group(1) if unit else _UNITS[option]}", f"{budget:.6g}"
+            unit = getattr(err, "unit", None) or _UNITS[option]  # (set by _pricing.refuse)
+            amount, limit = f"{needed:.3g} {unit}", f"{budget:.6g}"
         return (f"the motion needs about {amount}, over the budget of {limit} ({flag}); choose a shorter --t-end "
                 f"or fewer --frames, or raise {flag}")
     return budget_message(err, args)

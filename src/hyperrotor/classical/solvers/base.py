@@ -225,8 +225,8 @@ class StepBudgetError(BudgetError):
         super().__init__(message)
         self.needed, self.budget, self.option = needed, budget, option
 
-    def __reduce__(self):
-        return _budget_error, (type(self), str(self), self.needed, self.budget, self.option)
+    def __reduce__(self):  # (with the figures _pricing.refuse sets, ``what`` and ``unit``, as its state)
+        return _budget_error, (type(self), str(self), self.needed, self.budget, self.option), dict(self.__dict__)
 
 
 def _budget_error(cls, message, needed, budget, option):

@@ -42,9 +42,8 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _validate
-from hyperrotor._parallel import interrupts_as_raised
 from hyperrotor._options import options
-from hyperrotor._parallel import progress_bar
+from hyperrotor._parallel import interrupts_as_raised, progress_bar
 
 from .base import Problem, RunResult, Solver, nsub_for, step_lengths
 from .chunks import SECONDS_PER_FLOW, Work, check_finite, cost_key, first_chunk_flows, learn, merge, stops
