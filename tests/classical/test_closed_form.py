@@ -455,10 +455,12 @@ def test_euler_poinsot_bad_input():
         euler_poinsot(object(), np.ones(3), [0.0])
 
 
-@pytest.mark.parametrize("moment_scale, omega_scale", [(1e-310, 1.0), (1e300, 1.0), (1.0, 1e-200), (1.0, 1e150)])
+@pytest.mark.parametrize("moment_scale, omega_scale", [(1e-310, 1.0), (1e300, 1.0), (1.0, 1e-200), (1.0, 1e150),
+                                                       (2.0**1021, 1.0), (1.0, 1e308)])
 def test_euler_poinsot_extreme_scales(moment_scale, omega_scale):
     """The motion is unchanged by I -> c I and is w(t) = s w~(s t) for w0 -> s w0: tiny or huge scales
-    (moments of 1e-310 gave NaN, #21) give the unit-scale solution, to the precision of the input."""
+    (moments of 1e-310 gave NaN, #21) give the unit-scale solution, to the precision of the input. Values of
+    2^1023 and more (I_max = 2^1023, |omega| = 1e308) were divided by 2^1024 = inf: zero moments, a frozen motion."""
     I, w0 = np.array([2.0, 3.0, 4.0]), np.array([0.6, 1.0, -0.5])
     t = np.linspace(0.0, 10.0, 7)
     ref = euler_poinsot(I, w0, t)

@@ -58,6 +58,7 @@ import numpy as np
 
 from hyperrotor import _parallel, _pricing, _validate
 from hyperrotor._equality import fields_equal
+from hyperrotor._floats import power_of_two_scale
 from hyperrotor._options import options
 from hyperrotor.conventions import dimension_from_count
 
@@ -141,8 +142,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     # L -> L/s, t -> s t): exact in floating point, so the arithmetic of the kernel is the same as
     # unscaled (the half-angles fac * L and the products of the tangent map do not change), but
     # neither norms nor the step rule overflow or underflow for huge or tiny momenta
-    scale = np.ldexp(1.0, np.frexp(np.max(np.abs(L0), axis=1))[1]) if B else np.ones(0)
-    scale[scale == 0.0] = 1.0
+    scale = power_of_two_scale(np.max(np.abs(L0), axis=1)) if B else np.ones(0)
     Ls = L0 / scale[:, None]
     shift = np.empty(B)
     uniq, inverse = np.unique(moments_rows, axis=0, return_inverse=True)

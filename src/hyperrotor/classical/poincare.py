@@ -10,6 +10,7 @@ import numpy as np
 
 from hyperrotor import _pricing, _validate
 from hyperrotor._equality import fields_equal
+from hyperrotor._floats import power_of_two_scale
 from hyperrotor._options import options
 from hyperrotor.conventions import dimension_from_count, plane_index
 
@@ -128,7 +129,7 @@ def poincare_section(
     a = plane_index(ij, N)
     L0 = w0 * moments
     if dt is None:
-        s = float(np.ldexp(1.0, np.frexp(np.max(np.abs(L0)))[1])) or 1.0  # power of two: no overflow
+        s = power_of_two_scale(float(np.max(np.abs(L0))))  # (exact: no overflow)
         wmax = float(rate_bound(moments[None, :], L0[None, :] / s)[0]) * s
         dt = options["lyapunov_step"] / wmax if wmax > 0 else T
         dt = min(dt, T)  # a (nearly) resting body: one step (lyapunov_step / wmax overflows for subnormal omega)

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .. import _pricing, _validate
+from .._floats import power_of_two_scale
 from .._lazy import LazyModule
 from ._closed_form_input import plane_vector, times
 
@@ -115,11 +116,6 @@ def _cn_dn_near_separatrix(u: np.ndarray, m1: float, K: float):
     return scale / np.sqrt(1.0 - m1) * (np.where(n % 2 == 0, 1.0, -1.0) * sech).sum(axis=0), scale * sech.sum(axis=0)
 
 
-def _pow2(x: float) -> float:
-    """The power of two nearest above ``x > 0`` (1 for 0): a scale that divides exactly."""
-    return float(np.ldexp(1.0, np.frexp(x)[1])) if x > 0 else 1.0
-
-
 def _ep_setup(body: Any, omega0: Any):
     I = _validate.moments(body, name="body")
     if I.size != 3:
@@ -130,8 +126,8 @@ def _ep_setup(body: Any, omega0: Any):
     # The motion does not change under I -> c I and scales as w(t) = c w~(c t) under w0 -> c w0:
     # compute with moments and omega0 divided by powers of two (exact), so that no product of the
     # formulas below under- or overflows (moments of 1e-310 gave NaN, #21).
-    scale = _pow2(float(np.max(np.abs(w))))
-    In, wn = I / _pow2(float(np.max(I))), w / scale
+    scale = power_of_two_scale(float(np.max(np.abs(w))))
+    In, wn = I / power_of_two_scale(float(np.max(I))), w / scale
     # textbook map: W1 = w23, W2 = -w13, W3 = w12; I1 = I23, I2 = I13, I3 = I12
     Itb = np.array([In[2], In[1], In[0]])
     Wtb = np.array([wn[2], -wn[1], wn[0]])

@@ -25,11 +25,11 @@ from typing import Any, Callable, Mapping, NamedTuple
 import numpy as np
 
 from hyperrotor import _pricing, _validate
+from hyperrotor._floats import power_of_two_scale
 from hyperrotor._options import options as _table, register
 from hyperrotor.conventions import dimension_from_count
 
 from .solvers import SOLVERS, FixedStepSolver, Problem, ScipyIVP, Solver, solver_for
-from .solvers.base import power_of_two_scale
 from .solvers.chunks import Work, cost_key, seconds_per_flow
 from ._trajectory import Trajectory
 from .solvers.richardson_check import check_bytes

@@ -35,6 +35,7 @@ import scipy.sparse as sps
 import scipy.sparse.linalg as spla
 
 from .. import _pricing, _validate
+from .._floats import power_of_two_scale
 from .._options import options
 from ..conventions import n_planes, planes, to_matrix
 from ._krylov import krylov_propagator, row_bound, single_thread_blas
@@ -152,10 +153,10 @@ def normal_form_rotation(L: Any) -> tuple[np.ndarray, np.ndarray]:
     _validate.dimension_from_count(comps.size, name="L")  # (the error names L, not to_matrix's count)
     A = np.asarray(to_matrix(comps, convention="standard"), dtype=float)
     N = A.shape[0]
-    # the rotation does not depend on |L|: L / 2^e (exact), max |entry| in [1/2, 1), so that nothing below
-    # overflows or underflows (L of 1e308 gave inf in Q^T L Q); lam is scaled back at the end
-    e = int(np.frexp(float(np.max(np.abs(A))))[1]) if np.any(A) else 0
-    A = np.ldexp(A, -e)
+    # the rotation does not depend on |L|: L / s for a power of two s (exact), max |entry| in [1, 2), so that
+    # nothing below overflows or underflows (L of 1e308 gave inf in Q^T L Q); lam is scaled back at the end
+    s = power_of_two_scale(float(np.max(np.abs(A))))
+    A = A / s
     T, Z = sla.schur(A, output="real")
     scale = max(1.0, float(np.max(np.abs(A))))
     blocks, zeros = [], []
@@ -192,7 +193,7 @@ def normal_form_rotation(L: Any) -> tuple[np.ndarray, np.ndarray]:
     if np.max(np.abs(B - target)) > 1e-10 * scale:  # pragma: no cover - guards the Schur bookkeeping
         raise RuntimeError("normal form failed: Q^T L Q is not block diagonal")
     with np.errstate(over="ignore"):
-        lam = np.ldexp(lam, e)
+        lam = lam * s
     if not np.all(np.isfinite(lam)):
         raise ValueError(f"L too large, max |L| = {float(np.max(np.abs(comps))):.3g}: its normal form's lambda "
                          f"overflows double precision (about 1.8e308); rescale L first")

@@ -47,6 +47,7 @@ import numpy as np
 import scipy.sparse as sps
 
 from .. import _lazy, _parallel, _pricing, _validate
+from .._floats import power_of_two_scale
 from .._options import options as _options
 from .._warn import warn
 from ._krylov import row_bound, single_thread_blas
@@ -100,14 +101,14 @@ _SERIAL_DIM = 4096
 _PLAIN_LANCZOS = 16
 
 
-def scaled_state(vec: np.ndarray, name: str) -> tuple[np.ndarray, int]:
-    """A complex vector divided by the power of two ``2^e`` just above its largest amplitude, and ``e``: exact, and
+def scaled_state(vec: np.ndarray, name: str) -> tuple[np.ndarray, float]:
+    """A complex vector divided by the power of two ``s`` at or below its largest amplitude, and ``s``: exact, and
     its norm is then finite and accurate however large or small the amplitudes (the zero vector is refused)."""
     scale = float(np.max(np.abs(vec))) if vec.size else 0.0
     if scale == 0.0:
         raise ValueError(f"{name} is the zero vector; it cannot be normalized")
-    e = int(np.frexp(scale)[1])  # (ldexp, not a division: no overflow of 2^e for subnormal scales)
-    return np.ldexp(vec.real, -e) + 1j * np.ldexp(vec.imag, -e), e
+    s = power_of_two_scale(scale)
+    return vec.real / s + 1j * (vec.imag / s), s  # (parts apart: a complex division by a subnormal s overflows)
 
 
 def unit_state(psi0: Any, dim: int, name: str = "psi0") -> np.ndarray:
@@ -118,9 +119,10 @@ def unit_state(psi0: Any, dim: int, name: str = "psi0") -> np.ndarray:
     plain 2-norm is ``inf`` or ``0``. A norm off 1 by more than
     ``options["quantum_psi0_norm_rtol"]`` warns; the zero vector is refused.
     """
-    vec, e = scaled_state(_validate.ket(name, psi0, dim, of="H"), name)
+    vec, s = scaled_state(_validate.ket(name, psi0, dim, of="H"), name)
     nrm = float(np.linalg.norm(vec))
-    norm = float(np.ldexp(nrm, e))  # only reported (may be inf for a huge vector)
+    with np.errstate(over="ignore"):
+        norm = nrm * s  # only reported (may be inf for a huge vector)
     if abs(norm - 1) > _options["quantum_psi0_norm_rtol"]:
         warn(f"{name} has norm {norm:.12g}; evolving the normalized state {name}/|{name}| "
              f"(tolerance options['quantum_psi0_norm_rtol'] = {_options['quantum_psi0_norm_rtol']:.3g})")

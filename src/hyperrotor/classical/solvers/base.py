@@ -27,7 +27,6 @@ converts back.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, ClassVar
 
@@ -36,7 +35,7 @@ import numpy as np
 from hyperrotor import _validate
 from hyperrotor._pricing import BudgetError
 
-__all__ = ["Problem", "Solver", "RunResult", "StepBudgetError", "nsub_for", "step_lengths", "power_of_two_scale"]
+__all__ = ["Problem", "Solver", "RunResult", "StepBudgetError", "nsub_for", "step_lengths"]
 
 
 @dataclass
@@ -252,11 +251,4 @@ def nsub_for(t: np.ndarray, dt: float) -> np.ndarray:
 def step_lengths(t: np.ndarray, nsub: np.ndarray) -> np.ndarray:
     """Step length ``(t[k+1] - t[k]) / nsub[k]`` of each interval (signed: negative backwards in time)."""
     return (t[1:] - t[:-1]) / nsub
-
-
-def power_of_two_scale(x: float) -> float:
-    """The power of two ``s`` with ``1 <= x / s < 2`` (exact: ``frexp``), or 1.0 for ``x == 0``."""
-    if not (x > 0 and math.isfinite(x)):
-        return 1.0
-    return math.ldexp(1.0, math.frexp(x)[1] - 1)
 

@@ -38,10 +38,11 @@ from typing import Any
 import numpy as np
 
 from hyperrotor import _validate
+from hyperrotor._floats import power_of_two_scale
 from hyperrotor._parallel import progress_bar
 from hyperrotor.conventions import structure_constants, to_matrix
 
-from .base import Problem, RunResult, Solver, power_of_two_scale
+from .base import Problem, RunResult, Solver
 from .driver import event_specs
 from .chunks import refuse_steps
 from .step_control import StepBudgetError
