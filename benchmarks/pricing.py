@@ -259,10 +259,11 @@ def cases():
         bits = len(hq.positive_roots(N)) * math.log2(2 * (2 * float(max(hw)) + N) + 1)
         out.append(("weyl_product", f"N={N}, rho-like weight", dict(bits=bits), lambda: None,
                     lambda _, N=N, hw=hw: hq.weyl_dimension(N, hw)))
-    for t_end in (50.0, 200.0, 800.0):
-        out.append(("compare_quartet_motion", f"kappa=2, t_end={t_end:g} (warm kernels)",
-                    dict(t_end=t_end, rate=_quartet_rate()), _warm_quartet,
-                    lambda _, t_end=t_end: compare_quartet_motion(2.0, t_end=t_end)))
+    for kappa, t_end, n_times in ((2.0, 50.0, 2001), (2.0, 200.0, 2001), (2.0, 800.0, 2001), (6.0, 400.0, 2001),
+                                  (1000.0, 30.0, 2001), (0.5, 10.0, 100001)):
+        out.append(("compare_quartet_motion", f"kappa={kappa:g}, t_end={t_end:g}, n_times={n_times} (warm kernels)",
+                    dict(t_end=t_end, n_times=n_times, **_quartet_rates(kappa)), _warm_quartet,
+                    lambda _, k=kappa, t_end=t_end, n=n_times: compare_quartet_motion(k, t_end=t_end, n_times=n)))
     for N, frames in ((4, 6), (6, 6), (8, 6)):
         out.append(("scene", f"hyperrotor scene --N {N} --shape cube, PNG (child process, CPU s)",
                     dict(shape="cube", N=N, frames=frames, format=".png"), lambda: None,
@@ -353,10 +354,11 @@ def _otoc_price(l, S):
                 cubes=float(np.sum(sizes ** 3)), complex=U.matrix.dtype.kind == "c")
 
 
-def _quartet_rate():
-    from hyperrotor.demo import DEMO_OMEGA, _body, _fastest_rate
+def _quartet_rates(kappa):
+    from hyperrotor.demo import DEMO_OMEGA, _body, _motion_rates
 
-    return _fastest_rate(_body(2.0, 5)[0], np.asarray(DEMO_OMEGA))
+    rate, frequency = _motion_rates(kappa, _body(kappa, 5)[0], np.asarray(DEMO_OMEGA), 5)
+    return dict(rate=rate, frequency=frequency)
 
 
 def _warm_quartet():

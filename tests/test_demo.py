@@ -10,7 +10,8 @@ import sympy as sp
 
 import hyperrotor as hr
 from hyperrotor._jit import JIT_ENABLED
-from hyperrotor.classical import quartet_matrix, quartet_theta
+from hyperrotor.classical import quartet_frequencies, quartet_matrix, quartet_theta
+from hyperrotor.classical.solvers.step_control import rate_bound
 from hyperrotor.demo import (DEMO_OMEGA, DEMO_RUNS, compare_quartet_motion, quartet_invariants,
                              quartet_motion_seconds, save_quartet_motion)
 
@@ -49,7 +50,15 @@ def test_motion_against_the_closed_form_and_its_picture(tmp_path):
 def test_priced_before_it_runs():
     short, long = (quartet_motion_seconds(0.5, DEMO_OMEGA, t) for t in (10.0, 1e6))
     assert long.seconds > 1000 * short.seconds > 0
-    assert short.rate == long.rate == pytest.approx(1.0 * 2 / 1.25)  # max|omega0| max(I) / min(I)
+    moments = np.asarray(hr.Inertia.quartet(0.5).moments, dtype=float)
+    assert short.rate == long.rate == pytest.approx(rate_bound(moments, (np.array(DEMO_OMEGA) * moments)[None])[0],
+                                                    rel=1e-15)
+    assert short.frequency == long.frequency == pytest.approx(np.max(quartet_frequencies(0.5, DEMO_OMEGA)), rel=1e-15)
+    # the output times are priced (10^6 of them took ~13 s, estimated 0.05 s before); a large kappa costs the
+    # step control's rate bound (~ |kappa|), not kappa^2: kappa = 1000 over t_end = 30 ran 0.33 s, estimated 2.9 h
+    many = quartet_motion_seconds(0.5, DEMO_OMEGA, 10.0, n_times=10**6)
+    assert many.seconds > 10.0 and many.rate == short.rate
+    assert quartet_motion_seconds(1000, DEMO_OMEGA, 30.0).seconds < 1.0
     with hr.options(max_seconds=60.0), pytest.raises(hr.BudgetError, match="max_seconds"):
         compare_quartet_motion(0.5, DEMO_OMEGA, 1e6)
 

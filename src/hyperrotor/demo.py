@@ -26,6 +26,7 @@ import numpy as np
 
 from . import _pricing
 from . import _validate as _v
+from ._floats import power_of_two_scale
 
 __all__ = ["DEMO_OMEGA", "DEMO_RUNS", "QuartetInvariants", "quartet_invariants", "MotionRun", "QuartetMotion",
            "compare_quartet_motion", "MotionCost", "quartet_motion_seconds", "save_quartet_motion"]
@@ -34,13 +35,22 @@ __all__ = ["DEMO_OMEGA", "DEMO_RUNS", "QuartetInvariants", "quartet_invariants",
 DEMO_OMEGA = tuple(round(0.1 * k, 1) for k in range(1, 11))
 #: The integrators compared with the closed form, with their tolerance.
 DEMO_RUNS = (("splitting8", 1e-12), ("DOP853", 1e-10))
-#: Seconds of the two runs per unit of simulated time and of the fastest rate, and their fixed part
-#: (measured on the shared 2-core machine, warm kernels, one BLAS thread: t_end = 50-800 at rates 1.6,
-#: 2.5 and 7.5 took 0.11-3.5 s of CPU, 0.2-5.5 s wall; DOP853 is ~90% of it), for
-#: :func:`quartet_motion_seconds`. The splitting run is made twice, the first call untimed: it loads (or, on a
-#: fresh installation, compiles) every kernel the call takes (``QuartetMotion.warmup_time``; the compile, 15-20 s
-#: once per installation, is not priced: it does not grow with a size).
-_SECONDS_PER_TIME = 7e-4
+#: The cost model of :func:`quartet_motion_seconds`, CPU seconds of the runs with warm kernels (fitted to wall
+#: times on the 2-core reference machine at load ~3: kappa 1e-3 ... 1e4, omega0 the default and 3x, t_end 30-3000,
+#: 2001-200001 output times, within 0.8-1.25 of them there but 2.4x high at kappa = 30 and 100; then scaled to
+#: CPU seconds by 0.55, the ratio of CPU to wall seconds at that load; benchmarks/pricing.py, docs/safety.md):
+#: per unit of simulated time and of the motion's fastest frequency (DOP853's steps follow the motion: most of
+#: the time below |kappa| ~ 500) ...
+_SECONDS_PER_TIME_FREQUENCY = 1.05e-3
+#: ... and of the step control's rate bound (``rate_bound``: splitting8's steps follow it, ~ |kappa| |omega|
+#: for large kappa, when the motion's frequency stays ~ |omega|) ...
+_SECONDS_PER_TIME_RATE = 2.2e-6
+#: ... per unit of simulated time of a motion that does not turn (kappa = 1) ...
+_SECONDS_PER_TIME = 5e-5
+#: ... per output time (n_times) and fixed. The splitting run is made twice, the first call untimed: it loads
+#: (or, on a fresh installation, compiles) every kernel the call takes (``QuartetMotion.warmup_time``; the
+#: compile, 15-20 s once per installation, is not priced: it does not grow with a size).
+_SECONDS_PER_OUTPUT = 7e-6
 _SECONDS_FIXED = 0.05
 
 
@@ -104,25 +114,38 @@ def _body(kappa: Any, axis: Any):
     return RigidBody(Inertia.quartet(kappa, axis=axis, N=5)), axis
 
 
-def _fastest_rate(body, omega0: np.ndarray) -> float:
-    # the integrators' work grows with t_end times the fastest rate of the motion, at most
-    # max|omega| * max(I) / min(I) (the Euler coefficients are moment differences over moments)
+def _motion_rates(kappa: float, body, omega0: np.ndarray, axis: int) -> tuple[float, float]:
+    """``(rate, frequency)`` of :func:`quartet_motion_seconds`: the step control's bound on every angular
+    velocity on the orbit (:func:`~.classical.solvers.step_control.rate_bound`) and the motion's fastest
+    frequency (:func:`~.classical.quartet.quartet_frequencies`, after eq. 118). Both are of degree 1 in
+    ``omega0`` (and the bound of degree 0 in the moments): computed from powers of two near 1 (exact), so
+    that no square overflows."""
+    from .classical.quartet import quartet_frequencies
+    from .classical.solvers.step_control import rate_bound
+
+    s = power_of_two_scale(float(np.max(np.abs(omega0))))
     moments = np.asarray(body.inertia.moments, dtype=float)
-    return max(1.0, float(np.max(np.abs(omega0))) * float(np.max(moments) / np.min(moments)))
+    moments = moments / power_of_two_scale(float(np.max(moments)))
+    rate = float(rate_bound(moments, (omega0 / s * moments)[None, :])[0]) * s
+    return rate, float(np.max(quartet_frequencies(kappa, omega0 / s, axis=axis))) * s
 
 
 @_pricing.model("compare_quartet_motion", "a shorter t_end or a smaller omega0")
-def _motion_cost(t_end: float, rate: float) -> tuple:
+def _motion_cost(t_end: float, rate: float, frequency: float, n_times: float = 2001) -> tuple:
     """Cost model of :func:`compare_quartet_motion`: seconds of the two runs (:func:`quartet_motion_seconds`)."""
-    return (_pricing.Cost(f"the quartet motion over t_end = {t_end:.6g} (fastest rate {rate:.3g})",
-                          _SECONDS_FIXED + _SECONDS_PER_TIME * float(t_end) * float(rate), "max_seconds", "seconds"),)
+    per_time = _SECONDS_PER_TIME + _SECONDS_PER_TIME_FREQUENCY * float(frequency) + _SECONDS_PER_TIME_RATE * float(rate)
+    return (_pricing.Cost(f"the quartet motion over t_end = {t_end:.6g} (fastest frequency {frequency:.3g}, "
+                          f"rate bound {rate:.3g}, {int(n_times)} output times)",
+                          _SECONDS_FIXED + _SECONDS_PER_OUTPUT * float(n_times) + per_time * float(t_end),
+                          "max_seconds", "seconds"),)
 
 
 class MotionCost(NamedTuple):
     """Estimate of :func:`compare_quartet_motion` (:func:`quartet_motion_seconds`)."""
 
-    seconds: float  #: wall seconds of the runs, warm kernels
-    rate: float     #: bound on the fastest rate of the motion, :math:`\max|\omega_0| \max I / \min I` (>= 1)
+    seconds: float    #: seconds of one core for the runs, warm kernels
+    rate: float       #: the step control's bound on every angular velocity on the orbit (splitting8's steps)
+    frequency: float  #: the motion's fastest frequency (eq. 118; DOP853's steps)
 
 
 def _moving(name: str, body, omega0: Any) -> np.ndarray:
@@ -138,19 +161,23 @@ def _moving(name: str, body, omega0: Any) -> np.ndarray:
 
 
 def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 200.0, *,
-                           axis: int = 5) -> MotionCost:
-    """Estimated wall seconds of :func:`compare_quartet_motion` (warm kernels), without running it.
+                           axis: int = 5, n_times: int = 2001) -> MotionCost:
+    """Estimated seconds of one core for :func:`compare_quartet_motion` (warm kernels), without running it.
 
-    ``a + c * t_end * rate``: the rate is the fastest of the motion, bounded by
-    :math:`\\max|\\omega_0| \\max I / \\min I`; ``a`` and ``c`` measured on the 2-core reference
-    machine (``benchmarks/pricing.py``). The first call of a process adds the kernel's load (1-3 s).
+    ``a + b * n_times + t_end * (c + d * frequency + e * rate)``: DOP853's steps follow the motion's fastest
+    frequency :math:`\\Omega_1` (eq. 118: at most ~ :math:`|\\Theta| |\\omega_0|`, whatever kappa), splitting8's
+    the step control's bound on the angular velocities (``rate_bound``, ~ :math:`|\\kappa| |\\omega_0|` for large
+    kappa); ``a ... e`` measured on the 2-core reference machine (``benchmarks/pricing.py``). The first call of a
+    process adds the kernels' load (1-3 s).
     """
     body, axis = _body(kappa, axis)
     omega0 = _moving("omega0", body, omega0)
     t_end = _v.positive("t_end", t_end)
-    rate = _fastest_rate(body, omega0)
-    (cost,) = _pricing.estimate("compare_quartet_motion", t_end=t_end, rate=rate)
-    return MotionCost(cost.amount, rate)
+    n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
+    rate, frequency = _motion_rates(float(kappa), body, omega0, axis)
+    (cost,) = _pricing.estimate("compare_quartet_motion", t_end=t_end, rate=rate, frequency=frequency,
+                                n_times=n_times)
+    return MotionCost(cost.amount, rate, frequency)
 
 
 def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 200.0, *, axis: int = 5,
@@ -189,8 +216,9 @@ def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
     omega0 = _moving("omega0", body, omega0)
     t_end = _v.positive("t_end", t_end)
     n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
-    _pricing.check("compare_quartet_motion", t_end=t_end, rate=_fastest_rate(body, omega0))
     kappa = float(kappa)
+    rate, frequency = _motion_rates(kappa, body, omega0, axis)
+    _pricing.check("compare_quartet_motion", t_end=t_end, rate=rate, frequency=frequency, n_times=n_times)
     t = np.linspace(0.0, t_end, n_times)
     exact = quartet_solution(kappa, omega0, t, axis=axis)
     scale = float(np.max(np.abs(omega0)))

@@ -78,8 +78,9 @@ def run(args: argparse.Namespace) -> int:
         cost = quartet_motion_seconds(kappa, omega, t_end, axis=args.axis)
     except ValueError as err:
         raise UsageError(str(err).replace("omega0", "--omega")) from None
-    what, hint = _budget_words(kappa, omega, t_end, inertia, cost.rate)
-    check_budget(args, f"{what} (fastest rate {num(cost.rate, 3)})", cost.seconds, hint=hint)
+    what, hint = _budget_words(kappa, omega, t_end, cost)
+    check_budget(args, f"{what} (fastest frequency {num(cost.frequency, 3)}, rate bound {num(cost.rate, 3)})",
+                 cost.seconds, hint=hint)
     check_invariants_fit("--omega", omega, lambda w: quartet_invariants(RigidBody(inertia), w),
                          body_options="--kappa")  # (the invariants printed: all within double precision)
     with Outputs() as outs:
@@ -115,12 +116,12 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _budget_words(kappa, omega: np.ndarray, t_end: float, inertia, rate: float) -> tuple[str, str]:
+def _budget_words(kappa, omega: np.ndarray, t_end: float, cost) -> tuple[str, str]:
     """The run and the advice of a demo refused by the time budget, naming the options that drive its cost.
 
-    The cost model (:func:`hyperrotor.demo.quartet_motion_seconds`) is ``a + c * t_end * rate`` with
-    ``rate = max(1, max|omega| * max I / min I)``, and for the quartet body ``max I / min I`` is
-    ``(1 + kappa^2) / 2`` when ``|kappa| >= 1`` (the cost grows as kappa^2), at most 2 when ``|kappa| < 1``.
+    The cost model (:func:`hyperrotor.demo.quartet_motion_seconds`) grows linearly with ``t_end``; per unit of
+    time it is a constant plus terms linear in the motion's fastest frequency (at most ~ ``max|omega|``,
+    whatever kappa) and in the step control's rate bound (~ ``|kappa| max|omega|`` for large kappa).
 
     Parameters
     ----------
@@ -130,31 +131,34 @@ def _budget_words(kappa, omega: np.ndarray, t_end: float, inertia, rate: float) 
         ``--omega``.
     t_end : float
         ``--t-end``.
-    inertia : Inertia
-        The quartet body of ``kappa``.
-    rate : float
-        The fastest rate of the cost model.
+    cost : MotionCost
+        The estimate (its ``rate`` and ``frequency``).
 
     Returns
     -------
     what : str
         The run as options (``demo --kappa 1000000 --t-end 200``; --kappa only when it drives the cost).
     hint : str
-        ``choose ...``: --t-end always; --kappa when ``max I / min I > 2``, i.e. ``|kappa| > sqrt(3)`` (no
-        ``|kappa| <= 1`` gives more than 2: below that kappa hardly changes the cost); --omega unless the rate is
-        at its floor of 1. The option that multiplies the cost most, against the default run, comes first.
+        ``choose ...``: --t-end always; --kappa when the rate bound's term more than doubles the cost per unit of
+        time (|kappa| beyond a few hundred at the default --omega); --omega when the motion's terms exceed the
+        constant one (a body that hardly turns costs the same at any --omega). The option that multiplies the
+        cost most, against the default run, comes first.
     """
-    moments = np.asarray(inertia.moments, dtype=float)
-    spread = float(np.max(moments) / np.min(moments))
+    from hyperrotor import demo
+
+    turning = demo._SECONDS_PER_TIME_FREQUENCY * cost.frequency
+    stepping = demo._SECONDS_PER_TIME_RATE * cost.rate
     drivers = [(float(t_end) / DEMO_T_END, "a shorter --t-end")]  # (factor over the default run, advice)
-    if spread > 2.0:
-        drivers.append((spread, "a --kappa of smaller magnitude (the cost grows as kappa^2)"))
-    if rate > 1.0:
+    by_kappa = stepping > turning + demo._SECONDS_PER_TIME  # (the rate bound's term more than doubles the cost)
+    if by_kappa:
+        drivers.append((stepping / (turning + demo._SECONDS_PER_TIME),
+                        "a --kappa of smaller magnitude (the cost grows as |kappa| there)"))
+    if turning + stepping > demo._SECONDS_PER_TIME:
         drivers.append((float(np.max(np.abs(omega))) / max(DEMO_OMEGA), "a smaller --omega"))
     drivers.sort(key=lambda d: -d[0])
     advice = [a for _, a in drivers]
     hint = "choose " + (", ".join(advice[:-1]) + " or " + advice[-1] if len(advice) > 1 else advice[0])
-    what = "demo" + (f" --kappa {num(float(kappa))}" if spread > 2.0 else "") + f" --t-end {num(t_end)}"
+    what = "demo" + (f" --kappa {num(float(kappa))}" if by_kappa else "") + f" --t-end {num(t_end)}"
     return what, hint
 
 
