@@ -6,7 +6,8 @@ dimension N, its cost per flow not learned yet, with the chunk sizing by dimensi
 the same process): the number of compiled calls, the longest one (Ctrl-C waits for the call running), the whole
 call, and the steps and work (the same either way: chunks continue from the exact state).
 
-Usage: python benchmarks/large_bodies.py [N ...]   (default 60 100 140; N = 140 takes about 45 s per call)
+Usage: python benchmarks/large_bodies.py [--quick] [N ...]   (default 60 100 140, N = 140 takes about 45 s per
+call; --quick: 20 40)
 """
 from __future__ import annotations
 
@@ -21,7 +22,9 @@ from hyperrotor.classical.solvers import chunks
 
 
 def main(argv=None):
-    dims = [int(x) for x in (sys.argv[1:] if argv is None else argv)] or [60, 100, 140]
+    args = list(sys.argv[1:] if argv is None else argv)
+    quick = "--quick" in args
+    dims = [int(x) for x in args if x != "--quick"] or ([20, 40] if quick else [60, 100, 140])
     calls = []
     for name in ("advance_pair", "advance"):  # (every compiled call of a splitting goes through one of these)
         orig = getattr(splitting.Splitting, name)

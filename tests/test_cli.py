@@ -408,7 +408,7 @@ def test_force_replaces_the_file(tmp_path):
     assert "written: out.md" in out
     from hyperrotor.paper.verify import render, verify
 
-    assert (tmp_path / "out.md").read_text() == render(verify(["euler"]), "markdown").rstrip("\n") + "\n"
+    assert (tmp_path / "out.md").read_text() == render(verify(["euler"]), format="markdown").rstrip("\n") + "\n"
     assert _files(tmp_path) == ["out.md"]
     assert (tmp_path / "out.md").stat().st_mode & 0o777 == 0o666 & ~_umask()
 

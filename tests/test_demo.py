@@ -54,10 +54,11 @@ def test_priced_before_it_runs():
     assert short.rate == long.rate == pytest.approx(rate_bound(moments, (np.array(DEMO_OMEGA) * moments)[None])[0],
                                                     rel=1e-15)
     assert short.frequency == long.frequency == pytest.approx(np.max(quartet_frequencies(0.5, DEMO_OMEGA)), rel=1e-15)
-    # the output times are priced (10^6 of them took ~13 s, estimated 0.05 s before); a large kappa costs the
-    # step control's rate bound (~ |kappa|), not kappa^2: kappa = 1000 over t_end = 30 ran 0.33 s, estimated 2.9 h
+    # the output times are priced (10^6 of them took ~13 s wall at load 3, estimated 0.05 s before); a large kappa
+    # costs the step control's rate bound (~ |kappa|), not kappa^2: kappa = 1000 over t_end = 30 ran 0.33 s,
+    # estimated 2.9 h
     many = quartet_motion_seconds(0.5, DEMO_OMEGA, 10.0, n_times=10**6)
-    assert many.seconds > 10.0 and many.rate == short.rate
+    assert many.seconds > 5.0 and many.rate == short.rate
     assert quartet_motion_seconds(1000, DEMO_OMEGA, 30.0).seconds < 1.0
     with hr.options(max_seconds=60.0), pytest.raises(hr.BudgetError, match="max_seconds"):
         compare_quartet_motion(0.5, DEMO_OMEGA, 1e6)

@@ -137,6 +137,25 @@ def _kernel_env(tmp_dir: Path, monkeypatch) -> str:
     return name
 
 
+#: Numbers the text of a notebook quotes from its run, which drift when the code changes (a review found notebooks
+#: 09 and 10 quoting the Lyapunov exponents of an earlier lyapunov(): 1/lambda = 1.06 against 0.98 printed): for
+#: each notebook, the text that must appear in its markdown, as a function of its check values.
+QUOTED: dict[str, list] = {
+    "09_lyapunov_map": [
+        lambda v: f"$\\lambda(400) = {v['regular_orbit_exponent']:.3f}$",
+        lambda v: f"$\\lambda = {v['chaotic_orbit_exponent']:.2f}$",
+        lambda v: f"thickness about {v['chaotic_thickness']:.2f}",
+        lambda v: f"between 0.02 and {math.ceil(100 * v['manakov_max_exponent']) / 100:.2f}",
+    ],
+    "10_correspondence_in_time": [
+        lambda v: f"$1/\\lambda = {1 / v['lambda_generic']:.2f}$",
+        lambda v: f"$2\\lambda = {2 * v['lambda_generic']:.2f}$",
+        lambda v: f"$2\\lambda = {2 * v['lambda_manakov']:.2f}$",
+        lambda v: f"grows at {v['otoc_generic_rate']:.2f} per unit time",
+    ],
+}
+
+
 def _session_builds_the_docs(session) -> bool:
     return (not docs_build_skipped()
             and any(item.name == "test_docs_build_offline_without_warnings" for item in session.items)
@@ -227,3 +246,6 @@ def test_notebook_executes_and_checks_hold(path, request, tmp_path_factory, monk
             assert isinstance(value, (int, float)) and math.isfinite(value), f"{path.name}: {key} = {value!r}"
             ok = value <= bound if relation == "<=" else value >= bound
             assert ok, f"{path.name}: {key} = {value:.3e}, expected {relation} {bound:.1e}"
+    prose = " ".join(" ".join(c.source.split()) for c in nb.cells if c.cell_type == "markdown")
+    for quote in QUOTED.get(path.stem, []):
+        assert quote(values) in prose, f"{path.name}: the text should quote {quote(values)!r} (its run's value)"

@@ -1,8 +1,10 @@
 """Every public signature against the one table of spellings (docs/conventions.md, "Vocabulary").
 
-The walk covers every public callable of ``hyperrotor``, ``hyperrotor.quantum`` and
-``hyperrotor.paper`` and the public methods of their public classes, so a new public
-name is checked the day it is added. It asserts what ``inspect`` can see:
+The walk covers every public callable of ``hyperrotor``, ``hyperrotor.quantum``,
+``hyperrotor.paper``, ``hyperrotor.demo``, ``hyperrotor.bench`` and ``hyperrotor.plotting`` and the
+public methods of their public classes, so a new public name is checked the day it is added (a
+review found ``compare_quartet_motion(progress=False)``, a ``progress`` callback in ``bench`` and a
+positional ``format`` in ``paper.render`` outside the first three). It asserts what ``inspect`` can see:
 
 * no old spelling of a concept as a parameter name (``seed``, ``Omega``, ``times``, ...);
 * no ``**kwargs`` catch-all or ``*args`` trap that hides the real signature (the few
@@ -10,7 +12,9 @@ name is checked the day it is added. It asserts what ``inspect`` can see:
 * ``convention`` always keyword-only; everything after ``t`` keyword-only in
   ``simulate`` and ``evolve``;
 * ``hbar`` defaults to the exact 1; ``rtol``/``atol`` default to ``None`` (the named
-  entries of ``hyperrotor.options``), never to a number in the signature.
+  entries of ``hyperrotor.options``), never to a number in the signature;
+* ``progress`` and ``format`` keyword-only, ``progress`` defaulting to ``None`` (a bar on a terminal) and never a
+  function (``callback``); ``rng`` defaulting to the seed 0.
 """
 from __future__ import annotations
 
@@ -64,13 +68,12 @@ KEYWORD_ONLY_AFTER_T = ("simulate", "evolve")
 
 def _public_callables():
     seen = {}
-    modules = [hr, hq]
-    try:
-        import hyperrotor.paper as hp
+    import hyperrotor.bench as hb
+    import hyperrotor.demo as hd
+    import hyperrotor.paper as hp
+    import hyperrotor.plotting as hpl
 
-        modules.append(hp)
-    except ImportError:  # pragma: no cover - paper is part of the package
-        pass
+    modules = [hr, hq, hp, hd, hb, hpl]
     for mod in modules:
         for name in getattr(mod, "__all__", ()):
             obj = getattr(mod, name, None)
@@ -125,8 +128,14 @@ def test_signature_follows_the_vocabulary(name):
             problems.append(f"hbar defaults to {p.default!r}; the one default is 1")
         if p.name in ("rtol", "atol") and p.default is not p.empty and p.default is not None:
             problems.append(f"{p.name} defaults to {p.default!r} in the signature; use None and a named hr.options entry")
-        if p.name in ("progress",) and p.kind != p.KEYWORD_ONLY:
-            problems.append("progress= must be keyword-only")
+        if p.name in ("progress", "format") and p.kind != p.KEYWORD_ONLY:
+            problems.append(f"{p.name}= must be keyword-only")
+        if p.name == "progress" and p.default is not p.empty and p.default is not None:
+            problems.append(f"progress defaults to {p.default!r}; the one default is None (a bar on a terminal)")
+        if p.name == "rng" and p.default is not p.empty and not (p.default == 0 and not isinstance(p.default, bool)):
+            problems.append(f"rng defaults to {p.default!r}; the one default is the seed 0 (None: fresh entropy)")
+        if p.name == "progress" and "Callable" in str(p.annotation):
+            problems.append("progress is a flag (True, False, None); a function called back is callback=")
     if name in KEYWORD_ONLY_AFTER_T:
         names = [p.name for p in params]
         assert "t" in names, f"{name} has no time grid t"

@@ -156,7 +156,7 @@ def estimate_seconds(problems: Sequence[str], methods: Sequence[str] | None = No
 
 
 def work_precision(problem: str = "quartet", methods: Sequence[str] | None = None, *, repeats: int = 2,
-                   progress: Callable[[str], None] | None = None) -> list[WorkPrecisionPoint]:
+                   callback: Callable[[str], None] | None = None) -> list[WorkPrecisionPoint]:
     """Run every method at its accuracy settings; returns the measured points.
 
     Parameters
@@ -164,13 +164,15 @@ def work_precision(problem: str = "quartet", methods: Sequence[str] | None = Non
     problem : one of :data:`BENCH_PROBLEMS`.
     methods : subset of ``splitting2/4/6/8/10``, ``moser-veselov``, ``DOP853``, ``RK45`` (default all).
     repeats : each run is timed ``repeats`` times after one warm-up call; the best time is kept.
-    progress : called after each setting with a short message (``"quartet: DOP853 rtol=1e-08"``),
+    callback : called after each setting with a short message (``"quartet: DOP853 rtol=1e-08"``),
         e.g. a progress bar's update; :func:`n_runs` gives the number of calls.
     """
     from hyperrotor import simulate
 
     methods = list(_SETTINGS) if methods is None else [_validate.choice("methods", m, BENCH_METHODS) for m in methods]
     repeats = _validate.integer("repeats", repeats, minimum=1)
+    if callback is not None and not callable(callback):
+        raise TypeError(f"callback must be a function of one str (or None), got {_validate.fmt(callback)}")
     body, w0, t, exact = _problem(_validate.choice("problem", problem, BENCH_PROBLEMS))
     scale = float(np.max(np.abs(w0)))
     points = []
@@ -181,8 +183,8 @@ def work_precision(problem: str = "quartet", methods: Sequence[str] | None = Non
                                  warmup=True)  # warm-up: JIT compile on the first splitting call
             err = float(np.max(np.abs(traj.omega - exact))) / scale
             points.append(WorkPrecisionPoint(problem, method, key, float(value), err, best, body.N, float(t[-1])))
-            if progress:
-                progress(f"{problem}: {method} {key}={value:g}")
+            if callback is not None:
+                callback(f"{problem}: {method} {key}={value:g}")
     return points
 
 

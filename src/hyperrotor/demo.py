@@ -181,7 +181,7 @@ def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
 
 
 def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 200.0, *, axis: int = 5,
-                           n_times: int = 2001, progress: bool | None = False) -> QuartetMotion:
+                           n_times: int = 2001, progress: bool | None = None) -> QuartetMotion:
     r"""The quartet body's closed form against the integrators of :data:`DEMO_RUNS`.
 
     Parameters
@@ -195,8 +195,9 @@ def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
         The motion is compared on ``n_times`` equally spaced times in ``[0, t_end]``.
     axis : int
         The distinguished axis, 1..5.
-    progress : bool or None
-        Progress bars of the runs (:func:`hyperrotor.simulate`).
+    progress : bool or None, default None
+        Progress bars of the runs (:func:`hyperrotor.simulate`; ``None``: on a terminal, for runs over about a
+        second).
 
     Returns
     -------

@@ -115,14 +115,14 @@ def _colour_label(axes_labels: Sequence[int], colour_axis: int | None) -> str:
 
 def save_projection_frames(path, t: np.ndarray, projection: np.ndarray, edges, *, n_frames: int = 6,
                            title: str = "", axes_labels: Sequence[int] = (1, 2, 3),
-                           colour_axis: int | None = None, progress: Callable[[], object] | None = None,
+                           colour_axis: int | None = None, callback: Callable[[], object] | None = None,
                            format: str | None = "png") -> str:
     """Write a PNG with ``n_frames`` snapshots of a projection ``(len(t), n_points, 3 or 4)``.
 
     Each panel is titled with its time; the space axes drawn are labelled
     ``x<axis>``. With a fourth projected coordinate (the space axis
     ``colour_axis``), points are coloured by it on a symmetric scale shared by
-    all panels, explained by a labelled colour bar. ``progress`` is called
+    all panels, explained by a labelled colour bar. ``callback`` is called
     after each panel is drawn; ``format`` is passed to ``savefig`` (so ``path``
     may carry any suffix, e.g. a temporary name).
     """
@@ -144,8 +144,8 @@ def save_projection_frames(path, t: np.ndarray, projection: np.ndarray, edges, *
                              colour=None if colour is None else colour[i], norm=norm)
         ax.set_title(f"t = {t[i]:.3g}", fontsize=9, pad=0)
         axs.append(ax)
-        if progress is not None:
-            progress()
+        if callback is not None:
+            callback()
     right = 0.88 if colour is not None else 0.98
     fig.subplots_adjust(left=0.02, right=right, bottom=0.03, top=0.9 if title else 0.95, wspace=0.05, hspace=0.12)
     if title:
@@ -162,10 +162,10 @@ def save_projection_frames(path, t: np.ndarray, projection: np.ndarray, edges, *
 
 def save_projection_animation(path, t: np.ndarray, projection: np.ndarray, edges, *, fps: int = 15,
                               title: str = "", axes_labels: Sequence[int] = (1, 2, 3),
-                              colour_axis: int | None = None, progress: Callable[[], object] | None = None) -> str:
+                              colour_axis: int | None = None, callback: Callable[[], object] | None = None) -> str:
     """Write an animated GIF (Pillow) of a projection ``(len(t), n_points, 3 or 4)``.
 
-    Frames are drawn one by one (``progress`` is called after each); the file
+    Frames are drawn one by one (``callback`` is called after each); the file
     is written only after the last frame, so an interrupt leaves nothing
     behind. ``path`` must end in ``.gif`` (Pillow picks the format from it).
     Colours and the colour bar as in :func:`save_projection_frames`.
@@ -194,8 +194,8 @@ def save_projection_animation(path, t: np.ndarray, projection: np.ndarray, edges
                             colour=None if colour is None else colour[i], norm=norm)
             fig.suptitle(f"{title}\nt = {t[i]:.3g}" if title else f"t = {t[i]:.3g}", fontsize=8)
             writer.grab_frame()
-            if progress is not None:
-                progress()
+            if callback is not None:
+                callback()
         writer.finish()  # writes the file
     finally:
         plt.close(fig)

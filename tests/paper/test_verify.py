@@ -106,7 +106,7 @@ def test_details_name_the_corrections(verdicts):
 
 
 def test_json_schema(verdicts):
-    data = json.loads(V.render(verdicts, "json"))
+    data = json.loads(V.render(verdicts, format="json"))
     assert isinstance(data, list) and len(data) == len(verdicts)
     for obj in data:
         assert {"equation", "status", "detail", "printed", "correct", "section"} <= set(obj)
@@ -118,8 +118,8 @@ def test_json_schema(verdicts):
 
 
 def test_table_and_markdown(verdicts):
-    table = V.render(verdicts, "table")
-    md = V.render(verdicts, "markdown")
+    table = V.render(verdicts, format="table")
+    md = V.render(verdicts, format="markdown")
     for v in verdicts:
         assert v.equation in table
     c = V.summary(verdicts)
@@ -132,7 +132,7 @@ def test_bad_inputs():
     with pytest.raises(ValueError, match="allowed"):
         V.verify(["bogus"])
     with pytest.raises(ValueError, match="allowed"):
-        V.render([], "html")
+        V.render([], format="html")
     with pytest.raises(ValueError, match="status"):
         V.Verdict("1", "fine", "x")
     from hyperrotor.cli import main
@@ -203,7 +203,7 @@ def test_garbled_frequency_becomes_checkable(fresh):
 
 def test_docs_page_is_current(verdicts):
     page = Path(__file__).resolve().parents[2] / "docs" / "verification.md"
-    expected = V.render(verdicts, "markdown")
+    expected = V.render(verdicts, format="markdown")
     assert page.exists(), "generate it: hyperrotor verify --markdown -o docs/verification.md --force"
     text = page.read_text(encoding="utf-8")
     assert text.rstrip("\n") == expected.rstrip("\n"), (

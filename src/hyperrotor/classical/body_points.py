@@ -49,19 +49,19 @@ def simplex_vertices(N: int, circumradius: float = 1.0) -> np.ndarray:
     return circumradius * V / np.linalg.norm(V[0])
 
 
-def ellipsoid_points(semi_axes: Sequence[float], n: int, *, rng: Any = None) -> np.ndarray:
+def ellipsoid_points(semi_axes: Sequence[float], n: int, *, rng: Any = 0) -> np.ndarray:
     r"""``n`` points on the ellipsoid :math:`\sum_i x_i^2/a_i^2 = 1`, shape ``(n, N)``.
 
     Directions uniform on the sphere (normalised Gaussian vectors) scaled by the
-    semi-axes. ``rng``: seed or :class:`numpy.random.Generator` (default seed 0,
-    so the points are reproducible).
+    semi-axes. ``rng``: seed, :class:`numpy.random.Generator` or ``None`` for fresh entropy (default
+    seed 0, so the points are reproducible).
     """
     a = _v.finite_array("semi_axes", semi_axes, ndim=1)
     if a.size < 2 or np.any(a <= 0):
         raise ValueError(f"semi_axes must be >= 2 finite positive numbers, got {_v.fmt(semi_axes)}")
     n = _v.integer("n", n, minimum=1)
     _pricing.check("ellipsoid_points", n=n, N=a.size)
-    gen = _v.rng(0 if rng is None else rng)
+    gen = _v.rng(rng)
     d = gen.normal(size=(int(n), a.size))
     d /= np.linalg.norm(d, axis=1, keepdims=True)
     return d * a

@@ -100,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
                 pbar.update()
 
             for prob in problems:
-                points += work_precision(prob, methods, repeats=repeats, progress=step)
+                points += work_precision(prob, methods, repeats=repeats, callback=step)
         write_csv(points, csv_out.tmp)
         if png_out is not None:
             plot_work_precision(points, png_out.tmp, format="png")

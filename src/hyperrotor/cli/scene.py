@@ -198,7 +198,7 @@ def _draw(args, s: dict, path, res, edges, title: str) -> None:
     gif = s["format"] == ".gif"
     n_drawn = len(res.t) if gif else min(6, len(res.t))
     with bar(args, n_drawn, f"scene: drawing {'GIF frames' if gif else 'snapshots'}", "frame") as steps:
-        kw = dict(title=title, axes_labels=s["axes"], colour_axis=s["colour_axis"], progress=steps.update)
+        kw = dict(title=title, axes_labels=s["axes"], colour_axis=s["colour_axis"], callback=steps.update)
         if gif:
             save_projection_animation(path, res.t, res.projection, edges, **kw)
         else:

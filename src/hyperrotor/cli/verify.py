@@ -58,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
                 pbar.set_postfix_str(key)
                 verdicts.extend(verify([key]))
                 pbar.update()
-        text = render(verdicts, kind)
+        text = render(verdicts, format=kind)
         if out is None:
             # one write of the whole report (print wrote the text, then "\n": a reader that leaves after the first
             # line, `| head -1`, could close the pipe between the two, and the second write ended in status 141)

@@ -91,7 +91,7 @@ def render_markdown(verdicts: Sequence[Verdict]) -> str:
 _FORMATS = {"table": render_table, "markdown": render_markdown, "json": render_json}
 
 
-def render(verdicts: Sequence[Verdict], format: str = "table") -> str:
+def render(verdicts: Sequence[Verdict], *, format: str = "table") -> str:
     """Render verdicts as ``"table"`` (terminal), ``"markdown"`` or ``"json"``."""
     if format not in _FORMATS:
         raise ValueError(f"unknown format {format!r}; allowed: {', '.join(_FORMATS)}")

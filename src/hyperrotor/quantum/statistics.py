@@ -372,7 +372,7 @@ def spacing_distribution(levels: Any, *, bins: Any = 30, s_max: float = 4.0, deg
 # ----------------------------------------------------------------------------
 # synthetic spectra
 # ----------------------------------------------------------------------------
-def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0) -> np.ndarray:
+def sample_spectrum(ensemble: str, n: int, *, rng: Any = 0, bulk: float = 1.0) -> np.ndarray:
     r"""A synthetic spectrum: ``n`` Poisson levels, or the eigenvalues of one n x n GOE/GUE matrix.
 
     Parameters
@@ -384,7 +384,8 @@ def sample_spectrum(ensemble: str, n: int, *, rng: Any = None, bulk: float = 1.0
         and within ``max_memory_bytes`` and ``max_seconds``; for Poisson at most
         ``options["statistics_max_size"]``). The ``eigvalsh`` runs where Ctrl-C reaches the caller at once
         (:func:`hyperrotor._parallel.interruptible`).
-    rng : seed or numpy.random.Generator, keyword-only
+    rng : seed, numpy.random.Generator or None, keyword-only, default 0
+        The draws: reproducible by default (seed 0); ``None`` for fresh entropy (a new spectrum each call).
     bulk : float in (0, 1], default 1
         Keep only the central fraction of the levels (the semicircle's edges have
         a different local statistics; ``bulk=0.5`` keeps the middle half).
