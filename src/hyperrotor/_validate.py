@@ -721,12 +721,13 @@ def axis_signs(N: int, convention: str, axes: Sequence[int] | None = None) -> np
     return np.array([(-1.0) ** a for a in labels])
 
 
-def ket(name: str, value: Any, dim: int, *, of: str) -> np.ndarray:
+def ket(name: str, value: Any, dim: int, *, of: str, columns: bool = False) -> np.ndarray:
     """A state vector as a finite complex 1-D array of length ``dim``.
 
     Accepts a ket ``qutip.Qobj`` (recognised by ``.isket``/``.full()``, so QuTiP is not
     imported here), a 1-D array or a ``(dim, 1)`` column. ``of`` names what fixes ``dim``
-    in the message (``"H"``, ``"the representation"``).
+    in the message (``"H"``, ``"the representation"``). With ``columns``, a ``(dim, k)`` matrix of
+    ``k`` states is returned as it is (a ``(dim, 1)`` column too).
     """
     if hasattr(value, "isket") and hasattr(value, "full"):
         if not value.isket:
@@ -738,10 +739,12 @@ def ket(name: str, value: Any, dim: int, *, of: str) -> np.ndarray:
         vec = as_array(name, value, what="ket Qobj or a numeric vector")
         if vec.dtype.kind not in "biufc":
             raise TypeError(f"{name} must be a ket Qobj or a numeric vector, got {fmt(value)}")
-        if vec.ndim == 2 and vec.shape[1] == 1:
+        if vec.ndim == 2 and vec.shape[1] == 1 and not columns:
             vec = vec[:, 0]
-        if vec.ndim != 1:
-            raise ValueError(f"{name} must be a vector (ket) of length {dim}, got shape {vec.shape}")
+        if vec.ndim != 1 and not (columns and vec.ndim == 2):
+            raise ValueError(f"{name} must be a vector (ket) of length {dim}"
+                             + (f" or a ({dim}, k) matrix of k of them" if columns else "")
+                             + f", got shape {vec.shape}")
     if vec.shape[0] != dim:
         raise ValueError(f"{name} has dimension {vec.shape[0]} but {of} has dimension {dim}")
     if not np.all(np.isfinite(vec)):

@@ -297,7 +297,9 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1, frame: str = "space", r
     frame = _validate.choice("frame", frame, ("space", "body"))
     _validate.representation("rep", rep)
     N = int(rep.N)
-    comps = _validate.real_array("L", L).ravel()
+    comps = _validate.real_array("L", L)
+    if comps.ndim != 1:
+        raise ValueError(f"L must be one vector of {n_planes(N)} plane components for so({N}), got shape {comps.shape}")
     if comps.shape != (n_planes(N),):
         raise ValueError(f"L must have {n_planes(N)} components for so({N}), got {comps.shape[0]}")
     if not np.all(np.isfinite(comps)) or not np.any(comps):
@@ -311,10 +313,21 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1, frame: str = "space", r
     unit = lam / float(np.max(np.abs(lam)))  # (only its direction matters: |lam|^2 of 1e308 would be inf)
     c = float(unit @ w) / float(w @ w)
     if c <= 0 or np.linalg.norm(unit - c * w) > rtol * np.linalg.norm(unit):
+        of = "-L (frame='body': the state points along -L)" if frame == "body" else "L"
+        hint = ""
+        flipped = w.copy()
+        flipped[-1] = -flipped[-1]
+        c2 = float(unit @ flipped) / float(flipped @ flipped)
+        fits = c2 > 0 and np.linalg.norm(unit - c2 * flipped) <= rtol * np.linalg.norm(unit)
+        if frame == "body" and N % 4 == 2 and fits:
+            # (-1 is not a rotation in so(4k + 2): -L has the other chirality)
+            hint = (f"; in so({N}) the normal forms of -L and L differ in the sign of their last entry: the irrep of "
+                    f"highest weight ({', '.join(format(x, 'g') for x in flipped)}) has a body-frame coherent state "
+                    f"along this L")
         raise ValueError(
-            f"the normal form {np.round(lam, 12).tolist()} of L is not a positive multiple of the highest "
-            f"weight {np.round(w, 12).tolist()} of the representation; a coherent state along L exists "
-            f"only in an irrep whose highest weight is proportional to L's normal form"
+            f"the normal form {np.round(lam, 12).tolist()} of {of} is not a positive multiple of the highest "
+            f"weight {np.round(w, 12).tolist()} of the representation; a coherent state along it exists "
+            f"only in an irrep whose highest weight is proportional to its normal form{hint}"
         )
     vec = apply_rotation(rep, Q, psi_w)
     vec /= np.linalg.norm(vec)

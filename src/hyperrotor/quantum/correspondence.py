@@ -129,6 +129,7 @@ def _density_columns(state: Any, dim: int) -> np.ndarray:
     scale = float(np.abs(rho).max())
     if scale == 0.0 or np.abs(rho - rho.conj().T).max() > 1e-12 * scale:
         raise ValueError("a density matrix must be Hermitian and non-zero")
+    _pricing.check("dense_diagonalization", dim=dim, complex=True)  # (its eigh: n = 1500 ran 17 s unpriced)
     p, vecs = interruptible(np.linalg.eigh, rho / scale)  # (Ctrl-C: _parallel.interruptible)
     if p.min() < -1e-12 * p.max():
         raise ValueError(f"a density matrix must be positive semi-definite, got an eigenvalue {p.min() * scale:.3g}")
@@ -278,8 +279,10 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     body : RigidBody, Inertia, mapping plane -> moment, or sequence
         The moments (anything :func:`hyperrotor.simulate` accepts).
     L0 : array_like, shape ``(N(N-1)/2,)``
-        Initial angular momentum, plane components; its normal form must be
-        proportional to ``weight`` (e.g. a simple bivector for :math:`(1, 0, \dots)`).
+        Initial angular momentum, plane components; the body-frame coherent state points along :math:`-L_0`
+        (``coherent_state(frame="body")``), so the normal form of :math:`-L_0` must be proportional to
+        ``weight`` (e.g. a simple bivector for :math:`(1, 0, \dots)`). It is that of :math:`L_0` except in
+        so(4k + 2), where the sign of its last entry flips (``(2, 1, 1)`` for :math:`L_0` is ``(2, 1, -1)``).
     ls : sequence of int
         Scale factors :math:`l \ge 1` of the irreps :math:`l\,w`.
     t : sequence of float
@@ -305,6 +308,8 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     moments = _validate.moments(body, name="body")
     N = _validate.dimension_from_count(moments.size, name="body", what="moments")
     L0 = _validate.components("L0", L0, n_planes(N))
+    if L0.ndim != 1:
+        raise ValueError(f"L0 must be one vector of {n_planes(N)} plane components, got shape {L0.shape}")
     norm0 = float(np.linalg.norm(L0))
     if norm0 == 0.0:
         raise ValueError("L0 must be non-zero")

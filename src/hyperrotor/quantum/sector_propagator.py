@@ -498,6 +498,7 @@ class SectorPropagator:
         """
         vec = _validate.ket("psi", psi, self.dim, of="H")
         t = _validate.time_grid(t, allow_decreasing=False)
+        self._priced("SectorPropagator.states", t, states=True)
         return self._run(vec, t, self.hbar).T
 
     def apply(self, X: Any, tau: float) -> np.ndarray:
@@ -522,17 +523,15 @@ class SectorPropagator:
         PhaseRoundingWarning
             when double precision rounds the phases :math:`E\tau/\hbar` by more than ``PHASE_ROUNDING_WARN``.
         """
+        X = _validate.ket("X", X, self.dim, of="H", columns=True)  # (finite, no booleans; a ket Qobj too)
         tau = _validate.real("tau", tau)
         warn_phase_rounding("SectorPropagator.apply", self.spectral_bound, abs(tau), self.hbar)
         return self._apply(X, tau)
 
-    def _apply(self, X: Any, tau: float) -> np.ndarray:
-        """:meth:`apply` without the phase check (callers that checked their longest time at their door: otoc)."""
-        X = np.asarray(X)
-        if X.ndim not in (1, 2) or X.shape[0] != self.dim or X.dtype.kind not in "biufc":
-            raise ValueError(f"X must be a numeric vector of length {self.dim} or a ({self.dim}, k) matrix, got "
-                             f"{_validate.fmt(X)} of shape {X.shape}")
-        X = X.astype(complex)
+    def _apply(self, X: np.ndarray, tau: float) -> np.ndarray:
+        """:meth:`apply` of a checked complex ``X`` without the phase check (callers that checked their inputs and
+        their longest time at their door: otoc)."""
+        X = np.asarray(X, dtype=complex)
         out = np.zeros(X.shape, dtype=complex)
         stats: dict = {}
         with single_thread_blas():  # small products: threads only oversubscribe a loaded machine
@@ -583,6 +582,13 @@ class SectorPropagator:
                 phases[key] += row_bound(b.matrix) * span
         return phases
 
+    def _priced(self, entry: str, t: np.ndarray, *, states: bool) -> None:
+        """The one door of a run over the grid ``t`` (:meth:`evolve`, :meth:`states`): its output (``states``: every
+        state kept) and its stepping phases priced before any work, and the phase rounding warned of."""
+        _pricing.check("evolve", dim=self.dim, n_times=t.size, states=states, **self._stepping_phases(t))
+        if t.size > 1:
+            warn_phase_rounding(entry, self.spectral_bound, float(t[-1] - t[0]), self.hbar)
+
     def evolve(self, psi0: Any, t: Any, *, e_ops: Any = None, store_states: bool | None = None,
                store_final_state: bool = True):
         """:func:`evolve` with this propagator: ``psi0`` normalized, a ``qutip.solver.Result``.
@@ -598,9 +604,7 @@ class SectorPropagator:
         t = _validate.time_grid(t, allow_decreasing=False)
         e_ops = e_ops_list(e_ops, self.dims)
         store = store_states if store_states is not None else not e_ops
-        _pricing.check("evolve", dim=self.dim, n_times=t.size, states=store, **self._stepping_phases(t))
-        if t.size > 1:
-            warn_phase_rounding("evolve", self.spectral_bound, float(t[-1] - t[0]), self.hbar)
+        self._priced("evolve", t, states=store)
         ropts = {"store_states": store_states, "store_final_state": store_final_state, "normalize_output": False}
         result = qutip.solver.Result(e_ops, ropts, solver=f"hyperrotor.evolve[{self.method}]", stats=dict(self.stats))
         ket_dims = [self.dims[0], [1]]
