@@ -602,6 +602,9 @@ def plane(value: Any, N: int | None) -> tuple[int, int]:
     if isinstance(value, str):
         text = value.strip()
         pair = text.split(",") if "," in text else (list(text) if len(text) == 2 else None)
+    if isinstance(pair, (tuple, list)) and any(isinstance(v, (bool, np.bool_)) or v is None for v in pair):
+        raise TypeError(f"a plane is a pair (i, j) of integers with 1 <= i < j <= {bound}, got {fmt(value)} "
+                        f"(booleans and None are not plane indices)")
     try:
         if pair is None or len(pair) != 2:
             raise ValueError

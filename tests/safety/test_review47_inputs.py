@@ -94,3 +94,12 @@ def test_one_initial_momentum_only():
         hq.ehrenfest_time([1.0, 1.5, 2.0], [[1.0, 0.0, 0.0]], [2], [0.0, 0.1])
     with pytest.raises(ValueError, match=r"L must be one vector .* got shape \(3, 1\)"):
         hq.coherent_state(hq.irrep(3, (1,)), np.ones((3, 1)))
+
+
+@pytest.mark.parametrize("label", [(True, 2), (1, np.True_), (None, 2), [2, None]])
+def test_plane_labels_of_booleans_are_a_type_error(label):
+    """docs/safety.md: booleans where numbers are expected are a TypeError; a plane (True, 2) was a ValueError."""
+    rep = hq.irrep(3, (2,))
+    for call in (lambda: rep.generator(label), lambda: hq.pi_rotation(rep, label), lambda: hr.plane_index(label, 3)):
+        with pytest.raises(TypeError, match=r"a plane is a pair .* not plane indices"):
+            call()
