@@ -670,8 +670,8 @@ _KAPPA_ADVICE = ("choose a --kappa of smaller magnitude (the cost grows as |kapp
                  "or a smaller --omega")
 
 
-@pytest.mark.parametrize("kappa,shown,rate", [("1e6", "1000000", "1.11e+06"), ("1e8", "100000000", "1.11e+08"),
-                                              ("-1e6", "-1000000", "1.11e+06")])
+@pytest.mark.parametrize("kappa,shown,rate", [("1e7", "10000000", "1.11e+07"), ("1e8", "100000000", "1.11e+08"),
+                                              ("-1e7", "-10000000", "1.11e+07")])
 def test_demo_budget_refusal_names_kappa_when_kappa_drives_the_cost(capsys, tmp_path, monkeypatch, kappa, shown,
                                                                       rate):
     """A large --kappa with the default --t-end and --omega was refused with the advice 'choose a shorter --t-end or

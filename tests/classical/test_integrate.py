@@ -533,7 +533,8 @@ def test_step_rule_reaches_requested_accuracy(method, rtol, eps):
 def test_auto_method_choice(rng):
     inertia, w0 = generic5(rng)
     t = [0.0, 1.0]
-    assert simulate(inertia, w0, t, rtol=0.1).stats["method"] == "splitting2"
+    tr = simulate(inertia, w0, t, rtol=0.1)  # (run to 1e-3, LOOSEST_RTOL, where order 4 is the cheaper)
+    assert tr.stats["method"] == "splitting4" and tr.stats["rtol"] == 0.1
     assert simulate(inertia, w0, t, rtol=1e-3).stats["method"] == "splitting4"
     assert simulate(inertia, w0, t, rtol=1e-6).stats["method"] == "splitting8"
     assert simulate(inertia, w0, t, rtol=1e-9).stats["method"] == "splitting8"

@@ -378,9 +378,11 @@ def _fill(res: SceneResult, obs, body, omega_full, T, cols, pts, ax, invariants_
     return res
 
 
-def _route(minimal: bool, need_att: bool, need_omega: bool, moments: np.ndarray, N: int, w0: np.ndarray) -> tuple:
+def _route(minimal: bool, need_att: bool, need_omega: bool, moments: np.ndarray, N: int, w0: np.ndarray,
+           labels: tuple | None = None) -> tuple:
     """The route of :func:`evaluate_scene` (module docstring), decided from the checked inputs without any work:
-    ``(steps, kept axes, kept plane indices, closed form or None)``; ``"+".join(steps)`` is ``SceneResult.path``."""
+    ``(steps, kept axes, kept plane indices, closed form or None)``; ``"+".join(steps)`` is ``SceneResult.path``,
+    which names the kept axes by ``labels`` (the body's own: ``RigidBody.axes``, 1..N by default)."""
     if not minimal:
         return ["full"], tuple(range(1, N + 1)), np.arange(w0.size), None
     if not need_att and not need_omega:
@@ -391,7 +393,7 @@ def _route(minimal: bool, need_att: bool, need_omega: bool, moments: np.ndarray,
     steps = []
     keep_axes = tuple(k for k in range(1, N + 1) if k not in Z)
     if Z:
-        steps.append("reduced:axes(" + ",".join(map(str, keep_axes)) + ")")
+        steps.append("reduced:axes(" + ",".join(str(labels[k - 1] if labels else k) for k in keep_axes) + ")")
         kept = np.array([q for q, p in enumerate(planes(N)) if p[0] in keep_axes and p[1] in keep_axes], dtype=int)
     else:
         kept = np.arange(w0.size)
@@ -411,7 +413,8 @@ def scene_route(scene: Scene, *, minimal: bool = True) -> tuple[str, np.ndarray,
     minimal = _v.flag("minimal", minimal)
     moments, N, obs, w0, *_ = _validate(scene)
     need_att = "attitude" in obs or "projection" in obs
-    steps, _, kept, info = _route(minimal, need_att, "omega" in obs or "L" in obs, moments, N, w0)
+    steps, _, kept, info = _route(minimal, need_att, "omega" in obs or "L" in obs, moments, N, w0,
+                                  getattr(scene.body, "axes", None))
     integrated = steps[-1] in ("integrate", "full")  # ("full": the whole body, kept is every plane)
     return "+".join(steps), (moments[kept] if integrated else moments[:0]), (w0[kept] if integrated else w0[:0])
 
@@ -439,7 +442,8 @@ def evaluate_scene(scene: Scene, *, minimal: bool = True) -> SceneResult:
         + ("energy" in obs) + ("casimirs" in obs) * (N // 2)
     _pricing.check("closed_form_output", n_times=t.size, width=width)
 
-    steps, keep_axes, kept, info = _route(minimal, need_att, need_omega, moments, N, w0)
+    steps, keep_axes, kept, info = _route(minimal, need_att, need_omega, moments, N, w0,
+                                          getattr(scene.body, "axes", None))
     if steps == ["full"]:
         _pricing.check("simulate", N=N)  # before the body is built
         body = _as_body(scene.body)

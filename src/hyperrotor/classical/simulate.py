@@ -126,6 +126,8 @@ def _problem(body, omega0, t, attitude, torque, max_output_bytes, checked: float
         raise ValueError(f"omega0 must have shape batch + ({n},) (n_planes of so({N})), got shape {w0.shape}")
     batch = w0.shape[:-1]
     B = int(np.prod(batch)) if batch else 1
+    if isinstance(attitude, np.bool_):  # (a switch: NumPy booleans as Python's, docs/conventions.md)
+        attitude = bool(attitude)
     with_att = attitude is not False and attitude is not None
     K = _validate.time_count(t)  # before any copy of a huge grid
     nbytes = 8.0 * B * K * (2 * n + (N * N if with_att else 0))
@@ -278,12 +280,13 @@ def simulate(
         ``"splitting2"`` ... ``"splitting10"``, ``"moser-veselov"``, ``"DOP853"``, ``"RK45"``,
         ``"RK23"``, ``"LSODA"``, ``"Radau"``, ``"BDF"``), or a solver object such as
         ``Splitting8(compensated=True)``. ``"auto"``: a callable torque -> ``"DOP853"``;
-        only ``dt`` -> ``"splitting4"``; else the splitting of order 2, 4, 8 or 10 for
-        ``rtol >= 1e-2``, ``>= 1e-4``, ``>= 1e-10``, smaller.
+        only ``dt`` -> ``"splitting4"``; else the splitting of order 4, 8 or 10 for
+        ``rtol >= 1e-4``, ``>= 1e-10``, smaller.
     rtol : float, optional
         requested accuracy. Fixed-step methods (splittings, Moser-Veselov): a bound on the
         whole-run error, :math:`\max_t\|L - L_\text{exact}\|_\infty \le \mathrm{rtol}\max_t\|L\|_\infty`
-        (and the same for :math:`\omega`): a probe chooses the step, the run checks its own
+        over the output times ``t`` (and the same for :math:`\omega`; a target looser than 1e-3 is run to
+        1e-3, ``step_control.LOOSEST_RTOL``): a probe chooses the step, the run checks its own
         error as it goes (Richardson's estimate against a companion run with longer steps) and
         is re-run at a shorter step when the check fails
         (:mod:`hyperrotor.classical.solvers.step_control`); an orbit whose error grows
@@ -405,7 +408,7 @@ def _trajectory(solver, problem, control, res, t_user, wall) -> Trajectory:
     if res.T is not None:
         S = problem.signs
         att = (S[:, None] * res.T * S[None, :]).reshape(batch + (K, problem.N, problem.N))
-    stats: dict[str, Any] = {"method": solver.name, "order": solver.order, "rtol": getattr(control, "rtol", None)}
+    stats: dict[str, Any] = {"method": solver.name, "order": solver.order, "rtol": getattr(control, "requested", None)}
     stats.update(res.stats)
     if stats.get("dt") is not None:
         stats["dt"] = stats["dt"] / s

@@ -99,6 +99,12 @@ def run_members_with_events(solver, problem: Problem, control: Any, *, events, m
                          "omega0 events must be non-terminal (terminal=False); run the members one by one to stop "
                          "each at its event")
     B = problem.B
+    if B == 0:  # an empty ensemble: the run's empty result, and no member's events (concatenating none failed)
+        res = solver.run(problem, control, max_steps=max_steps, progress=progress)
+        res.t_events = [[] for _ in specs]
+        res.L_events = [[] for _ in specs]
+        res.T_events = [[] for _ in specs] if problem.T0 is not None else None
+        return res
     member_solver, member_control, steps, _, work = member_setup(solver, problem, control, max_steps)
     bar = None
     if progress:
