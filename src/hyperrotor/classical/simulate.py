@@ -285,8 +285,9 @@ def simulate(
     rtol : float, optional
         requested accuracy. Fixed-step methods (splittings, Moser-Veselov): a bound on the
         whole-run error, :math:`\max_t\|L - L_\text{exact}\|_\infty \le \mathrm{rtol}\max_t\|L\|_\infty`
-        over the output times ``t`` (and the same for :math:`\omega`; a target looser than 1e-3 is run to
-        1e-3, ``step_control.LOOSEST_RTOL``): a probe chooses the step, the run checks its own
+        over the run, the largest :math:`|L|` (and :math:`|\omega|`) taken over the output times and the check's
+        samples between them (and the same for :math:`\omega`; a target looser than 1e-3 is run to 1e-3,
+        ``step_control.LOOSEST_RTOL``): a probe chooses the step, the run checks its own
         error as it goes (Richardson's estimate against a companion run with longer steps) and
         is re-run at a shorter step when the check fails
         (:mod:`hyperrotor.classical.solvers.step_control`); an orbit whose error grows

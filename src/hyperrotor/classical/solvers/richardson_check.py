@@ -210,20 +210,16 @@ def check_plan(t, nsub, cs, spacing, finer, c, c2):  # pragma: no cover - jitted
 
 
 @jit
-def sample_differences(Lf, L1, L2, moments, Lmax, Wmax, d1, d2, j, at_output):  # pragma: no cover - jitted
+def sample_differences(Lf, L1, L2, moments, Lmax, Wmax, d1, d2, j):  # pragma: no cover - jitted
     """``d1[:, j:j + S]``, ``d2[:, j:j + S]``: per checked member, the distances run - first companion and
     first - second companion at ``S`` new samples (``(members, S, n)`` each), each relative to the running scales
-    raised with the run's states at the output times up to that sample (``at_output[k]``: sample ``k`` is an
-    output time; the promise is relative to the largest ``|L|`` and ``|omega|`` the caller gets: a grid
-    ``[0, T]`` whose orbit turns through larger rates between its two times met rtol 1e-6 relative to those
-    rates, 3.7x over it relative to the returned ones); not to the last sample of a call (the distances do not
-    depend on how many samples a call brings, i.e. on where the run's chunks end); ``False`` when a distance is
-    not finite (a companion overflowed). Compiled."""
+    raised with the run's states up to that sample (not to the last of them: the distances do not depend on how
+    many samples a call brings, i.e. on where the run's chunks end); ``False`` when a distance is not finite (a
+    companion overflowed). Compiled."""
     finite = True
     for i in range(Lf.shape[1]):
         for m in range(Lf.shape[0]):
-            if at_output[j + i]:
-                Lmax[m], Wmax[m] = scales_at(Lf, m, i, moments, Lmax[m], Wmax[m])
+            Lmax[m], Wmax[m] = scales_at(Lf, m, i, moments, Lmax[m], Wmax[m])
             a = distance_at(Lf, L1, m, i, moments, Lmax[m], Wmax[m])
             b = distance_at(L1, L2, m, i, moments, Lmax[m], Wmax[m])
             d1[m, j + i] = a
@@ -475,9 +471,6 @@ class RichardsonCheck:
         self.grid, self.tm, self.r, self.r2 = grid, grid[1:], r, r2
         self.out_idx = out_idx if out_idx.size else None  # output indices of the samples, if all are output times
         self.marks = self.cs[out_idx] if marks is None else marks
-        # (the samples at output times: the scales of the distances; np.isin: the run's steps at the output times)
-        self.at_output = (np.ones(self.marks.size, dtype=np.bool_) if marks is None
-                          else np.isin(self.marks, self.cs))
         S = self.marks.size
         self.Lmax, self.Wmax = row_scales(self.problem.L0[self.members][:, None, :], self.moments)
         M = len(self.members)
@@ -530,8 +523,7 @@ class RichardsonCheck:
         # (C order, as every other caller passes them: the probe's runs and the companions come in as slices, another
         # array layout, which would compile the function a second time, ~1.4 s on a cold start)
         Lf, L1, L2 = (np.ascontiguousarray(x) for x in (Lf, L1, L2))
-        if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j,
-                                  self.at_output):
+        if not sample_differences(Lf, L1, L2, self.moments, self.Lmax, self.Wmax, self.d1, self.d2, self.j):
             raise CheckFailed(self.h / 2.0, "a companion run overflowed")
         prev, self.j = self.j, upto
         for c in self.checkpoints:
