@@ -472,6 +472,19 @@ def test_euler_poinsot_extreme_scales(moment_scale, omega_scale):
     assert period == pytest.approx(euler_poinsot_period(I, w0), rel=64 * rel)
 
 
+@pytest.mark.parametrize("big, other, axis", [(1e308, 1e-300, 0), (1e300, 1e-300, 0), (1e300, 1e-300, 2)])
+def test_euler_poinsot_period_of_components_that_underflow_when_scaled(big, other, axis):
+    """omega0 = (1e308, 1e-300, 1e-300): the small components underflow in the scaled frame (a ratio beyond the
+    floats), which read it as a steady rotation and gave inf; about an extreme axis the period is the limit of small
+    oscillations, the period of the same body at a small tilt divided by the scale."""
+    w, ref = np.full(3, other), np.full(3, 1e-10)
+    w[axis], ref[axis] = big, 1.0
+    I = [1.0, 2.0, 3.0]
+    assert euler_poinsot_period(I, w) == pytest.approx(euler_poinsot_period(I, ref) / big, rel=1e-14)
+    assert euler_poinsot_period(I, np.where(np.arange(3) == 1, big, other)) == np.inf  # (the middle axis)
+    assert euler_poinsot_period(I, np.where(np.arange(3) == axis, big, 0.0)) == np.inf  # (exactly steady)
+
+
 @pytest.mark.parametrize("convention,axis,N", [("paper", 5, 5), ("standard", 2, 5), ("paper", 1, 4), ("standard", 6, 6)])
 def test_quartet_attitude_against_simulate(convention, axis, N):
     """T(t) = exp(Theta W_r t) exp((W0 - Theta W_r) t) T0 solves dT/dt = W(t) T."""

@@ -258,8 +258,15 @@ def euler_poinsot_period(body: Any, omega0: Any) -> float:
     r"""Period of :math:`\omega(t)` of the 3D free body: :math:`4K(m)/|\nu|` (``inf`` on the
     separatrix, ``inf`` for steady rotation)."""
     P = _ep_setup(body, omega0)
-    if _is_steady(P) or P["m1"] <= 0.0:
+    if P["m1"] <= 0.0:
         return float("inf")
+    if _is_steady(P):
+        # steady in the scaled frame; but when omega0's other components only underflowed there (1e-300 beside
+        # 1e308: a ratio beyond the floats), it is a small oscillation about an extreme axis, whose period has the
+        # limit 4 K(0) / |nu| = 2 pi / |nu| (it returned inf)
+        w = P["w"]
+        if P["nu"] == 0.0 or not np.any((w != 0.0) & (w / P["scale"] == 0.0)):
+            return float("inf")
     return 4.0 * float(special.ellipkm1(P["m1"])) / abs(P["nu"]) / P["scale"]
 
 
