@@ -199,6 +199,19 @@ def _cases(tex: str, head: str) -> dict:
     return out
 
 
+def _matrix_prefactor(tex: str) -> Any:
+    r"""The factor printed before an operator matrix (``\mathbb{L} = -i\hbar \begin{bmatrix}...``): a sign, an
+    integer, ``i`` and ``\hbar``, each optional, read from the text (1 when nothing is printed); ``None`` when the
+    text holds anything else (the verdict then says the prefactor cannot be read)."""
+    head = tex.split("=", 1)[1].split(r"\begin", 1)[0] if "=" in tex else ""
+    m = re.fullmatch(r"\s*([+-]?)\s*(\d*)\s*(i)?\s*(\\hbar)?\s*", head)
+    if m is None:
+        return None
+    sign, digits, imag, hbar = m.groups()
+    return ((-1 if sign == "-" else 1) * sp.Integer(int(digits or 1)) * (sp.I if imag else 1)
+            * (sp.Symbol("hbar") if hbar else 1))
+
+
 def _plane(ab: str) -> tuple:
     return (int(ab[0]), int(ab[1]))
 
@@ -429,7 +442,7 @@ def printed(key: str) -> Any:
                 if m:
                     sign[r, c] = -1 if m.group(1) else 1
                     label[(r + 1, c + 1)] = _plane(m.group(2))
-        return {"prefactor": -sp.I * sp.Symbol("hbar") if key == "141" else sp.Integer(1), "sign": sign, "label": label}
+        return {"prefactor": _matrix_prefactor(sub), "sign": sign, "label": label}
     if key == "142":
         out = {}
         for ab, a1, b1, b2, a2 in re.findall(

@@ -98,8 +98,8 @@ def coordinate_symbols(N: int, coordinates: Any = None) -> tuple:
             out.append(c)
         else:
             raise TypeError(f"a coordinate must be a SymPy Symbol or a name (str), got {c!r} of type {type(c).__name__}")
-    if len(set(out)) != N:
-        raise ValueError(f"coordinates must be distinct, got {out}")
+    if len({str(s) for s in out}) != N:  # (by name: the operators find their coordinates by name, to_coordinates)
+        raise ValueError(f"coordinates must have distinct names, got {out}")
     return tuple(out)
 
 
@@ -135,6 +135,21 @@ def _is_scalar(c: Any) -> bool:
     if isinstance(c, bool):
         return False
     return isinstance(c, (Number, Fraction)) or (isinstance(c, sp.Expr) and not isinstance(c, sp.MatrixBase))
+
+
+def _is_zero(c: Any) -> bool:
+    """``c`` is a scalar zero of any numeric type (SymPy's ``Float(0) == 0`` is False since SymPy 1.13)."""
+    if not _is_scalar(c):
+        return False
+    return c.is_zero is True if isinstance(c, sp.Basic) else c == 0
+
+
+def _finite(c: Number) -> bool:
+    """A Python or NumPy number is finite (complex: both parts)."""
+    try:
+        return all(abs(float(x)) < float("inf") for x in (getattr(c, "real", c), getattr(c, "imag", 0)))
+    except (TypeError, OverflowError):  # (an int beyond the floats is finite)
+        return isinstance(c, Integral)
 
 
 class DifferentialOperator:
@@ -213,6 +228,9 @@ class DifferentialOperator:
         raise TypeError(f"cannot combine a DifferentialOperator with {other!r} of type {type(other).__name__}")
 
     def _check_scalar(self, c: Any) -> None:
+        if isinstance(c, sp.Basic) and c.has(sp.zoo, sp.oo, -sp.oo, sp.nan) or (
+                isinstance(c, Number) and not isinstance(c, sp.Basic) and not _finite(c)):
+            raise ValueError(f"an operator's scalar factor must be finite, got {c}")
         names = {str(x) for x in self.coordinates}
         if isinstance(c, sp.Basic) and (c.has(*self.coordinates) or any(str(s) in names for s in c.free_symbols)):
             raise ValueError(
@@ -262,6 +280,8 @@ class DifferentialOperator:
         return NotImplemented
 
     def __truediv__(self, other: Any) -> "DifferentialOperator":
+        if _is_zero(other):
+            raise ZeroDivisionError(f"an operator divided by zero ({other!r})")
         if isinstance(other, Integral) and not isinstance(other, bool):
             return self * Fraction(1, int(other))
         if _is_scalar(other):
@@ -279,7 +299,7 @@ class DifferentialOperator:
     def __eq__(self, other: object) -> bool:
         if isinstance(other, DifferentialOperator):
             return self.coordinates == other.coordinates and self.element == other.element
-        if isinstance(other, (int, sp.Integer)) and other == 0:
+        if _is_zero(other):  # (0, 0.0, Fraction(0), SymPy's 0 and 0.0: the zero operator)
             return self.element.is_zero()
         return NotImplemented
 

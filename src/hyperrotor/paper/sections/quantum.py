@@ -78,11 +78,17 @@ def sec_quantum() -> tuple:
                 base = ops[pl] if hb is None else ops[pl].as_form("hermitian", hbar=hbar)
                 if not (M[r, c] == base * int(pk["sign"][r, c])):
                     wrong.append((r + 1, c + 1))
-        pref_ok = sp.simplify(pk["prefactor"] - (-sp.I * sp.Symbol("hbar"))) == 0 if k == "141" else True
+        expected = -sp.I * sp.Symbol("hbar") if k == "141" else sp.Integer(1)  # (read from the text: printed_solutions)
+        pref_ok = pk["prefactor"] is not None and sp.simplify(pk["prefactor"] - expected) == 0
         out.append(Verdict(k, "holds" if not wrong and pref_ok else "typo",
                            ("checkerboard matrix (-1)^(i+j) L^ij of the operators (eq. 21 pattern), = operator_matrix(5, convention='paper'"
                             + (", hbar): the Hermitian -i hbar L^ij (the extraction shows the entries as 1^ij)" if k == "141" else ")"))
-                           if not wrong and pref_ok else f"wrong entries {wrong}", None, None, sec))
+                           if not wrong and pref_ok else
+                           "; ".join(([f"wrong entries {wrong}"] if wrong else [])
+                                     + ([] if pref_ok else [f"prefactor {pk['prefactor']} (expected {expected})"
+                                                            if pk["prefactor"] is not None else
+                                                            "the prefactor before the matrix cannot be read"])),
+                           None, None, sec))
         if k == "141":
             out.append(v142)
     # (144): same pattern as (25)
