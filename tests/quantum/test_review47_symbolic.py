@@ -56,3 +56,15 @@ def test_the_printed_prefactor_of_141_is_read_from_the_text(monkeypatch):
         ps.printed.cache_clear()
         sq.sec_quantum.cache_clear()
     assert next(v for v in sq.sec_quantum() if v.equation == "141").status == "holds"
+
+
+@pytest.mark.parametrize("N", [3, 4, 5])
+def test_the_eq144_reading_of_145_to_147_as_the_verdict_states_it(N):
+    """The verdicts of (145)-(147) said 'with the eq.-(144) pattern the factor is N - 2' (against the matrix
+    entries); read against the labelled components the factor is -(N - 2) for i + j odd and N - 2 for i + j even."""
+    L = hq.angular_momentum_operators(N)
+    r = hq.contraction_identity(N, form="eq144")
+    for (i, j), op in L.items():
+        assert r.product[i - 1, j - 1] == (-1) ** (i + j) * (N - 2) * op
+    v = next(v for v in sq.sec_quantum() if v.equation == {5: "145", 4: "146", 3: "147"}[N])
+    assert f"it is {-(N - 2)} for i + j odd" in v.detail and f"and {N - 2} for i + j even" in v.detail

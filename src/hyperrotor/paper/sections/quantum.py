@@ -120,7 +120,9 @@ def sec_quantum() -> tuple:
         detail = (f"holds for the antisymmetrized product (L Omega)_ij - (L Omega)_ji = sum_k [L_ik, L_jk] with Omega = L^T and "
                   f"the real operators (142)/(143): factor {anti.factor} = -(N-2), N = {N}, exact in every entry "
                   f"(contraction_identity). With the eq.-(144) pattern the factor is {e144.factor} "
-                  f"({'exact' if e144.holds else 'not exact'}); for the Hermitian -i hbar L of (141) it is "
+                  f"({'exact' if e144.holds else 'not exact'}) against the matrix entries of (143), (-1)^(i+j) L^ij; "
+                  f"read against the labelled components L^ij it is {-e144.factor} for i + j odd (its row '12' is "
+                  f"{-e144.factor} L^12, the paper's claim read that way) and {e144.factor} for i + j even; for the Hermitian -i hbar L of (141) it is "
                   f"{'i hbar (N-2)' if herm_ok else 'different'}; the plain matrix product (L L^T)_12 is of order "
                   f"{sum((Lr[0, kk] * Lr[1, kk] for kk in range(N)), Lr[0, 0]).order}")
         out.append(Verdict(k, "holds" if holds else "claim-false",
