@@ -162,6 +162,14 @@ def cases():
         out.append(("operator_product", label, dict(N=A.shape[0], pairs=_term_pairs(A, B, "eq144"),
                                                     coords=A[0, 0].N),
                     lambda A=A, B=B: (A, B), lambda x: hq.operator_product(*x)))
+    for N in (12, 16, 20):  # commutator of a Casimir operator with itself: two compositions of its terms
+        out.append(("operator_composition", f"commutator(casimir_operator({N}), itself)",
+                    dict(pairs=2 * len(hq.casimir_operator(N).element.terms) ** 2, coords=N),
+                    lambda N=N: hq.casimir_operator(N), lambda C: hq.commutator(C, C)))
+    for n, k in ((5, 10), (5, 15), (4, 25)):
+        out.append(("polynomial_expansion", f"(x1 + ... + x{n})^{k}",
+                    dict(terms=math.comb(n + k - 1, k), coords=n), lambda n=n: hq.coordinate_symbols(n),
+                    lambda x, k=k: hq.polynomial_to_dict(sum(x) ** k, x)))
     for N in (100, 200, 400):
         out.append(("vector_rep", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hq.vector_rep(N)))
     for N in (100, 200, 300):

@@ -466,6 +466,25 @@ def _operator_product(N: Any, pairs: Any, coords: Any) -> tuple[Cost, ...]:
                      f"coordinates)", (triples * _OP_TRIPLE_S + _f(pairs) * per_pair) * (1.0 + _f(N) / 200.0)),)
 
 
+@model("operator_composition", "compose operators of fewer terms")
+def _operator_composition(pairs: Any, coords: Any) -> tuple[Cost, ...]:
+    # every pair of terms composed by Leibniz's rule (WeylElement.compose); per pair the operator_product constants
+    # (casimir_operator(16) composed with itself: 141 376 pairs, 0.64 s, estimated 1.0 s; N = 20: 1.85 s, 2.8 s)
+    # and ~200-250 bytes of the result's terms (traced: 181, 198, 236 bytes per pair at N = 8, 16, 24)
+    what = f"composing two differential operators ({_f(pairs):.3g} pairs of terms in {coords} coordinates)"
+    return (_seconds(what, _f(pairs) * (_OP_PAIR_S + _OP_PAIR_COORD_S * _f(coords))),
+            _memory(what, _f(pairs) * (150.0 + 4.0 * _f(coords))))
+
+
+@model("polynomial_expansion", "give the polynomial expanded, or of fewer terms")
+def _polynomial_expansion(terms: Any, coords: Any) -> tuple[Cost, ...]:
+    # SymPy's expand and Poly of an expression whose expanded form has up to `terms` terms (normal_form.expanded_terms,
+    # exact for powers of sums): measured 3.9e-4 ... 4.7e-4 s per term ((x1 + ... + x5)^10 ... ^20, 1001 ... 10 626
+    # terms: 0.39 ... 4.98 s; ^30 ran 23 s under max_seconds = 1 before this model), ~1 kB per SymPy term
+    what = f"expanding a polynomial of up to {_f(terms):.3g} terms in {coords} coordinates"
+    return (_seconds(what, 1e-3 + 6e-4 * _f(terms)), _memory(what, 1000.0 * _f(terms)))
+
+
 @model("contraction_identity", "use a smaller N")
 def _contraction_identity(N: Any) -> tuple[Cost, ...]:
     # the operator matrix of so(N) (angular_momentum_operators) and its product with its transpose: 2 terms per

@@ -28,6 +28,7 @@ labels of the paper live in :mod:`hyperrotor.quantum.operators`.
 """
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from itertools import product as _iproduct
 from math import comb
@@ -36,7 +37,7 @@ from typing import Any, Mapping, Sequence
 
 import sympy as sp
 
-from .. import _parse
+from .. import _parse, _pricing
 
 __all__ = ["WeylElement", "polynomial_to_dict", "dict_to_polynomial"]
 
@@ -151,6 +152,7 @@ def polynomial_to_dict(expr: Any, coordinates: Sequence[sp.Symbol]) -> dict:
         return {(0,) * N: c} if c != 0 else {}
     if not isinstance(expr, sp.Expr):
         raise TypeError(f"expected a SymPy polynomial expression, got {expr!r} of type {type(expr).__name__}")
+    _pricing.check("polynomial_expansion", terms=expanded_terms(expr), coords=N)  # (before sp.expand)
     try:
         poly = sp.Poly(sp.expand(expr), *coords)
     except sp.PolynomialError as err:
@@ -163,6 +165,28 @@ def polynomial_to_dict(expr: Any, coordinates: Sequence[sp.Symbol]) -> dict:
         if c != 0:
             out[tuple(int(e) for e in monom)] = c
     return out
+
+
+def expanded_terms(expr: Any) -> float:
+    """An upper bound on the number of terms of ``sp.expand(expr)`` (before like terms are collected), from its
+    tree alone: a sum adds its terms' counts, a product multiplies them, a power ``b**k`` of ``n`` terms has at most
+    ``C(n + k - 1, k)`` (exact for ``(x1 + ... + xn)**k``); anything else counts 1. A float (``inf`` beyond them)."""
+    if isinstance(expr, sp.Add):
+        return float(sum(expanded_terms(a) for a in expr.args))
+    if isinstance(expr, sp.Mul):
+        out = 1.0
+        for a in expr.args:
+            out *= expanded_terms(a)
+        return out
+    if isinstance(expr, sp.Pow) and expr.exp.is_Integer and expr.exp > 0:
+        n, k = expanded_terms(expr.base), float(expr.exp)
+        if n <= 1.0:
+            return n
+        try:
+            return math.exp(math.lgamma(n + k) - math.lgamma(k + 1.0) - math.lgamma(n))
+        except OverflowError:
+            return math.inf
+    return 1.0
 
 
 def dict_to_polynomial(poly: Mapping, coordinates: Sequence[sp.Symbol]) -> sp.Expr:
@@ -192,6 +216,10 @@ def _normalise_symbolic(out: dict) -> dict:
             else:
                 out[k] = v
     return out
+
+
+#: compositions of more pairs of terms than this (~0.05 s) are priced first (smaller ones: no pricing overhead)
+PRICED_PAIRS = 10_000
 
 
 class WeylElement:
@@ -351,9 +379,13 @@ class WeylElement:
         return self.scale(other)
 
     def compose(self, other: "WeylElement") -> "WeylElement":
-        """The composition ``self o other`` in normal order (Leibniz rule, module docstring)."""
+        """The composition ``self o other`` in normal order (Leibniz rule, module docstring); priced beyond
+        :data:`PRICED_PAIRS` pairs of terms (the ``"operator_composition"`` model: every route composes here)."""
         self._check(other)
         N = self.N
+        pairs = len(self.terms) * len(other.terms)
+        if pairs > PRICED_PAIRS:
+            _pricing.check("operator_composition", pairs=pairs, coords=N)
         out: dict = {}
         for (m1, a1), c1 in self.terms.items():
             act = [i for i in range(N) if a1[i]]
@@ -381,13 +413,20 @@ class WeylElement:
         return WeylElement(N, _normalise_symbolic(out), _trusted=True)
 
     def commutator(self, other: "WeylElement") -> "WeylElement":
-        """``[self, other] = self o other - other o self`` (exact)."""
+        """``[self, other] = self o other - other o self`` (exact; both compositions priced at once)."""
+        self._check(other)
+        pairs = 2 * len(self.terms) * len(other.terms)
+        if pairs > PRICED_PAIRS:
+            _pricing.check("operator_composition", pairs=pairs, coords=self.N)
         return self.compose(other) - other.compose(self)
 
     # ---------------------------------------------------------------- action
     def apply_to_poly(self, poly: Mapping) -> dict:
-        """Apply to a polynomial given as a coefficient dict ``{m: c}``; returns a dict (exact, fast)."""
+        """Apply to a polynomial given as a coefficient dict ``{m: c}``; returns a dict (exact, fast; every pair of an
+        operator term and a monomial, priced as the pairs of a composition beyond :data:`PRICED_PAIRS`)."""
         N = self.N
+        if len(self.terms) * len(poly) > PRICED_PAIRS:
+            _pricing.check("operator_composition", pairs=len(self.terms) * len(poly), coords=N)
         out: dict = {}
         for (m1, a1), c1 in self.terms.items():
             for m2, c2 in poly.items():
