@@ -84,6 +84,9 @@ EXAMPLES = {
     "Sector": lambda: _sectors()[0],
     "SectorSpectra": lambda: hq.sector_spectra(hq.irrep(3, (3,)), BODY3),
     "Spectrum": lambda: hq.spectrum(hq.rotor_hamiltonian(hq.irrep(3, (2,)), BODY3)),
+    # (plain tuples with array fields before session 47: == raised NumPy's ambiguous truth value)
+    "ClosedFormSolution": lambda: hr.closed_form_solution(BODY3, [1.0, 0.5, 0.2], [0.0, 0.5, 1.0]),
+    "HighestWeightState": lambda: hq.highest_weight_state(hq.irrep(3, (2,))),
     "SpacingDistribution": lambda: hq.spacing_distribution(np.cumsum(np.arange(1.0, 40.0) % 7 + 1.0), bins=5),
     "evolve result": lambda: hq.evolve(hq.rotor_hamiltonian(hq.irrep(3, (1,)), BODY3), np.ones(3) / 3**0.5, T5),
     "SectorPropagator": lambda: hq.SectorPropagator(hq.rotor_hamiltonian(hq.irrep(3, (2,)), BODY3)),
@@ -204,7 +207,7 @@ def test_pickles_and_deep_copies_equal(key):
 #: the results whose fields hold arrays, compared field by field (hyperrotor._equality)
 COMPARED = ["Scene", "PoincareSection", "StabilityResult", "SceneResult", "LyapunovResult",
             "LyapunovResult/spectrum+history", "LyapunovResult/sweep", "SectorSpectra", "Spectrum", "OTOCResult",
-            "EhrenfestResult", "SpacingDistribution"]
+            "EhrenfestResult", "SpacingDistribution", "ClosedFormSolution", "HighestWeightState"]
 
 
 @pytest.mark.parametrize("key", COMPARED)

@@ -17,11 +17,12 @@ This module solves the first, tells which family a body belongs to
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from .. import _pricing, _validate
+from .._equality import fields_equal, fields_unequal
 from .._options import options, register
 from ..conventions import dimension_from_count
 from ._closed_form_input import plane_vector, times
@@ -107,7 +108,19 @@ def detect_closed_form(body: Any, *, rtol: float | None = None) -> dict | None:
     return None
 
 
-def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float | None = None) -> tuple[np.ndarray, str]:
+class ClosedFormSolution(NamedTuple):
+    """Result of :func:`closed_form_solution` (unpacks as ``omega, kind``; compares field by field)."""
+
+    __eq__, __ne__ = fields_equal, fields_unequal  # (a tuple's == refuses the array field)
+    __hash__ = None
+
+    #: omega(t), shape ``(..., n_t, n_planes)``
+    omega: np.ndarray
+    #: the closed form used: ``"equal"``, ``"quartet"`` or ``"euler-poinsot"``
+    kind: str
+
+
+def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float | None = None) -> ClosedFormSolution:
     """Exact omega(t) for an inertia admitting a closed form, and the name of the form used.
 
     Dispatches to :func:`equal_moments_solution`, the quartet flow (any axis, any
@@ -117,8 +130,9 @@ def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float | None =
 
     Returns
     -------
-    omega : numpy.ndarray, shape (..., n_t, n_planes)
-    kind : str, ``"equal"``, ``"quartet"`` or ``"euler-poinsot"``
+    ClosedFormSolution
+        ``(omega, kind)``: omega of shape ``(..., n_t, n_planes)``; kind ``"equal"``, ``"quartet"`` or
+        ``"euler-poinsot"``.
     """
     I = _validate.moments(body, name="body")
     info = detect_closed_form(I, rtol=rtol)
@@ -129,11 +143,11 @@ def closed_form_solution(body: Any, omega0: Any, t: Any, *, rtol: float | None =
     _pricing.check("closed_form_output", n_times=tt.size, width=w.size)
     kind = info["kind"]
     if kind == "equal":
-        return equal_moments_solution(w, tt), kind
+        return ClosedFormSolution(equal_moments_solution(w, tt), kind)
     if kind == "quartet":
         _pricing.check("closed_form_solution", d=dimension_from_count(I.size) - 1,
                        count=int(np.prod(w.shape[:-1])))
-        return quartet_flow(info["theta"], w, tt, info["axis"]), kind
+        return ClosedFormSolution(quartet_flow(info["theta"], w, tt, info["axis"]), kind)
     flat = w.reshape(-1, 3)
     out = np.stack([euler_poinsot(I, x, tt) for x in flat])
-    return out.reshape(w.shape[:-1] + (tt.size, 3)), kind
+    return ClosedFormSolution(out.reshape(w.shape[:-1] + (tt.size, 3)), kind)

@@ -26,7 +26,7 @@ Because the classical Euler equations are body-frame equations, use
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import qutip
@@ -35,6 +35,7 @@ import scipy.sparse as sps
 import scipy.sparse.linalg as spla
 
 from .. import _pricing, _validate
+from .._equality import fields_equal, fields_unequal
 from .._floats import power_of_two_scale
 from .._options import options
 from ..conventions import n_planes, planes, to_matrix
@@ -91,7 +92,19 @@ def _cartan_planes(N: int) -> list[tuple[int, int]]:
     return [(2 * k + 1, 2 * k + 2) for k in range(N // 2)]
 
 
-def highest_weight_state(rep: Any) -> tuple[np.ndarray, np.ndarray]:
+class HighestWeightState(NamedTuple):
+    """Result of :func:`highest_weight_state` (unpacks as ``psi, weight``; compares field by field)."""
+
+    __eq__, __ne__ = fields_equal, fields_unequal  # (a tuple's == refuses the array fields)
+    __hash__ = None
+
+    #: the normalized highest-weight vector
+    psi: np.ndarray
+    #: its weight (orthogonal basis)
+    weight: np.ndarray
+
+
+def highest_weight_state(rep: Any) -> HighestWeightState:
     r"""Highest-weight vector of an irreducible representation and its weight.
 
     The weight vector maximizing :math:`\sum_k \alpha_k \hat L^{2k-1,2k}` with
@@ -101,6 +114,8 @@ def highest_weight_state(rep: Any) -> tuple[np.ndarray, np.ndarray]:
 
     Returns
     -------
+    HighestWeightState
+        ``(psi, weight)``, compared field by field:
     psi : ndarray, complex, normalized
     weight : ndarray
         :math:`w_k = \langle\psi|\hat L^{2k-1,2k}|\psi\rangle` at ``hbar = 1``,
@@ -126,7 +141,7 @@ def highest_weight_state(rep: Any) -> tuple[np.ndarray, np.ndarray]:
             psi = V[:, 0]
     psi = psi / np.linalg.norm(psi)
     weight = np.array([np.vdot(psi, -1j * (gens[p] @ psi)).real for p in cp])
-    return psi, weight
+    return HighestWeightState(psi, weight)
 
 
 def normal_form_rotation(L: Any) -> tuple[np.ndarray, np.ndarray]:
