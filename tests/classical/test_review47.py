@@ -108,3 +108,17 @@ def test_a_spectrum_that_lost_its_small_exponents_is_refused():
     assert abs(good.sum()) <= 1e-10 * np.abs(good).sum()
     with pytest.raises(ValueError, match=r"lost its small exponents .* use a smaller renorm_interval \(about 4 / w_max"):
         hr.lyapunov(I, w, 100.0, dt=2.0**-6, spectrum=True, renorm_interval=100.0)
+
+
+def test_spectra_are_priced_with_their_tangent_vectors():
+    """4000 orbits of an 8D body with spectrum=True (28 tangent vectors each, ~190 MB) ran under max_memory_bytes =
+    5e7: lyapunov() checked no memory, lyapunov_sweep priced k = 1."""
+    import hyperrotor as hr
+
+    I = np.linspace(1.0, 2.0, 28)
+    w0 = np.full((4000, 28), 0.1)
+    with hr.options(max_memory_bytes=5 * 10**7):
+        for call in (lambda: hr.lyapunov(I, w0, 1.0, spectrum=True), lambda: hr.lyapunov_sweep(I[None], w0, 1.0,
+                                                                                              spectrum=True)):
+            with pytest.raises(hr.BudgetError, match="max_memory_bytes"):
+                call()

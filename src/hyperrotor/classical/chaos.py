@@ -433,6 +433,8 @@ def lyapunov(
     T, method, dt, renorm_interval, k, as_spectrum = _check_common(T, spectrum, method, dt, renorm_interval, n, history)
     batch = w0.shape[:-1]
     B = int(np.prod(batch)) if batch else 1
+    # the orbits' rows and their k tangent vectors, before any copy (the sweep's memory model: one body)
+    _pricing.check("lyapunov_sweep", bodies=1, orbits=B, n=n, k=k)
     L0 = np.ascontiguousarray(w0.reshape(B, n) * moments)
     t, lam = _benettin(np.broadcast_to(moments, (B, n)), L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov")
@@ -513,6 +515,8 @@ def lyapunov_sweep(
         raise ValueError(f"omega0 must have shape (M, {n}) (shared by the bodies) or ({P}, M, {n}) (per body), "
                          f"got shape {w0.shape}")
     T, method, dt, renorm_interval, k, as_spectrum = _check_common(T, spectrum, method, dt, renorm_interval, n, history)
+    if k > 1:  # (the k tangent vectors of every orbit: priced with k = 1 above, before k was known)
+        _pricing.check("lyapunov_sweep", bodies=P, orbits=M, n=n, k=k)
     L0 = np.ascontiguousarray(Wrows * Mrows)
     t, lam = _benettin(np.ascontiguousarray(Mrows), L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov sweep")
