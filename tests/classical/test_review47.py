@@ -122,3 +122,18 @@ def test_spectra_are_priced_with_their_tangent_vectors():
                                                                                               spectrum=True)):
             with pytest.raises(hr.BudgetError, match="max_memory_bytes"):
                 call()
+
+
+def test_poincare_planes_are_named_by_the_bodys_axes():
+    """A body with axis 1 locked has the axes (2, 3, 4, 5): plane=(2, 5) was refused ('unknown plane for N = 4') and
+    plane=(1, 2), which it does not have, silently meant (2, 3) and came back as (1, 2)."""
+    import hyperrotor as hr
+
+    body = hr.RigidBody(hr.Inertia(np.linspace(1.0, 2.0, 10))).lock(1)
+    w0 = np.linspace(0.3, 1.1, 6)
+    sec = hr.poincare_section(body, w0, 20.0, plane=(2, 5), direction=0)
+    assert sec.plane == (2, 5) and sec.axes == (2, 3, 4, 5) and len(sec) > 0
+    np.testing.assert_array_equal(sec.coordinates((2, 5))[:, 0], sec.L[:, 2])  # (plane (2, 5) is the third)
+    np.testing.assert_allclose(sec.coordinates((2, 5))[:, 0], 0.0, atol=1e-12)  # (on the section L_25 = 0)
+    with pytest.raises(ValueError, match=r"unknown plane \(1, 2\).*of the body's axes \(2, 3, 4, 5\)"):
+        hr.poincare_section(body, w0, 20.0, plane=(1, 2))

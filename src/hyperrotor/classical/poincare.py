@@ -17,6 +17,7 @@ from hyperrotor.conventions import dimension_from_count, plane_index
 from .chaos import LYAPUNOV_METHODS
 from .simulate import simulate
 from .solvers.step_control import rate_bound
+from .stability import _labels, _local_plane
 
 __all__ = ["poincare_section", "PoincareSection"]
 
@@ -32,13 +33,16 @@ class PoincareSection:
     L, omega : ndarray (m, n)
         body-frame angular momenta and angular velocities at the crossings (plane order).
     plane : tuple (i, j)
-        the plane whose component defines the section.
+        the plane whose component defines the section, in the body's axis labels.
     value : float
         ``c``.
     direction : int
         ``+1`` (upward crossings, :math:`\dot L_{ij} > 0`), ``-1`` (downward) or ``0`` (both).
     N : int
         dimension of the body.
+    axes : tuple
+        the body's axis labels (``RigidBody.axes``: a locked body keeps its original ones, e.g. ``(2, 3, 4, 5)``);
+        ``plane`` and :meth:`coordinates` use them.
     """
 
     __eq__ = fields_equal  # (field by field: the generated == refuses array fields)
@@ -51,10 +55,12 @@ class PoincareSection:
     value: float
     direction: int
     N: int
+    axes: tuple = ()
 
     def coordinates(self, *planes: Any) -> np.ndarray:
         """Columns of ``L`` for the given planes, shape ``(m, len(planes))`` (e.g. ``sec.coordinates((1, 3), (2, 4))``)."""
-        cols = [plane_index(_validate.plane(p, self.N), self.N) for p in planes]
+        labels = self.axes or tuple(range(1, self.N + 1))
+        cols = [plane_index(_local_plane(p, labels), self.N) for p in planes]
         return self.L[:, cols]
 
     def __len__(self) -> int:
@@ -96,7 +102,8 @@ def poincare_section(
     T : float
         length of the run (> 0).
     plane : pair or str
-        the plane ``(i, j)`` whose momentum component defines the section (default ``(1, 2)``).
+        the plane ``(i, j)`` whose momentum component defines the section (default ``(1, 2)``), in the body's axis
+        labels (a locked ``RigidBody`` keeps its original ones, as in :func:`linear_stability`).
     value : float
         the level ``c``.
     direction : {1, -1, 0}
@@ -119,7 +126,8 @@ def poincare_section(
     if w0.ndim != 1:
         raise ValueError(f"poincare_section takes one orbit: omega0 must have shape ({n},), got shape {w0.shape}")
     T = _validate.positive("T", T)
-    ij = _validate.plane(plane, N)
+    labels = _labels(body, N)  # (a locked body's planes are named by its own axes, as in linear_stability)
+    ij = _local_plane(plane, labels)
     value = _validate.real("value", value)
     if _validate.real("direction", direction) not in (1, -1, 0):  # (TypeError for a bool, text, ...)
         raise ValueError(f"direction must be 1 (upward), -1 (downward) or 0 (both), got {_validate.fmt(direction)}")
@@ -145,5 +153,6 @@ def poincare_section(
     crossing.direction = int(direction)
     traj = simulate(moments, w0, [0.0, T], method=method, dt=dt, events=crossing, progress=progress)
     L_ev = np.asarray(traj.L_events[0]).reshape(-1, n)
-    return PoincareSection(t=np.asarray(traj.t_events[0], dtype=float), L=L_ev, omega=L_ev / moments, plane=ij,
-                           value=value, direction=int(direction), N=N)
+    return PoincareSection(t=np.asarray(traj.t_events[0], dtype=float), L=L_ev, omega=L_ev / moments,
+                           plane=(labels[ij[0] - 1], labels[ij[1] - 1]), value=value, direction=int(direction), N=N,
+                           axes=labels)
