@@ -174,8 +174,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     threads = _parallel.client_threads(client) if client is not None else _parallel.default_workers()
     budget = options["lyapunov_max_work"]
     if not work_rows.sum() / threads <= budget:  # also refuses an infinite estimate
-        with np.errstate(over="ignore"):
-            w_top = float(np.max(rate_bound(moments_rows, Ls) * scale)) if B else 0.0
+        w_top = _top_rate(moments_rows, Ls, scale) if B else 0.0
         raise _pricing.refuse(
             "lyapunov", f"this run ({work_rows.sum():.3g} units of work: 5D plane flows x (1 + {k} tangent vectors"
             f"{f' x (N - 2) / 3 = {tangent:.4g}' if N > 5 else ''}), growing with T = {_validate.fmt(T)}, the "
@@ -258,30 +257,40 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
 SPECTRUM_SUM_RTOL = 1e-6
 
 
+def _top_rate(moments_rows, Ls, scale) -> float:
+    """The largest angular velocity reachable on the orbits (their rate bounds, in the user's units)."""
+    with np.errstate(over="ignore"):
+        return float(np.max(rate_bound(moments_rows, Ls) * scale))
+
+
+def _interval_error(renorm_interval, tau, trouble: str, consequence: str, w_top: float, factor: float,
+                    note: str = "") -> ValueError:
+    """The error for a ``renorm_interval`` too long for the orbit: what went wrong between two renormalisations,
+    and an interval of about ``factor / w_max`` that works (``note``: added to that advice)."""
+    advice = f"about {factor:g} / w_max = {factor / w_top:.3g} or less" if w_top > 0 else ""
+    parts = ", ".join(p for p in (advice, note) if p)
+    return ValueError(
+        f"lyapunov: {trouble} between two renormalisations (renorm_interval = {_validate.fmt(renorm_interval)}, "
+        f"every {_validate.fmt(tau)} in time): {consequence}; use a smaller renorm_interval"
+        f"{f' ({parts})' if parts else ''}, w_max = {w_top:.3g} being the largest angular velocity reachable on the "
+        f"orbit")
+
+
 def _lost_spectrum_error(renorm_interval, tau, moments_rows, Ls, scale, lam) -> ValueError:
     """The error for a spectrum whose small exponents the renormalisation lost (their sum is not 0)."""
-    with np.errstate(over="ignore"):
-        w_top = float(np.max(rate_bound(moments_rows, Ls) * scale))
-    hint = f" (about 4 / w_max = {4.0 / w_top:.3g} or less)" if w_top > 0 else ""
-    return ValueError(
-        f"lyapunov: the spectrum lost its small exponents between two renormalisations (renorm_interval = "
-        f"{_validate.fmt(renorm_interval)}, every {_validate.fmt(tau)} in time): the exponents sum to "
-        f"{float(lam.sum()):.3g} where the flow keeps volumes (0), the largest and smallest tangent vectors growing "
-        f"apart by more than double precision resolves; use a smaller renorm_interval{hint}, w_max = {w_top:.3g} "
-        f"being the largest angular velocity reachable on the orbit")
+    return _interval_error(
+        renorm_interval, tau, "the spectrum lost its small exponents",
+        f"the exponents sum to {float(lam.sum()):.3g} where the flow keeps volumes (0), the largest and smallest "
+        f"tangent vectors growing apart by more than double precision resolves",
+        _top_rate(moments_rows, Ls, scale), 4.0)
 
 
 def _range_error(renorm_interval, tau, moments_rows, Ls, scale) -> ValueError:
     """The error for tangent vectors that left double precision between two renormalisations."""
-    with np.errstate(over="ignore"):
-        w_top = float(np.max(rate_bound(moments_rows, Ls) * scale))
-    hint = f" (about 100 / w_max = {100.0 / w_top:.3g} or less" if w_top > 0 else " ("
-    return ValueError(
-        f"lyapunov: the tangent vectors left double precision between two renormalisations (renorm_interval = "
-        f"{_validate.fmt(renorm_interval)}, every {_validate.fmt(tau)} in time): they grow or shrink like "
-        f"exp(lambda * {_validate.fmt(tau)}), and exp(+-709) is the range of a double, so the exponents would be "
-        f"NaN or infinite; use a smaller renorm_interval{hint}, the default is 1.0), w_max = {w_top:.3g} being the "
-        f"largest angular velocity reachable on the orbit")
+    return _interval_error(
+        renorm_interval, tau, "the tangent vectors left double precision",
+        f"they grow or shrink like exp(lambda * {_validate.fmt(tau)}), and exp(+-709) is the range of a double, so "
+        f"the exponents would be NaN or infinite", _top_rate(moments_rows, Ls, scale), 100.0, "the default is 1.0")
 
 
 @dataclass(frozen=True)
