@@ -326,19 +326,22 @@ def coherent_state(rep: Any, L: Any, *, hbar: float = 1, frame: str = "space", r
     if not np.any(np.abs(w) > 1e-9):
         raise ValueError("the representation is trivial (highest weight 0); no coherent state points along L")
     unit = lam / float(np.max(np.abs(lam)))  # (only its direction matters: |lam|^2 of 1e308 would be inf)
-    c = float(unit @ w) / float(w @ w)
-    if c <= 0 or np.linalg.norm(unit - c * w) > rtol * np.linalg.norm(unit):
+
+    def along(weight: np.ndarray) -> bool:
+        """``unit`` is a positive multiple of ``weight`` (to ``rtol``)."""
+        c = float(unit @ weight) / float(weight @ weight)
+        return c > 0 and np.linalg.norm(unit - c * weight) <= rtol * np.linalg.norm(unit)
+
+    if not along(w):
         of = "-L (frame='body': the state points along -L)" if frame == "body" else "L"
         hint = ""
-        flipped = w.copy()
-        flipped[-1] = -flipped[-1]
-        c2 = float(unit @ flipped) / float(flipped @ flipped)
-        fits = c2 > 0 and np.linalg.norm(unit - c2 * flipped) <= rtol * np.linalg.norm(unit)
-        if frame == "body" and N % 4 == 2 and fits:
-            # (-1 is not a rotation in so(4k + 2): -L has the other chirality)
-            hint = (f"; in so({N}) the normal forms of -L and L differ in the sign of their last entry: the irrep of "
-                    f"highest weight ({', '.join(format(x, 'g') for x in flipped)}) has a body-frame coherent state "
-                    f"along this L")
+        if frame == "body" and N % 4 == 2:  # (-1 is not a rotation in so(4k + 2): -L has the other chirality)
+            flipped = w.copy()
+            flipped[-1] = -flipped[-1]
+            if along(flipped):
+                hint = (f"; in so({N}) the normal forms of -L and L differ in the sign of their last entry: the irrep "
+                        f"of highest weight ({', '.join(format(x, 'g') for x in flipped)}) has a body-frame coherent "
+                        f"state along this L")
         raise ValueError(
             f"the normal form {np.round(lam, 12).tolist()} of {of} is not a positive multiple of the highest "
             f"weight {np.round(w, 12).tolist()} of the representation; a coherent state along it exists "
