@@ -130,13 +130,16 @@ def _check_common(T, spectrum, method, dt, renorm_interval, n, history):
     return T, method, dt, renorm_interval, k, as_spectrum
 
 
-def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng, client, chunk_size,
-              progress, desc):
-    """Exponents ``(B, K, k)`` at the times ``t (K,)`` for orbits ``L0 (B, n)`` of bodies ``moments_rows (B, n)``."""
+def _benettin(bodies, L0, T, k, method, dt, renorm_interval, history, rng, client, chunk_size, progress, desc):
+    """Exponents ``(B, K, k)`` at the times ``t (K,)`` for orbits ``L0 (B, n)`` of ``bodies (P, n)``, body ``p``'s
+    orbits in the rows ``p * M ... (p + 1) * M - 1`` (``B = P * M``)."""
     B, n = L0.shape
+    P = bodies.shape[0]
     N = dimension_from_count(n)
     gen = _validate.rng(rng)
     progress = _validate.flag("progress", progress, allow_none=True)
+    M = B // P
+    moments_rows = np.broadcast_to(bodies, (B, n)) if P == 1 else np.repeat(bodies, M, axis=0)
     # per orbit: Casimir-shifted rates (as simulate), step, steps per renormalisation
     # scale each orbit by a power of two close to its largest |L_a| (the equations are invariant under
     # L -> L/s, t -> s t): exact in floating point, so the arithmetic of the kernel is the same as
@@ -144,44 +147,33 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
     # neither norms nor the step rule overflow or underflow for huge or tiny momenta
     scale = power_of_two_scale(np.max(np.abs(L0), axis=1)) if B else np.ones(0)
     Ls = L0 / scale[:, None]
-    shift = np.empty(B)
-    uniq, inverse = np.unique(moments_rows, axis=0, return_inverse=True)
-    for u in range(uniq.shape[0]):
-        sel = np.flatnonzero(inverse.ravel() == u)
-        shift[sel] = casimir_shift(uniq[u], Ls[sel])  # homogeneous of degree 0 in L
-    rates = 1.0 / moments_rows - shift[:, None]
+    with np.errstate(over="ignore"):
+        wmax = rate_bound(moments_rows, Ls) if B else np.zeros(0)  # of the scaled orbit, time tau * scale
+        w_top = float(np.max(wmax * scale)) if B else 0.0
+    _check_resolved(T, w_top)
     # (counts as floats until the budget is checked: T / renorm_interval may be beyond any integer, e.g. inf)
     nren = max(1.0, float(np.ceil(T / renorm_interval - 1e-9)))
     tau = T / nren
     # steps per renormalisation (as floats, for the budget check before any cast)
     if dt is None:
-        wmax = rate_bound(moments_rows, Ls)  # of the scaled orbit, time tau * scale
         with np.errstate(over="ignore"):
             nsub_f = np.where(wmax > 0, np.ceil(tau * scale * wmax / options["lyapunov_step"] * (1 - 1e-12)), 1.0)
     else:
         nsub_f = np.full(B, np.ceil(tau / dt * (1 - 1e-12)))
     nsub_f = np.maximum(nsub_f, 1.0)
-    # one word for the whole ensemble (planes whose rate vanishes for every orbit drop out), so
+    # the budget (before the rotation tables: 0.35 s for N = 60, spent on a refused call), first with the fewest
+    # planes the Casimir shift can leave (a refusal before the shift rule: 2.7 s for 2e6 orbits), then with the
+    # planes it leaves: one word for the whole ensemble (planes whose rate vanishes for every orbit drop out), so
     # that an orbit's arithmetic does not depend on the chunk it falls in
-    seq = tuple(int(a) for a in np.flatnonzero(np.any(rates != 0.0, axis=0)))
-    word = splitting_word(_ORDER[method], seq)
-    # budget and chunking (before the rotation tables: 0.35 s for N = 60, spent on a refused call)
-    m = max(1, word[0].size)
-    # a tangent vector's plane flow touches N - 2 pairs: (N - 2) / 3 times a 5D one (the calibration)
-    tangent = k * max(1.0, (N - 2) / 3.0)
-    with np.errstate(over="ignore"):
-        work_rows = nsub_f * nren * m * (1 + tangent)
     threads = _parallel.client_threads(client) if client is not None else _parallel.default_workers()
-    budget = options["lyapunov_max_work"]
-    if not work_rows.sum() / threads <= budget:  # also refuses an infinite estimate
-        w_top = _top_rate(moments_rows, Ls, scale) if B else 0.0
-        raise _pricing.refuse(
-            "lyapunov", f"this run ({work_rows.sum():.3g} units of work: 5D plane flows x (1 + {k} tangent vectors"
-            f"{f' x (N - 2) / 3 = {tangent:.4g}' if N > 5 else ''}), growing with T = {_validate.fmt(T)}, the "
-            f"{B} orbit(s) and the angular velocities of omega0, up to w_max = {w_top:.3g}; {threads} worker "
-            f"thread(s), a budget of ~{budget / _WORK_RATE / 60:.0f} min each)", work_rows.sum() / threads,
-            "lyapunov_max_work", "work units per worker thread",
-            "shorten T, use fewer orbits or add workers (client=)")
+    _check_work(nsub_f * nren, splitting_word(_ORDER[method], tuple(range(_fewest_planes(bodies))))[0].size, k, N,
+                threads, T, w_top)
+    shift = np.empty(B)
+    for p in range(P if M else 0):
+        shift[p * M:(p + 1) * M] = casimir_shift(bodies[p], Ls[p * M:(p + 1) * M])  # of degree 0 in L
+    rates = 1.0 / moments_rows - shift[:, None]
+    word = splitting_word(_ORDER[method], tuple(int(a) for a in np.flatnonzero(np.any(rates != 0.0, axis=0))))
+    work_rows = _check_work(nsub_f * nren, word[0].size, k, N, threads, T, w_top)
     nsub = nsub_f.astype(np.int64)
     nren = int(nren)
     tables = rotation_tables(N)
@@ -233,7 +225,7 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
                     bar.update(r)
             acc = out[:, -1]
             if not np.all(np.isfinite(acc)):  # (checked per segment: a long run stops at the first bad one)
-                raise _range_error(renorm_interval, tau, moments_rows, Ls, scale)
+                raise _range_error(renorm_interval, tau, w_top)
             stored.append(out)
     finally:
         if bar is not None:
@@ -247,20 +239,60 @@ def _benettin(moments_rows, L0, T, k, method, dt, renorm_interval, history, rng,
         last = lam[:, -1]
         bad = np.abs(last.sum(axis=1)) > SPECTRUM_SUM_RTOL * np.abs(last).sum(axis=1)
         if np.any(bad):
-            raise _lost_spectrum_error(renorm_interval, tau, moments_rows, Ls, scale, last[np.argmax(bad)])
+            raise _lost_spectrum_error(renorm_interval, tau, w_top, last[np.argmax(bad)])
     return t, lam
+
+
+def _fewest_planes(bodies: np.ndarray) -> int:
+    """The fewest planes the Casimir shift can leave in a step of one of ``bodies (P, n)``: ``n`` minus the most
+    planes of one body that share a rate ``1/I_a`` (the shift takes one of the rates)."""
+    rates = np.sort(1.0 / bodies, axis=1)
+    n = rates.shape[1]
+    starts = np.zeros(rates.shape, dtype=np.int64)  # where the run of equal rates holding each entry starts
+    starts[:, 1:] = np.where(rates[:, 1:] != rates[:, :-1], np.arange(1, n), 0)
+    run = np.arange(1, n + 1) - np.maximum.accumulate(starts, axis=1)
+    return int(np.max(n - run.max(axis=1)))
+
+
+def _check_work(steps, flows, k, N, threads, T, w_top) -> np.ndarray:
+    """The work of each orbit (``steps`` of ``flows`` plane flows, ``k`` tangent vectors), refused over
+    ``options["lyapunov_max_work"]`` per worker thread."""
+    # a tangent vector's plane flow touches N - 2 pairs: (N - 2) / 3 times a 5D one (the calibration)
+    tangent = k * max(1.0, (N - 2) / 3.0)
+    with np.errstate(over="ignore"):
+        work_rows = steps * max(1, flows) * (1 + tangent)
+    budget = options["lyapunov_max_work"]
+    if not work_rows.sum() / threads <= budget:  # also refuses an infinite estimate
+        raise _pricing.refuse(
+            "lyapunov", f"this run ({work_rows.sum():.3g} units of work: 5D plane flows x (1 + {k} tangent vectors"
+            f"{f' x (N - 2) / 3 = {tangent:.4g}' if N > 5 else ''}), growing with T = {_validate.fmt(T)}, the "
+            f"{work_rows.size} orbit(s) and the angular velocities of omega0, up to w_max = {w_top:.3g}; {threads} "
+            f"worker thread(s), a budget of ~{budget / _WORK_RATE / 60:.0f} min each)", work_rows.sum() / threads,
+            "lyapunov_max_work", "work units per worker thread",
+            "shorten T, use fewer orbits or add workers (client=)")
+    return work_rows
+
+
+#: the least ``T * w_max`` (the angle the fastest plane can turn in the run) of an exponent: below it the
+#: growth of the tangent vectors, ``1 + O(T w_max)``, drowns in round-off (an exponent off by ~eps / T:
+#: -11 instead of 1.13 at T = 1e-17, a review)
+LEAST_TURN = 1e-9
+
+
+def _check_resolved(T, w_top) -> None:
+    """``ValueError`` for a run too short to resolve an exponent in double precision (:data:`LEAST_TURN`)."""
+    if w_top > 0 and T * w_top < LEAST_TURN:
+        raise ValueError(
+            f"lyapunov: T = {_validate.fmt(T)} is too short to resolve an exponent: the tangent vectors grow by "
+            f"1 + O(T w_max) = 1 + O({T * w_top:.2g}) (w_max = {w_top:.3g}, the largest angular velocity reachable "
+            f"on the orbits), which double precision resolves to ~eps / T = {np.finfo(float).eps / T:.2g} in the "
+            f"exponents; use T >= {LEAST_TURN:g} / w_max = {LEAST_TURN / w_top * 1.005:.3g}")  # (rounded up)
 
 
 #: the whole spectrum's sum relative to the sum of |lambda| beyond which the Gram-Schmidt renormalisation lost the
 #: small exponents (a review: an orbit at renorm_interval 50 ... 400 gave sums 5e-2 ... 1.9, silently, where 1
 #: gave 6e-16; the maximal exponent the same in all)
 SPECTRUM_SUM_RTOL = 1e-6
-
-
-def _top_rate(moments_rows, Ls, scale) -> float:
-    """The largest angular velocity reachable on the orbits (their rate bounds, in the user's units)."""
-    with np.errstate(over="ignore"):
-        return float(np.max(rate_bound(moments_rows, Ls) * scale))
 
 
 def _interval_error(renorm_interval, tau, trouble: str, consequence: str, w_top: float, factor: float,
@@ -276,21 +308,21 @@ def _interval_error(renorm_interval, tau, trouble: str, consequence: str, w_top:
         f"orbit")
 
 
-def _lost_spectrum_error(renorm_interval, tau, moments_rows, Ls, scale, lam) -> ValueError:
+def _lost_spectrum_error(renorm_interval, tau, w_top, lam) -> ValueError:
     """The error for a spectrum whose small exponents the renormalisation lost (their sum is not 0)."""
     return _interval_error(
         renorm_interval, tau, "the spectrum lost its small exponents",
         f"the exponents sum to {float(lam.sum()):.3g} where the flow keeps volumes (0), the largest and smallest "
         f"tangent vectors growing apart by more than double precision resolves",
-        _top_rate(moments_rows, Ls, scale), 4.0)
+        w_top, 4.0)
 
 
-def _range_error(renorm_interval, tau, moments_rows, Ls, scale) -> ValueError:
+def _range_error(renorm_interval, tau, w_top) -> ValueError:
     """The error for tangent vectors that left double precision between two renormalisations."""
     return _interval_error(
         renorm_interval, tau, "the tangent vectors left double precision",
         f"they grow or shrink like exp(lambda * {_validate.fmt(tau)}), and exp(+-709) is the range of a double, so "
-        f"the exponents would be NaN or infinite", _top_rate(moments_rows, Ls, scale), 100.0, "the default is 1.0")
+        f"the exponents would be NaN or infinite", w_top, 100.0, "the default is 1.0")
 
 
 @dataclass(frozen=True)
@@ -424,7 +456,9 @@ def lyapunov(
         bad shapes or values (named), unknown method, a run over the budget
         ``options["lyapunov_max_work"]`` (with its estimate); a ``renorm_interval`` so long
         that the tangent vectors leave double precision between renormalisations (growth
-        :math:`e^{\lambda\tau}` beyond :math:`e^{709}`: the exponents would be NaN).
+        :math:`e^{\lambda\tau}` beyond :math:`e^{709}`: the exponents would be NaN); a ``T`` so short that
+        the tangent vectors' growth :math:`1 + O(T w_{max})` is round-off (:math:`T w_{max}` below
+        :data:`LEAST_TURN`, ``w_max`` the largest angular velocity reachable on the orbits).
     TypeError
         non-numeric input, a ``client`` that is not a dask client.
 
@@ -445,7 +479,7 @@ def lyapunov(
     # the orbits' rows and their k tangent vectors, before any copy (the sweep's memory model: one body)
     _pricing.check("lyapunov_sweep", bodies=1, orbits=B, n=n, k=k)
     L0 = np.ascontiguousarray(w0.reshape(B, n) * moments)
-    t, lam = _benettin(np.broadcast_to(moments, (B, n)), L0, T, k, method, dt, renorm_interval, history, rng,
+    t, lam = _benettin(moments[None, :], L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov")
     return _result(t, lam, batch, as_spectrum, history, k, method, rng)
 
@@ -527,6 +561,6 @@ def lyapunov_sweep(
     if k > 1:  # (the k tangent vectors of every orbit: priced with k = 1 above, before k was known)
         _pricing.check("lyapunov_sweep", bodies=P, orbits=M, n=n, k=k)
     L0 = np.ascontiguousarray(Wrows * Mrows)
-    t, lam = _benettin(np.ascontiguousarray(Mrows), L0, T, k, method, dt, renorm_interval, history, rng,
+    t, lam = _benettin(moments, L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov sweep")
     return _result(t, lam, (P, M), as_spectrum, history, k, method, rng)
