@@ -272,28 +272,33 @@ def cases():
         out.append(("compare_quartet_motion", f"kappa={kappa:g}, t_end={t_end:g}, n_times={n_times} (warm kernels)",
                     dict(t_end=t_end, n_times=n_times, **_quartet_rates(kappa)), _warm_quartet,
                     lambda _, k=kappa, t_end=t_end, n=n_times: compare_quartet_motion(k, t_end=t_end, n_times=n)))
-    for N, frames in ((4, 6), (6, 6), (8, 6)):
-        out.append(("scene", f"hyperrotor scene --N {N} --shape cube, PNG (child process, CPU s)",
+    for N, frames in ((4, 6), (6, 6), (8, 6), (12, 6), (13, 6)):
+        out.append(("scene", f"hyperrotor scene --N {N} --shape cube, PNG (child process, CPU s, peak RSS)",
                     dict(shape="cube", N=N, frames=frames, format=".png"), lambda: None,
                     lambda _, N=N: _cli_scene(N), "child"))
     return out
 
 
 def _cli_scene(N):
-    """CPU seconds of ``hyperrotor scene`` in a child process (the 'scene' model prices the whole command,
-    start-up included, against the CLI budgets)."""
-    import resource
+    """CPU seconds and peak resident bytes of ``hyperrotor scene`` in a child process of its own (the 'scene'
+    model prices the whole command, start-up and interpreter included, against the CLI budgets)."""
     import subprocess
     import tempfile
 
+    child = ("import resource, sys, time\n"
+             "from hyperrotor.cli import main\n"
+             "code = main(sys.argv[1:])\n"
+             "r = resource.getrusage(resource.RUSAGE_SELF)\n"
+             "hwm = [l for l in open('/proc/self/status') if l.startswith('VmHWM:')][0].split()[1]\n"
+             "print(r.ru_utime + r.ru_stime, int(hwm) * 1024)\n"  # (the peak of this process's memory: ru_maxrss
+             # keeps the parent's across exec on Linux)
+             "sys.exit(code)\n")
     with tempfile.TemporaryDirectory() as tmp:
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        subprocess.run([sys.executable, "-m", "hyperrotor.cli", "scene", "--N", str(N), "--shape", "cube",
-                        "--output", os.path.join(tmp, "s.png")], check=True, capture_output=True,
-                       env=dict(os.environ, MPLBACKEND="Agg"))
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
-    return cpu
+        p = subprocess.run([sys.executable, "-c", child, "scene", "--N", str(N), "--shape", "cube",
+                            "--output", os.path.join(tmp, "s.png")], check=True, capture_output=True, text=True,
+                           env=dict(os.environ, MPLBACKEND="Agg"))
+    cpu, rss = p.stdout.split()[-2:]
+    return float(cpu), float(rss)
 
 
 def _warm():
@@ -384,8 +389,8 @@ def measure(setup, run, memory, mode="memory"):
     peak = None
     if mode == "output":
         return wall, produced
-    if mode == "child":  # the run measured a child process itself: CPU seconds (its memory is not comparable:
-        return produced, None  # the model counts the command's data, not the interpreter and its imports)
+    if mode == "child":  # the run measured a child process itself: CPU seconds and its peak resident bytes
+        return produced
     if memory:
         arg = setup()
         gc.collect()

@@ -215,7 +215,110 @@ def test_scene_html_is_the_library_page(capsys, tmp_path):
                      and re.search(r"<link[^>]*\bhref\s*=", html, re.I) is None)
     # self-contained: plotly.js is inside (the bundle's own text may say src="http)
     assert loads_nothing and len(html) > 3_000_000
-    assert len(re.findall(r'"name"\s*:\s*"', html)) >= 5  # one animation frame per time (--frames 5)
+    assert len(re.findall(r'"traces"\s*:\s*\[0,\s*1\]', html)) == 5  # one animation frame per time (--frames 5)
+
+
+def _first_frame_extent(html: str) -> np.ndarray:
+    """max |x|, |y|, |z| of the body points of a page's first frame (its "points" trace)."""
+    data = html[html.index("Plotly.newPlot"):]
+    assert re.search(r'"name"\s*:\s*"points"', data), "no points trace"
+    extent = []
+    for key in "xyz":  # (the first "x", "y", "z" arrays of the figure are the edges', over the same points)
+        vals = re.search(r'"%s"\s*:\s*\[([^\]]*)\]' % key, data).group(1).split(",")
+        extent.append(max(abs(float(v)) for v in vals if v.strip() not in ("null", "")))
+    return np.array(extent)
+
+
+@pytest.mark.parametrize("argv, extent", [
+    # the box of sides 1..5 on axes 1, 4, 5: half-edges 0.2, 0.8, 1.0 (was the unit cube: 1, 1, 1)
+    (["--inertia", "box", "--sides", "1,2,3,4,5", "--axes", "1,4,5"], [0.2, 0.8, 1.0]),
+    # the quartet J = (1, 1, 1, 1, kappa^2): flattened to kappa = 0.5 along axis 5
+    (["--kappa", "0.5", "--axes", "3,4,5"], [1.0, 1.0, 0.5]),
+    (["--kappa", "0", "--axes", "1,2,5"], [1.0, 1.0, 0.0]),   # flat: every edge still drawn
+    (["--inertia", "equal", "--axes", "1,2,3"], [1.0, 1.0, 1.0]),
+])
+def test_scene_draws_the_simulated_body_in_its_proportions(capsys, tmp_path, argv, extent):
+    """The drawn cube is the body simulated (a review: a 1x2x3x4x5 box was drawn as the unit cube): at t ~ 0
+    (t_end 1e-9) the page's points reach sqrt(J_i / max J) along each drawn axis."""
+    page = tmp_path / "s.html"
+    code, out, err = _run(capsys, ["scene", *argv, "--t-end", "1e-9", "--frames", "2", "--output", str(page)])
+    assert code == 0, err
+    assert "32 body points, 80 edges" in out
+    assert np.allclose(_first_frame_extent(page.read_text()), extent, rtol=0, atol=1e-6)
+
+
+def test_scene_body_stretch_gives_the_mass_tensor():
+    """The stretched unit shapes (cube, simplex, sphere: second moments proportional to the identity) have the
+    mass tensor of the body, up to a factor: their second moments sum_p x_pi^2 are proportional to J."""
+    from hyperrotor import Inertia
+    from hyperrotor.classical import ellipsoid_points, hypercube_vertices, simplex_vertices
+    from hyperrotor.cli.scene import body_stretch
+
+    for inertia in (Inertia.box(1.0, [1.0, 2.0, 3.0, 4.0, 5.0]), Inertia.quartet(0.3, axis=2), Inertia.equal(5)):
+        J = np.asarray(inertia.mass_tensor, dtype=float)
+        d = body_stretch(inertia)
+        for pts in (hypercube_vertices(5), simplex_vertices(5)):
+            second = np.sum((pts * d) ** 2, axis=0)
+            assert np.allclose(second / second.max(), J / J.max(), rtol=1e-12, atol=0)
+        sphere = ellipsoid_points(np.ones(5), 20000, rng=1) * d  # (a sample: moments to its ~1% noise)
+        second = np.sum(sphere**2, axis=0)
+        assert np.allclose(second / second.max(), J / J.max(), rtol=0.05, atol=0.02)
+
+
+def test_scene_default_omega_is_one_size_at_every_n(capsys, tmp_path):
+    """The default --omega, 0.1 ... 1 at N = 5, is scaled to max |omega| = 1 for more planes: its page at N = 115
+    was refused ("--omega values too large for this body, max |omega| = 655.5") without any --omega given."""
+    from hyperrotor.cli.scene import default_omega
+
+    assert np.array_equal(default_omega(10), 0.1 * np.arange(1, 11))
+    for n in (3, 6, 45, 6555):
+        w = default_omega(n)
+        assert w.max() == pytest.approx(min(1.0, 0.1 * n)) and np.all(np.diff(w) > 0)
+    page = tmp_path / "d.html"
+    code, out, err = _run(capsys, ["scene", "--N", "115", "--shape", "simplex", "--frames", "2", "--output",
+                                   str(page)])
+    assert code == 0, err
+    assert "116 body points, 6670 edges" in out
+
+
+def test_scene_unreachable_accuracy_names_the_command_options(capsys, tmp_path):
+    """A motion whose accuracy cannot be reached (the 3D quartet over 3e7: round-off) fails in the command's words,
+    not with the library's advice of a larger rtol, which the command has no option for."""
+    code, out, err = _run(capsys, ["scene", "--N", "3", "--t-end", "3e7", "--frames", "2", "--output",
+                                   str(tmp_path / "x.png")])
+    assert code == 1 and out == "" and _files(tmp_path) == []
+    assert "the motion over --t-end 30000000 cannot be integrated to the scene's accuracy" in err
+    assert "choose a shorter --t-end" in err and "Ask for a larger rtol" not in err
+
+
+def test_library_budgets_are_raised_for_the_scene_s_points_and_edges(capsys, tmp_path):
+    """The points and edges are built under the command's memory budget (--max-memory, default 2 GiB), as the
+    motion is: with the library's budgets at 100 kB, the edges of the 8-cube (245 kB) were refused, naming a
+    --max-memory that was not the limit."""
+    with hr.options(max_memory_bytes=1e5, max_output_bytes=1e5):
+        for out in ("c.png", "c.html"):
+            code, _, err = _run(capsys, ["scene", "--N", "8", "--frames", "2", "--output", str(tmp_path / out)])
+            assert code == 0, err
+
+
+def test_a_warning_is_reported_when_raised_even_if_the_work_fails(capsys, tmp_path, monkeypatch):
+    """A warning is one line on stderr as it is raised (the slow-run warning came after the run it announced, and
+    none came when the work failed later)."""
+    import hyperrotor.plotting as plotting
+
+    def failing(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(plotting, "save_projection_frames", failing)
+    with hr.options(slow_run_warning_seconds=1e-9):
+        code, _, err = _run(capsys, ["scene", "--inertia", "box", "--frames", "4", "--output",
+                                     str(tmp_path / "s.png")])
+    assert code == 1
+    lines = err.splitlines()
+    warned = [k for k, line in enumerate(lines) if "warning: UserWarning: simulate: 'splitting8' at rtol" in line
+              or "warning:" in line and "needs about" in line]
+    failed = [k for k, line in enumerate(lines) if "failed: disk full" in line]
+    assert warned and failed and warned[0] < failed[0], err
 
 
 def test_scene_help_mentions_html(capsys):
@@ -335,6 +438,15 @@ MORE = [
     (["scene", "--N", "200", "--shape", "simplex", "--frames", "2", "--inertia", "box", "--max-seconds", "12"],
      ["the step control's probe of", "that --max-seconds 12 s leaves after the drawing's", "raise --max-seconds"]),
     (["scene", "--N", "3", "--inertia", "box", "--max-seconds", "0.5"], ["would take about", "--max-seconds"]),
+    # (session 48, a review of the scene route)
+    (["scene", "--inertia", "equal", "--kappa", "garbage"], ["--kappa applies to --inertia quartet only"]),  # was run
+    (["scene", "--inertia", "box", "--kappa", "7"], ["--kappa applies to --inertia quartet only"]),
+    (["scene", "--lock", "1", "--omega", "1,0,0,0,0,0,0,0,0,0"],  # was zeroed, silently
+     ["--omega gives the planes of the --lock axes [1] nonzero values (omega_12, omega_13, omega_14, omega_15"]),
+    (["scene", "--t-end", "1e-320", "--frames", "10000"],  # was "failed: ValueError: t must be strictly increasing"
+     ["is too short for --frames 10000", "choose a longer --t-end or fewer --frames"]),
+    (["scene", "--N", "3", "--t-end", "1e9", "--max-seconds", "100"],  # the 3D quartet integrates: was not priced
+     ["integration steps", "--max-steps"]),
     (["demo", "--omega=1e100,1e100,1,1,1,1,1,1,1,1"], ["fastest frequency 8.49e+99, rate bound 1.79e+100",
                                                         "budget of 10 min"]),
     (["demo", "--kappa", "1e50"], ["fastest frequency 1.18, rate bound 1.11e+50", "budget"]),
@@ -538,12 +650,13 @@ def test_runtime_failure_exits_1_and_leaves_no_file(capsys, tmp_path, monkeypatc
 
 
 def test_scene_estimate_of_the_40_cube():
+    from hyperrotor._cost_models import SCENE_START_BYTES
     from hyperrotor._pricing import estimate
 
     memory, seconds = (c.amount for c in estimate("scene", shape="cube", N=40, frames=60))
     assert memory >= 2**40 * 40 * 8  # the vertex array alone: 8 TiB
     small, quick = (c.amount for c in estimate("scene", shape="cube", N=5, frames=60))
-    assert small < 2**27 and quick < 10
+    assert small - SCENE_START_BYTES < 2**27 and quick < 10
 
 
 @pytest.mark.slow

@@ -340,6 +340,13 @@ def _dense_matrix(dim: Any, count: Any = 1) -> tuple[Cost, ...]:
 SCENE_COST = {"start": 2.0, "frame_png": 0.15, "frame_gif": 0.1, "frame_html": 0.01, "edge": 1.5e-5,
               "point": 1e-5, "html_edge": 6e-5, "html_point": 2e-5, "html_copies": 14,
               "motion": 2e-7, "cube_edges": 1e-6}
+#: the command's interpreter before its data: Python with NumPy, SciPy, SymPy, numba and matplotlib or plotly
+#: (peak RSS of ``hyperrotor scene --N 4`` 178 MB, of its imports alone 175-200 MB; session 48, a review measured the
+#: memory model against the peak RSS and found it 3.5-8x low: this, and the snapshots' panels below)
+SCENE_START_BYTES = 1.8e8
+#: matplotlib's bytes per edge of one panel (a ``Line3DCollection`` of the projected segments; each of the six
+#: snapshots of a PNG keeps its own: peak RSS over the imports 2.7 kB per edge at N = 12, 13, 14)
+SCENE_EDGE_BYTES = 450
 #: Pillow keeps every RGBA frame of a GIF until the file is written
 GIF_FRAME_BYTES = 540 * 480 * 4
 #: points of the ellipsoid body of ``hyperrotor scene --shape ellipsoid``
@@ -361,16 +368,17 @@ def _scene(shape: str, N: int, frames: Any, format: str = ".png", integrate: boo
            colour: bool = True) -> tuple[Cost, ...]:
     """Memory (bytes, budget ``cli_max_memory``) and wall time (s, ``cli_max_seconds``) of ``hyperrotor scene``.
 
-    Memory: body points ``P x N``, the edge list (about 120 bytes per edge as Python tuples, plus
-    the cube's grouping ``P x (60 + 40 N)``), the attitudes ``K x N^2`` (4 copies) and projections
-    ``K x P x 4`` (2 copies), the drawn segments of one frame, for a GIF every rendered frame, for a
-    page copies of its text (:func:`hyperrotor.classical.scene_html.scene_html_bytes`). Time:
+    Memory: the interpreter with its libraries (:data:`SCENE_START_BYTES`), body points ``P x N``, the edge list
+    (about 120 bytes per edge as Python tuples, plus the cube's grouping ``P x (60 + 40 N)``), the attitudes
+    ``K x N^2`` (4 copies) and projections ``K x P x 4`` (2 copies), the drawn segments of each panel
+    (:data:`SCENE_EDGE_BYTES` per edge: the six snapshots of a PNG, the one panel of a GIF), for a GIF every
+    rendered frame, for a page copies of its text (:func:`hyperrotor.classical.scene_html.scene_html_bytes`). Time:
     :data:`SCENE_COST` (an integrated motion is priced by ``simulate``'s own estimate).
     """
     P, E = scene_size(shape, N)
     K = _f(frames)
     c = SCENE_COST
-    memory = (P * N * 8 + E * 120 + (P * (60 + 40 * N) if shape == "cube" else 0)
+    memory = (SCENE_START_BYTES + P * N * 8 + E * 120 + (P * (60 + 40 * N) if shape == "cube" else 0)
               + 4 * K * N * N * 8 + 2 * K * P * 4 * 8)
     seconds = (c["start"] + K * N * N * c["motion"] * (50 if integrate else 1)
                + (P * N * N * c["cube_edges"] if shape == "cube" else 0))
@@ -382,7 +390,7 @@ def _scene(shape: str, N: int, frames: Any, format: str = ".png", integrate: boo
     else:
         gif = format == ".gif"
         drawn = K if gif else min(6.0, K)
-        memory += E * 500 + (K * GIF_FRAME_BYTES if gif else 0)
+        memory += E * SCENE_EDGE_BYTES * (1.0 if gif else drawn) + (K * GIF_FRAME_BYTES if gif else 0)
         seconds += drawn * (c["frame_gif" if gif else "frame_png"] + E * c["edge"] + P * c["point"])
     what = f"scene --N {N} --shape {shape} ({frames} frames)"
     return (Cost(what, memory, "cli_max_memory", "bytes"), Cost(what, seconds, "cli_max_seconds", "seconds"))

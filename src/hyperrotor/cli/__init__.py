@@ -226,12 +226,14 @@ def _run(argv: list[str], prog: str) -> int:
         if extra:  # (argparse's own message pointed to 'hyperrotor --help', not the subcommand's)
             raise UsageError(f"unrecognized arguments: {' '.join(extra)} (see 'hyperrotor {args.command} --help')")
         # (a Stop raised by the handler inside numba's dispatch comes out as a SystemError: re-raised as the Stop)
-        with warnings.catch_warnings(record=True) as caught, interrupts_as_raised():
-            warnings.simplefilter("default")  # (the warnings reported one line each, after the work)
+        with warnings.catch_warnings(), interrupts_as_raised():
+            warnings.simplefilter("default")
+            # each warning one line on stderr when it is raised: a slow run's warning before the run, not after
+            # it (and not lost when the work fails later)
+            warnings.showwarning = lambda message, category, filename, lineno, file=None, line=None: _say(
+                prog, f"warning: {category.__name__}: {message} ({Path(filename).name}:{lineno})")
             code = int(args._run(args))
         _signals.checkpoint()  # a signal that could not be acted on during the work
-        for w in caught:
-            _say(prog, f"warning: {w.category.__name__}: {w.message} ({Path(w.filename).name}:{w.lineno})")
         sys.stdout.flush()
         return code
     except UsageError as err:

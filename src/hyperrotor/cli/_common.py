@@ -293,8 +293,11 @@ def check_budget(args: argparse.Namespace, what: str, seconds: float, memory: fl
         raise UsageError(f"{what} needs about {size_text(memory)} of memory, over the budget of {size_text(max_m)} "
                          f"(--max-memory, default hr.options['cli_max_memory']){tail}")
     if seconds > max_s:
-        raise UsageError(f"{what} would take about {duration_text(seconds)}, over the budget of "
-                         f"{duration_text(max_s)} (--max-seconds, default hr.options['cli_max_seconds']){tail}")
+        needed, limit = duration_text(seconds), duration_text(max_s)
+        if needed == limit:  # (2.92 s over 2.9 s: "about 2.9 s, over the budget of 2.9 s")
+            needed, limit = f"{seconds:.6g} s", f"{max_s:.6g} s"
+        raise UsageError(f"{what} would take about {needed}, over the budget of {limit} (--max-seconds, default "
+                         f"hr.options['cli_max_seconds']){tail}")
 
 
 class _Steps:

@@ -22,7 +22,7 @@ from hyperrotor.cli._common import (CLI_BUDGETS, UsageError, add_common, bar, bu
 from hyperrotor.cli._files import Outputs, output_file
 from hyperrotor.cli._signals import checkpoint
 
-__all__ = ["configure", "run", "SCENE_SHAPES", "SCENE_INERTIAS", "SCENE_FORMATS"]
+__all__ = ["configure", "run", "default_omega", "body_stretch", "SCENE_SHAPES", "SCENE_INERTIAS", "SCENE_FORMATS"]
 
 
 #: Body points of ``scene --shape``.
@@ -36,19 +36,23 @@ SCENE_FORMATS = (".png", ".gif", ".html")
 def configure(p: argparse.ArgumentParser) -> None:
     p.add_argument("--shape", default="cube", choices=SCENE_SHAPES, type=choice_of(SCENE_SHAPES),
                    help="body points: N-cube vertices (2^N), N-simplex vertices (N+1) or "
-                        f"{_cost_models.SCENE_ELLIPSOID_POINTS} ellipsoid points (default cube)")
+                        f"{_cost_models.SCENE_ELLIPSOID_POINTS} ellipsoid points, stretched along each axis i by "
+                        "sqrt(J_i / max J) (J the body's mass tensor, I_ij = J_i + J_j): the drawn body has the "
+                        "simulated body's proportions (default cube)")
     p.add_argument("--N", default=5, help="dimension of space, >= 3 (default 5)")
     p.add_argument("--inertia", default="quartet", choices=SCENE_INERTIAS, type=choice_of(SCENE_INERTIAS),
                    help="quartet: the paper's eqs. 84-85 (any N), equal: eq. 82, box: solid hyper-box of the "
                         "--sides (generic, no closed form) (default quartet)")
-    p.add_argument("--kappa", default=0.5, help="kappa of the quartet inertia (default 0.5)")
+    p.add_argument("--kappa", default=None, help="kappa of the quartet inertia (default 0.5)")
     p.add_argument("--axis", default=None, help="distinguished axis of the quartet inertia (default N)")
     p.add_argument("--sides", default=None, help="comma-separated N positive side lengths of the box inertia "
                                                   "(default 1,2,...,N)")
     p.add_argument("--omega", default=None,
                    help="comma-separated initial angular velocity, N(N-1)/2 components in plane order "
-                        "(default 0.1, 0.2, ...; write --omega=-1,... for a negative first value)")
-    p.add_argument("--lock", default="", help="comma-separated axes whose rotation planes start (and stay) at rest")
+                        "(default 0.1, 0.2, ..., 1 for N = 5, and 10/n times 0.1, 0.2, ... for n = N(N-1)/2 > 10 "
+                        "planes: max |omega| = 1; write --omega=-1,... for a negative first value)")
+    p.add_argument("--lock", default="", help="comma-separated axes whose rotation planes start (and stay) at rest "
+                                             "(the default --omega is 0 there; a given --omega must be)")
     p.add_argument("--axes", default="1,2,3", help="the three space axes drawn (default 1,2,3)")
     p.add_argument("--colour-axis", "--color-axis", default=None, dest="colour_axis", metavar="K",
                    help="space axis whose coordinate colours the points (colour bar); default the first axis "
@@ -73,6 +77,10 @@ def _scene_check(args: argparse.Namespace):
     N = integer(args.N, "--N", minimum=3, maximum=int(options["max_dimension"]))  # (the library's limit of N)
     frames = integer(args.frames, "--frames", minimum=2)
     t_end = usage(_validate.positive, "--t-end", number(args.t_end, "--t-end"))
+    if frames <= 2**24 and not np.all(np.diff(np.linspace(0.0, t_end, frames)) > 0):  # (larger: refused below)
+        raise UsageError(f"--t-end {num(t_end)} is too short for --frames {frames}: the frame times would not be "
+                         f"distinct floating-point numbers (spacing {t_end / (frames - 1):.3g}); choose a longer "
+                         "--t-end or fewer --frames")
     n = n_planes(N) if N < 10**5 else N * (N - 1) // 2
     axes = int_list(args.axes, "--axes")
     if len(axes) != 3 or len(set(axes)) != 3 or not all(1 <= k <= N for k in axes):
@@ -91,10 +99,12 @@ def _scene_check(args: argparse.Namespace):
         raise UsageError(f"--lock axes must be in 1..{N}, got {_validate.fmt(bad)}")
     kappa, axis = None, None
     if args.inertia == "quartet":
-        kappa = number(args.kappa, "--kappa")
+        kappa = 0.5 if args.kappa is None else number(args.kappa, "--kappa")
         axis = N if args.axis is None else integer(args.axis, "--axis", minimum=1, maximum=N)
-    elif args.axis is not None:
-        raise UsageError(f"--axis applies to --inertia quartet only, got --inertia {args.inertia}")
+    else:
+        for flag, value in (("--axis", args.axis), ("--kappa", args.kappa)):
+            if value is not None:
+                raise UsageError(f"{flag} applies to --inertia quartet only, got --inertia {args.inertia}")
     if args.sides is not None and args.inertia != "box":
         raise UsageError(f"--sides applies to --inertia box only, got --inertia {args.inertia}")
     fmt = next((f for f in SCENE_FORMATS if args.output.lower().endswith(f)), ".png")  # others: refused later
@@ -117,21 +127,42 @@ def _scene_check(args: argparse.Namespace):
         if np.any(sides < 1e-50) or np.any(sides > 1e50):  # the moments are their squares: they (and L) must stay
             raise UsageError(f"--sides values must be in [1e-50, 1e50] (the moments are their squares; "  # normal
                              f"omega(t) does not depend on the scale), got {_validate.fmt(sides.tolist())}")
-    omega = 0.1 * np.arange(1, n + 1) if args.omega is None else number_list(args.omega, "--omega")
+    omega = default_omega(n) if args.omega is None else number_list(args.omega, "--omega")
     if omega.shape != (n,):
         raise UsageError(f"--omega needs N(N-1)/2 = {n} components for N = {N}, got {omega.size}")
-    omega = np.where([any(k in p for k in lock) for p in planes(N)], 0.0, omega)
+    locked = np.array([any(k in p for k in lock) for p in planes(N)], dtype=bool)
+    if args.omega is not None and np.any(omega[locked] != 0):
+        bad = [f"omega_{i}{j}" if N < 10 else f"omega_({i},{j})" for (i, j), b in zip(planes(N), locked) if b]
+        raise UsageError(f"--omega gives the planes of the --lock axes {_validate.fmt(lock)} nonzero values "
+                         f"({', '.join(bad[:6])}{', ...' if len(bad) > 6 else ''} must be 0: those planes start and "
+                         "stay at rest); give 0 there, or leave out --lock")
+    omega = np.where(locked, 0.0, omega)
     max_steps = options["max_steps"] if args.max_steps is None else integer(args.max_steps, "--max-steps", minimum=1)
-    return {"N": N, "frames": frames, "integrate": args.inertia == "box" or bool(lock), "max_steps": max_steps,
+    return {"N": N, "frames": frames, "max_steps": max_steps,
             "t_end": t_end, "axes": axes, "colour_axis": colour_axis or None,
             "sides": sides, "omega": omega, "format": fmt, "seconds": seconds, "memory": memory, "kappa": kappa,
             "axis": axis}
 
 
+def default_omega(n: int) -> np.ndarray:
+    """The default ``--omega`` of ``n`` planes: ``0.1, 0.2, ..., 0.1 n``, scaled to ``max |omega| = 1`` beyond ten
+    planes (N > 5: the angular velocities, and the page's invariants, stay of one size at every N)."""
+    return 0.1 * np.arange(1, n + 1) * min(1.0, 10.0 / n)
+
+
+def body_stretch(inertia) -> np.ndarray:
+    r"""The stretch ``sqrt(J_i / max J)`` along each axis that gives the drawn body (cube, simplex, sphere: a
+    mass tensor proportional to the identity) the simulated body's mass tensor :math:`J` up to a factor
+    (:math:`I_{ij} = J_i + J_j`): the box of ``--sides`` in its proportions, the quartet flattened
+    (``kappa < 1``) or stretched along its axis, the equal body as it is."""
+    J = np.asarray(inertia.mass_tensor, dtype=float)  # (every --inertia is a physical body: J exists, J >= 0)
+    return np.sqrt(J / J.max())
+
+
 def run(args: argparse.Namespace) -> int:
     from hyperrotor import Inertia, RigidBody
-    from hyperrotor.classical import (Scene, body_edges, ellipsoid_points, hypercube_vertices,
-                                      simplex_vertices)
+    from hyperrotor.classical import (Scene, UnreachableAccuracyError, body_edges, ellipsoid_points,
+                                      hypercube_vertices, simplex_vertices)
 
     s = _scene_check(args)
     fmt = s["format"]
@@ -157,31 +188,35 @@ def run(args: argparse.Namespace) -> int:
             check_invariants_fit("--omega", s["omega"], lambda w: (body.energy(w), body.casimirs(w)),
                                  body_options={"quartet": "--kappa", "box": "--sides"}.get(args.inertia, ""))
         # --- work ------------------------------------------------------------------
-        points = {"cube": lambda: hypercube_vertices(N),
-                  "simplex": lambda: simplex_vertices(N),
-                  "ellipsoid": lambda: ellipsoid_points(np.linspace(1.0, 0.4, N), _cost_models.SCENE_ELLIPSOID_POINTS,
-                                                        rng=0)}[args.shape]()
+        kind = "points" if args.shape == "ellipsoid" else args.shape
         t = np.linspace(0.0, s["t_end"], s["frames"])
         proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
         observables = ("projection", "omega") if fmt == ".html" else ("projection",)  # the page shows invariants
         with options(max_memory_bytes=memory, max_output_bytes=memory):
+            points = {"cube": lambda: hypercube_vertices(N),
+                      "simplex": lambda: simplex_vertices(N),
+                      "ellipsoid": lambda: ellipsoid_points(np.ones(N), _cost_models.SCENE_ELLIPSOID_POINTS,
+                                                            rng=0)}[args.shape]()
+            edges = body_edges(points, kind)  # (of the unstretched shape: a flat body's vertices coincide)
+            points *= body_stretch(inertia)
             scene = Scene(body, s["omega"], t, observables=observables, points=points, axes=proj_axes,
                           progress=args.progress)  # a bar while an integrated motion is computed
         with options(max_steps=s["max_steps"], max_memory_bytes=memory, max_output_bytes=memory):
             try:
-                if s["integrate"]:
-                    _check_motion(args, s, scene)
+                _check_motion(args, s, scene)
                 res = scene.evaluate()
             except BudgetError as err:  # the library's advice names Python options; name the CLI's
                 raise UsageError(_budget_message(err, args)) from None
+            except UnreachableAccuracyError as err:  # (its advice, a larger rtol, is no option of the command)
+                raise RuntimeError(f"the motion over --t-end {num(s['t_end'])} cannot be integrated to the scene's "
+                                   f"accuracy: {str(err).split('. Ask for')[0]}; choose a shorter --t-end") from None
         checkpoint()
-        kind = "points" if args.shape == "ellipsoid" else args.shape
-        edges = body_edges(points, kind)
         title = (f"{args.shape} in {N}D, {args.inertia} inertia: space axes {', '.join(map(str, s['axes']))} drawn"
                  + (f", colour = x{s['colour_axis']}" if s["colour_axis"] else ""))
         if fmt == ".html":
-            with options(scene_html_max_bytes=max(float(options["scene_html_max_bytes"]), s["memory"])):
-                scene.to_html(out.tmp, edges=kind, title=title, result=res)
+            with options(scene_html_max_bytes=max(float(options["scene_html_max_bytes"]), s["memory"]),
+                         max_memory_bytes=memory, max_output_bytes=memory):
+                scene.to_html(out.tmp, edges=edges, title=title, result=res)
         else:
             _draw(args, s, out.tmp, res, edges, title)
         outs.commit()
@@ -208,9 +243,10 @@ def _draw(args, s: dict, path, res, edges, title: str) -> None:
 def _check_motion(args: argparse.Namespace, s: dict, scene) -> None:
     """Price the integrated motion (:func:`hyperrotor.classical.simulate.estimate_cost`) before it runs.
 
-    Only when the scene's route integrates (:func:`hyperrotor.classical.scenes.scene_route`, decided without any
-    work): a locked or special body whose route is a closed form (``reduced:axes(2,3,4,5)+closed-form:quartet``)
-    costs no integration steps, and a locked body's run is priced on the reduced body it integrates. Adds the
+    Every scene comes here; only one whose route integrates is priced
+    (:func:`hyperrotor.classical.scenes.scene_route`, decided without any work; the 3D quartet integrates): a
+    locked or special body whose route is a closed form (``reduced:axes(2,3,4,5)+closed-form:quartet``) costs no
+    integration steps, and a locked body's run is priced on the reduced body it integrates. Adds the
     estimated seconds to the drawing's and checks both budgets (--max-seconds, --max-steps). With ``rtol`` the
     library probes a short leading window (milliseconds for small bodies; held to --max-steps and to the seconds
     the drawing leaves of --max-seconds: at N = 200 each of its steps takes about a second; the first call also
