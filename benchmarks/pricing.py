@@ -76,9 +76,16 @@ def cases():
     for d in (500, 1000, 2000):
         out.append(("dense_diagonalization", f"dim={d}", dict(dim=d), lambda d=d: _herm(d), hq.spectrum))
     for l in (100, 200, 400):
-        out.append(("real_form", f"l={l}", dict(dim=2 * l + 1), lambda l=l: hq.irrep(3, (l,)), hq.real_form))
-        out.append(("dense_representation", f"intertwiner l={l}", dict(dim=2 * l + 1),
+        out.append(("real_form", f"l={l}", dict(dim=2 * l + 1, planes=3), lambda l=l: hq.irrep(3, (l,)),
+                    hq.real_form))
+        out.append(("dense_representation", f"intertwiner l={l}", dict(dim=2 * l + 1, planes=3),
                     lambda l=l: hq.irrep(3, (l,)), lambda a: hq.intertwiner(a, a)))
+    for N, w in ((8, (3, 1, 0, 0)), (20, (2,) + (0,) * 9), (30, (2,) + (0,) * 14)):  # many planes (review, s48)
+        dim, n = hq.weyl_dimension(N, w), N * (N - 1) // 2
+        out.append(("real_form", f"so({N}) {w[:4]}..., dim {dim}", dict(dim=dim, planes=n),
+                    lambda N=N, w=w: hq.irrep(N, w), hq.real_form))
+        out.append(("dense_representation", f"intertwiner so({N}) {w[:4]}..., dim {dim}", dict(dim=dim, planes=n),
+                    lambda N=N, w=w: hq.irrep(N, w), lambda a: hq.intertwiner(a, a)))
     for N in (10, 14, 18):
         out.append(("spinor_rep", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hq.spinor_rep(N)))
     for l in (50, 100, 200):

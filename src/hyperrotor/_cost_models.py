@@ -53,8 +53,9 @@ _SYMPY_S = 2.0e-5
 _PAIR_S = 1.3e-6
 #: seconds per dim^3 of the dense products building the spinor generators
 _DENSE_S = 2.0e-9
-#: seconds per dim^2 of real_form (measured: dominated by dim^2 work up to dim ~1000)
-_REAL_FORM_S = 7.0e-6
+#: seconds per dim^2 of real_form (its per-plane Python and sparse work; 7e-6 until session 48, when the dense
+#: generators of its residual check, n_planes dim^3, became sparse products: so(3) l = 100 took 0.16 -> 0.07 s)
+_REAL_FORM_S = 1.5e-6
 #: seconds per term of the exact harmonic basis (a Fraction step and a SymPy monomial; measured
 #: N = 3..8, l = 4..60: 1.1e-4 to 2.9e-4, growing with l as the integer coefficients grow)
 _HARMONIC_TERM_S = 1.4e-4
@@ -179,21 +180,35 @@ def _sector_spectra(dim: Any, real: bool = True) -> tuple[Cost, ...]:
             _seconds(f"diagonalizing the dense sector blocks (the largest {dim} x {dim})", 4.0 * flops * _EIGH_S))
 
 
+#: seconds per plane and dim^3 of the intertwiner's orthogonalisation (one lowering operator per positive root and
+#: column against the columns so far) and of the real form's conjugation of each plane by the dense change of basis
+#: (a review, session 48: intertwiner(irrep(30, (2, 0, ...))) 20 s and its real form 35 s against estimates of
+#: 0.4 s and 1.5 s; measured with one BLAS thread after the residual's dense generators became sparse products:
+#: so(8) (3, 1, 0, 0), dim 567, 1.7 s and 3.3 s; so(30) (2, 0, ...), dim 464, 6.2 s and 14.8 s)
+_PLANE_DIM3_S = 1.5e-10
+_REAL_FORM_PLANE_DIM3_S = 2.5e-10
+
+
 @model("real_form")
-def _real_form(dim: Any) -> tuple[Cost, ...]:
-    # a dense change of basis (dim x dim complex, a few copies) and a per-plane dense conjugation
+def _real_form(dim: Any, planes: Any = 3) -> tuple[Cost, ...]:
+    # a dense change of basis (dim x dim complex, a few copies), the intertwiner that gives it (the model
+    # "dense_representation") and a per-plane dense conjugation
     d = _f(dim)
     return (_memory(f"dense {dim} x {dim} complex matrices (the change of basis and its copies)", 128.0 * d * d),
-            _seconds(f"the real form of a representation of dimension {dim}", _REAL_FORM_S * d * d))
+            _seconds(f"the real form of a representation of dimension {dim} ({planes} planes)",
+                     _REAL_FORM_S * d * d + 50.0 * d ** 3 * _EIGH_S
+                     + (_PLANE_DIM3_S + _REAL_FORM_PLANE_DIM3_S) * _f(planes) * d ** 3))
 
 
 @model("dense_representation", "use irrep(N, highest_weight) of a smaller dimension")
-def _dense_representation(dim: Any, copies: Any = 4) -> tuple[Cost, ...]:
-    # dense products, eigendecompositions or null spaces of dim x dim complex matrices
+def _dense_representation(dim: Any, copies: Any = 4, planes: Any = 0) -> tuple[Cost, ...]:
+    # dense products, eigendecompositions or null spaces of dim x dim complex matrices; an intertwiner also one
+    # orthogonalisation per plane (``planes``: its positive roots, as many as planes up to a factor 2)
     d = _f(dim)
     return (
         _memory(f"dense {dim} x {dim} complex matrices ({copies} of them)", 16.0 * _f(copies) * d * d),
-        _seconds(f"dense O(dim^3) linear algebra at dimension {dim}", 50.0 * d ** 3 * _EIGH_S),
+        _seconds(f"dense O(dim^3) linear algebra at dimension {dim}" + (f" ({planes} planes)" if planes else ""),
+                 50.0 * d ** 3 * _EIGH_S + _PLANE_DIM3_S * _f(planes) * d ** 3),
     )
 
 

@@ -327,3 +327,69 @@ def test_pi_rotation_of_a_large_so3_irrep_is_built_without_dense_work():
     assert np.array_equal(D[2].perm, rep.dim - 1 - a)
     assert np.array_equal(D[2].phase, np.where(a % 2 == 0, 1.0, -1.0))
     assert np.array_equal(D[1].perm, a) and np.array_equal(D[1].phase, np.where(a % 2 == 0, -1.0, 1.0))
+
+
+def test_product_ratio_does_not_overflow_and_rounds_like_the_plain_product():
+    """The matrix elements' ratios of ~N factors of size l^2 overflowed for so(N >= 100) (inf / inf = NaN): carried
+    as mantissa and power of two, they match the exact ratio, and the plain product wherever that is finite."""
+    from hyperrotor.quantum.gelfand_tsetlin import _product_ratio
+
+    g = np.random.default_rng(3)
+    for scale in (1.0, 1e3, 1e8):  # the plain products: ~1e+1 ... 1e+130 ... inf
+        a = np.rint(g.uniform(1, 2, (5, 40)) * scale)
+        b = np.rint(g.uniform(1, 2, (5, 38)) * scale)
+        got = _product_ratio([a[:, :20], a[:, 20:]], [b], exact=False)
+        exact = [np.prod([Fraction(int(x)) for x in ra]) / np.prod([Fraction(int(x)) for x in rb])
+                 for ra, rb in zip(a, b)]
+        assert np.allclose(got, [float(e) for e in exact], rtol=100 * np.finfo(float).eps, atol=0)
+        with np.errstate(over="ignore", invalid="ignore"):
+            plain = np.prod(a, axis=1) / np.prod(b, axis=1)
+        finite = np.isfinite(plain)
+        assert np.array_equal(got[finite], plain[finite])
+        assert scale < 1e8 or not finite.any()  # (the largest scale is the case that overflowed)
+
+
+@pytest.mark.slow
+def test_vector_irrep_of_so100_is_finite_with_its_casimir():
+    """irrep(100, (1, 0, ...)) failed ("generator of plane (99, 100) must be a finite numeric matrix"): its Casimir
+    sum_P X_P^2 is -(N - 1) on the vector irrep, every plane's generator finite."""
+    N = 100
+    rep = irrep(N, (1,) + (0,) * (N // 2 - 1))
+    assert rep.dim == N
+    C = sps.csr_matrix((N, N))
+    for X in rep.generators(format="csr").values():
+        assert np.all(np.isfinite(X.data))
+        C = C + X @ X
+    assert np.allclose(C.toarray(), -(N - 1) * np.eye(N), rtol=0, atol=scaled_tol(N - 1, dim=N))
+
+
+def test_gt_index_is_priced_like_gt_patterns():
+    """gt_index listed every pattern without a size check (2e6 patterns for a weight whose gt_patterns is refused;
+    a TypeError deep in NumPy for 10**30)."""
+    for m in ((10**6,), (10**30,)):
+        with pytest.raises(ValueError, match="max_dim"):
+            gt_index(3, m, (m[0], 0))
+
+
+@pytest.mark.parametrize("weight", [{0: 1}, {1}, np.array(1), np.array([[1]])])
+def test_highest_weight_that_is_no_sequence_is_refused(weight):
+    """A dict gave its keys ({0: 1} built the trivial irrep), a set its members in no order; a 0-d array raised a
+    bare "len() of unsized object"."""
+    with pytest.raises(TypeError, match=r"highest_weight must be a sequence of 1 numbers for so\(3\)"):
+        irrep(3, weight)
+
+
+def test_real_form_and_intertwiner_are_priced_with_their_planes():
+    """Their time grows like planes x dim^3 (a review: so(30) (2, 0, ...), dim 464, real form 35 s against an
+    estimate of 1.5 s): with a budget between the old estimate and the new one, both are refused before work."""
+    import hyperrotor.quantum as hq
+    from hyperrotor._pricing import estimate
+
+    rep = irrep(30, (2,) + (0,) * 14)
+    seconds = sum(c.amount for c in estimate("real_form", dim=rep.dim, planes=len(rep.planes)) if c.unit == "seconds")
+    assert seconds > 10 * sum(c.amount for c in estimate("real_form", dim=rep.dim, planes=3) if c.unit == "seconds")
+    with hr.options(max_seconds=3.0):
+        with pytest.raises(ValueError, match="435 planes"):
+            hq.real_form(rep)
+        with pytest.raises(ValueError, match="435 planes"):
+            hq.intertwiner(rep, rep)

@@ -88,7 +88,7 @@ def intertwiner(a: Representation, b: Representation, *, rtol: float | None = No
     rtol = options["quantum_intertwiner_rtol"] if rtol is None else _validate.positive("rtol", rtol)
     if a.dim != b.dim:
         raise ValueError(f"no intertwiner: dimensions differ ({a.dim} vs {b.dim})")
-    _pricing.check("dense_representation", dim=max(a.dim, b.dim))
+    _pricing.check("dense_representation", dim=max(a.dim, b.dim), planes=len(a.planes))
     pos = positive_roots(a.N)
     ra = [a.ladder(r, format="csr") for r in pos]
     rb = [b.ladder(r, format="csr") for r in pos]
@@ -136,8 +136,8 @@ def intertwiner(a: Representation, b: Representation, *, rtol: float | None = No
     T = Y @ Q.conj().T
     T *= np.sqrt(d) / np.linalg.norm(T)
     ga, gb = a.generators(format="csr"), b.generators(format="csr")
-    res = max(
-        float(np.abs(T @ ga[p].toarray() - gb[p].toarray() @ T).max()) for p in a.planes
+    res = max(  # (sparse times dense: a dense generator made this n_planes dim^3, 20 s for so(30) (2, 0, ...))
+        float(np.abs(T @ ga[p] - gb[p] @ T).max()) for p in a.planes
     )
     scale = max(1.0, max(float(abs(M).max()) for M in ga.values()) if a.planes else 1.0)
     if res > 1e-6 * scale * max(1.0, np.abs(T).max()):
@@ -176,7 +176,7 @@ def real_form(rep: Representation, *, rtol: float | None = None) -> Representati
     rtol = options["quantum_real_form_rtol"] if rtol is None else _validate.tolerance("rtol", rtol)
     if rep.is_real:
         return rep
-    _pricing.check("real_form", dim=rep.dim)
+    _pricing.check("real_form", dim=rep.dim, planes=len(rep.planes))
     gens_in = rep.generators(format="csr")
     conj = Representation(rep.N, {p: M.conj() for p, M in gens_in.items()}, name=f"conjugate of {rep.name}")
     try:
@@ -198,7 +198,7 @@ def real_form(rep: Representation, *, rtol: float | None = None) -> Representati
     drop = options["quantum_real_form_drop"]
     gens = {}
     for p, X in gens_in.items():
-        Y = W.conj().T @ X.toarray() @ W
+        Y = W.conj().T @ (X @ W)  # (one dense product per plane: n_planes dim^3, the model "real_form")
         if np.abs(Y.imag).max() > rtol * max(1.0, np.abs(Y).max()):
             raise ArithmeticError(f"real form failed: imaginary part {np.abs(Y.imag).max():.2e} (internal error)")
         gens[p] = sps.csr_matrix(exact_antisymmetric(Y.real, drop))

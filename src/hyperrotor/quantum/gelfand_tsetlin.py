@@ -247,6 +247,7 @@ def gt_index(N: int, highest_weight: Any, pattern: Any) -> Any:
     """
     N = check_dimension(N)
     m = check_highest_weight(N, highest_weight)
+    _check_max_dim(N, m, DEFAULT_MAX_DIM, entry="gt_patterns")  # (it lists them all: priced like gt_patterns)
     P = patterns(N, m)
     Q = _validate.finite_array("pattern", pattern)  # (complex, booleans, text, ragged: refused by name)
     single = Q.ndim == 1
@@ -276,6 +277,27 @@ def _lvals(P: np.ndarray, N: int, k: int, offs) -> np.ndarray:
     return P[:, a:b] + shift
 
 
+def _product_ratio(num: list, den: list, exact: bool) -> np.ndarray:
+    """Per row, the product of every column of the ``num`` arrays over that of the ``den`` arrays. Exact
+    (Fractions): as it is. Floats: each product carried as a mantissa and a power of two (:func:`numpy.frexp` after
+    every factor, exact), so that the about N factors of size ~l^2 of so(N >= 100) do not overflow (their plain
+    product was inf, and the matrix elements NaN); the same roundings as the plain product where it is finite."""
+    if exact:
+        top = np.prod(np.concatenate(num, axis=1), axis=1)
+        return top / np.prod(np.concatenate(den, axis=1), axis=1)
+
+    def mantissa_exponent(cols: np.ndarray):
+        mant, expo = np.ones(cols.shape[0]), np.zeros(cols.shape[0], dtype=np.int64)
+        for c in range(cols.shape[1]):
+            mant, e = np.frexp(mant * cols[:, c])
+            expo += e
+        return mant, expo
+
+    (mn, en), (md, ed) = (mantissa_exponent(np.concatenate(x, axis=1)) for x in (num, den))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.ldexp(mn / md, en - ed)
+
+
 def _chain_elements(P: np.ndarray, N: int, k: int, index: PatternIndex, Pf: np.ndarray, exact: bool):
     """Raising matrix elements (rows, cols, values) and the diagonal C of X_(k,k+1)."""
     offs = _row_offsets(N)
@@ -297,16 +319,15 @@ def _chain_elements(P: np.ndarray, N: int, k: int, index: PatternIndex, Pf: np.n
         others = np.delete(lk[ok], j, axis=1)
         Lb, La = lb[ok], la[ok]
         if k % 2 == 0:  # A-type, k = 2p
-            num = np.prod((Lb - l - one) * (Lb + l), axis=1) * np.prod((La - l - one) * (La + l), axis=1)
-            den = np.prod((others * others - l * l) * (others * others - (l + one) * (l + one)), axis=1)
-            ratio = num / den
+            num = [(Lb - l - one) * (Lb + l), (La - l - one) * (La + l)]
+            den = [(others * others - l * l) * (others * others - (l + one) * (l + one))]
             factor = Fraction(1, 2) if exact else 0.5
         else:  # B-type, k = 2p+1
             l2 = l * l
-            num = np.prod(Lb * Lb - l2, axis=1) * np.prod(La * La - l2, axis=1)
-            den = l2[:, 0] * (4 * l2[:, 0] - one) * np.prod((others * others - l2) * ((others - one) * (others - one) - l2), axis=1)
-            ratio = num / den
+            num = [Lb * Lb - l2, La * La - l2]
+            den = [l2 * (4 * l2 - one), (others * others - l2) * ((others - one) * (others - one) - l2)]
             factor = one
+        ratio = _product_ratio(num, den, exact)
         if exact:
             v = [factor * sp.sqrt(sp.Rational(abs(r).numerator, abs(r).denominator)) for r in ratio]
         else:
@@ -316,13 +337,13 @@ def _chain_elements(P: np.ndarray, N: int, k: int, index: PatternIndex, Pf: np.n
         vals.append(v)
     diag = None
     if k % 2 == 1:
-        num = np.prod(lb, axis=1) * np.prod(la, axis=1)
-        den = np.prod(lk * (lk - one), axis=1)
         if exact:
+            num = np.prod(lb, axis=1) * np.prod(la, axis=1)
+            den = np.prod(lk * (lk - one), axis=1)
             diag = [Fraction(0) if d == 0 else n_ / d for n_, d in zip(num, den)]
         else:
-            with np.errstate(divide="ignore", invalid="ignore"):
-                diag = np.where(den == 0, 0.0, num / np.where(den == 0, 1.0, den))
+            zero = np.any(lk * (lk - one) == 0, axis=1)
+            diag = np.where(zero, 0.0, _product_ratio([lb, la], [lk * (lk - one)], False))
     return rows, cols, vals, diag
 
 

@@ -32,7 +32,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 from numbers import Integral, Rational
-from collections.abc import Mapping
+from collections.abc import Mapping, Set
 from typing import Any, Sequence
 
 import numpy as np
@@ -106,9 +106,13 @@ def check_highest_weight(N: int, highest_weight: Any) -> tuple[Fraction, ...]:
     """
     N = check_dimension(N)
     n = N // 2
-    if isinstance(highest_weight, (str, bytes)) or not hasattr(highest_weight, "__len__"):
+    if (isinstance(highest_weight, (str, bytes, Mapping, Set)) or not hasattr(highest_weight, "__len__")
+            or np.ndim(highest_weight) != 1 and isinstance(highest_weight, np.ndarray)):
+        # (a dict or a set gave its keys or members in no promised order: {0: 1} was the trivial irrep; a 0-d
+        # array raised a bare "len() of unsized object")
         raise TypeError(
-            f"highest_weight must be a sequence of {n} numbers for so({N}), got {highest_weight!r}"
+            f"highest_weight must be a sequence of {n} numbers for so({N}) (a tuple, list or 1-D array), got "
+            f"{_validate.fmt(highest_weight)}"
         )
     if len(highest_weight) != n:
         raise ValueError(
