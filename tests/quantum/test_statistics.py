@@ -7,6 +7,7 @@ here) and n_eff = n / 2 (neighbouring ratios share a spacing); we allow 5 of the
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -136,3 +137,25 @@ def test_errors():
         unfold(np.arange(10.0), degree=0)
     with pytest.raises(ValueError, match="coincide"):
         spacings(np.ones(5), unfolded=True)
+
+
+def test_one_degenerate_level_split_by_round_off_has_no_statistics():
+    """A sector whose levels are one degenerate level (the spherical top: every level of a sector equal) gave
+    <r> = 0.23 and a KS distance from its round-off, silently; a constant offset that leaves the spacings below the
+    levels' resolution likewise (accepted at 1e8 while refused at 1e7)."""
+    import hyperrotor.quantum as hq
+
+    levels = hq.sector_spectra(hq.irrep(3, (60,)), [1.0, 1.0, 1.0])["A"]
+    assert np.ptp(levels) > 0  # (round-off: not exactly equal, which the old check needed)
+    for call in (spacing_ratio, lambda E: hq.spacing_distribution(E), unfold):
+        with pytest.raises(ValueError, match=r"all 30 spacings of levels vanish"):
+            call(levels)
+    E = sample_spectrum("goe", 400, rng=3) * 1e-4
+    with warnings.catch_warnings():  # (an accidental vanishing spacing or two at this offset: a warning)
+        warnings.simplefilter("ignore", RuntimeWarning)
+        assert 0.4 < spacing_ratio(E + 1e6) < 0.7
+    for offset in (1e7, 1e8):  # (a quarter or more, then all, of the spacings below 1e-12 max|E|)
+        with pytest.raises(ValueError, match="spacings of levels vanish"):
+            spacing_ratio(E + offset)
+        with pytest.raises(ValueError, match="spacings of levels vanish"):
+            unfold(E + offset)

@@ -140,7 +140,8 @@ def spacing_ratio(levels: Any, *, return_error: bool = False):
         exact repeats, or the round-off splitting of a degenerate level by ``eigh``,
         ~``1e-15 * dim * max|E|``): forced degeneracies
         (e.g. the multiplets of a spinor irrep, or several sectors' levels merged)
-        would pull the mean towards 0. Fewer vanishing spacings give a
+        would pull the mean towards 0; all of them: one degenerate level, whose
+        round-off splitting has no statistics. Fewer vanishing spacings give a
         ``RuntimeWarning`` (accidental degeneracies: each makes a ratio 0).
 
     Examples
@@ -166,8 +167,12 @@ def _check_degeneracies(levels: Any) -> None:
     tol = _ZERO_SPACING_RTOL * float(np.abs(E).max())
     zero = int(np.count_nonzero(np.diff(E) <= tol))
     n = E.size - 1
-    if not zero or zero == n:  # none, or all (refused by spacing_ratio with its own message)
+    if not zero:
         return
+    if zero == n:  # (returned silently before: a degenerate sector's round-off splitting gave <r> = 0.23, a review)
+        raise ValueError(f"all {n} spacings of levels vanish (<= 1e-12 * max|E| = {tol:.2e}): one degenerate level, "
+                         f"split only by round-off, has no level statistics (e.g. a sector of the spherical top); "
+                         f"pass the levels of a sector whose levels are distinct")
     text = (f"{zero} of the {n} spacings of levels vanish (<= 1e-12 * max|E| = {tol:.2e}), "
             f"and each gives a spacing ratio of 0")
     if 4 * zero >= n:
@@ -221,13 +226,20 @@ def unfold(levels: Any, *, degree: int = 7) -> np.ndarray:
     -------
     ndarray
         The smooth staircase at each level, sorted.
+
+    Raises
+    ------
+    ValueError
+        As :func:`spacing_ratio`, when a quarter or more of the spacings vanish (all of them: one degenerate
+        level split by round-off); fewer give a ``RuntimeWarning``.
     """
     degree = _validate.integer("degree", degree, minimum=1, maximum=50)
     E = _levels(levels, degree + 2)
+    _check_degeneracies(E)  # (as spacing_ratio: forced degeneracies, or round-off of one level, are no statistics)
     lo, hi = E[0], E[-1]
     if not hi > lo:
         raise ValueError(f"all levels coincide (every level is {_validate.fmt(lo)}): no staircase to unfold")
-    distinct = int(np.count_nonzero(np.diff(E))) + 1
+    distinct = int(np.count_nonzero(np.diff(E) > _ZERO_SPACING_RTOL * float(np.abs(E).max()))) + 1
     if distinct <= degree:
         raise ValueError(f"levels has {distinct} distinct values; a staircase fit of degree {degree} needs at "
                          f"least {degree + 1} (lower degree=)")
