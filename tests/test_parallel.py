@@ -136,3 +136,43 @@ def test_interrupt_or_error_in_a_chunk_propagates(workers, exc):
     rows = np.arange(40.0).reshape(20, 2)
     with pytest.raises(exc, match="chunk failed"):
         _parallel.map_rows(failing_rows, rows, args=(10.0, exc), chunk_size=3, workers=workers, progress=False)
+
+
+def test_a_closed_client_is_refused_at_the_door():
+    """A closed client: refused by name before any work (simulate's ensemble ran its in-process step check for 5 min
+    before dask's ClosedClientError; lyapunov counted it as 1 worker thread)."""
+    dd = pytest.importorskip("dask.distributed")
+    import hyperrotor as hr
+    import hyperrotor.quantum as hq
+
+    with dd.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as cluster:
+        closed = dd.Client(cluster)
+        closed.close()
+    body = np.linspace(1.0, 2.0, 10)
+    calls = [lambda: hr.simulate(body, np.ones((50, 10)), np.linspace(0.0, 50.0, 3), client=closed),
+             lambda: hr.lyapunov(body, np.ones((4, 10)), 1.0, client=closed),
+             lambda: hq.SectorPropagator(hq.rotor_hamiltonian(hq.irrep(3, (2,)), [1.0, 2.0, 3.0]), client=closed),
+             lambda: _parallel.map_rows(logistic_rows, np.ones((4, 3)), args=(2,), client=closed)]
+    for call in calls:
+        with pytest.raises(ValueError, match="client is a dask client that is closed"):
+            call()
+    with pytest.raises(TypeError, match="client must be a dask.distributed.Client"):
+        hq.SectorPropagator(hq.rotor_hamiltonian(hq.irrep(3, (2,)), [1.0, 2.0, 3.0]), client=3)  # (was: at first use)
+
+
+def test_a_propagator_built_with_a_client_pickles(client):
+    """Pickled without its client (a propagator built with client= did not pickle); the copy evolves in-process to
+    the same states."""
+    import pickle
+
+    import hyperrotor.quantum as hq
+
+    H = hq.rotor_hamiltonian(hq.irrep(3, (6,)), [1.0, 2.0, 3.0])
+    U = hq.SectorPropagator(H, client=client)
+    copy = pickle.loads(pickle.dumps(U))
+    assert copy.client is None and U.client is client
+    psi = np.zeros(13, dtype=complex)
+    psi[0] = 1.0
+    t = np.linspace(0.0, 1.0, 4)
+    got, ref = copy.evolve(psi, t).states, hq.SectorPropagator(H).evolve(psi, t).states
+    assert len(got) == 4 and all(np.allclose(a.full(), b.full(), rtol=0, atol=1e-12) for a, b in zip(got, ref))

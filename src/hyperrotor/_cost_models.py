@@ -136,14 +136,17 @@ def _eigh_seconds(cubes: Any, complex: bool = True) -> float:
 
 
 @model("dense_diagonalization", "use a representation whose symmetry sectors are smaller (rep=)")
-def _dense_diagonalization(dim: Any, complex: bool = True) -> tuple[Cost, ...]:
+def _dense_diagonalization(dim: Any, complex: bool = True, cubes: Any = None) -> tuple[Cost, ...]:
+    # ``dim``: the largest block; ``cubes``: the sum of every block's dimension cubed (default dim^3, one block;
+    # a review: 60 blocks of 400 were priced as one)
     d = _f(dim)
     item = 16.0 if complex else 8.0
     return (
         Cost(f"a dense block of dimension {dim}", d, "quantum_max_dense_dim", "dimension"),
         # sparse copies of the block (CSR: entry + index), the dense block and eigvalsh's copy
         _memory(f"a dense {dim} x {dim} block (and its sparse and working copies)", 6 * item * d * d),
-        _seconds(f"diagonalizing a dense {dim} x {dim} block", _eigh_seconds(d ** 3, complex)),
+        _seconds(f"diagonalizing a dense {dim} x {dim} block" + ("" if cubes is None else " and the others"),
+                 _eigh_seconds(d ** 3 if cubes is None else _f(cubes), complex)),
     )
 
 
@@ -169,15 +172,16 @@ def _sectors_dense(dim: Any, N: Any = 3) -> tuple[Cost, ...]:
 
 
 @model("sector_spectra", "use a smaller representation or a body with more symmetry")
-def _sector_spectra(dim: Any, real: bool = True) -> tuple[Cost, ...]:
+def _sector_spectra(dim: Any, real: bool = True, cubes: Any = None) -> tuple[Cost, ...]:
+    # ``cubes``: the sum of the sectors' dimensions cubed (every sector is diagonalized, not only the largest; the
+    # default 4 dim^3 is the real sectors of an so(3) irrep, 4 of about equal size: measured 4x one block's eigh,
+    # l = 2000..8000; so(5) has 16 sectors, so(7) 64, a review found those 16-64x under-priced)
     d = _f(dim)
     item = 8.0 if real else 16.0
-    flops = (1.0 if real else 4.0) * 4.0 / 3.0 * d ** 3
+    flops = (1.0 if real else 4.0) * 4.0 / 3.0 * (4.0 * d ** 3 if cubes is None else _f(cubes))
     return (Cost(f"the largest sector (dimension {dim}) diagonalized densely", d, "sectors_max_block_dim", "dimension"),
             _memory(f"the dense {dim} x {dim} sector block (two copies)", 2.0 * item * d * d),
-            # every sector is diagonalized, not only the largest: the real sectors of so(3) irreps are 4 of about
-            # equal size (measured: 4x one block's eigh, l = 2000..8000)
-            _seconds(f"diagonalizing the dense sector blocks (the largest {dim} x {dim})", 4.0 * flops * _EIGH_S))
+            _seconds(f"diagonalizing the dense sector blocks (the largest {dim} x {dim})", flops * _EIGH_S))
 
 
 #: seconds per plane and dim^3 of the intertwiner's orthogonalisation (one lowering operator per positive root and

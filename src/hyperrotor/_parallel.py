@@ -101,17 +101,9 @@ def default_workers() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def _check_client(client: Any) -> None:
-    if not (callable(getattr(client, "submit", None)) and callable(getattr(client, "gather", None))):
-        raise TypeError(
-            f"client must be a dask.distributed.Client (or None for an in-process run), got "
-            f"{_validate.fmt(client)} of type {type(client).__name__}"
-        )
-
-
 def client_threads(client: Any) -> int:
     """Total worker threads of a dask ``client``'s cluster (at least 1)."""
-    _check_client(client)
+    _validate.client(client)
     try:
         info = client.scheduler_info()
         return max(1, sum(int(w.get("nthreads", 1)) for w in info.get("workers", {}).values()))
@@ -262,7 +254,7 @@ def map_rows(
     args = tuple(args)
     B = arrs[0].shape[0]
     if client is not None:
-        _check_client(client)
+        _validate.client(client)
     threads = client_threads(client) if client is not None else (
         default_workers() if workers is None else _validate.integer("workers", workers, minimum=1))
     if chunk_size is None:

@@ -239,6 +239,22 @@ def hbar(value: Any) -> float:
     return positive("hbar", value)
 
 
+def client(value: Any, name: str = "client") -> Any:
+    """``None``, or a dask ``Client`` that is not closed (duck-typed: ``submit`` and ``gather``); a closed one is
+    refused at the door (a review: an ensemble's in-process step check ran 5 min before dask's ClosedClientError,
+    which named no argument)."""
+    if value is None:
+        return None
+    if not (callable(getattr(value, "submit", None)) and callable(getattr(value, "gather", None))):
+        raise TypeError(f"{name} must be a dask.distributed.Client (or None for an in-process run), got "
+                        f"{fmt(value)} of type {type(value).__name__}")
+    status = getattr(value, "status", "running")
+    if isinstance(status, str) and status in ("closing", "closed"):
+        raise ValueError(f"{name} is a dask client that is {status}: pass a running dask.distributed.Client, or None "
+                         f"for an in-process run")
+    return value
+
+
 def flag(name: str, value: Any, *, allow_none: bool = False) -> bool | None:
     """A switch: ``True`` or ``False`` (NumPy booleans too; ``None`` passes through when ``allow_none``).
 

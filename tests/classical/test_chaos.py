@@ -470,6 +470,32 @@ def _message(call) -> str:
     raise AssertionError("no ValueError")
 
 
+def test_budget_counts_only_the_threads_a_run_can_use(monkeypatch):
+    """An orbit runs on one thread: one orbit on 8 worker threads gets one thread's budget (a review: an 8-thread
+    cluster let a single orbit through for 8x the budget); 8 orbits in chunks of one get all eight."""
+    from hyperrotor import _parallel
+
+    monkeypatch.setattr(_parallel, "default_workers", lambda: 8)
+    moments, w0 = generic_5d(0, 8)
+    with options(lyapunov_max_work=1.0):
+        with pytest.raises(ValueError) as one:
+            lyapunov(moments, w0[0], 50.0)
+    work = one.value.needed  # (one orbit: its whole work, on one thread)
+    assert "1 worker thread(s)" in str(one.value)
+    with options(lyapunov_max_work=work / 2):
+        with pytest.raises(ValueError, match="1 worker thread"):
+            lyapunov(moments, w0[0], 50.0)
+    with options(lyapunov_max_work=1.0):
+        with pytest.raises(ValueError) as eight:
+            lyapunov(moments, w0, 50.0, chunk_size=1)
+    assert "8 worker thread(s)" in str(eight.value)
+    with options(lyapunov_max_work=1.0):
+        with pytest.raises(ValueError, match="2 worker thread"):  # (8 orbits in 2 chunks)
+            lyapunov(moments, w0, 50.0, chunk_size=4)
+    with pytest.raises(ValueError, match="chunk_size"):
+        lyapunov(moments, w0, 50.0, chunk_size=0)
+
+
 def test_sweep_rejects_mixed_dimensions():
     with pytest.raises(ValueError, match="same dimension"):
         lyapunov_sweep([[1.0, 2.0, 3.0], np.ones(10)], np.ones((1, 3)), 1.0)

@@ -278,3 +278,28 @@ def test_refusal_messages_stay_short_and_finite():
     assert _validate.fmt(list(range(12))) == str(list(range(12)))  # (up to 12 entries: all of them)
     assert _validate.fmt((1.5,)) == "(1.5,)"
     assert _validate.fmt(tuple(range(13))) == "(0, 1, 2, 3, 4, 5, ... (13 entries))"
+
+
+def test_every_block_is_priced_not_only_the_largest():
+    """spectrum and sector_spectra diagonalize every block: 60 blocks of 400 ran ~100x over max_seconds, priced as
+    one; the 16 sectors of an so(5) irrep as 4 (a review)."""
+    from hyperrotor._pricing import estimate
+    from hyperrotor.quantum.sectors.construction import sectors_of
+
+    def seconds(entry, **sizes):
+        return sum(c.amount for c in estimate(entry, **sizes) if c.unit == "seconds")
+
+    g = np.random.default_rng(0)
+    A = g.normal(size=(400, 400))
+    H = sps.block_diag([A + A.T] * 60, format="csr")
+    one = seconds("dense_diagonalization", dim=400, complex=False)
+    with hr.options(max_seconds=5 * one):  # (one block's estimate, 5x over: let through before)
+        with pytest.raises(ValueError, match="diagonalizing a dense 400 x 400 block and the others"):
+            hq.spectrum(H)
+    rep = hq.irrep(5, (16, 8))
+    secs = sectors_of(rep, False)
+    big = max(s.dim for s in secs)
+    assert len(secs) == 16 and sum(s.dim**3 for s in secs) > 8 * big**3
+    with hr.options(max_seconds=2 * seconds("sector_spectra", dim=big)):  # (the old estimate: 4 sectors' worth)
+        with pytest.raises(ValueError, match="sector_spectra"):
+            hq.sector_spectra(rep, np.linspace(1.0, 2.0, 10))

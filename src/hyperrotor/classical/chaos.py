@@ -166,6 +166,11 @@ def _benettin(bodies, L0, T, k, method, dt, renorm_interval, history, rng, clien
     # planes it leaves: one word for the whole ensemble (planes whose rate vanishes for every orbit drop out), so
     # that an orbit's arithmetic does not depend on the chunk it falls in
     threads = _parallel.client_threads(client) if client is not None else _parallel.default_workers()
+    # an orbit runs on one thread (its time segments one after another): the run uses at most one thread per chunk
+    # (a review: one orbit on an 8-thread cluster was let through for 8x the budget of one thread)
+    if chunk_size is not None:
+        chunk_size = _validate.integer("chunk_size", chunk_size, minimum=1)
+    threads = max(1, min(threads, B if chunk_size is None else -(-B // chunk_size)))
     _check_work(nsub_f * nren, splitting_word(_ORDER[method], tuple(range(_fewest_planes(bodies))))[0].size, k, N,
                 threads, T, w_top)
     shift = np.empty(B)

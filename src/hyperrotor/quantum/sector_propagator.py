@@ -328,13 +328,18 @@ class SectorPropagator:
         if self.options["blocks"] not in ("auto", True, False):
             raise ValueError(f"option 'blocks' must be 'auto', True or False, got {_validate.fmt(self.options['blocks'])}")
         self.workers = None if workers is None else _validate.integer("workers", workers, minimum=1)
-        self.client = client
+        self.client = _validate.client(client)
         self.progress = _validate.flag("progress", progress, allow_none=True)
         self.diagonal = self.matrix.diagonal().real
         self.stats: dict[str, Any] = {"method": cls.name}
         self._parts: list[Block] | None = None
         self._rent: dict | None = None  # whole-space Krylov before the sectors are bought (evolve, "auto")
         self._split(cls, rep, rent)
+
+    def __getstate__(self) -> dict:
+        """Pickled without its dask client (a connection, not data: the copy runs in-process, as the workers'
+        copies do; a propagator built with client= did not pickle)."""
+        return {**self.__dict__, "client": None}
 
     def __setstate__(self, state: dict) -> None:
         """Unpickled (e.g. back from a dask worker): the blocks point to this propagator again."""

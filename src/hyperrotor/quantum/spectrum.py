@@ -85,7 +85,8 @@ def spectrum(H: Any, *, atol: float | None = None, rtol: float | None = None, re
     evs = _sector_eigenvalues(mat, rep) if rep is not None and big > int(options["quantum_eigen_max_block"]) else None
     if evs is not None:
         return _levels(np.sort(evs), atol, rtol)
-    _pricing.check("dense_diagonalization", dim=big, complex=np.iscomplexobj(mat.data))
+    _pricing.check("dense_diagonalization", dim=big, complex=np.iscomplexobj(mat.data),
+                   cubes=sum(float(len(b)) ** 3 for b in blocks if len(b) > 1))
     evs = []
     for b in blocks:
         if len(b) == 1:
@@ -101,8 +102,9 @@ def _sector_eigenvalues(mat, rep) -> np.ndarray | None:
     if parts is None:
         return None
     check_symmetric(mat, rep)  # (a rep= that H does not respect gave wrong levels)
-    # priced once, by the largest sector, before any work (the sectors of GT irreps are real blocks)
-    _pricing.check("dense_diagonalization", dim=max((basis.shape[1] for basis, _, _ in parts), default=0),
+    # priced once, by the largest sector and all of them, before any work (the sectors of GT irreps are real blocks)
+    sizes = [basis.shape[1] for basis, _, _ in parts]
+    _pricing.check("dense_diagonalization", dim=max(sizes, default=0), cubes=sum(float(n) ** 3 for n in sizes),
                    complex=not all(sps.issparse(basis) for basis, _, _ in parts))
     evs = []
     for basis, degeneracy, _ in parts:
