@@ -46,7 +46,10 @@ Each row's result is computed by the same compiled arithmetic whichever chunk it
 falls in (the kernels handle rows independently, and numba compiles without
 ``fastmath``), so in-process, threaded and distributed runs agree bit for bit as
 long as the machines run the same compiled code (same numba version and CPU
-features; across heterogeneous machines differences stay at round-off level).
+features; across heterogeneous machines differences stay at round-off level). Row
+functions that call LAPACK (the sector spectra) agree bit for bit only at equal BLAS
+thread counts: ``sector_spectra`` uses one per sector with ``workers > 1`` and on a
+cluster, all of them by default (round-off-level differences from the others).
 
 Interruption and progress
 -------------------------
