@@ -273,7 +273,12 @@ def test_a_raised_max_dim_still_meets_the_memory_budget(build):
     with hr.options(max_memory_bytes=10**6):
         with pytest.raises(hr.BudgetError, match="max_memory_bytes"):
             fn(3, (150_000,), max_dim=10**6)
-        small = fn(5, (20, 10))  # within the default max_dim, max_dim is the budget (the estimate is an upper one)
+        # within the default max_dim too (was let through: so(8) (6, 4, 4, 3) peaked at 6 GB under 4 GiB): the
+        # patterns (7.6 MB here) before they are built, the generators as they are
+        with pytest.raises(hr.BudgetError, match="max_memory_bytes"):
+            fn(5, (20, 10))
+    with hr.options(max_memory_bytes=2 * 10**9):
+        small = fn(5, (20, 10))
     assert (small.dim if build == "irrep" else small.shape[0]) == hq.weyl_dimension(5, (20, 10))
     out = fn(3, (150_000,), max_dim=dim)
     assert (out.dim if build == "irrep" else out.shape[0]) == dim
@@ -393,3 +398,16 @@ def test_real_form_and_intertwiner_are_priced_with_their_planes():
             hq.real_form(rep)
         with pytest.raises(ValueError, match="435 planes"):
             hq.intertwiner(rep, rep)
+
+
+def test_the_generators_are_held_to_the_memory_budget_as_they_are_built():
+    """Patterns within budget, generators not: the commutator that would pass max_memory_bytes is refused, naming
+    its plane (a review: so(8) (6, 4, 4, 3) took 6 GB under 4 GiB; here a small irrep under a budget just above
+    its patterns)."""
+    from hyperrotor.quantum.gelfand_tsetlin import _pattern_bytes
+
+    m = (6, 3)  # so(5), dim 770
+    with hr.options(max_memory_bytes=2 * _pattern_bytes(weyl_dimension(5, m), 5)):
+        with pytest.raises(hr.BudgetError, match=r"the commutator that builds plane \(\d, \d\)"):
+            irrep(5, m)
+    assert irrep(5, m).dim == 770

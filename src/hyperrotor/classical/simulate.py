@@ -469,7 +469,6 @@ def estimate_cost(body: Any, omega0: Any, t: Any, *, method: str | Solver = "aut
     max_seconds = _validate.positive("max_seconds", max_seconds, allow_none=True, allow_zero=True)
     rtol = _validate.tolerance("rtol", rtol, allow_none=True)
     dt = _validate.positive("dt", dt, allow_none=True)
-    client = _validate.client(client)
     solver = _choose_solver(method, rtol, dt, torque, _solver_options(options))
     problem, _ = _problem(body, omega0, t, attitude, torque, _table["max_output_bytes"], _checked(solver, rtol, None))
     _pricing.check("simulate", N=problem.N)  # (the set-up simulate would do: priced here as there)

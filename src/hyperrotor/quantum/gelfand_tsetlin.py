@@ -76,6 +76,7 @@ import scipy.sparse as sps
 import sympy as sp
 
 from hyperrotor import _pricing, _validate
+from hyperrotor._options import options
 from hyperrotor.conventions import check_dimension
 
 from .weights import check_highest_weight, dynkin_to_orthogonal, format_weight, weyl_dim
@@ -376,8 +377,10 @@ def _irrep_cost(dim, N) -> tuple:
 def _check_max_dim(N: int, m, max_dim, entry: str = "irrep"):
     """The irrep's dimension, refused over ``max_dim`` and, beyond :data:`DEFAULT_MAX_DIM` (a raised ``max_dim``),
     over the memory budget (``entry``'s cost model: ``"irrep"`` or ``"gt_patterns"``), before any allocation. The
-    generators' estimate is an upper one: measured peaks are 0.8-1.6x of it for N = 3 ... 7 and up to 15x below
-    it for small weights of N >= 10 (fewer non-zeros per row than N), so it does not judge the default range."""
+    generators' estimate is no bound: measured peaks are 0.8-1.6x of it for N = 3 ... 7, 2.3x for so(8)
+    (6, 4, 4, 3) and up to 40x below it for small weights of N >= 10 (fewer non-zeros per row than N), so it does
+    not judge the default range: there the patterns are priced here and the generators as they are built
+    (:func:`_gt_generators_float`: each commutator refused before it would pass ``max_memory_bytes``)."""
     dim = weyl_dim(N, m)
     max_dim = _validate.integer("max_dim", max_dim, minimum=1)  # (TypeError for a non-integer, ValueError below 1)
     if dim > max_dim:
@@ -386,8 +389,10 @@ def _check_max_dim(N: int, m, max_dim, entry: str = "irrep"):
             entry, f"the so({N}) irrep {format_weight(m)} (its {n_pl} sparse generators: roughly "
                    f"{_generator_bytes(dim, N) / 2**20:.0f} MiB)", dim, "max_dim", "dimension", limit=int(max_dim),
             raise_with=f"a larger max_dim (e.g. max_dim={dim}) to build it anyway")
-    if dim > DEFAULT_MAX_DIM:  # (within the default, max_dim is the budget: the estimate below is an upper one)
+    if dim > DEFAULT_MAX_DIM:
         _pricing.check(entry, dim=dim, N=N)
+    else:  # the generators' estimate is an upper one here: the patterns' (exact) now, the generators as they are built
+        _pricing.check("gt_patterns", dim=dim, N=N)
     return dim
 
 
@@ -450,11 +455,43 @@ def _gt_generators_float(N: int, m) -> dict:
         M = M.tocsr()
         M.eliminate_zeros()
         X[(k, k + 1)] = M
+    # the planes beyond (k, k + 1), by commutators, their memory checked as they grow: the model of
+    # _check_max_dim (N non-zeros per row and plane) is no bound (a review: so(8) (6, 4, 4, 3), dim 199 584, peaked
+    # at 6 GB under a 4 GiB max_memory_bytes, 2.3x its estimate; small weights of large N are 40x below it)
+    budget = float(options["max_memory_bytes"])
+    held = float(P.nbytes) + sum(_csr_bytes(M) for M in X.values())
     for gap in range(2, N):
+        made = []
         for i in range(1, N - gap + 1):
             j = i + gap
-            X[(i, j)] = _commutator_float(X[(i, j - 1)], X[(j - 1, j)])
+            A, B = X[(i, j - 1)], X[(j - 1, j)]
+            products = _products_bound(A, B) + _products_bound(B, A)  # (the two products' entries, at most)
+            if held + 2.0 * products * (A.data.itemsize + A.indices.itemsize) > budget:
+                raise _memory_refusal(N, m, held + 2.0 * products * (A.data.itemsize + A.indices.itemsize),
+                                      f"the commutator that builds plane ({i}, {j})")
+            X[(i, j)] = _commutator_float(A, B)
+            made.append(_csr_bytes(X[(i, j)]))
+            held += made[-1]
+        later = (N - gap - 1) * (N - gap) // 2  # the planes of larger gaps, at least as dense as these
+        if later and held + later * float(np.mean(made)) > budget:
+            raise _memory_refusal(N, m, held + later * float(np.mean(made)),
+                                  f"the {later} planes of gaps beyond {gap} (as dense as those of gap {gap} at least)")
     return X
+
+
+def _csr_bytes(M) -> float:
+    return float(M.data.nbytes + M.indices.nbytes + M.indptr.nbytes)
+
+
+def _products_bound(A, B) -> float:
+    """The multiplications of ``A @ B`` (CSR), a bound on its non-zeros: ``sum_k nnz(A[:, k]) nnz(B[k, :])``."""
+    return float(np.bincount(A.indices, minlength=A.shape[1]) @ np.diff(B.indptr))
+
+
+def _memory_refusal(N: int, m, needed: float, what: str):
+    return _pricing.refuse(
+        "irrep", f"the sparse generators of the so({N}) irrep {format_weight(m)} (dimension {weyl_dim(N, m)}: the "
+                 f"planes built so far and {what})", needed, "max_memory_bytes", "bytes", "ask for a smaller irrep")
 
 
 def _gt_generators_exact(N: int, m) -> dict:
