@@ -250,6 +250,9 @@ def cases():
                     lambda _, N=N, hw=hw: hq.irrep(N, hw, max_dim=10**6).generators(format="csr")))
         out.append(("gt_patterns", f"N={N} {hw}", sizes, lambda: None,
                     lambda _, N=N, hw=hw: hq.gt_patterns(N, hw, max_dim=10**6)))
+    for N, hw in ((5, (20, 10)), (20, (2, 1) + (0,) * 8), (40, (1, 1, 1) + (0,) * 17), (80, (1,) + (0,) * 39)):
+        out.append(("gt_generators", f"N={N} {hw[:4]}...", dict(dim=hq.weyl_dimension(N, hw), N=N), lambda: None,
+                    lambda _, N=N, hw=hw: hq.irrep(N, hw).generators(format="csr")))
     for N, hw in ((3, (30000,)), (3, (99999,)), (5, (20, 10))):
         out.append(("gt_sectors", f"N={N} {hw}", dict(dim=hq.weyl_dimension(N, hw), N=N),
                     lambda N=N, hw=hw: hq.irrep(N, hw), hq.symmetry_sectors))

@@ -162,13 +162,22 @@ class PatternIndex:
         self.radix = int(round(4 * m1)) + 1
         E = P.shape[1]
         self.use_keys = E * np.log2(max(self.radix, 2)) < 62
+        self.table = None
         if self.use_keys:
             self.powers = self.radix ** np.arange(E - 1, -1, -1, dtype=np.int64)
             self.keys = self._keys(P)
             if len(self.keys) > 1 and not np.all(np.diff(self.keys) > 0):  # pragma: no cover - internal
                 raise AssertionError("GT patterns are not in lexicographic order")
-        else:
-            self.table = {tuple(row): i for i, row in enumerate(np.rint(2 * P).astype(np.int64).tolist())}
+            return
+        # too many digits for one integer key: a 64-bit hash of the digits (wrapping integer arithmetic), sorted,
+        # each hit checked digit by digit (a Python dict of tuples took 3.6 of 5.4 s of irrep(80, (1, 0, ...)))
+        self.digits = self._digits(P)
+        self.powers = np.random.default_rng(20261129).integers(1, 2**62, size=E, dtype=np.int64) | 1
+        h = self.digits @ self.powers
+        self.order = np.argsort(h, kind="stable")
+        self.keys = h[self.order]
+        if len(self.keys) > 1 and not np.all(np.diff(self.keys) > 0):  # pragma: no cover - a collision: the dict
+            self.table = {tuple(row): i for i, row in enumerate(self.digits.tolist())}
 
     def _digits(self, Q):
         return np.rint(2 * (self.m1 - Q)).astype(np.int64)
@@ -192,8 +201,15 @@ class PatternIndex:
             res = np.where(hit, pos, -1)
             out[ok] = res
             return out
-        for i, row in enumerate(np.rint(2 * Q).astype(np.int64).tolist()):
-            out[i] = self.table.get(tuple(row), -1)
+        d = self._digits(Q)
+        if self.table is not None:  # pragma: no cover - two patterns of one hash
+            for i, row in enumerate(d.tolist()):
+                out[i] = self.table.get(tuple(row), -1)
+            return out
+        pos = np.minimum(np.searchsorted(self.keys, d @ self.powers), len(self.keys) - 1)
+        cand = self.order[pos]
+        hit = np.all(self.digits[cand] == d, axis=1)  # (a hash that matches by chance is no hit)
+        out[hit] = cand[hit]
         return out
 
 
@@ -367,6 +383,22 @@ def _gt_patterns_cost(dim, N) -> tuple:
                           "max_memory_bytes", "bytes"),)
 
 
+#: seconds of building an irrep's generators: per pattern and squared pattern length (the lookups of the chain's
+#: raised patterns: one per entry, each of every pattern's digits) and per pattern and N^2 (the commutators);
+#: measured (session 48, one thread): so(40) (1, 1, 1, 0, ...) 8.4 s, so(80) (1, 0, ...) 1.1 s, so(20) (2, 1, 0, ...)
+#: 0.17 s, so(5) (20, 10) 0.34 s (a review measured 56 s and 6.4 s for the first two before the lookups were hashed)
+GT_LOOKUP_S = 5.5e-9
+GT_COMMUTATOR_S = 1.0e-7
+
+
+@_pricing.model("gt_generators", "ask for a smaller irrep")
+def _gt_generators_cost(dim, N) -> tuple:
+    E = sum(k // 2 for k in range(2, int(N) + 1))
+    return (_pricing.Cost(f"the sparse generators of a dimension-{dim} irrep of so({N}) (patterns of {E} entries)",
+                          float(dim) * (GT_LOOKUP_S * E * E + GT_COMMUTATOR_S * float(N) ** 2), "max_seconds",
+                          "seconds"),)
+
+
 @_pricing.model("irrep", "ask for a smaller irrep")
 def _irrep_cost(dim, N) -> tuple:
     nbytes = _pattern_bytes(float(dim), N) + _generator_bytes(float(dim), N)
@@ -393,6 +425,8 @@ def _check_max_dim(N: int, m, max_dim, entry: str = "irrep"):
         _pricing.check(entry, dim=dim, N=N)
     else:  # the generators' estimate is an upper one here: the patterns' (exact) now, the generators as they are built
         _pricing.check("gt_patterns", dim=dim, N=N)
+    if entry == "irrep":
+        _pricing.check("gt_generators", dim=dim, N=N)
     return dim
 
 
