@@ -65,3 +65,15 @@ def test_a_dask_ensembles_check_covers_the_fastest_up_to_its_limit(dask_client, 
     assert set(seen[-1].members) <= set(np.argsort(rates)[-20:])
     if a.stats["steps"] == b.stats["steps"]:
         np.testing.assert_array_equal(a.L, b.L)
+
+
+def test_the_step_control_before_a_dask_ensemble_shows_progress(dask_client, capsys):
+    """The probe and the check run here before the members go to the workers: progress=True shows them (a review:
+    nothing for 20 s), counting the steps they took."""
+    body = hr.RigidBody(hr.Inertia.from_mass_tensor(BODY5))
+    w0 = np.random.default_rng(3).normal(size=(6, 10))
+    res = hr.simulate(body, w0, np.linspace(0.0, 2.0, 3), rtol=1e-8, client=dask_client, progress=True)
+    err = capsys.readouterr().err
+    assert "simulate: step control" in err
+    shown = max(int(n) for n in __import__("re").findall(r"simulate: step control: (\d+)", err))
+    assert 0 < shown <= res.stats["work"] - res.stats["steps"] * 6  # (the members' own steps ran on the workers)

@@ -42,7 +42,8 @@ def run_distributed(solver, problem: Problem, control, *, client, max_steps: int
     template = dataclasses.replace(problem, L0=problem.L0[:0],
                                    T0=None if problem.T0 is None else problem.T0[:0])
     # (the check runs here, before the workers: on up to CHECK_MEMBERS members, not the whole ensemble again)
-    worker_solver, worker_control, steps, h, work = member_setup(solver, problem, control, max_steps, CHECK_MEMBERS)
+    worker_solver, worker_control, steps, h, work = member_setup(solver, problem, control, max_steps, CHECK_MEMBERS,
+                                                                 progress=progress)
     if steps is not None:
         # (a chunk of about a second: the cost per flow this process learned, or its default for this N)
         per_member = max(1, steps) * solver.flows_per_step(problem) * seconds_per_flow(cost_key(solver, problem, B=1))

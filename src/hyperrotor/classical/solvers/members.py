@@ -22,6 +22,8 @@ from typing import Any
 
 import numpy as np
 
+from hyperrotor._parallel import progress_bar
+
 from .base import Problem, RunResult, nsub_for
 from .driver import FixedStepSolver
 from .chunks import Work
@@ -53,20 +55,30 @@ class GivenStep:
         return f"GivenStep(h={self.h!r})"
 
 
-def member_setup(solver, problem: Problem, control: Any, max_steps: int, most: int | None = None):
+def member_setup(solver, problem: Problem, control: Any, max_steps: int, most: int | None = None, progress=None):
     """Choose the ensemble's step once; returns ``(member_solver, member_control, steps, h, work)``
     (``work``: the :class:`~.chunks.Work` of the probe and the check, which the members' runs add to). The check
     covers every member (up to ``most``, the fastest beyond: :meth:`~.step_control.ErrorTarget.verified_step`).
 
     For a scipy method (adaptive, per member anyway) the solver and control are returned
-    unchanged and ``steps``, ``h`` and ``work`` are ``None``.
+    unchanged and ``steps``, ``h`` and ``work`` are ``None``. ``progress``: a bar of the step control's steps (the
+    probe's and the check's, here in this process; a review found nothing shown for 20 s before a dask ensemble's
+    members started).
     """
     if not isinstance(solver, FixedStepSolver):
         return solver, control, None, None, None
     solver.check(problem)
     solver.prepare(problem)
     work = Work(max_steps)
-    h = control.verified_step(solver, problem, work, most=most) if problem.t.size > 1 and problem.B > 0 else 1.0
+    if problem.t.size > 1 and problem.B > 0:
+        bar = progress_bar(progress, None, "simulate: step control", unit="step", leave=False)
+        try:
+            h = control.verified_step(solver, problem, work, most=most, bar=bar)
+        finally:
+            if bar is not None:
+                bar.close()
+    else:
+        h = 1.0
     steps = int(nsub_for(problem.t, h).sum()) if problem.t.size > 1 else 0
     work.refuse(steps * problem.B, lambda: f"{steps:.3g} steps of at most {h / problem.scale:.3g} per member")
     control.announce(solver, problem, h)
@@ -105,7 +117,7 @@ def run_members_with_events(solver, problem: Problem, control: Any, *, events, m
         res.L_events = [[] for _ in specs]
         res.T_events = [[] for _ in specs] if problem.T0 is not None else None
         return res
-    member_solver, member_control, steps, _, work = member_setup(solver, problem, control, max_steps)
+    member_solver, member_control, steps, _, work = member_setup(solver, problem, control, max_steps, progress=progress)
     bar = None
     if progress:
         from tqdm.auto import tqdm

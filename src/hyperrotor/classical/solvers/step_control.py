@@ -587,19 +587,19 @@ class ErrorTarget:
                 f"or a shorter run")
         return failure.h
 
-    def verified_step(self, solver, problem: Problem, work: Work, most: int | None = None) -> float:
+    def verified_step(self, solver, problem: Problem, work: Work, most: int | None = None, bar=None) -> float:
         """The step, checked before any member runs (ensembles run member by member): the probe, then the
         checked members (every member, as in a run's check: :meth:`_checked`; up to ``most``, the fastest beyond,
         for the members of a dask ensemble, checked in this process) run on their own with their companions (no
         output kept). Checking the 8 fastest only returned 4 of 40 members of similar rates 1.1-2300x over rtol
         1e-6, silently, with events (body 4007), where the same ensemble run at once met it."""
-        h = self.first_step(solver, problem, work)
+        h = self.first_step(solver, problem, work, bar=bar)
         t = problem.t
         while True:
             nsub = nsub_for(t, h)
             # the arithmetic the members will run in
             solver.set_accuracy(problem, self.rtol, int(nsub.sum()), roundoff_amplified=self.roundoff_amplified)
-            check = self.checker(solver, problem, nsub, work, most=most)
+            check = self.checker(solver, problem, nsub, work, bar=bar, most=most)
             if check is None:
                 return h
             work.refuse(int(nsub.sum()) * len(check.members) + check.planned_steps,
