@@ -442,9 +442,12 @@ MORE = [
     (["scene", "--inertia", "equal", "--kappa", "garbage"], ["--kappa applies to --inertia quartet only"]),  # was run
     (["scene", "--inertia", "box", "--kappa", "7"], ["--kappa applies to --inertia quartet only"]),
     (["scene", "--lock", "1", "--omega", "1,0,0,0,0,0,0,0,0,0"],  # was zeroed, silently
-     ["--omega gives the planes of the --lock axes [1] nonzero values (omega_12, omega_13, omega_14, omega_15"]),
+     ["--omega gives planes of the --lock axes [1] nonzero values (omega_12 = 1):"]),
+    (["scene", "--N", "3", "--lock", "3", "--omega", "0,0,0.5"], ["nonzero values (omega_23 = 0.5):"]),
     (["scene", "--t-end", "1e-320", "--frames", "10000"],  # was "failed: ValueError: t must be strictly increasing"
      ["is too short for --frames 10000", "choose a longer --t-end or fewer --frames"]),
+    (["scene", "--N", "3", "--t-end", "1e-320", "--frames", "1000"], ["is too short for --frames 1000"]),
+    (["scene", "--t-end", "1", "--frames", "16777216"], ["of memory", "fewer --frames"]),  # (no table of times first)
     (["scene", "--N", "3", "--t-end", "1e9", "--max-seconds", "100"],  # the 3D quartet integrates: was not priced
      ["integration steps", "--max-steps"]),
     (["demo", "--omega=1e100,1e100,1,1,1,1,1,1,1,1"], ["fastest frequency 8.49e+99, rate bound 1.79e+100",

@@ -152,7 +152,8 @@ def test_a_closed_client_is_refused_at_the_door():
     calls = [lambda: hr.simulate(body, np.ones((50, 10)), np.linspace(0.0, 50.0, 3), client=closed),
              lambda: hr.lyapunov(body, np.ones((4, 10)), 1.0, client=closed),
              lambda: hq.SectorPropagator(hq.rotor_hamiltonian(hq.irrep(3, (2,)), [1.0, 2.0, 3.0]), client=closed),
-             lambda: _parallel.map_rows(logistic_rows, np.ones((4, 3)), args=(2,), client=closed)]
+             lambda: _parallel.map_rows(logistic_rows, np.ones((4, 3)), args=(2,), client=closed),
+             lambda: hq.sector_spectra(hq.irrep(3, (2,)), [1.0, 2.0, 3.0], client=closed)]
     for call in calls:
         with pytest.raises(ValueError, match="client is a dask client that is closed"):
             call()
@@ -176,3 +177,13 @@ def test_a_propagator_built_with_a_client_pickles(client):
     t = np.linspace(0.0, 1.0, 4)
     got, ref = copy.evolve(psi, t).states, hq.SectorPropagator(H).evolve(psi, t).states
     assert len(got) == 4 and all(np.allclose(a.full(), b.full(), rtol=0, atol=1e-12) for a, b in zip(got, ref))
+
+
+def test_sector_spectra_on_a_cluster_equal_the_threads_bit_for_bit(client):
+    """One BLAS thread per sector on both (the client path used the workers' default: equal only where the
+    cluster's environment limited BLAS)."""
+    import hyperrotor.quantum as hq
+
+    rep, body = hq.irrep(5, (6, 3)), np.linspace(1.0, 2.0, 10)
+    a, b = hq.sector_spectra(rep, body, client=client), hq.sector_spectra(rep, body, workers=2)
+    assert list(a) == list(b) and all(np.array_equal(a[k], b[k]) for k in a)

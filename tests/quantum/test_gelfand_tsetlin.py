@@ -439,3 +439,26 @@ def test_building_the_generators_is_priced():
     with hr.options(max_seconds=1.0):
         with pytest.raises(hr.BudgetError, match=r"gt_generators: the sparse generators of a dimension-9880 irrep"):
             irrep(40, (1, 1, 1) + (0,) * 17)
+
+
+def test_gt_index_refuses_entries_that_are_no_half_integers_and_takes_max_dim():
+    """0.8 was rounded to the digit of 1 (the pattern [1, 1] found for [1, 0.8]); an irrep beyond the default
+    max_dim is indexed with max_dim= as gt_patterns builds it (gt_index had no max_dim)."""
+    with pytest.raises(ValueError, match=r"\[1.0, 0.8\] is not a Gelfand-Tsetlin pattern .* integers or half-integers"):
+        gt_index(3, (1,), [1, 0.8])
+    N, m = 20, (2, 1) + (0,) * 8  # (the hashed lookup)
+    P = gt_patterns(N, m)
+    Q = P[5].copy()
+    Q[np.flatnonzero(Q == 1)[0]] = 0.8
+    with pytest.raises(ValueError, match="integers or half-integers"):
+        gt_index(N, m, Q)
+    m3 = (100_000,)  # dim 200 001, beyond DEFAULT_MAX_DIM
+    with pytest.raises(ValueError, match=r"its 200001 patterns: .* max_dim=200001"):
+        gt_index(3, m3, (100_000, 5))
+    assert gt_index(3, m3, (100_000, 5), max_dim=200_001) == 100_000 - 5
+
+
+@pytest.mark.parametrize("dynkin", [{0: 2}, {1, 0}, np.array(2)])
+def test_dynkin_labels_that_are_no_sequence_are_refused(dynkin):
+    with pytest.raises(TypeError, match="dynkin must be a sequence of"):
+        irrep(3 if not isinstance(dynkin, set) else 5, dynkin=dynkin)

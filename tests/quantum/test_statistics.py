@@ -148,14 +148,14 @@ def test_one_degenerate_level_split_by_round_off_has_no_statistics():
     levels = hq.sector_spectra(hq.irrep(3, (60,)), [1.0, 1.0, 1.0])["A"]
     assert np.ptp(levels) > 0  # (round-off: not exactly equal, which the old check needed)
     for call in (spacing_ratio, lambda E: hq.spacing_distribution(E), unfold):
-        with pytest.raises(ValueError, match=r"all 30 spacings of levels vanish"):
+        with pytest.raises(ValueError, match=r"the 31 levels are one degenerate level, split only by round-off"):
             call(levels)
     E = sample_spectrum("goe", 400, rng=3) * 1e-4
     with warnings.catch_warnings():  # (an accidental vanishing spacing or two at this offset: a warning)
         warnings.simplefilter("ignore", RuntimeWarning)
         assert 0.4 < spacing_ratio(E + 1e6) < 0.7
     for offset in (1e7, 1e8):  # (a quarter or more, then all, of the spacings below 1e-12 max|E|)
-        with pytest.raises(ValueError, match="spacings of levels vanish"):
+        with pytest.raises(ValueError, match="spacings"):
             spacing_ratio(E + offset)
-        with pytest.raises(ValueError, match="spacings of levels vanish"):
+        with pytest.raises(ValueError, match="spacings"):
             unfold(E + offset)

@@ -69,6 +69,11 @@ def configure(p: argparse.ArgumentParser) -> None:
     add_common(p, budget=True, memory=True, steps="an integrated motion (--inertia box, --lock)")
 
 
+#: the least time between two frames: 2^53 times the smallest normal double (times below it are subnormal, with
+#: fewer digits: --t-end 1e-320 failed inside the library, "t[0] = 0.0 and t[1] = 1e-323 are the same time")
+_LEAST_FRAME_SPACING = 2.0**53 * float(np.finfo(float).tiny)
+
+
 def _scene_check(args: argparse.Namespace):
     """Check every scene argument; returns the derived settings (no heavy work)."""
     from hyperrotor import n_planes, planes
@@ -77,10 +82,10 @@ def _scene_check(args: argparse.Namespace):
     N = integer(args.N, "--N", minimum=3, maximum=int(options["max_dimension"]))  # (the library's limit of N)
     frames = integer(args.frames, "--frames", minimum=2)
     t_end = usage(_validate.positive, "--t-end", number(args.t_end, "--t-end"))
-    if frames <= 2**24 and not np.all(np.diff(np.linspace(0.0, t_end, frames)) > 0):  # (larger: refused below)
-        raise UsageError(f"--t-end {num(t_end)} is too short for --frames {frames}: the frame times would not be "
-                         f"distinct floating-point numbers (spacing {t_end / (frames - 1):.3g}); choose a longer "
-                         "--t-end or fewer --frames")
+    if t_end / (frames - 1) < _LEAST_FRAME_SPACING:  # (no allocation: --frames may be refused by the budget below)
+        raise UsageError(f"--t-end {num(t_end)} is too short for --frames {frames}: the frames would be "
+                         f"{t_end / (frames - 1):.3g} apart, below {_LEAST_FRAME_SPACING:.3g}, where the times lose "
+                         "the digits that tell them apart; choose a longer --t-end or fewer --frames")
     n = n_planes(N) if N < 10**5 else N * (N - 1) // 2
     axes = int_list(args.axes, "--axes")
     if len(axes) != 3 or len(set(axes)) != 3 or not all(1 <= k <= N for k in axes):
@@ -132,10 +137,11 @@ def _scene_check(args: argparse.Namespace):
         raise UsageError(f"--omega needs N(N-1)/2 = {n} components for N = {N}, got {omega.size}")
     locked = np.array([any(k in p for k in lock) for p in planes(N)], dtype=bool)
     if args.omega is not None and np.any(omega[locked] != 0):
-        bad = [f"omega_{i}{j}" if N < 10 else f"omega_({i},{j})" for (i, j), b in zip(planes(N), locked) if b]
-        raise UsageError(f"--omega gives the planes of the --lock axes {_validate.fmt(lock)} nonzero values "
-                         f"({', '.join(bad[:6])}{', ...' if len(bad) > 6 else ''} must be 0: those planes start and "
-                         "stay at rest); give 0 there, or leave out --lock")
+        bad = [f"{'omega_%d%d' % (i, j) if N < 10 else 'omega_(%d,%d)' % (i, j)} = {num(w)}"
+               for (i, j), w, b in zip(planes(N), omega, locked) if b and w != 0]
+        raise UsageError(f"--omega gives planes of the --lock axes {_validate.fmt(lock)} nonzero values "
+                         f"({', '.join(bad[:6])}{', ...' if len(bad) > 6 else ''}): those planes start and stay at "
+                         "rest; give 0 there, or leave out --lock")
     omega = np.where(locked, 0.0, omega)
     max_steps = options["max_steps"] if args.max_steps is None else integer(args.max_steps, "--max-steps", minimum=1)
     return {"N": N, "frames": frames, "max_steps": max_steps,

@@ -255,22 +255,28 @@ def gt_patterns(N: int, highest_weight: Any = None, *, dynkin: Any = None, max_d
     return patterns(N, m)
 
 
-def gt_index(N: int, highest_weight: Any, pattern: Any) -> Any:
+def gt_index(N: int, highest_weight: Any, pattern: Any, *, max_dim: int = DEFAULT_MAX_DIM) -> Any:
     """Position of ``pattern`` (flattened as in :func:`gt_patterns`) in the GT basis.
 
     ``pattern`` may be one pattern (returns an ``int``) or an array of patterns,
     shape ``(k, E)`` (returns an integer array). Raises ``ValueError`` for a
-    pattern that does not belong to the irrep.
+    pattern that does not belong to the irrep (entries that are no half-integers included). It lists the irrep's
+    patterns: ``max_dim`` and the memory budget as in :func:`gt_patterns`.
     """
     N = check_dimension(N)
     m = check_highest_weight(N, highest_weight)
-    _check_max_dim(N, m, DEFAULT_MAX_DIM, entry="gt_patterns")  # (it lists them all: priced like gt_patterns)
-    P = patterns(N, m)
+    _check_max_dim(N, m, max_dim, entry="gt_patterns")  # (it lists them all: priced like gt_patterns)
     Q = _validate.finite_array("pattern", pattern)  # (complex, booleans, text, ragged: refused by name)
     single = Q.ndim == 1
     Q = np.atleast_2d(Q)
-    if Q.shape[1] != P.shape[1]:
-        raise ValueError(f"a GT pattern of so({N}) has {P.shape[1]} entries (rows M_N..M_2 flattened), got {Q.shape[1]}")
+    E = sum(k // 2 for k in range(2, N + 1))
+    if Q.ndim != 2 or Q.shape[1] != E:
+        raise ValueError(f"a GT pattern of so({N}) has {E} entries (rows M_N..M_2 flattened), got shape {Q.shape}")
+    off = np.any(2.0 * Q != np.rint(2.0 * Q), axis=1)
+    if np.any(off):  # (rounded to the nearest digit, 0.8 found the pattern of 1)
+        raise ValueError(f"{Q[int(np.argmax(off))].tolist()} is not a Gelfand-Tsetlin pattern of the so({N}) irrep "
+                         f"{format_weight(m)}: its entries are integers or half-integers")
+    P = patterns(N, m)
     idx = PatternIndex(P, m).lookup(Q)
     if np.any(idx < 0):
         bad = Q[int(np.argmax(idx < 0))]
@@ -417,9 +423,10 @@ def _check_max_dim(N: int, m, max_dim, entry: str = "irrep"):
     max_dim = _validate.integer("max_dim", max_dim, minimum=1)  # (TypeError for a non-integer, ValueError below 1)
     if dim > max_dim:
         n_pl = N * (N - 1) // 2
+        size = (f"its {n_pl} sparse generators: roughly {_generator_bytes(dim, N) / 2**20:.0f} MiB" if entry == "irrep"
+                else f"its {dim} patterns: {_pattern_bytes(dim, N) / 2**20:.0f} MiB to build")
         raise _pricing.refuse(
-            entry, f"the so({N}) irrep {format_weight(m)} (its {n_pl} sparse generators: roughly "
-                   f"{_generator_bytes(dim, N) / 2**20:.0f} MiB)", dim, "max_dim", "dimension", limit=int(max_dim),
+            entry, f"the so({N}) irrep {format_weight(m)} ({size})", dim, "max_dim", "dimension", limit=int(max_dim),
             raise_with=f"a larger max_dim (e.g. max_dim={dim}) to build it anyway")
     if dim > DEFAULT_MAX_DIM:
         _pricing.check(entry, dim=dim, N=N)
@@ -469,6 +476,13 @@ def _gt_generators_float(N: int, m) -> dict:
     P = patterns(N, m)
     dim = len(P)
     index = PatternIndex(P, m)
+    # the lookups of the adjacent planes' matrix elements: the patterns, the index, and per raised entry a copy of
+    # the patterns with its digits and their comparison (a review: so(30) (1, 1, 1, 0, ...) peaked at 40.6 MB under a
+    # 28 MB budget, 5.6 pattern tables)
+    stage = 5.0 * P.nbytes + sum(float(getattr(index, a).nbytes) for a in ("keys", "digits", "order")
+                                 if hasattr(index, a))
+    if stage > float(options["max_memory_bytes"]):
+        raise _memory_refusal(N, m, stage, "the lookups of the matrix elements of the planes (k, k + 1)")
     X = {}
     complex_needed = False
     chain = {}
@@ -489,6 +503,7 @@ def _gt_generators_float(N: int, m) -> dict:
         M = M.tocsr()
         M.eliminate_zeros()
         X[(k, k + 1)] = M
+    del chain, index  # (the commutators need neither: their memory is the generators' and their products)
     # the planes beyond (k, k + 1), by commutators, their memory checked as they grow: the model of
     # _check_max_dim (N non-zeros per row and plane) is no bound (a review: so(8) (6, 4, 4, 3), dim 199 584, peaked
     # at 6 GB under a 4 GiB max_memory_bytes, 2.3x its estimate; small weights of large N are 40x below it)
@@ -502,14 +517,15 @@ def _gt_generators_float(N: int, m) -> dict:
             products = _products_bound(A, B) + _products_bound(B, A)  # (the two products' entries, at most)
             if held + 2.0 * products * (A.data.itemsize + A.indices.itemsize) > budget:
                 raise _memory_refusal(N, m, held + 2.0 * products * (A.data.itemsize + A.indices.itemsize),
-                                      f"the commutator that builds plane ({i}, {j})")
+                                      f"the planes built so far and the commutator that builds plane ({i}, {j})")
             X[(i, j)] = _commutator_float(A, B)
             made.append(_csr_bytes(X[(i, j)]))
             held += made[-1]
         later = (N - gap - 1) * (N - gap) // 2  # the planes of larger gaps, at least as dense as these
         if later and held + later * float(np.mean(made)) > budget:
             raise _memory_refusal(N, m, held + later * float(np.mean(made)),
-                                  f"the {later} planes of gaps beyond {gap} (as dense as those of gap {gap} at least)")
+                                  f"the planes built so far and the {later} planes of gaps beyond {gap} (as dense "
+                                  f"as those of gap {gap} at least)")
     return X
 
 
@@ -524,8 +540,8 @@ def _products_bound(A, B) -> float:
 
 def _memory_refusal(N: int, m, needed: float, what: str):
     return _pricing.refuse(
-        "irrep", f"the sparse generators of the so({N}) irrep {format_weight(m)} (dimension {weyl_dim(N, m)}: the "
-                 f"planes built so far and {what})", needed, "max_memory_bytes", "bytes", "ask for a smaller irrep")
+        "irrep", f"the sparse generators of the so({N}) irrep {format_weight(m)} (dimension {weyl_dim(N, m)}: {what})",
+        needed, "max_memory_bytes", "bytes", "ask for a smaller irrep")
 
 
 def _gt_generators_exact(N: int, m) -> dict:

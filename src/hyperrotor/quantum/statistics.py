@@ -161,8 +161,9 @@ def spacing_ratio(levels: Any, *, return_error: bool = False):
     return mean, err
 
 
-def _check_degeneracies(levels: Any) -> None:
-    """Refuse (a quarter or more) or warn about vanishing spacings (see :func:`spacing_ratio`)."""
+def _check_degeneracies(levels: Any, effect: str = "each gives a spacing ratio of 0") -> None:
+    """Refuse (a quarter or more) or warn about vanishing spacings (see :func:`spacing_ratio`); ``effect``: what
+    each does to the statistic of the caller."""
     E = _levels(levels, 3)
     tol = _ZERO_SPACING_RTOL * float(np.abs(E).max())
     zero = int(np.count_nonzero(np.diff(E) <= tol))
@@ -170,11 +171,12 @@ def _check_degeneracies(levels: Any) -> None:
     if not zero:
         return
     if zero == n:  # (returned silently before: a degenerate sector's round-off splitting gave <r> = 0.23, a review)
-        raise ValueError(f"all {n} spacings of levels vanish (<= 1e-12 * max|E| = {tol:.2e}): one degenerate level, "
-                         f"split only by round-off, has no level statistics (e.g. a sector of the spherical top); "
+        how = ("all equal" if E[0] == E[-1] else
+               f"one degenerate level, split only by round-off (all {n} spacings <= 1e-12 * max|E| = {tol:.2e})")
+        raise ValueError(f"the {E.size} levels are {how}: no level statistics (e.g. a sector of the spherical top); "
                          f"pass the levels of a sector whose levels are distinct")
     text = (f"{zero} of the {n} spacings of levels vanish (<= 1e-12 * max|E| = {tol:.2e}), "
-            f"and each gives a spacing ratio of 0")
+            f"and {effect}")
     if 4 * zero >= n:
         raise ValueError(f"{text}: forced degeneracies? Pass the levels of one symmetry sector "
                          f"(sector_spectra; a spinor irrep's multiplets count once there) or distinct levels "
@@ -235,7 +237,7 @@ def unfold(levels: Any, *, degree: int = 7) -> np.ndarray:
     """
     degree = _validate.integer("degree", degree, minimum=1, maximum=50)
     E = _levels(levels, degree + 2)
-    _check_degeneracies(E)  # (as spacing_ratio: forced degeneracies, or round-off of one level, are no statistics)
+    _check_degeneracies(E, "each gives an unfolded spacing of 0")  # (as spacing_ratio)
     lo, hi = E[0], E[-1]
     if not hi > lo:
         raise ValueError(f"all levels coincide (every level is {_validate.fmt(lo)}): no staircase to unfold")

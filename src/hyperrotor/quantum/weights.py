@@ -87,6 +87,14 @@ def _to_fraction(x: Any, what: str = "weight entry") -> Fraction:
     )
 
 
+def _check_sequence(name: str, value: Any, what: str) -> None:
+    """``TypeError`` unless ``value`` is a sequence (tuple, list, 1-D array): a dict or a set gave its keys or
+    members in no promised order ({0: 1} was the trivial irrep), a 0-d array a bare "len() of unsized object"."""
+    if (isinstance(value, (str, bytes, Mapping, Set)) or not hasattr(value, "__len__")
+            or isinstance(value, np.ndarray) and value.ndim != 1):
+        raise TypeError(f"{name} must be a sequence of {what} (a tuple, list or 1-D array), got {_validate.fmt(value)}")
+
+
 def check_highest_weight(N: int, highest_weight: Any) -> tuple[Fraction, ...]:
     """Validate a highest weight of so(N) in the orthogonal basis; return it as exact Fractions.
 
@@ -106,14 +114,7 @@ def check_highest_weight(N: int, highest_weight: Any) -> tuple[Fraction, ...]:
     """
     N = check_dimension(N)
     n = N // 2
-    if (isinstance(highest_weight, (str, bytes, Mapping, Set)) or not hasattr(highest_weight, "__len__")
-            or np.ndim(highest_weight) != 1 and isinstance(highest_weight, np.ndarray)):
-        # (a dict or a set gave its keys or members in no promised order: {0: 1} was the trivial irrep; a 0-d
-        # array raised a bare "len() of unsized object")
-        raise TypeError(
-            f"highest_weight must be a sequence of {n} numbers for so({N}) (a tuple, list or 1-D array), got "
-            f"{_validate.fmt(highest_weight)}"
-        )
+    _check_sequence("highest_weight", highest_weight, f"{n} numbers for so({N})")
     if len(highest_weight) != n:
         raise ValueError(
             f"highest_weight of so({N}) has floor(N/2) = {n} entries (orthogonal basis), "
@@ -245,7 +246,8 @@ def dynkin_to_orthogonal(N: int, dynkin: Sequence[Any]) -> tuple[Fraction, ...]:
     """
     N = check_dimension(N, minimum=3)
     n = N // 2
-    if isinstance(dynkin, (str, bytes)) or not hasattr(dynkin, "__len__") or len(dynkin) != n:
+    _check_sequence("dynkin", dynkin, f"{n} Dynkin labels for so({N})")
+    if len(dynkin) != n:
         raise ValueError(f"so({N}) needs {n} Dynkin labels, got {dynkin!r}")
     a = []
     for x in dynkin:

@@ -340,9 +340,10 @@ def _levels_task(idx: np.ndarray, H, bases: list, width: int, blas_threads: int 
 
 
 def _spec_task(idx: np.ndarray, spec: tuple, width: int) -> np.ndarray:
-    """Dask task: rebuild the irrep, Hamiltonian and sectors from a small spec (cached per worker)."""
+    """Dask task: rebuild the irrep, Hamiltonian and sectors from a small spec (cached per worker); one BLAS
+    thread, as the threads of ``workers > 1`` (the same levels bit for bit, whatever the worker's environment)."""
     H, bases = _cached_problem(spec)
-    return _levels_task(idx, H, bases, width)
+    return _levels_task(idx, H, bases, width, 1)
 
 
 _PROBLEM_CACHE: dict = {}
@@ -437,6 +438,7 @@ def sector_spectra(
     moments = _validate.moments(body, rep.N, name="body")
     workers = 1 if workers is None else _validate.integer("workers", workers, minimum=1)
     progress = _validate.flag("progress", progress, allow_none=True)
+    client = _validate.client(client)
     _pricing.check("gt_sectors", dim=rep.dim, N=rep.N)
     secs = sectors_of(rep, False)
     big = max((s.dim for s in secs), default=0)
@@ -458,7 +460,7 @@ def sector_spectra(
     else:  # here, or on a cluster with the matrices built here (another irrep has sectors of its own)
         H = rotor_matrix(rep.generators(format="csr"), moments, hbar)  # the matrix of rotor_hamiltonian
         bases = [(s.basis, s.real) for s in secs]
-        blas = 1 if client is None and workers > 1 else None
+        blas = 1 if client is not None or workers > 1 else None
         lv = map_rows(_levels_task, idx, args=(H, bases, width, blas), workers=workers, client=client, chunk_size=1,
                       progress=progress, desc="sectors")  # (workers: threads here; a client has its own)
     levels = {s.label: lv[i, : s.dim].copy() for i, s in enumerate(secs)}
