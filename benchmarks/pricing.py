@@ -41,6 +41,7 @@ from hyperrotor.classical.solvers.splitting import _shift_candidates  # noqa: E4
 from hyperrotor.conventions import _structure_constants  # noqa: E402
 from hyperrotor.demo import compare_quartet_motion  # noqa: E402
 from hyperrotor.quantum.operator_products import _term_pairs  # noqa: E402
+from hyperrotor.quantum.weights import weight_count  # noqa: E402
 
 
 def _moments(N):
@@ -190,8 +191,9 @@ def cases():
                     lambda rep: rep.exact_generators()))
     for N in (16, 19, 22):
         out.append(("hypercube_vertices", f"N={N}", dict(N=N), lambda: None, lambda _, N=N: hr.hypercube_vertices(N)))
-    for N, hw in ((3, (500,)), (3, (1500,)), (4, (20, 10)), (5, (6, 3))):
-        sizes = dict(rank=len(hw), n_roots=len(hq.positive_roots(N)), dim=hq.weyl_dimension(N, hw), bound=2 * hw[0])
+    for N, hw in ((3, (500,)), (3, (1500,)), (4, (20, 10)), (5, (6, 3)), (8, (6, 4, 4, 3)), (10, (6, 4, 3, 2, 1))):
+        sizes = dict(rank=len(hw), n_roots=len(hq.positive_roots(N)), dim=hq.weyl_dimension(N, hw), bound=2 * hw[0],
+                     weights=weight_count(N, tuple(2 * x for x in hw)))
         out.append(("weight_multiplicities", f"N={N} {hw}", sizes, lambda: None,
                     lambda _, N=N, hw=hw: hq.weight_multiplicities(N, hw)))
     # --- the other models (issue #21: every priced entry point)

@@ -61,6 +61,8 @@ _REAL_FORM_S = 1.5e-6
 _HARMONIC_TERM_S = 1.4e-4
 #: seconds per pure-Python integer tuple operation (Freudenthal's recursion)
 _PY_S = 3.0e-7
+#: seconds per step of Freudenthal's root strings and coordinate (tuples of doubled integers; refitted in session 48)
+_WEIGHT_STEP_S = 1.0e-6
 #: seconds per dim^2 of the Lanczos highest-weight search
 _LANCZOS_S = 6.0e-9
 #: seconds per rate difference of the Casimir shift rule (n x V of them, built by blocks: 1.5 s for a body of
@@ -560,12 +562,14 @@ def _plane_symbols(N: Any) -> tuple[Cost, ...]:
 
 
 @model("weight_multiplicities", "use weyl_dimension for the dimension only")
-def _weight_multiplicities(rank: Any, n_roots: Any, dim: Any, bound: Any) -> tuple[Cost, ...]:
-    # Freudenthal: every distinct weight (at most min(dim, (2 bound + 1)^rank)) sums over the
-    # positive roots and the strings mu + k alpha inside the bounding box (k <= 2 bound)
-    weights = min(_f(dim), (2.0 * _f(bound) + 1.0) ** _f(rank))
-    ops = weights * _f(n_roots) * (2.0 * _f(bound) + 1.0)
-    return (_seconds(f"Freudenthal's recursion over ~{weights:.3g} weights", ops * _f(rank) * _PY_S),)
+def _weight_multiplicities(rank: Any, n_roots: Any, dim: Any, bound: Any, weights: Any = None) -> tuple[Cost, ...]:
+    # Freudenthal: every distinct weight (``weights``: counted by weights.weight_count; else at most
+    # min(dim, (bound + 1)^rank)) sums over the positive roots and the strings mu + k alpha inside the bounding box
+    # (``bound``: the largest doubled coordinate, k up to about bound / 2). The box estimate was 51-373x high for
+    # rank 4-5 (a review, session 48)
+    w = min(_f(dim), (_f(bound) + 1.0) ** _f(rank)) if weights is None else _f(weights)
+    ops = w * _f(n_roots) * (0.5 * _f(bound) + 1.0)
+    return (_seconds(f"Freudenthal's recursion over ~{w:.3g} weights", ops * (1.0 + 0.5 * _f(rank)) * _WEIGHT_STEP_S),)
 
 
 def _harmonic_space(N: Any, l: Any, dim: float) -> Cost:

@@ -361,6 +361,51 @@ def casimir_eigenvalue(N: int, highest_weight: Any) -> Fraction:
     return sum((mi * (mi + N - 2 * i) for i, mi in enumerate(m, start=1)), Fraction(0))
 
 
+def weight_count(N: int, top: tuple[int, ...], most: int = 10**5) -> float | None:
+    """The number of distinct weights of the so(N) irrep of highest weight ``top`` (doubled coordinates): the
+    dominant weights below it (``top - mu`` in the positive root cone and the root lattice: each is a weight) times
+    their Weyl orbits (signed permutations; for even N an even number of sign changes). ``None`` beyond ``most``
+    dominant weights (for pricing: :func:`weight_multiplicities` visits each distinct weight)."""
+    n = len(top)
+    even = N % 2 == 0
+    if math.comb(abs(top[0]) // 2 + n, n) * (2 if even else 1) > most:  # (decreasing tuples of |entries| <= m1)
+        return None
+    lam_sums = [sum(top[:k + 1]) for k in range(n)]
+    count = 0.0
+    found = 0
+
+    def orbit(mu) -> float:
+        a = [abs(x) for x in mu]
+        z = a.count(0)
+        size = math.factorial(n) / math.factorial(z) * 2.0 ** (n - z)
+        for v in set(x for x in a if x):
+            size /= math.factorial(a.count(v))
+        return size / 2 if even and z == 0 else size
+
+    def extend(mu, total):
+        nonlocal count, found
+        k = len(mu)
+        if found > most:
+            return
+        if k == n:
+            x = [t - u for t, u in zip(top, mu)]
+            if even and ((sum(x) // 2) % 2 or sum(x[:-1]) - x[-1] < 0):  # (root lattice, the cone's last condition)
+                return
+            found += 1
+            count += orbit(mu)
+            return
+        hi = mu[-1] if mu else top[0]
+        lo = -hi if (even and k == n - 1) else 0
+        v = hi
+        while v >= lo:  # (doubled coordinates move in steps of 2: same parity as top)
+            if total + v <= lam_sums[k]:
+                extend(mu + [v], total + v)
+            v -= 2
+
+    extend([], 0)
+    return None if found > most else count
+
+
 def weight_multiplicities(N: int, highest_weight: Any) -> dict[tuple[Fraction, ...], int]:
     r"""Multiplicities of all weights of the so(N) irrep (Freudenthal's formula).
 
@@ -394,7 +439,8 @@ def weight_multiplicities(N: int, highest_weight: Any) -> dict[tuple[Fraction, .
     mult: dict[tuple[int, ...], int] = {top: 1}
     level = [top]
     bound = max(abs(x) for x in top)
-    _pricing.check("weight_multiplicities", rank=len(top), n_roots=len(pos), dim=weyl_dim(N, m), bound=bound)
+    _pricing.check("weight_multiplicities", rank=len(top), n_roots=len(pos), dim=weyl_dim(N, m), bound=bound,
+                   weights=weight_count(N, top))
     while level:
         candidates = set()
         for mu in level:

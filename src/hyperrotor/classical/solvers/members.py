@@ -41,7 +41,7 @@ class GivenStep:
     def first_step(self, solver, problem, work, bar=None):
         return self.h
 
-    def verified_step(self, solver, problem, work, most=None):
+    def verified_step(self, solver, problem, work, most=None, bar=None):
         """The step (nothing to verify: ``most``, the members a check would cover, is unused)."""
         return self.first_step(solver, problem, work)
 

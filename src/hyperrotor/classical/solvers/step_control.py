@@ -373,8 +373,8 @@ class FixedStep:
     def checker(self, solver, problem: Problem, nsub: np.ndarray, work: Work, bar=None):
         return None
 
-    def verified_step(self, solver, problem, work, most=None):
-        """The step (nothing to verify: ``most``, the members a check would cover, is unused)."""
+    def verified_step(self, solver, problem, work, most=None, bar=None):
+        """The step (nothing to verify: ``most``, the members a check would cover, and ``bar`` are unused)."""
         return self.first_step(solver, problem, work)
 
     def announce(self, solver, problem: Problem, h: float, steps: int | None = None) -> None:
