@@ -268,9 +268,12 @@ def cases():
     for l, S in ((2, 100), (2, 1000), (2, 4000), (100, 20), (400, 20), (1000, 20)):
         out.append(("otoc", f"5 times, {S} samples, dim {2 * l + 1}", _otoc_price(l, S), lambda l=l: _otoc_inputs(l),
                     lambda x, S=S: hq.otoc(*x, samples=S)))
-    for N, l in ((3, 6), (3, 10), (3, 14)):
+    for N, l in ((3, 6), (3, 10), (3, 14), (12, 3), (20, 2)):
         out.append(("orthogonal_harmonic_basis", f"N={N} l={l}", dict(N=N, l=l), _clear_harmonic_caches,
                     lambda _, N=N, l=l: hq.orthogonal_harmonic_basis(N, l)))
+    for N, l in ((3, 14), (8, 3), (12, 3), (20, 2)):  # (the basis and every plane's matrix, its caches cleared)
+        out.append(("harmonic_rep", f"N={N} l={l}", dict(N=N, l=l), _clear_harmonic_caches,
+                    lambda _, N=N, l=l: hq.harmonic_rep(N, l)))
     for e in (10**4, 2 * 10**4, 4 * 10**4):
         out.append(("sphere_integral", f"exponents ({e},) * 3", dict(degree=3 * e), lambda: None,
                     lambda _, e=e: hq.sphere_monomial_integral((e, e, e))))

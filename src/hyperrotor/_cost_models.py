@@ -444,19 +444,44 @@ def _harmonic_polynomial_basis(N: Any, l: Any) -> tuple[Cost, ...]:
 
 
 @model("orthonormal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
-def _orthonormal_harmonic_basis(N: Any, l: Any, per_term: float = 0.3, fixed: float = 0.08) -> tuple[Cost, ...]:
-    monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
+def _orthonormal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
+    # the orthogonal basis (its model), then the exact square roots of the norms: ~0.05 s and ~1 ms per polynomial
+    # (measured session 48: N = 3 l = 6 / 10 0.062 / 0.123 s, N = 4 l = 5 0.103 s; the model of every monomial per
+    # pair of polynomials it replaced was 2-5x high)
     dim = _harmonic_dim(N, l)
-    # the Gram-Schmidt's pairs of polynomials over the monomials, and a fixed ~0.08 s of the first call
-    # (measured N = 3, l = 3..14: 0.08-0.09 s even at l = 3, against 0.003 s of the pairs)
     return (_harmonic_space(N, l, dim), _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
-                     f"({monomials:.6g} monomials)", fixed + dim * dim * monomials * per_term * _SYMPY_S),)
+                                                 "and their norms", _orthogonal_basis_seconds(N, l) + 0.05 + 1e-3 * dim))
+
+
+def _orthogonal_basis_seconds(N: Any, l: Any) -> float:
+    # the Gram-Schmidt's pairs of polynomials (Python bookkeeping per pair) and their products, ~1.5 l terms per
+    # polynomial whatever N (measured, session 48: 1.0-1.65 l for N = 3 ... 30); counting every monomial of the
+    # space per pair was 27x high at N = 40, l = 2 (a review). Measured N = 3 l = 14 0.057 s, N = 12 l = 3 2.8 s,
+    # N = 30 l = 2 5.2 s
+    dim = _harmonic_dim(N, l)
+    return 2.4e-5 * dim * dim + 1.5e-7 * (1.5 * max(_f(l), 1.0) * dim) ** 2
 
 
 @model("orthogonal_harmonic_basis", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
 def _orthogonal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
-    # no normalisation: ~1/5 of the orthonormal basis's work and no fixed part (measured N = 3, l = 3..14)
-    return _orthonormal_harmonic_basis(N, l, per_term=0.06, fixed=0.0)
+    dim = _harmonic_dim(N, l)
+    return (_harmonic_space(N, l, dim),
+            _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l}",
+                     _orthogonal_basis_seconds(N, l)))
+
+
+@model("harmonic_rep", "use irrep(N, (l,)), the same representation in the Gelfand-Tsetlin basis")
+def _harmonic_rep(N: Any, l: Any) -> tuple[Cost, ...]:
+    # the basis, then per plane the operator applied to every polynomial (~1.5 l terms each) and the dense
+    # change to the basis (dim x monomials x dim): measured N = 20 l = 2 1.7 s, N = 30 l = 2 15 s (session 48: the
+    # planes' work, 44.6 s at N = 40, was not priced)
+    dim = _harmonic_dim(N, l)
+    monomials = _binomial(_f(l) + _f(N) - 1, _f(N) - 1)
+    planes = _n_planes(N)
+    return (_harmonic_space(N, l, dim),
+            _seconds(f"so({N}) on the {dim:.6g} harmonic polynomials of degree {l} ({planes:.0f} planes)",
+                     _orthogonal_basis_seconds(N, l)
+                     + planes * dim * (1.2e-5 * max(_f(l), 1.0) + 2.2e-10 * dim * monomials)))
 
 
 @model("bivector_product_table")

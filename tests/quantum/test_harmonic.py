@@ -179,3 +179,20 @@ def test_sphere_integrals_are_priced_before_any_big_integer_work():
             with call_cpu() as clock, pytest.raises(hr.BudgetError, match="sphere_integral"):
                 call()
             assert clock.seconds < 1.0
+
+
+def test_harmonic_rep_is_priced_by_its_own_name_with_its_planes():
+    """harmonic_rep's planes (each the operator on every polynomial and a dense change of basis) are priced with
+    its basis, and a refusal names harmonic_rep (it named orthogonal_harmonic_basis, whose model was 27x high at
+    N = 40, l = 2, and the planes' 45 s were not counted)."""
+    import hyperrotor as hr
+    import hyperrotor.quantum as hq
+    from hyperrotor._pricing import estimate
+
+    def seconds(entry, **sizes):
+        return sum(c.amount for c in estimate(entry, **sizes) if c.unit == "seconds")
+
+    assert seconds("harmonic_rep", N=40, l=2) > 2 * seconds("orthogonal_harmonic_basis", N=40, l=2)
+    with hr.options(max_seconds=0.5 * seconds("harmonic_rep", N=20, l=2)):
+        with pytest.raises(hr.BudgetError, match=r"^harmonic_rep: so\(20\) on the 209 harmonic polynomials"):
+            hq.harmonic_rep(20, 2)

@@ -311,6 +311,7 @@ def harmonic_rep(N: int, l: int) -> Representation:
 
     N = check_dimension(N)
     l = _validate.integer("degree l", l, minimum=0)
+    _pricing.check("harmonic_rep", N=N, l=l)  # (the basis and every plane's matrix: refused by this name)
     polys, norms = orthogonal_harmonic_basis(N, l)
     d = len(polys)
     monos = sorted({m for p in polys for m in p})
