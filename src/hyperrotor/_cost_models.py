@@ -449,8 +449,9 @@ def _orthonormal_harmonic_basis(N: Any, l: Any) -> tuple[Cost, ...]:
     # (measured session 48: N = 3 l = 6 / 10 0.062 / 0.123 s, N = 4 l = 5 0.103 s; the model of every monomial per
     # pair of polynomials it replaced was 2-5x high)
     dim = _harmonic_dim(N, l)
-    return (_harmonic_space(N, l, dim), _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} "
-                                                 "and their norms", _orthogonal_basis_seconds(N, l) + 0.05 + 1e-3 * dim))
+    return (_harmonic_space(N, l, dim),
+            _seconds(f"the exact Gram-Schmidt of {dim:.6g} harmonic polynomials of degree {l} and their norms",
+                     _orthogonal_basis_seconds(N, l) + 0.05 + 1e-3 * dim))
 
 
 def _orthogonal_basis_seconds(N: Any, l: Any) -> float:

@@ -223,3 +223,25 @@ def test_evolve_reuses_the_propagator_of_an_unchanged_H(rng):
     A *= 2.0  # the same object, other entries: exp(-i 2H t/2) must equal exp(-i H t)
     b = evolve(A, psi, [0.0, 0.5])
     np.testing.assert_allclose(b.states[-1].full(), a.states[-1].full(), rtol=0, atol=scaled_tol(1.0, dim=rep.dim, k=1e3))
+
+
+def test_the_blocks_a_state_needs_are_diagonalized_under_one_price():
+    """apply() priced each block as it came to it: 30 blocks of 200 passed a budget of a few blocks' time; now the
+    blocks the state touches are priced together before the first is diagonalized."""
+    import scipy.sparse as sps
+
+    from hyperrotor._pricing import estimate
+
+    g = np.random.default_rng(5)
+    A = g.normal(size=(200, 200))
+    H = sps.block_diag([A + A.T] * 30, format="csr")
+    U = SectorPropagator(H, method="eigen")
+    one = sum(c.amount for c in estimate("dense_diagonalization", dim=200, complex=False) if c.unit == "seconds")
+    X = np.ones(H.shape[0], dtype=complex)
+    with hr.options(max_seconds=5 * one):
+        with pytest.raises(hr.BudgetError, match="and the others"):
+            U.apply(X, 1.0)
+        x = np.zeros(H.shape[0], dtype=complex)
+        x[:400] = 1.0  # (two blocks: within the budget)
+        y = U.apply(x, 1.0)
+    assert np.allclose(np.linalg.norm(y), np.linalg.norm(x))

@@ -540,16 +540,19 @@ class SectorPropagator:
         out = np.zeros(X.shape, dtype=complex)
         stats: dict = {}
         with single_thread_blas():  # small products: threads only oversubscribe a loaded machine
-            for b in self._blocks:
-                C = b.coords(X)
-                if not np.any(C):
-                    continue
+            parts = [(b, C) for b in self._blocks for C in (b.coords(X),) if np.any(C)]
+            # every block still to diagonalize priced together, before the first (each was priced on its own)
+            todo = [b for b, _ in parts if b.engine is not None and b.eig is None]
+            if todo:
+                _pricing.check("dense_diagonalization", dim=max(b.n for b in todo),
+                               complex=any(b.matrix.dtype.kind == "c" for b in todo),
+                               cubes=sum(float(b.n) ** 3 for b in todo))
+            for b, C in parts:
                 if b.engine is None:
                     phase = np.exp((-1j * tau / self.hbar) * b.diag)
                     C = phase[:, None] * C if C.ndim == 2 else phase * C
                 else:
                     if b.eig is None:
-                        _pricing.check("dense_diagonalization", dim=b.n, complex=b.matrix.dtype.kind == "c")
                         b.diagonalize(stats)
                     E, V = b.eig
                     phase = np.exp((-1j * tau / self.hbar) * E)
