@@ -130,16 +130,16 @@ def _check_common(T, spectrum, method, dt, renorm_interval, n, history):
     return T, method, dt, renorm_interval, k, as_spectrum
 
 
-def _benettin(bodies, L0, T, k, method, dt, renorm_interval, history, rng, client, chunk_size, progress, desc):
+def _benettin(bodies, moments_rows, L0, T, k, method, dt, renorm_interval, history, rng, client, chunk_size, progress,
+              desc):
     """Exponents ``(B, K, k)`` at the times ``t (K,)`` for orbits ``L0 (B, n)`` of ``bodies (P, n)``, body ``p``'s
-    orbits in the rows ``p * M ... (p + 1) * M - 1`` (``B = P * M``)."""
+    orbits in the rows ``p * M ... (p + 1) * M - 1`` (``B = P * M``; ``moments_rows (B, n)``: each orbit's body)."""
     B, n = L0.shape
     P = bodies.shape[0]
     N = dimension_from_count(n)
     gen = _validate.rng(rng)
     progress = _validate.flag("progress", progress, allow_none=True)
     M = B // P
-    moments_rows = np.broadcast_to(bodies, (B, n)) if P == 1 else np.repeat(bodies, M, axis=0)
     # per orbit: Casimir-shifted rates (as simulate), step, steps per renormalisation
     # scale each orbit by a power of two close to its largest |L_a| (the equations are invariant under
     # L -> L/s, t -> s t): exact in floating point, so the arithmetic of the kernel is the same as
@@ -484,7 +484,8 @@ def lyapunov(
     # the orbits' rows and their k tangent vectors, before any copy (the sweep's memory model: one body)
     _pricing.check("lyapunov_sweep", bodies=1, orbits=B, n=n, k=k)
     L0 = np.ascontiguousarray(w0.reshape(B, n) * moments)
-    t, lam = _benettin(moments[None, :], L0, T, k, method, dt, renorm_interval, history, rng,
+    t, lam = _benettin(moments[None, :], np.broadcast_to(moments, (B, n)), L0, T, k, method, dt, renorm_interval,
+                       history, rng,
                        client, chunk_size, progress, "lyapunov")
     return _result(t, lam, batch, as_spectrum, history, k, method, rng)
 
@@ -566,6 +567,6 @@ def lyapunov_sweep(
     if k > 1:  # (the k tangent vectors of every orbit: priced with k = 1 above, before k was known)
         _pricing.check("lyapunov_sweep", bodies=P, orbits=M, n=n, k=k)
     L0 = np.ascontiguousarray(Wrows * Mrows)
-    t, lam = _benettin(moments, L0, T, k, method, dt, renorm_interval, history, rng,
+    t, lam = _benettin(moments, Mrows, L0, T, k, method, dt, renorm_interval, history, rng,
                        client, chunk_size, progress, "lyapunov sweep")
     return _result(t, lam, (P, M), as_spectrum, history, k, method, rng)

@@ -188,7 +188,8 @@ def run(args: argparse.Namespace) -> int:
         # the library's memory budgets as large as the command's, which its estimates were checked against
         memory = max(float(options["cli_max_memory"]) if args.max_memory is None else float(args.max_memory),
                      float(options["max_memory_bytes"]), float(options["max_output_bytes"]))
-        with options(max_memory_bytes=memory, max_output_bytes=memory):
+        budgets = {"max_memory_bytes": memory, "max_output_bytes": memory}
+        with options(**budgets):
             body = RigidBody(inertia)
         if fmt == ".html":  # the page shows the energy and the Casimirs: they must fit in double precision
             check_invariants_fit("--omega", s["omega"], lambda w: (body.energy(w), body.casimirs(w)),
@@ -198,7 +199,7 @@ def run(args: argparse.Namespace) -> int:
         t = np.linspace(0.0, s["t_end"], s["frames"])
         proj_axes = tuple(s["axes"]) + ((s["colour_axis"],) if s["colour_axis"] else ())
         observables = ("projection", "omega") if fmt == ".html" else ("projection",)  # the page shows invariants
-        with options(max_memory_bytes=memory, max_output_bytes=memory):
+        with options(**budgets):
             points = {"cube": lambda: hypercube_vertices(N),
                       "simplex": lambda: simplex_vertices(N),
                       "ellipsoid": lambda: ellipsoid_points(np.ones(N), _cost_models.SCENE_ELLIPSOID_POINTS,
@@ -207,21 +208,21 @@ def run(args: argparse.Namespace) -> int:
             points *= body_stretch(inertia)
             scene = Scene(body, s["omega"], t, observables=observables, points=points, axes=proj_axes,
                           progress=args.progress)  # a bar while an integrated motion is computed
-        with options(max_steps=s["max_steps"], max_memory_bytes=memory, max_output_bytes=memory):
-            try:
-                _check_motion(args, s, scene)
-                res = scene.evaluate()
-            except BudgetError as err:  # the library's advice names Python options; name the CLI's
-                raise UsageError(_budget_message(err, args)) from None
-            except UnreachableAccuracyError as err:  # (its advice, a larger rtol, is no option of the command)
-                raise RuntimeError(f"the motion over --t-end {num(s['t_end'])} cannot be integrated to the scene's "
-                                   f"accuracy: {str(err).split('. Ask for')[0]}; choose a shorter --t-end") from None
+            with options(max_steps=s["max_steps"]):
+                try:
+                    _check_motion(args, s, scene)
+                    res = scene.evaluate()
+                except BudgetError as err:  # the library's advice names Python options; name the CLI's
+                    raise UsageError(_budget_message(err, args)) from None
+                except UnreachableAccuracyError as err:  # (its advice, a larger rtol, is no option of the command)
+                    raise RuntimeError(f"the motion over --t-end {num(s['t_end'])} cannot be integrated to the "
+                                       f"scene's accuracy: {str(err).split('. Ask for')[0]}; choose a shorter --t-end"
+                                       ) from None
         checkpoint()
         title = (f"{args.shape} in {N}D, {args.inertia} inertia: space axes {', '.join(map(str, s['axes']))} drawn"
                  + (f", colour = x{s['colour_axis']}" if s["colour_axis"] else ""))
         if fmt == ".html":
-            with options(scene_html_max_bytes=max(float(options["scene_html_max_bytes"]), s["memory"]),
-                         max_memory_bytes=memory, max_output_bytes=memory):
+            with options(scene_html_max_bytes=max(float(options["scene_html_max_bytes"]), s["memory"]), **budgets):
                 scene.to_html(out.tmp, edges=edges, title=title, result=res)
         else:
             _draw(args, s, out.tmp, res, edges, title)

@@ -93,6 +93,11 @@ EXACT_MAX_DIM = 200
 # ----------------------------------------------------------------------------
 # patterns and indexing
 # ----------------------------------------------------------------------------
+def _pattern_length(N: int) -> int:
+    """Entries of a flattened GT pattern of so(N): rows ``M_N ... M_2`` of ``floor(k/2)`` labels each."""
+    return sum(k // 2 for k in range(2, int(N) + 1))
+
+
 def _row_offsets(N: int) -> dict[int, tuple[int, int]]:
     """Column range ``[a, b)`` of row ``M_k`` in the flattened pattern, k = N..2."""
     off, c = {}, 0
@@ -178,6 +183,12 @@ class PatternIndex:
         self.keys = h[self.order]
         if len(self.keys) > 1 and not np.all(np.diff(self.keys) > 0):  # pragma: no cover - a collision: the dict
             self.table = {tuple(row): i for i, row in enumerate(self.digits.tolist())}
+
+    @property
+    def nbytes(self) -> int:
+        """Bytes of the index's tables (its keys, and for long patterns their digits and order)."""
+        return sum(a.nbytes for a in (self.keys, getattr(self, "digits", None), getattr(self, "order", None))
+                   if a is not None)
 
     def _digits(self, Q):
         return np.rint(2 * (self.m1 - Q)).astype(np.int64)
@@ -269,7 +280,7 @@ def gt_index(N: int, highest_weight: Any, pattern: Any, *, max_dim: int = DEFAUL
     Q = _validate.finite_array("pattern", pattern)  # (complex, booleans, text, ragged: refused by name)
     single = Q.ndim == 1
     Q = np.atleast_2d(Q)
-    E = sum(k // 2 for k in range(2, N + 1))
+    E = _pattern_length(N)
     if Q.ndim != 2 or Q.shape[1] != E:
         raise ValueError(f"a GT pattern of so({N}) has {E} entries (rows M_N..M_2 flattened), got shape {Q.shape}")
     off = np.any(2.0 * Q != np.rint(2.0 * Q), axis=1)
@@ -373,7 +384,7 @@ def _chain_elements(P: np.ndarray, N: int, k: int, index: PatternIndex, Pf: np.n
 def _pattern_bytes(dim: float, N: float) -> float:
     """Peak bytes of building the GT patterns of a dimension-``dim`` irrep: float rows of ``sum floor(k/2)``
     (k = 2..N) entries, three copies at once (peak traced memory 2.4-3.5x one copy: ``benchmarks/pricing.py``)."""
-    return 24.0 * dim * sum(k // 2 for k in range(2, int(N) + 1))
+    return 24.0 * dim * _pattern_length(N)
 
 
 def _generator_bytes(dim: float, N: float) -> float:
@@ -399,7 +410,7 @@ GT_COMMUTATOR_S = 1.0e-7
 
 @_pricing.model("gt_generators", "ask for a smaller irrep")
 def _gt_generators_cost(dim, N) -> tuple:
-    E = sum(k // 2 for k in range(2, int(N) + 1))
+    E = _pattern_length(N)
     return (_pricing.Cost(f"the sparse generators of a dimension-{dim} irrep of so({N}) (patterns of {E} entries)",
                           float(dim) * (GT_LOOKUP_S * E * E + GT_COMMUTATOR_S * float(N) ** 2), "max_seconds",
                           "seconds"),)
@@ -479,8 +490,7 @@ def _gt_generators_float(N: int, m) -> dict:
     # the lookups of the adjacent planes' matrix elements: the patterns, the index, and per raised entry a copy of
     # the patterns with its digits and their comparison (a review: so(30) (1, 1, 1, 0, ...) peaked at 40.6 MB under a
     # 28 MB budget, 5.6 pattern tables)
-    stage = 5.0 * P.nbytes + sum(float(getattr(index, a).nbytes) for a in ("keys", "digits", "order")
-                                 if hasattr(index, a))
+    stage = 5.0 * P.nbytes + index.nbytes
     if stage > float(options["max_memory_bytes"]):
         raise _memory_refusal(N, m, stage, "the lookups of the matrix elements of the planes (k, k + 1)")
     X = {}
@@ -514,10 +524,11 @@ def _gt_generators_float(N: int, m) -> dict:
         for i in range(1, N - gap + 1):
             j = i + gap
             A, B = X[(i, j - 1)], X[(j - 1, j)]
-            products = _products_bound(A, B) + _products_bound(B, A)  # (the two products' entries, at most)
-            if held + 2.0 * products * (A.data.itemsize + A.indices.itemsize) > budget:
-                raise _memory_refusal(N, m, held + 2.0 * products * (A.data.itemsize + A.indices.itemsize),
-                                      f"the planes built so far and the commutator that builds plane ({i}, {j})")
+            # (the two products' entries, at most, and their difference)
+            need = held + 2.0 * (_products_bound(A, B) + _products_bound(B, A)) * (A.data.itemsize + A.indices.itemsize)
+            if need > budget:
+                raise _memory_refusal(N, m, need, f"the planes built so far and the commutator that builds plane "
+                                                  f"({i}, {j})")
             X[(i, j)] = _commutator_float(A, B)
             made.append(_csr_bytes(X[(i, j)]))
             held += made[-1]

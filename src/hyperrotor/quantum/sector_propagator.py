@@ -540,7 +540,11 @@ class SectorPropagator:
         out = np.zeros(X.shape, dtype=complex)
         stats: dict = {}
         with single_thread_blas():  # small products: threads only oversubscribe a loaded machine
-            parts = [(b, C) for b in self._blocks for C in (b.coords(X),) if np.any(C)]
+            parts = []  # (the blocks X has components in, with them)
+            for b in self._blocks:
+                C = b.coords(X)
+                if np.any(C):
+                    parts.append((b, C))
             # every block still to diagonalize priced together, before the first (each was priced on its own)
             todo = [b for b, _ in parts if b.engine is not None and b.eig is None]
             if todo:

@@ -161,15 +161,15 @@ def spacing_ratio(levels: Any, *, return_error: bool = False):
     return mean, err
 
 
-def _check_degeneracies(levels: Any, effect: str = "each gives a spacing ratio of 0") -> None:
+def _check_degeneracies(levels: Any, effect: str = "each gives a spacing ratio of 0") -> int:
     """Refuse (a quarter or more) or warn about vanishing spacings (see :func:`spacing_ratio`); ``effect``: what
-    each does to the statistic of the caller."""
+    each does to the statistic of the caller. Returns how many vanish."""
     E = _levels(levels, 3)
     tol = _ZERO_SPACING_RTOL * float(np.abs(E).max())
     zero = int(np.count_nonzero(np.diff(E) <= tol))
     n = E.size - 1
     if not zero:
-        return
+        return 0
     if zero == n:  # (returned silently before: a degenerate sector's round-off splitting gave <r> = 0.23, a review)
         how = ("all equal" if E[0] == E[-1] else
                f"one degenerate level, split only by round-off (all {n} spacings <= 1e-12 * max|E| = {tol:.2e})")
@@ -182,6 +182,7 @@ def _check_degeneracies(levels: Any, effect: str = "each gives a spacing ratio o
                          f"(sector_spectra; a spinor irrep's multiplets count once there) or distinct levels "
                          f"(spectrum(H).levels)")
     warn(f"{text} (accidental degeneracies?)", RuntimeWarning)
+    return zero
 
 
 def ratio_density(r: Any, ensemble: str) -> np.ndarray:
@@ -237,11 +238,9 @@ def unfold(levels: Any, *, degree: int = 7) -> np.ndarray:
     """
     degree = _validate.integer("degree", degree, minimum=1, maximum=50)
     E = _levels(levels, degree + 2)
-    _check_degeneracies(E, "each gives an unfolded spacing of 0")  # (as spacing_ratio)
+    # (as spacing_ratio; equal levels are refused there, so hi > lo below)
+    distinct = E.size - _check_degeneracies(E, "each gives an unfolded spacing of 0")
     lo, hi = E[0], E[-1]
-    if not hi > lo:
-        raise ValueError(f"all levels coincide (every level is {_validate.fmt(lo)}): no staircase to unfold")
-    distinct = int(np.count_nonzero(np.diff(E) > _ZERO_SPACING_RTOL * float(np.abs(E).max()))) + 1
     if distinct <= degree:
         raise ValueError(f"levels has {distinct} distinct values; a staircase fit of degree {degree} needs at "
                          f"least {degree + 1} (lower degree=)")

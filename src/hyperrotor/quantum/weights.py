@@ -364,15 +364,16 @@ def casimir_eigenvalue(N: int, highest_weight: Any) -> Fraction:
 def weight_count(N: int, top: tuple[int, ...], most: int = 10**5) -> float | None:
     """The number of distinct weights of the so(N) irrep of highest weight ``top`` (doubled coordinates): the
     dominant weights below it (``top - mu`` in the positive root cone and the root lattice: each is a weight) times
-    their Weyl orbits (signed permutations; for even N an even number of sign changes). ``None`` beyond ``most``
-    dominant weights (for pricing: :func:`weight_multiplicities` visits each distinct weight)."""
+    their Weyl orbits (signed permutations; for even N an even number of sign changes). ``None`` when there may be
+    more than ``most`` dominant weights: their count is at most that of the decreasing tuples of labels ``|mu_i|
+    <= m_1`` (twice that for even N), checked before any is listed (for pricing: :func:`weight_multiplicities`
+    visits each distinct weight)."""
     n = len(top)
     even = N % 2 == 0
     if math.comb(abs(top[0]) // 2 + n, n) * (2 if even else 1) > most:  # (decreasing tuples of |entries| <= m1)
         return None
     lam_sums = [sum(top[:k + 1]) for k in range(n)]
     count = 0.0
-    found = 0
 
     def orbit(mu) -> float:
         a = [abs(x) for x in mu]
@@ -383,15 +384,12 @@ def weight_count(N: int, top: tuple[int, ...], most: int = 10**5) -> float | Non
         return size / 2 if even and z == 0 else size
 
     def extend(mu, total):
-        nonlocal count, found
+        nonlocal count
         k = len(mu)
-        if found > most:
-            return
         if k == n:
             x = [t - u for t, u in zip(top, mu)]
             if even and ((sum(x) // 2) % 2 or sum(x[:-1]) - x[-1] < 0):  # (root lattice, the cone's last condition)
                 return
-            found += 1
             count += orbit(mu)
             return
         hi = mu[-1] if mu else top[0]
@@ -403,7 +401,7 @@ def weight_count(N: int, top: tuple[int, ...], most: int = 10**5) -> float | Non
             v -= 2
 
     extend([], 0)
-    return None if found > most else count
+    return count
 
 
 def weight_multiplicities(N: int, highest_weight: Any) -> dict[tuple[Fraction, ...], int]:

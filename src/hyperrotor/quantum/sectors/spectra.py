@@ -442,7 +442,8 @@ def sector_spectra(
     _pricing.check("gt_sectors", dim=rep.dim, N=rep.N)
     secs = sectors_of(rep, False)
     big = max((s.dim for s in secs), default=0)
-    _pricing.check("sector_spectra", dim=big, real=all(s.real for s in secs), cubes=sum(float(s.dim) ** 3 for s in secs))
+    _pricing.check("sector_spectra", dim=big, real=all(s.real for s in secs),
+                   cubes=sum(float(s.dim) ** 3 for s in secs))
     from ..._parallel import map_rows
 
     idx = np.arange(len(secs))
