@@ -98,7 +98,7 @@ def test_demo_options(capsys):
     assert "I_12 = 5" in out and "I_45 = 2" in out
     assert re.findall(r"^\[(\d+)\]  ", out, flags=re.M)[0] == "12"
     assert "(28)" not in out
-    assert _value(out, "energy E = 1/2 sum I_ij w_ij^2") == pytest.approx(0.5 * (5 + 2))
+    assert _value(out, "energy E = 1/2 sum I_ij w_ij^2") == pytest.approx(0.5 * (5 + 2), rel=1e-12)
 
 
 @pytest.mark.parametrize("argv,msg", [
@@ -273,7 +273,7 @@ def test_scene_default_omega_is_one_size_at_every_n(capsys, tmp_path):
     assert np.array_equal(default_omega(10), 0.1 * np.arange(1, 11))
     for n in (3, 6, 45, 6555):
         w = default_omega(n)
-        assert w.max() == pytest.approx(min(1.0, 0.1 * n)) and np.all(np.diff(w) > 0)
+        assert w.max() == pytest.approx(min(1.0, 0.1 * n), rel=1e-15) and np.all(np.diff(w) > 0)
     page = tmp_path / "d.html"
     code, out, err = _run(capsys, ["scene", "--N", "115", "--shape", "simplex", "--frames", "2", "--output",
                                    str(page)])

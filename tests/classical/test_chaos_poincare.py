@@ -10,7 +10,7 @@ from hyperrotor.plotting import plot_poincare
 from hyperrotor.classical import euler_poinsot_period
 from hyperrotor.conventions import plane_index, planes
 
-EPS = float(np.finfo(float).eps)
+from tolerance import EPS
 
 
 def casimir_c2(L):

@@ -1,6 +1,5 @@
 """Tests of hyperrotor.Inertia: normalization, eq.-(3) tensor, bodies, named inertias, errors."""
 import itertools
-import math
 
 import numpy as np
 import pytest
@@ -178,7 +177,7 @@ def test_from_points_box_sample_converges(rng):
     exact = Inertia.box(2.0, sides)
     # Monte-Carlo: relative standard error of <x^2> for a uniform variable ~ sqrt(4/5 / n) ~ 1.4e-3
     np.testing.assert_allclose(I.moments, exact.moments, rtol=8e-3)
-    np.testing.assert_allclose(I.principal_axes, np.eye(4), atol=2e-2)
+    np.testing.assert_allclose(I.principal_axes, np.eye(4), atol=2e-2, rtol=0)
 
 
 def test_from_points_rotated_ellipsoid(rng):
@@ -199,7 +198,8 @@ def test_from_points_rotated_ellipsoid(rng):
     c = pts @ R.T
     c = c - c.mean(axis=0)
     D = P.T @ (c.T @ c / n) @ P
-    np.testing.assert_allclose(D - np.diag(np.diag(D)), 0, atol=scaled_tol(D, k=16))
+    # (D is a sum over the n points, here and in the package in another order: its round-off walks like sqrt(n))
+    np.testing.assert_allclose(D - np.diag(np.diag(D)), 0, atol=scaled_tol(D, k=16, steps=n), rtol=0)
     np.testing.assert_allclose(np.diag(D), I.mass_tensor, rtol=1e-12)
 
 
@@ -345,7 +345,7 @@ def test_repr_and_hash():
     I = Inertia.equal(3, 1)
     assert "12: 1" in repr(I)
     assert hash(I) == hash(Inertia.equal(3, 1))
-    assert math.isclose(I[(1, 2)], 1.0)
+    assert I[(1, 2)] == 1.0
 
 
 def test_subs_reads_text_safely(tmp_path, monkeypatch):

@@ -16,7 +16,7 @@ from hyperrotor.classical.solvers import SOLVERS
 from hyperrotor.classical.solvers.splitting import casimir_shift, splitting_coefficients
 from hyperrotor.classical.solvers.splitting import splitting_word as _splitting_word
 from hyperrotor.conventions import n_planes, structure_constants, to_matrix
-from tolerance import scaled_tol
+from tolerance import EPS, scaled_tol
 
 SPLITTINGS = [m for m in SOLVERS if m.startswith("splitting")]
 SCIPY = ["DOP853", "RK45", "LSODA", "Radau"]
@@ -65,8 +65,8 @@ def test_elementary_flow_is_the_flow_of_one_plane_term(N, compensated, rng):
         w[a] = L0[0, a] / mom[0, a]
         dL = (outs[0][0] - outs[1][0]) / (2 * h)
         dT = (outs[0][1] - outs[1][1]) / (2 * h)
-        np.testing.assert_allclose(dL, np.einsum("b,c,bca->a", w, L0[0], C), atol=1e-8)
-        np.testing.assert_allclose(dT, to_matrix(w, convention="standard"), atol=1e-8)  # dT/dt = W T at T = 1
+        np.testing.assert_allclose(dL, np.einsum("b,c,bca->a", w, L0[0], C), atol=1e-8, rtol=0)
+        np.testing.assert_allclose(dT, to_matrix(w, convention="standard"), atol=1e-8, rtol=0)  # dT/dt = W T at T = 1
         assert outs[0][0][a] == L0[0, a]  # L_a is exactly invariant under its own flow
 
 
@@ -158,15 +158,10 @@ def test_coefficient_sets_are_symmetric_and_consistent():
         assert g.size == stages
         np.testing.assert_array_equal(g, g[::-1])
         assert abs(g.sum() - 1) < 4e-16
-        # a symmetric composition of order >= 4 needs sum gamma^3 = 0 (first order condition)
-        if order >= 4:
-            assert abs(np.sum(g ** 3)) < 1e-14
-        if order >= 6:  # and sum gamma^5 = 0
-            assert abs(np.sum(g ** 5)) < 1e-14
-        if order >= 8:  # ... sum gamma^7 = 0
-            assert abs(np.sum(g ** 7)) < 1e-14
-        if order >= 10:  # ... sum gamma^9 = 0
-            assert abs(np.sum(g ** 9)) < 1e-14
+        # a symmetric composition of order p needs sum gamma^k = 0 for k = 3, 5, ..., p - 1 (its first order
+        # conditions), to the round-off of the k-th powers: k eps per term (measured: 0.03-0.47 of k eps sum |g|^k)
+        for k in range(3, order, 2):
+            assert abs(np.sum(g ** k)) <= 4 * k * EPS * np.sum(np.abs(g) ** k), (order, k)
     with pytest.raises(ValueError, match="2, 4, 6, 8, 10"):
         splitting_coefficients(3)
 
@@ -349,7 +344,7 @@ def test_empirical_order_5d_quartet_against_closed_form(method, rng):
 
 
 def test_quartet_body_matches_closed_form_moments():
-    np.testing.assert_allclose(Inertia.quartet(0.5).moments, quartet_moments(0.5))
+    np.testing.assert_array_equal(Inertia.quartet(0.5).moments, quartet_moments(0.5))
 
 
 # ----------------------------------------------------------------------------- invariants
@@ -412,7 +407,7 @@ def test_attitude_orthogonal_and_space_momentum_conserved(rng, eps):
         assert T.shape == (61, 5, 5)
         I = np.eye(5)
         assert np.abs(np.swapaxes(T, -1, -2) @ T - I).max() < 2000 * eps  # 6000 steps
-        np.testing.assert_allclose(np.linalg.det(T), 1.0, atol=1e-12)
+        np.testing.assert_allclose(np.linalg.det(T), 1.0, atol=1e-12, rtol=0)
         Lb = body.matrix(tr.L)  # body-frame matrices in the body's convention
         Ls = np.swapaxes(T, -1, -2) @ Lb @ T  # L_space = T^T L_body T
         assert np.abs(Ls - Ls[0]).max() < 1e-12 * np.abs(Lb).max()
@@ -427,12 +422,12 @@ def test_attitude_obeys_dT_equals_W_T_in_the_body_convention(rng):
         tr = simulate(body, w0, t, method="splitting8", dt=1e-3, attitude=True)
         dT = (tr.attitude[3] - tr.attitude[1]) / (2 * h)
         W = to_matrix(tr.omega[2], convention=convention)
-        np.testing.assert_allclose(dT, W @ tr.attitude[2], atol=1e-6)
+        np.testing.assert_allclose(dT, W @ tr.attitude[2], atol=1e-6, rtol=0)
     # paper = S standard S
     S = np.diag([(-1.0) ** i for i in range(1, 6)])
     Tp = simulate(RigidBody(inertia, convention="paper"), w0, t, method="splitting4", dt=1e-2, attitude=True).attitude
     Ts = simulate(RigidBody(inertia, convention="standard"), w0, t, method="splitting4", dt=1e-2, attitude=True).attitude
-    np.testing.assert_allclose(Tp, S @ Ts @ S, atol=1e-15)
+    np.testing.assert_allclose(Tp, S @ Ts @ S, atol=1e-15, rtol=0)
 
 
 def test_initial_attitude_is_used(rng):
@@ -446,7 +441,7 @@ def test_initial_attitude_is_used(rng):
     flows = run.stats["steps"] * run.stats["flows_per_step"]
     np.testing.assert_allclose(b, a @ Q, rtol=0, atol=scaled_tol(1.0, k=4, dim=5, steps=flows))
     c = simulate(inertia, w0, t, method="DOP853", rtol=1e-12, attitude=Q).attitude
-    np.testing.assert_allclose(c, b, atol=1e-8)
+    np.testing.assert_allclose(c, b, atol=1e-8, rtol=0)
 
 
 # ----------------------------------------------------------------------------- batches
@@ -509,7 +504,7 @@ def test_scipy_without_rigidbody_uses_equivalent_rhs(rng):
     t = np.linspace(0, 4, 5)
     a = simulate(RigidBody(inertia), w0, t, method="DOP853", rtol=1e-12)
     b = simulate(inertia.moments, w0, t, method="DOP853", rtol=1e-12)
-    np.testing.assert_allclose(a.omega, b.omega, atol=1e-10)
+    np.testing.assert_allclose(a.omega, b.omega, atol=1e-10, rtol=0)
 
 
 # ----------------------------------------------------------------------------- step rule / auto
@@ -554,7 +549,7 @@ def test_damping_torque_against_time_reparametrised_free_motion():
     s = (1 - np.exp(-g * t)) / g
     order = np.argsort(s)
     exact = np.exp(-g * t)[:, None] * euler_poinsot(MOM3, W3, s[order])
-    np.testing.assert_allclose(tr.omega, exact, atol=1e-9)
+    np.testing.assert_allclose(tr.omega, exact, atol=1e-9, rtol=0)
 
 
 @pytest.mark.parametrize("method", ["splitting2", "splitting4", "splitting8"])
@@ -600,7 +595,7 @@ def test_moments_from_every_body_kind(rng):
 def test_non_uniform_output_grid_hits_output_times():
     t = np.array([0.0, 0.013, 0.5, 0.51, 3.0])
     tr = simulate(MOM3, W3, t, method="splitting8", dt=0.05)
-    np.testing.assert_allclose(tr.omega, euler_poinsot(MOM3, W3, t), atol=1e-10)
+    np.testing.assert_allclose(tr.omega, euler_poinsot(MOM3, W3, t), atol=1e-10, rtol=0)
 
 
 BAD = [

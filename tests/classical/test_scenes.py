@@ -124,7 +124,8 @@ def test_reduced_integration_with_attitude_and_projection(convention):
     # projection = rows (1, 2, 5) of T^T x_body
     full = np.einsum("kba,pb->kpa", a.attitude, hypercube_vertices(5))
     np.testing.assert_allclose(a.projection, full[:, :, [0, 1, 4]], rtol=0, atol=scaled_tol(hypercube_vertices(5)[0], a.attitude[0]))
-    np.testing.assert_allclose(np.einsum("kji,kjl->kil", a.attitude, a.attitude), np.broadcast_to(np.eye(5), (T.size, 5, 5)), atol=1e-12)
+    np.testing.assert_allclose(np.einsum("kji,kjl->kil", a.attitude, a.attitude), np.broadcast_to(np.eye(5), (T.size, 5, 5)),
+                               atol=1e-12, rtol=0)
 
 
 def test_equal_moments_closed_form_attitude():

@@ -113,7 +113,7 @@ def test_so3_coherent_state_is_qutip_spin_coherent(twice_j, rng):
     axis_of = {}
     for p in planes(3):
         Lp = -1j * rep.generator(p, format="dense")
-        hits = [(a, s) for a in "xyz" for s in (1, -1) if np.allclose(Lp, s * J[a], atol=scaled_tol(J[a]))]
+        hits = [(a, s) for a in "xyz" for s in (1, -1) if np.allclose(Lp, s * J[a], atol=scaled_tol(J[a]), rtol=0)]
         assert len(hits) == 1, (p, hits)
         axis_of[p] = hits[0]
     for _ in range(3):

@@ -32,13 +32,7 @@ from hyperrotor.quantum import evolve, rotor_hamiltonian
 from tolerance import norm, scaled_tol
 
 
-@pytest.fixture(autouse=True)
-def _one_blas_thread():
-    """Small dense products on one BLAS thread: threads only oversubscribe the shared test machine."""
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(limits=1, user_api="blas"):
-        yield
+pytestmark = pytest.mark.usefixtures("one_blas_thread")  # (tests/quantum/conftest.py)
 
 
 def _reps():
@@ -122,7 +116,7 @@ def test_classical_component_ode_matches_simulate(rng):
     ref = _classical(moments, L0, t)
     body = hyperrotor.RigidBody(hyperrotor.Inertia.from_planes(moments))
     traj = hyperrotor.simulate(body, L0 / moments, t, rtol=1e-12)
-    np.testing.assert_allclose(traj.L, ref, atol=1e-8)
+    np.testing.assert_allclose(traj.L, ref, atol=1e-8, rtol=0)
 
 
 # ----------------------------------------------------------------------------
@@ -194,7 +188,7 @@ def test_coherent_state_simple_bivector(make, hw, rng):
     N = rep.N
     hbar = 0.8
     _, w = highest_weight_state(rep)
-    np.testing.assert_allclose(w, hw, atol=1e-10)
+    np.testing.assert_allclose(w, hw, atol=1e-10, rtol=0)
     Q = _random_rotation(rng, N)
     L = _bivector(Q, [1.7] + [0.0] * (N // 2 - 1))  # a simple bivector of norm 1.7
     l = hw[0]
@@ -202,11 +196,11 @@ def test_coherent_state_simple_bivector(make, hw, rng):
         psi = coherent_state(rep, L, hbar=hbar, frame=frame)
         assert isinstance(psi, qutip.Qobj) and abs(psi.norm() - 1) < 1e-12
         ex = generator_expectations(rep, psi, hbar=hbar)
-        np.testing.assert_allclose(sign * ex, hbar * l * L / 1.7, atol=1e-9)
+        np.testing.assert_allclose(sign * ex, hbar * l * L / 1.7, atol=1e-9, rtol=0)
         v = psi.full().ravel()
         second = sum(np.vdot(v, (x @ (x @ v))).real for x in (rep.generator(p, form="hermitian", hbar=hbar) for p in planes(N)))
         rho = [N / 2 - k for k in range(1, N // 2 + 1)]
-        np.testing.assert_allclose(second - ex @ ex, hbar**2 * 2 * np.dot(hw, rho), atol=1e-9)
+        np.testing.assert_allclose(second - ex @ ex, hbar**2 * 2 * np.dot(hw, rho), atol=1e-9, rtol=0)
 
 
 def test_coherent_state_general_so5(rng):
@@ -217,9 +211,9 @@ def test_coherent_state_general_so5(rng):
         w = np.array([float(x) for x in hw])
         L = _bivector(Q, 0.4 * w)
         psi = coherent_state(rep, L)
-        np.testing.assert_allclose(generator_expectations(rep, psi), L / 0.4, atol=1e-9)
+        np.testing.assert_allclose(generator_expectations(rep, psi), L / 0.4, atol=1e-9, rtol=0)
         psi_b = coherent_state(rep, L, hbar=2.0, frame="body")
-        np.testing.assert_allclose(-generator_expectations(rep, psi_b, hbar=2.0), 2 * L / 0.4, atol=1e-9)
+        np.testing.assert_allclose(-generator_expectations(rep, psi_b, hbar=2.0), 2 * L / 0.4, atol=1e-9, rtol=0)
 
 
 def test_coherent_state_errors(rng):

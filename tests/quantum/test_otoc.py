@@ -13,13 +13,7 @@ import hyperrotor as hr
 from hyperrotor.quantum import irrep, otoc, rotor_hamiltonian
 
 
-@pytest.fixture(autouse=True)
-def _one_blas_thread():
-    """The dense references on one BLAS thread: threads only oversubscribe the shared test machine."""
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(limits=1, user_api="blas"):
-        yield
+pytestmark = pytest.mark.usefixtures("one_blas_thread")  # (tests/quantum/conftest.py)
 
 
 @pytest.fixture(scope="module")

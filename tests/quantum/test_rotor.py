@@ -163,10 +163,10 @@ def test_sesolve_and_expectations(rng):
     ex = _exact(H, psi, times)
     for k, op in enumerate(ops):
         direct = np.einsum("ti,ij,tj->t", ex.conj(), op.full(), ex).real
-        np.testing.assert_allclose(ref.expect[k], direct, atol=1e-10)
-        np.testing.assert_allclose(ses.expect[k], direct, atol=1e-7)
+        np.testing.assert_allclose(ref.expect[k], direct, atol=1e-10, rtol=0)
+        np.testing.assert_allclose(ses.expect[k], direct, atol=1e-7, rtol=0)
     # energy is conserved
-    np.testing.assert_allclose(ref.expect[-1], ref.expect[-1][0], atol=1e-11)
+    np.testing.assert_allclose(ref.expect[-1], ref.expect[-1][0], atol=1e-11, rtol=0)
     assert not ref.states  # qutip convention: with e_ops, states are not stored by default
     assert ref.final_state is not None
 
@@ -179,7 +179,7 @@ def test_mesolve_with_dephasing_conserves_energy_and_loses_purity(rng):
     times = np.linspace(0, 3, 7)
     g = 0.5
     res = evolve(H, psi, times, e_ops=[H], c_ops=[np.sqrt(g) * H], options={"store_states": True})
-    np.testing.assert_allclose(res.expect[0], res.expect[0][0], atol=1e-6)
+    np.testing.assert_allclose(res.expect[0], res.expect[0][0], atol=1e-6, rtol=0)
     # in H's eigenbasis rho_ij(t) = rho_ij(0) exp(-i (E_i - E_j) t - g (E_i - E_j)^2 t / 2): the purity of a pure
     # start is sum_ij p_i p_j exp(-g (E_i - E_j)^2 t), p_i = |<E_i|psi>|^2 (to the solver's tolerance)
     E, vecs = H.eigenstates()
@@ -209,7 +209,7 @@ def test_evolve_bad_input(rng):
         evolve(H, np.zeros(5), t)
     with pytest.warns(UserWarning, match="norm 2"):
         res = evolve(H, 2 * psi, t, method="eigen")
-    np.testing.assert_allclose(np.linalg.norm(res.states[-1].full()), 1.0, atol=1e-13)
+    np.testing.assert_allclose(np.linalg.norm(res.states[-1].full()), 1.0, atol=1e-13, rtol=0)
     with pytest.raises(ValueError, match="Hermitian"):
         evolve(qutip.Qobj(np.triu(np.ones((5, 5)))), psi, t)
     # e_ops and c_ops are checked here (their errors came from inside QuTiP)
@@ -337,7 +337,7 @@ def test_mesolve_time_dependent_dephasing_closed_form_and_qutip(rng):
     g = 2.0
     opts = {"store_states": True, "atol": 1e-10, "rtol": 1e-8}
     res = evolve(H, psi, times, e_ops=[H], c_ops=[[H, lambda t: np.sqrt(g * t)]], options=opts)
-    np.testing.assert_allclose(res.expect[0], res.expect[0][0], atol=1e-6)
+    np.testing.assert_allclose(res.expect[0], res.expect[0][0], atol=1e-6, rtol=0)
     E, vecs = H.eigenstates()
     p = np.array([abs(v.overlap(psi)) ** 2 for v in vecs])
     dE2 = (E[:, None] - E[None, :]) ** 2
@@ -401,7 +401,7 @@ def test_evolve_refuses_bad_time_dependent_c_ops_and_e_ops(rng):
                                             r"entry is a qutip.QobjEvo, e.g. QobjEvo\(\[op, f\]\)\)"):
             evolve(H, psi, t, e_ops=[[H, lambda t: 1.0]], method=method)
         res = evolve(H, psi, t, e_ops=[qutip.QobjEvo([H, lambda t: 2.0])], method=method)
-        np.testing.assert_allclose(res.expect[0], 2 * qutip.expect(H, qutip.Qobj(psi)), atol=1e-6)
+        np.testing.assert_allclose(res.expect[0], 2 * qutip.expect(H, qutip.Qobj(psi)), atol=1e-6, rtol=0)
 
 
 # ----------------------------------------------------------------------------
@@ -619,7 +619,7 @@ def test_evolve_accepts_sparse_and_arrays(rng):
     op = rep.hermitian((1, 2))
     a = evolve(Hs, psi.reshape(-1, 1), t, e_ops={"L12": op}, method="krylov")
     b = evolve(Hq, qutip.Qobj(psi), t, e_ops=[qutip.Qobj(op.toarray())], method="eigen")
-    np.testing.assert_allclose(a.e_data["L12"], b.expect[0], atol=1e-12)
+    np.testing.assert_allclose(a.e_data["L12"], b.expect[0], atol=1e-12, rtol=0)
     with pytest.raises(TypeError, match="Qobj"):
         evolve([[1, 0], [0, 1]], psi, t)
 

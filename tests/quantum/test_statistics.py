@@ -33,13 +33,7 @@ def _sd(ensemble):
     return math.sqrt(quad(lambda r: r * r * ratio_density(r, ensemble), 0, 1)[0] - m * m)
 
 
-@pytest.fixture(autouse=True)
-def _one_blas_thread():
-    """Many small eigvalsh calls: one BLAS thread each (on a loaded machine threads only contend)."""
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(limits=1, user_api="blas"):
-        yield
+pytestmark = pytest.mark.usefixtures("one_blas_thread")  # (tests/quantum/conftest.py)
 
 
 def _pooled_ratios(ensemble, rng, matrices=30, size=240):

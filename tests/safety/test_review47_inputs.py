@@ -1,6 +1,5 @@
 """Defects a review of the quantum side found (session 47; reproducers were /tmp/review47/quantum): side doors that
 skipped the pricing or the checks of their main route, and errors that named the wrong thing."""
-import time
 
 import numpy as np
 import pytest
@@ -9,6 +8,7 @@ import scipy.sparse as sps
 
 import hyperrotor as hr
 import hyperrotor.quantum as hq
+from tolerance import scaled_tol
 
 
 @pytest.fixture(scope="module")
@@ -37,20 +37,24 @@ def test_states_is_priced_and_warned_like_evolve(rotor):
                                rtol=0, atol=1e-12)
 
 
-def test_otoc_prices_the_density_matrix_eigh_before_it():
+def test_otoc_prices_the_density_matrix_eigh_before_it(monkeypatch):
     """A 1500 x 1500 density matrix's eigh ran 17 s under max_seconds = 0.5 (the dense_diagonalization model
-    refuses the same eigh in sample_spectrum)."""
+    refuses the same eigh in sample_spectrum): refused before any eigh starts."""
     n = 1500
     rng = np.random.default_rng(0)
     H = sps.diags(rng.uniform(0.0, 1.0, n)).tocsr()
     W = (sps.eye(n, k=1) + sps.eye(n, k=-1)).tocsr()
     V = sps.diags(np.arange(n, dtype=float)).tocsr()
     A = rng.standard_normal((n, n))
+    rho = A @ A.T
+
+    def eigh(*args, **kwargs):
+        raise AssertionError("an eigh ran before the budget refused it")
+
+    monkeypatch.setattr(np.linalg, "eigh", eigh)
     with hr.options(max_seconds=0.5):
-        start = time.process_time()
         with pytest.raises(hr.BudgetError, match="dense_diagonalization"):
-            hq.otoc(H, W, V, [0.0, 1.0], state=A @ A.T)
-        assert time.process_time() - start < 5.0  # (refused before the eigh: the product A A^T is the work here)
+            hq.otoc(H, W, V, [0.0, 1.0], state=rho)
 
 
 def test_apply_checks_its_states_as_states_does():
@@ -63,7 +67,7 @@ def test_apply_checks_its_states_as_states_does():
     x = np.arange(5.0) + 1j
     np.testing.assert_array_equal(U.apply(qutip.Qobj(x.reshape(-1, 1)), 0.7), U.apply(x, 0.7))  # (was refused)
     cols = np.stack([x, 2 * x], axis=1)
-    np.testing.assert_allclose(U.apply(cols, 0.7)[:, 1], 2 * U.apply(x, 0.7), rtol=0, atol=1e-14)
+    np.testing.assert_allclose(U.apply(cols, 0.7)[:, 1], 2 * U.apply(x, 0.7), rtol=0, atol=scaled_tol(2 * x, k=16))
     with pytest.raises(ValueError, match=r"or a \(5, k\) matrix"):
         U.apply(np.ones((5, 2, 2)), 0.7)
 
