@@ -65,9 +65,8 @@ def cases():
     for N in (20, 30, 40):
         out.append(("structure_constants", f"N={N}", dict(N=N), lambda N=N: _structure_constants.cache_clear(),
                     lambda _, N=N: hr.structure_constants(N)))
-    for N in (15, 25, 35):
-        out.append(("linearization", f"N={N}", dict(N=N),
-                    lambda N=N: (_structure_constants.cache_clear(), _moments(N))[1],
+    for N in (35, 60, 100):
+        out.append(("linearization", f"N={N}", dict(N=N), lambda N=N: _moments(N),
                     lambda m: hr.linearization(m, (1, 2), 1.0)))
     for N in (40, 100, 200):
         out.append(("simulate", f"N={N}", dict(N=N),

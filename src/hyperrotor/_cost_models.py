@@ -53,6 +53,8 @@ _SYMPY_S = 2.0e-5
 _PAIR_S = 1.3e-6
 #: seconds per dim^3 of the dense products building the spinor generators
 _DENSE_S = 2.0e-9
+#: seconds per axis of the brackets of one plane with its neighbours (conventions._structure_constants_slice)
+_BRACKET_S = 1.0e-5
 #: seconds per dim^2 of real_form (its per-plane Python and sparse work; 7e-6 until session 48, when the dense
 #: generators of its residual check, n_planes dim^3, became sparse products: so(3) l = 100 took 0.16 -> 0.07 s)
 _REAL_FORM_S = 1.5e-6
@@ -103,10 +105,12 @@ def _structure_constants(N: Any) -> tuple[Cost, ...]:
 
 @model("linearization")
 def _linearization(N: Any) -> tuple[Cost, ...]:
-    # the int8 table (structure_constants, cached) and the plane's n x n slice of it as floats
+    # the n x n Jacobian (zeros but for the 2 (N - 2) entries of the plane's brackets with its neighbours,
+    # conventions._structure_constants_slice: Python per axis)
     n = _n_planes(N)
-    return (_memory(f"the structure constants of so({N}) ({n:.0f}^3 entries)", n ** 3 + 24.0 * n * n),
-            _seconds(f"the structure constants of so({N}) ({n:.0f}^2 plane pairs in Python)", n * n * _PAIR_S))
+    return (_memory(f"the Jacobian of so({N}) ({n:.0f}^2 entries)", 8.0 * n * n + 16.0 * n),
+            _seconds(f"the brackets of a plane of so({N}) with its {2 * (_f(N) - 2):.0f} neighbours",
+                     _f(N) * _BRACKET_S))
 
 
 @model("casimir_shift", "use a body with fewer planes")

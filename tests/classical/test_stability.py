@@ -258,3 +258,51 @@ def test_condition_at_large_n_is_priced_and_uses_only_the_planes_it_needs():
     with hyperrotor.options(max_seconds=1.0):
         with pytest.raises(hyperrotor.BudgetError, match="stability_condition"):
             stability_condition((1, 2), 1000)
+
+
+def test_linearization_reads_a_locked_body_in_its_own_axis_labels():
+    """linearization took (2, 3) of a body locked on axis 1 (axes 2..5) as its local plane (3, 4), silently, and
+    refused (4, 5); linear_stability read the labels. The Jacobian is the unlocked body's, restricted."""
+    body = hyperrotor.RigidBody(hyperrotor.Inertia.from_mass_tensor([1.0, 2.0, 3.0, 4.0, 5.0]))
+    locked = body.lock(1)
+    kept = [plane_index(q, 5) for q in planes(5) if 1 not in q]
+    for plane in [(2, 3), (4, 5), (2, 5)]:
+        J = linearization(locked, plane, 1.3)
+        np.testing.assert_array_equal(J, linear_stability(locked, plane, 1.3).jacobian)
+        np.testing.assert_array_equal(J, linearization(body, plane, 1.3)[np.ix_(kept, kept)])
+    with pytest.raises(ValueError, match=r"unknown plane \(1, 2\).*axes \(2, 3, 4, 5\)"):
+        linearization(locked, (1, 2), 1.0)
+
+
+@pytest.mark.parametrize("N", range(2, 9))
+def test_the_slice_of_one_plane_is_the_table_s(N):
+    """linearization builds the brackets of its plane alone (the whole n^3 table was 5.2 GB at N = 60)."""
+    from hyperrotor.conventions import _structure_constants_slice
+
+    C = structure_constants(N)
+    n = C.shape[0]
+    for b, plane in enumerate(planes(N)):
+        d, a, c = _structure_constants_slice(N, plane)
+        S = np.zeros((n, n), dtype=np.int64)
+        S[d, a] = c
+        np.testing.assert_array_equal(S, C[:, b, :])
+        assert len(set(zip(d.tolist(), a.tolist()))) == d.size == 2 * (N - 2)  # (each neighbour once)
+
+
+def test_large_bodies_and_large_moments():
+    """N = 60 was refused (the n^3 table, 5.2 GB, for a Jacobian of 25 MB); moments of 1e200 gave nu^2 = inf."""
+    rng = np.random.default_rng(60)
+    I = rng.uniform(1.0, 3.0, 60 * 59 // 2)
+    r = linear_stability(I, (3, 7), 0.5)
+    assert r.jacobian.shape == (I.size, I.size) and np.count_nonzero(r.jacobian) <= 2 * 58
+    p = plane_index((3, 7), 60)
+    for pair in r.pairs:  # the Jacobian's entries carry the pair's nu^2: J[P1, P2] J[P2, P1] = -Omega^2 nu^2
+        a, b = (plane_index(q, 60) for q in pair.planes)
+        assert r.jacobian[a, b] * r.jacobian[b, a] == pytest.approx(-0.25 * pair.nu2, rel=1e-12)
+        assert pair.nu2 == pytest.approx((I[p] - I[a]) * (I[p] - I[b]) / (I[a] * I[b]), rel=1e-12)
+    big = linear_stability([1e200, 1.0, 2.0], (1, 2), 1.0)
+    small = linear_stability([1.0, 1e-200, 2e-200], (1, 2), 1.0)  # (the same ratios of differences to moments)
+    assert np.isfinite(big.frequencies).all() and np.isfinite(big.eigenvalues).all()
+    assert big.pairs[0].nu2 == np.inf  # (5e399: beyond the double range; its root is not)
+    np.testing.assert_allclose(big.frequencies, [np.sqrt(1e200 - 1.0) * np.sqrt((1e200 - 2.0) / 2.0)], rtol=1e-14, atol=0)
+    assert big.stable and small.stable

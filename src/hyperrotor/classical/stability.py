@@ -61,13 +61,15 @@ Paper discrepancies (Sec. 4)
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from .._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
 
-from ..conventions import check_dimension, dimension_from_count, plane_index, plane_label, planes, structure_constants
+from ..conventions import (_structure_constants_slice, check_dimension, dimension_from_count, plane_index,
+                           plane_label)
 from .. import _pricing, _validate
 from .._equality import fields_equal
 from .._options import options, register
@@ -127,7 +129,8 @@ class CoupledPair:
         ``((min(i,k), max(i,k)), (min(j,k), max(j,k)))``.
     nu2 : float
         :math:`\nu_k^2 = (I_p - I_{ik})(I_p - I_{jk})/(I_{ik} I_{jk})`; the pair's
-        eigenvalues are :math:`\pm\Omega\sqrt{-\nu_k^2}`.
+        eigenvalues are :math:`\pm\Omega\sqrt{-\nu_k^2}` (computed from the two factors, so they stay
+        finite where :math:`\nu_k^2` itself passes the double range, e.g. moments 1e200 and 1: then ``inf``).
     kind : str
         ``"oscillating"`` (:math:`\nu^2 > 0`), ``"unstable"`` (:math:`\nu^2 < 0`),
         ``"secular"`` (exactly one of the differences zero: defective zero
@@ -190,11 +193,15 @@ def linearization(body: Any, plane: Any, omega0: float) -> np.ndarray:
     I = _validate.moments(body, name="body")
     N = dimension_from_count(I.size)
     _pricing.check("linearization", N=N)
-    p = plane_index(_plane(plane, N), N)
-    # J[a, d] = Omega * C[d, p, a] * (I_p - I_d) / I_a: the plane's slice of the table only (the whole table as
-    # floats, 9 n^3 bytes, was one NumPy call of seconds that held Ctrl-C off at N = 36)
-    Cp = structure_constants(N)[:, p, :].astype(float)
-    return _validate.real("omega0", omega0) * Cp.T * (I[p] - I)[None, :] / I[:, None]
+    local = _local_plane(plane, _labels(body, N))  # (a locked body's planes in its own axis labels)
+    p = plane_index(local, N)
+    Om = _validate.real("omega0", omega0)
+    # J[a, d] = Omega * C[d, p, a] * (I_p - I_d) / I_a: the 2 (N - 2) nonzero entries of the plane's slice of the
+    # structure constants, built alone (the whole n^3 table was 5.2 GB at N = 60)
+    d, a, c = _structure_constants_slice(N, local)
+    J = np.zeros((I.size, I.size))
+    J[a, d] = Om * c * (I[p] - I[d]) / I[a]  # (each entry once)
+    return J
 
 
 @_pricing.model("stability_condition", "ask for a smaller N")
@@ -280,23 +287,25 @@ def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None
         d1, d2 = I[p] - I1, I[p] - I2
         d1 = 0.0 if abs(d1) <= tol else d1
         d2 = 0.0 if abs(d2) <= tol else d2
-        nu2 = d1 * d2 / (I1 * I2)
+        r1, r2 = float(d1 / I1), float(d2 / I2)  # (Python floats: an overflow of their product is inf, no warning)
+        nu2 = r1 * r2  # (inf beyond the double range: 1e200 against 1; the roots below come from its factors)
+        root = math.sqrt(abs(r1)) * math.sqrt(abs(r2))  # sqrt|nu^2|, finite wherever |Omega| sqrt|nu^2| is
         if d1 == 0.0 and d2 == 0.0:
             kind = "neutral"
         elif d1 == 0.0 or d2 == 0.0:
             kind = "secular"
-        elif nu2 > 0:
+        elif (r1 > 0) == (r2 > 0):
             kind = "oscillating"
         else:
             kind = "unstable"
         pairs.append(CoupledPair(k=labels[k - 1], planes=(lab(P1), lab(P2)), nu2=float(nu2), kind=kind))
-        lam = Om * np.sqrt(complex(-nu2))
+        lam = Om * root * (1j if kind == "oscillating" else 1.0)  # (+-Omega sqrt(-nu^2))
         eig += [lam, -lam]
         if Om != 0.0:
             if kind == "oscillating":
-                freqs.append(abs(Om) * np.sqrt(nu2))
+                freqs.append(abs(Om) * root)
             elif kind == "unstable":
-                rates.append(abs(Om) * np.sqrt(-nu2))
+                rates.append(abs(Om) * root)
                 unstable = True
             elif kind == "secular":
                 secular = True
