@@ -33,12 +33,14 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
+import sympy as sp  # noqa: E402
+
 import hyperrotor as hr  # noqa: E402
 import hyperrotor.quantum as hq  # noqa: E402
 from hyperrotor import _pricing  # noqa: E402
 from hyperrotor.classical.solvers._kernels import rotation_tables  # noqa: E402
 from hyperrotor.classical.solvers.splitting import _shift_candidates  # noqa: E402
-from hyperrotor.conventions import _structure_constants  # noqa: E402
+from hyperrotor.conventions import _structure_constants, plane_symbols  # noqa: E402
 from hyperrotor.demo import compare_quartet_motion  # noqa: E402
 from hyperrotor.quantum.operator_products import _term_pairs  # noqa: E402
 from hyperrotor.quantum.weights import weight_count  # noqa: E402
@@ -159,6 +161,14 @@ def cases():
         out.append(("symbolic_rhs", f"N={N}", dict(N=N), lambda N=N: _symbolic_body(N), lambda b: b.symbolic_rhs()))
         out.append(("symbolic_rhs", f"N={N}, numeric moments", dict(N=N, numeric=True),
                     lambda N=N: _numeric_body(N), lambda b: b.symbolic_rhs()))
+    for N in (6, 7, 8):
+        out.append(("symbolic_casimirs", f"N={N}", dict(N=N), lambda N=N: hr.RigidBody(hr.Inertia.equal(N, 1)),
+                    lambda b: b.casimirs(plane_symbols("L", b.N), of="L")))
+    for N, numeric in ((5, False), (6, False), (6, True)):
+        out.append(("symbolic_manakov", f"N={N}" + (", numeric J" if numeric else ""), dict(N=N),
+                    lambda N=N, numeric=numeric: hr.RigidBody(hr.Inertia.from_mass_tensor(
+                        np.linspace(1.0, 2.0, N) if numeric else list(sp.symbols(f"J1:{N + 1}", positive=True)))),
+                    lambda b: b.manakov_integrals(plane_symbols("L", b.N), of="L")))
     for N in (10, 20, 30):
         out.append(("contraction_identity", f"N={N}", dict(N=N), lambda: None,
                     lambda _, N=N: hq.contraction_identity(N)))

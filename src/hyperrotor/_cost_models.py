@@ -514,6 +514,33 @@ def _symbolic_rhs(N: Any, numeric: bool = False) -> tuple[Cost, ...]:
                      f"products)", 0.05 + (9.0 if numeric else 3.0) * n * _f(N) * _SYMPY_S * (1.0 + _f(N) / 60.0)),)
 
 
+#: seconds per product of two Pfaffian terms of the symbolic Casimirs (SymPy; measured 1.3-1.6e-4 at N = 5..8)
+_CASIMIR_TERM_S = 1.6e-4
+#: seconds per closed walk of the symbolic Manakov traces (SymPy; measured 2.8-2.9e-4 at N = 5, 6)
+_MANAKOV_WALK_S = 2.9e-4
+
+
+@model("symbolic_casimirs", "use numeric values or a body of fewer dimensions")
+def _symbolic_casimirs(N: Any) -> tuple[Cost, ...]:
+    # c_2k = the sum over the C(N, 2k) principal 2k x 2k submatrices of their squared Pfaffians, each of (2k - 1)!!
+    # terms: sum_k C(N, 2k) ((2k - 1)!!)^2 products of terms to expand (N = 10: 1.4e6, 484 s measured by a review)
+    N = int(_f(N))
+    terms = sum(math.comb(N, 2 * k) * float(math.prod(range(2 * k - 1, 0, -2))) ** 2 if k < 150 else math.inf
+                for k in range(1, N // 2 + 1))
+    return (_seconds(f"the symbolic Casimirs of so({N}) ({terms:.3g} products of Pfaffian terms)",
+                     0.01 + terms * _CASIMIR_TERM_S),)
+
+
+@model("symbolic_manakov", "use numeric values or a body of fewer dimensions")
+def _symbolic_manakov(N: Any) -> tuple[Cost, ...]:
+    # tr((L + lam J^2)^k), k = 2..N, expanded: about N^k closed walks of length k through the N x N matrix entries
+    # (N = 6: 15 s; N = 7: minutes)
+    N = _f(N)
+    walks = sum(N ** k if k * math.log10(max(N, 1.0)) < 300 else math.inf for k in range(2, int(N) + 1))
+    return (_seconds(f"the symbolic Manakov integrals of so({N:.0f}) ({walks:.3g} closed walks of the matrix)",
+                     0.01 + walks * _MANAKOV_WALK_S),)
+
+
 @model("operator_product", "multiply smaller operator matrices")
 def _operator_product(N: Any, pairs: Any, coords: Any) -> tuple[Cost, ...]:
     # 2 N^3 compositions of matrix entries (N x N x N, twice) and their sums; `pairs`: the pairs of terms composed

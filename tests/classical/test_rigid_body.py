@@ -464,3 +464,25 @@ def test_large_bodies_are_priced():
     with hr.options(max_memory_bytes=2**30):
         with pytest.raises(hr.BudgetError, match="RigidBody"):
             RigidBody(hr.Inertia(np.ones(hr.n_planes(400))))
+
+
+def test_symbolic_invariants_are_priced_before_sympy_runs(monkeypatch):
+    """The symbolic Casimirs (sums of squared Pfaffians) and Manakov traces grow faster than exponentially with N:
+    so(10)'s Casimirs took 484 s and so(7)'s traces minutes, unpriced (a review). Refused before any SymPy work now,
+    naming the model; within the budget they still run (and are exact: the tests above)."""
+    from hyperrotor.classical import rigid_body
+    from hyperrotor.conventions import plane_symbols
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("SymPy work started before the budget refused it")
+
+    for N, call in ((8, lambda b, L: b.casimirs(L, of="L")), (6, lambda b, L: b.manakov_integrals(L, of="L"))):
+        body = RigidBody(Inertia.equal(N, 1))
+        with monkeypatch.context() as m, hr.options(max_seconds=0.5):
+            m.setattr(rigid_body, "_pfaffian", no_work)
+            m.setattr(rigid_body.sp, "diag", no_work)  # (the Manakov matrix L + lam J^2 is the first step)
+            with pytest.raises(hr.BudgetError, match="symbolic_(casimirs|manakov)") as info:
+                call(body, plane_symbols("L", N))
+        assert "max_seconds" in str(info.value)
+    c = RigidBody(Inertia.equal(4, 1)).casimirs(plane_symbols("L", 4), of="L")  # (a small one runs)
+    assert len(c) == 2

@@ -136,6 +136,7 @@ def _manakov_traces(L: Any, J: Any, lam: Any = 1):
         Lm = to_matrix(list(L), convention="standard") if not isinstance(L, sp.MatrixBase) else L
         Lm = sp.Matrix(Lm)
         N = Lm.rows
+        _pricing.check("symbolic_manakov", N=N)
         A = Lm + _parse.to_sympy(lam, "lam", text=False) * sp.diag(*[_parse.to_sympy(j, "J", text=False) ** 2 for j in J])
         out, P = [], A
         for _ in range(2, N + 1):
@@ -503,6 +504,7 @@ class RigidBody:
         if is_symbolic(L):
             L = list(L)
             self._check_len(L)
+            _pricing.check("symbolic_casimirs", N=N)
             M = to_matrix(L, convention="standard")
             out = []
             for k in range(1, N // 2 + 1):
