@@ -38,10 +38,11 @@ import sympy as sp  # noqa: E402
 import hyperrotor as hr  # noqa: E402
 import hyperrotor.quantum as hq  # noqa: E402
 from hyperrotor import _pricing  # noqa: E402
+from hyperrotor.classical.mass_points import principal_axes as _principal_axes  # noqa: E402
 from hyperrotor.classical.solvers._kernels import rotation_tables  # noqa: E402
 from hyperrotor.classical.solvers.splitting import _shift_candidates  # noqa: E402
 from hyperrotor.conventions import _structure_constants, plane_symbols  # noqa: E402
-from hyperrotor.demo import compare_quartet_motion  # noqa: E402
+from hyperrotor.demo import DEMO_OMEGA, compare_quartet_motion  # noqa: E402
 from hyperrotor.quantum.operator_products import _term_pairs  # noqa: E402
 from hyperrotor.quantum.weights import weight_count  # noqa: E402
 
@@ -161,6 +162,17 @@ def cases():
         out.append(("symbolic_rhs", f"N={N}", dict(N=N), lambda N=N: _symbolic_body(N), lambda b: b.symbolic_rhs()))
         out.append(("symbolic_rhs", f"N={N}, numeric moments", dict(N=N, numeric=True),
                     lambda N=N: _numeric_body(N), lambda b: b.symbolic_rhs()))
+    for N, seed, T in ((3, 1, 3000.0), (5, 1, 3000.0), (8, 5, 1000.0)):
+        out.append(("poincare_section", f"N={N}, T={T:g}", dict(N=N, **_poincare_sizes(N, seed, T)),
+                    lambda N=N, seed=seed: (hr.poincare_section(*_random_orbit(N, seed), 1.0),  # (compiled)
+                                            _random_orbit(N, seed))[1],
+                    lambda mw, T=T: hr.poincare_section(*mw, T)))
+    for N, P in ((5, 300_000), (50, 100_000), (500, 2000)):
+        out.append(("second_moment_matrix", f"N={N}, {P} points", dict(N=N, points=P),
+                    lambda N=N, P=P: (np.ones(P), np.random.default_rng(P).normal(size=(P, N))),
+                    lambda mr: hr.second_moment_matrix(*mr)))
+    for N in (100, 300, 1000):
+        out.append(("principal_axes", f"N={N}", dict(N=N), lambda N=N: _spd(N), lambda M: _principal_axes(M)))
     for N in (6, 7, 8):
         out.append(("symbolic_casimirs", f"N={N}", dict(N=N), lambda N=N: hr.RigidBody(hr.Inertia.equal(N, 1)),
                     lambda b: b.casimirs(plane_symbols("L", b.N), of="L")))
@@ -296,6 +308,10 @@ def cases():
         out.append(("compare_quartet_motion", f"kappa={kappa:g}, t_end={t_end:g}, n_times={n_times} (warm kernels)",
                     dict(t_end=t_end, n_times=n_times, **_quartet_rates(kappa)), _warm_quartet,
                     lambda _, k=kappa, t_end=t_end, n=n_times: compare_quartet_motion(k, t_end=t_end, n_times=n)))
+    slow = tuple(0.01 * w for w in DEMO_OMEGA)  # (the motion over 100 t_end at omega0 / 100: the same cost)
+    out.append(("compare_quartet_motion", "kappa=2, omega0 / 100, t_end=20000, n_times=2001 (warm kernels)",
+                dict(t_end=2e4, n_times=2001, speed=0.01, **_quartet_rates(2.0, slow)), _warm_quartet,
+                lambda _: compare_quartet_motion(2.0, slow, t_end=2e4)))
     for N, frames in ((4, 6), (6, 6), (8, 6), (12, 6), (13, 6)):
         out.append(("scene", f"hyperrotor scene --N {N} --shape cube, PNG (child process, CPU s, peak RSS)",
                     dict(shape="cube", N=N, frames=frames, format=".png"), lambda: None,
@@ -328,6 +344,29 @@ def _cli_scene(N):
 def _warm():
     """The compiled kernels loaded (a process's first call of them costs ~0.15 s, whatever N: not the set-up)."""
     hr.simulate(np.linspace(1.0, 2.0, 15), 1e-3 * np.ones(15), [0.0, 1e-3], method="splitting4")
+
+
+def _spd(N):
+    """A random symmetric positive definite N x N matrix (second moments)."""
+    A = np.random.default_rng(N).normal(size=(N, N))
+    return A @ A.T
+
+
+def _random_orbit(N, seed):
+    """Log-uniform plane moments in [0.3, 3] and a normal omega0 (seeded)."""
+    g = np.random.default_rng(seed)
+    n = N * (N - 1) // 2
+    return np.exp(g.uniform(np.log(0.3), np.log(3.0), n)), g.normal(size=n)
+
+
+def _poincare_sizes(N, seed, T):
+    """poincare_section's sizes for its model: steps at its default step and turns T w_max."""
+    from hyperrotor._options import options
+    from hyperrotor.classical.solvers.step_control import rate_bound
+
+    m, w = _random_orbit(N, seed)
+    wmax = float(rate_bound(m[None], (w * m)[None])[0])
+    return dict(steps=T * wmax / options["lyapunov_step"], turns=T * wmax)
 
 
 def _numeric_body(N):
@@ -391,10 +430,10 @@ def _otoc_price(l, S):
                 cubes=float(np.sum(sizes ** 3)), complex=U.matrix.dtype.kind == "c")
 
 
-def _quartet_rates(kappa):
-    from hyperrotor.demo import DEMO_OMEGA, _body, _motion_rates
+def _quartet_rates(kappa, omega=DEMO_OMEGA):
+    from hyperrotor.demo import _body, _motion_rates
 
-    rate, frequency = _motion_rates(kappa, _body(kappa, 5)[0], np.asarray(DEMO_OMEGA), 5)
+    rate, frequency = _motion_rates(kappa, _body(kappa, 5)[0], np.asarray(omega), 5)
     return dict(rate=rate, frequency=frequency)
 
 

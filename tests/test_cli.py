@@ -287,8 +287,41 @@ def test_scene_unreachable_accuracy_names_the_command_options(capsys, tmp_path):
     code, out, err = _run(capsys, ["scene", "--N", "3", "--t-end", "3e7", "--frames", "2", "--output",
                                    str(tmp_path / "x.png")])
     assert code == 1 and out == "" and _files(tmp_path) == []
-    assert "the motion over --t-end 30000000 cannot be integrated to the scene's accuracy" in err
+    assert "the motion over --t-end 30000000 cannot be integrated to its accuracy" in err
     assert "choose a shorter --t-end" in err and "Ask for a larger rtol" not in err
+
+
+def test_demo_unreachable_accuracy_names_the_command_options(capsys, tmp_path, monkeypatch):
+    """A stiff quartet over a long run (--kappa 3000 --t-end 300: splitting8 at rtol 1e-12 meets round-off after
+    three re-runs, 10 s) failed with the library's advice of a larger rtol, which the demo has no option for."""
+    import hyperrotor.demo
+    from hyperrotor.classical import UnreachableAccuracyError
+
+    def unreachable(*args, **kwargs):
+        raise UnreachableAccuracyError("simulate: rtol = 1e-12 was not reached after 3 re-runs at shorter steps "
+                                       "(...); reachable accuracy about 1e-12 at reasonable cost. Ask for a larger "
+                                       "rtol or a shorter run")
+
+    monkeypatch.setattr(hyperrotor.demo, "compare_quartet_motion", unreachable)
+    code, out, err = _run(capsys, ["demo", "--no-png", "--kappa", "3000", "--t-end", "300"])
+    assert code == 1 and "(28)" in out  # (the equations were printed before the motion)
+    assert ("the motion over --t-end 300 with --kappa 3000 cannot be integrated to its accuracy: simulate: rtol = "
+            "1e-12 was not reached") in err
+    assert "choose a smaller --kappa or a shorter --t-end" in err and "Ask for a larger rtol" not in err
+
+
+def test_demo_price_follows_the_speed_of_the_motion(capsys):
+    """The motion over t_end at omega0 is the one over s t_end at omega0 / s: omega0 of 1e-60 over 1e10 was refused
+    as 5.8 days (a per-time constant that did not scale with omega0), and runs in about 2 s."""
+    from hyperrotor.demo import DEMO_OMEGA, quartet_motion_seconds
+
+    base = quartet_motion_seconds(0.5, DEMO_OMEGA, 200.0).seconds
+    for s in (1e-60, 1e-3, 1e3):
+        slow = quartet_motion_seconds(0.5, np.array(DEMO_OMEGA) * s, 200.0 / s).seconds
+        assert slow == pytest.approx(base, rel=1e-9)
+    code, out, err = _run(capsys, ["demo", "--no-png", "--omega=" + ",".join(f"{w * 1e-60:g}" for w in DEMO_OMEGA),
+                                   "--t-end", "1e10"])
+    assert code == 0, err
 
 
 def test_library_budgets_are_raised_for_the_scene_s_points_and_edges(capsys, tmp_path):

@@ -340,6 +340,31 @@ def _inertia_tensor(N: Any, points: Any = 1) -> tuple[Cost, ...]:
                      _f(N) ** 4 * (1.0 + _f(points)) * 2e-9))
 
 
+#: seconds per point x N^2 of the second moments (a BLAS product of the scaled points)
+_MOMENT_PRODUCT_S = 2.0e-11
+#: seconds per point x N of the second moments (scaling, centring and weighting the points: NumPy passes)
+_MOMENT_POINT_S = 1.5e-8
+#: seconds per N^3 of the principal axes (LAPACK eigh and scipy's linear_sum_assignment matching them to the axes)
+_PRINCIPAL_AXES_S = 2.0e-10
+
+
+@model("second_moment_matrix", "use fewer points or fewer dimensions")
+def _second_moment_matrix(N: Any, points: Any) -> tuple[Cost, ...]:
+    # the points scaled, centred and weighted (three copies of points x N) and the N x N product
+    N, P = _f(N), _f(points)
+    return (_memory(f"the second moments of {P:.6g} points in {N:.0f} dimensions", 24.0 * P * N + 24.0 * N * N),
+            _seconds(f"the second moments of {P:.6g} points in {N:.0f} dimensions",
+                     P * N * N * _MOMENT_PRODUCT_S + P * N * _MOMENT_POINT_S))
+
+
+@model("principal_axes", "use fewer dimensions")
+def _principal_axes(N: Any) -> tuple[Cost, ...]:
+    # eigh of the N x N second moments and the assignment of its eigenvectors to the input axes (N x N costs)
+    N = _f(N)
+    return (_memory(f"the principal axes in {N:.0f} dimensions", 48.0 * N * N),
+            _seconds(f"the principal axes in {N:.0f} dimensions", N ** 3 * _PRINCIPAL_AXES_S + N * N * 1e-7))
+
+
 @model("body_edges", "draw fewer points")
 def _body_edges(pairs: Any) -> tuple[Cost, ...]:
     # a Python loop over the candidate pairs, each kept as a tuple in a list
@@ -539,6 +564,26 @@ def _symbolic_manakov(N: Any) -> tuple[Cost, ...]:
     walks = sum(N ** k if k * math.log10(max(N, 1.0)) < 300 else math.inf for k in range(2, int(N) + 1))
     return (_seconds(f"the symbolic Manakov integrals of so({N:.0f}) ({walks:.3g} closed walks of the matrix)",
                      0.01 + walks * _MANAKOV_WALK_S),)
+
+
+#: seconds per step of poincare_section beyond its flows: the event function evaluated in Python at every step state
+_EVENT_STEP_S = 4.0e-6
+#: seconds per crossing of poincare_section (Brent's method on the step it falls in: ~10 one-step re-integrations)
+_CROSSING_S = 3.0e-4
+
+
+@model("poincare_section", "shorten T or give a larger dt")
+def _poincare_section(N: Any, steps: Any, turns: Any) -> tuple[Cost, ...]:
+    # splitting8 steps of 17 (2n - 2) + 1 flows (~2e-8 s each, more for the longer flows of larger N:
+    # chunks.flow_weight), the event evaluated at every step, and the crossings located: about 0.05 per radian of
+    # the fastest rate (turns = T w_max; measured 0.007-0.15 over random bodies N = 3..8)
+    N = _f(N)
+    n = N * (N - 1) / 2.0
+    flow = 2.0e-8 * max(1.0, ((N - 2.0) / 3.0) ** 1.2)
+    step = (17.0 * (2.0 * n - 2.0) + 1.0) * flow + _EVENT_STEP_S
+    crossings = min(0.05 * _f(turns), _f(steps))  # (at most one per step: a sign change between two step states)
+    return (_seconds(f"{_f(steps):.3g} steps of so({N:.0f}) with an event at each and ~{crossings:.3g} crossings",
+                     _f(steps) * step + crossings * _CROSSING_S),)
 
 
 @model("operator_product", "multiply smaller operator matrices")

@@ -547,15 +547,17 @@ def exact_or_float_array(name: str, value: Any, *, what: str = "numeric array") 
     return arr
 
 
-def components(name: str, value: Any, n: int, *, what: str = "plane components") -> np.ndarray:
+def components(name: str, value: Any, n: int, *, what: str = "plane components", batch: bool = True) -> np.ndarray:
     """A finite float array of shape batch + ``(n,)`` (one vector of ``n`` components per member).
 
     For ensembles of initial conditions such as ``omega0``: the last axis holds the ``n``
-    components (``what`` names them in the message), leading axes are the ensemble.
+    components (``what`` names them in the message), leading axes are the ensemble
+    (``batch=False``: one vector, shape ``(n,)``).
     """
     arr = finite_array(name, value)
-    if arr.ndim == 0 or arr.shape[-1] != n:
-        raise ValueError(f"{name} must have shape ({n},) or batch + ({n},) ({n} {what}), got shape {arr.shape}")
+    if arr.ndim == 0 or arr.shape[-1] != n or (not batch and arr.ndim != 1):
+        shapes = f"({n},) or batch + ({n},)" if batch else f"({n},)"
+        raise ValueError(f"{name} must have shape {shapes} ({n} {what}), got shape {arr.shape}")
     return arr
 
 
@@ -696,7 +698,7 @@ def moments(value: Any, N: int | None = None, *, name: str = "inertia") -> np.nd
             raise ValueError(f"{name} mapping names a plane twice")
         by_plane = dict(zip(labels, src.values()))
         src = [by_plane[p] for p in plane_table(n)]
-    if isinstance(src, (str, bytes)):
+    if src is None or isinstance(src, (str, bytes)):
         raise TypeError(f"{name} must be an Inertia, a RigidBody, a mapping plane -> moment or a sequence of moments, got {fmt(src)}")
     numeric_input(name, src)  # booleans, datetime64/timedelta64 values and masked arrays are not moments
     try:

@@ -45,7 +45,8 @@ _SECONDS_PER_TIME_FREQUENCY = 1.05e-3
 #: ... and of the step control's rate bound (``rate_bound``: splitting8's steps follow it, ~ |kappa| |omega|
 #: for large kappa, when the motion's frequency stays ~ |omega|) ...
 _SECONDS_PER_TIME_RATE = 2.2e-6
-#: ... per unit of simulated time of a motion that does not turn (kappa = 1) ...
+#: ... per unit of simulated time and of max|omega0| (a motion that does not turn, kappa = 1: every term is of
+#: degree 1 in omega0, since the motion over t_end at omega0 is the one over s t_end at omega0 / s) ...
 _SECONDS_PER_TIME = 5e-5
 #: ... per output time (n_times) and fixed. The splitting run is made twice, the first call untimed: it loads
 #: (or, on a fresh installation, compiles) every kernel the call takes (``QuartetMotion.warmup_time``; the
@@ -131,9 +132,11 @@ def _motion_rates(kappa: float, body, omega0: np.ndarray, axis: int) -> tuple[fl
 
 
 @_pricing.model("compare_quartet_motion", "a shorter t_end or a smaller omega0")
-def _motion_cost(t_end: float, rate: float, frequency: float, n_times: float = 2001) -> tuple:
-    """Cost model of :func:`compare_quartet_motion`: seconds of the two runs (:func:`quartet_motion_seconds`)."""
-    per_time = _SECONDS_PER_TIME + _SECONDS_PER_TIME_FREQUENCY * float(frequency) + _SECONDS_PER_TIME_RATE * float(rate)
+def _motion_cost(t_end: float, rate: float, frequency: float, n_times: float = 2001, speed: float = 1.0) -> tuple:
+    """Cost model of :func:`compare_quartet_motion`: seconds of the two runs (:func:`quartet_motion_seconds`;
+    ``speed``: max|omega0|)."""
+    per_time = (_SECONDS_PER_TIME * float(speed) + _SECONDS_PER_TIME_FREQUENCY * float(frequency)
+                + _SECONDS_PER_TIME_RATE * float(rate))
     return (_pricing.Cost(f"the quartet motion over t_end = {t_end:.6g} (fastest frequency {frequency:.3g}, "
                           f"rate bound {rate:.3g}, {int(n_times)} output times)",
                           _SECONDS_FIXED + _SECONDS_PER_OUTPUT * float(n_times) + per_time * float(t_end),
@@ -164,7 +167,7 @@ def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
                            axis: int = 5, n_times: int = 2001) -> MotionCost:
     """Estimated seconds of one core for :func:`compare_quartet_motion` (warm kernels), without running it.
 
-    ``a + b * n_times + t_end * (c + d * frequency + e * rate)``: DOP853's steps follow the motion's fastest
+    ``a + b * n_times + t_end * (c max|omega0| + d * frequency + e * rate)``: DOP853's steps follow the motion's fastest
     frequency :math:`\\Omega_1` (eq. 118: at most ~ :math:`|\\Theta| |\\omega_0|`, whatever kappa), splitting8's
     the step control's bound on the angular velocities (``rate_bound``, ~ :math:`|\\kappa| |\\omega_0|` for large
     kappa); ``a ... e`` measured on the 2-core reference machine (``benchmarks/pricing.py``). The first call of a
@@ -176,7 +179,7 @@ def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
     n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
     rate, frequency = _motion_rates(float(kappa), body, omega0, axis)
     (cost,) = _pricing.estimate("compare_quartet_motion", t_end=t_end, rate=rate, frequency=frequency,
-                                n_times=n_times)
+                                n_times=n_times, speed=float(np.max(np.abs(omega0))))
     return MotionCost(cost.amount, rate, frequency)
 
 
@@ -219,7 +222,8 @@ def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
     n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
     kappa = float(kappa)
     rate, frequency = _motion_rates(kappa, body, omega0, axis)
-    _pricing.check("compare_quartet_motion", t_end=t_end, rate=rate, frequency=frequency, n_times=n_times)
+    _pricing.check("compare_quartet_motion", t_end=t_end, rate=rate, frequency=frequency, n_times=n_times,
+                   speed=float(np.max(np.abs(omega0))))
     t = np.linspace(0.0, t_end, n_times)
     exact = quartet_solution(kappa, omega0, t, axis=axis)
     scale = float(np.max(np.abs(omega0)))

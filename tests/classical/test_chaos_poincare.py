@@ -1,5 +1,6 @@
 """Poincaré sections from simulate's events: crossings on the section, periods, invariants, plot."""
 import math
+import re
 
 import numpy as np
 import pytest
@@ -116,3 +117,20 @@ def test_bad_arguments_are_named(kwargs, exc, words):
 def test_plot_rejects_non_sections():
     with pytest.raises(TypeError, match="PoincareSection"):
         plot_poincare([np.zeros((3, 3))])
+
+
+def test_a_long_section_is_refused_by_its_time_before_it_runs(monkeypatch):
+    """T = 1e7 on a 5D body (8e7 steps, under max_steps) was not refused: an estimated 15-20 minutes, the event
+    evaluated in Python at every step (a review). Priced now by steps, flows and crossings against max_seconds."""
+    from hyperrotor.classical import poincare
+
+    def no_run(*args, **kwargs):
+        raise AssertionError("the orbit started before the budget refused it")
+
+    monkeypatch.setattr(poincare, "simulate", no_run)
+    g = np.random.default_rng(1)
+    m, w = np.exp(g.uniform(np.log(0.3), np.log(3.0), 10)), g.normal(size=10)
+    with pytest.raises(hr.BudgetError, match=r"poincare_section: .*steps of so\(5\).*max_seconds") as info:
+        poincare_section(m, w, 1e7)
+    seconds = float(re.search(r"would need ~([0-9.e+]+) s", str(info.value)).group(1))
+    assert 600 < seconds < 1e4  # (the default budget, 600 s, against the review's 15-20 minutes)

@@ -50,7 +50,7 @@ def test_unknown_plane_for_given_N():
 
 @pytest.mark.parametrize("count", [2, 4, 5, 7])
 def test_wrong_count(count):
-    with pytest.raises(ValueError, match=f"{count} plane components"):
+    with pytest.raises(ValueError, match=f"moments has {count} plane moments"):
         Inertia.from_planes([1.0] * count)
 
 
@@ -435,3 +435,43 @@ def test_a_box_of_floats_takes_the_numpy_sums_and_the_same_moments(maker):
     assert all(type(a) is type(b) and a == b for a, b in zip(fast.symbolic_moments, slow.symbolic_moments))
     exact = getattr(Inertia, maker)(1, [1, 2, 3])
     assert all(isinstance(v, sp.Rational) for v in exact.symbolic_moments)
+
+
+def test_points_of_any_scale():
+    """Positions of 1e160 gave a bare LinAlgError from eigh (inertia_tensor: NaN) and 1e-170 a zero moment blamed on
+    J; the points are scaled by powers of two now, so a body scaled by 2^k has its moments scaled by exactly 4^k and
+    the same principal axes, and what leaves the double range is refused naming the points."""
+    g = np.random.default_rng(3)
+    r, m = g.normal(size=(40, 4)), g.uniform(0.5, 2.0, 40)
+    base = Inertia.from_points(m, r)
+    for k, j in ((300, 0), (-200, -500), (0, 900)):
+        other = Inertia.from_points(m * 2.0 ** j, r * 2.0 ** k)
+        np.testing.assert_array_equal(np.asarray(other.moments, float), np.asarray(base.moments, float) * 2.0 ** (2 * k + j))
+        np.testing.assert_array_equal(other.principal_axes, base.principal_axes)
+    with pytest.raises(ValueError, match="second moments .* exceed double precision .* positions up to"):
+        Inertia.from_points(m, r * 1e160)
+    with pytest.raises(ValueError, match="second moments .* exceed double precision"):
+        hr.inertia_tensor(m, r * 1e160)
+    with pytest.raises(ValueError, match="second moments .* underflow double precision"):
+        Inertia.from_points(m, r * 1e-170)
+    with pytest.raises(ValueError, match=r"J_1 = .*beyond double precision"):
+        Inertia.from_mass_tensor([10**400, 1])  # (a bare OverflowError before)
+
+
+def test_point_clouds_are_priced_before_their_products(monkeypatch):
+    """N over max_dimension was refused only after the eigh and the assignment (51 s at N = 3000), and
+    second_moment_matrix had no check (3.2 GB from two points at N = 20000)."""
+    from hyperrotor.classical import mass_points
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("work started before the refusal")
+
+    monkeypatch.setattr(mass_points.np.linalg, "eigh", no_work)
+    with pytest.raises(hr.BudgetError, match="max_dimension"):
+        Inertia.from_points(np.ones(2), np.ones((2, 3000)))
+    with pytest.raises(hr.BudgetError, match="max_dimension"):
+        hr.second_moment_matrix(np.ones(2), np.ones((2, 20000)))
+    with hr.options(max_seconds=0.01), pytest.raises(hr.BudgetError, match="principal_axes"):
+        Inertia.from_points(np.ones(3), np.eye(3, 600))
+    with hr.options(max_memory_bytes=10**6), pytest.raises(hr.BudgetError, match="second_moment_matrix"):
+        hr.second_moment_matrix(np.ones(10**5), np.zeros((10**5, 5)))

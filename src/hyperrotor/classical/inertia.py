@@ -47,10 +47,9 @@ from hyperrotor._lazy import sympy as sp  # SymPy loads on first use (light ``im
 
 from hyperrotor import _parse, _pricing, _validate
 from hyperrotor._options import options, register
-from .mass_points import principal_axes, second_moment_matrix
+from .mass_points import principal_axes, second_moments_scaled
 from hyperrotor.conventions import (
     check_dimension,
-    dimension_from_count,
     n_planes,
     plane_index,
     plane_label,
@@ -92,7 +91,12 @@ def _as_value(v: Any, what: str, *, allow_zero: bool = False) -> sp.Expr:
             raise ValueError(f"{what} must be {cond}, got {v}")
         return expr
     if isinstance(v, (Real, np.integer, np.floating)):
-        x = float(v)
+        try:
+            x = float(v)
+        except OverflowError:  # (a Python int beyond the double range)
+            raise ValueError(f"{what} = {_validate.fmt(v)} is beyond double precision (about 1.8e308); rescale "
+                             f"the moments (omega(t) does not change when every moment is multiplied by the same "
+                             f"factor)") from None
         if not math.isfinite(x):
             raise ValueError(f"{what} must be finite, got {_validate.fmt(v)}")
         if x < 0 or (x == 0 and not allow_zero):
@@ -148,7 +152,10 @@ def _numeric_moments(moments: Any, N: int, *, allow_zero: bool = False) -> tuple
         raw = moments
     else:
         return None
-    x = np.asarray(raw, dtype=np.float64)
+    try:
+        x = np.asarray(raw, dtype=np.float64)
+    except OverflowError:  # (an int beyond the double range: the per-value path names it)
+        return None
     bad = np.flatnonzero(~np.isfinite(x) | ((x < 0) if allow_zero else (x <= 0)))
     if bad.size:  # the per-value path names the first bad plane in its own words
         return None
@@ -276,7 +283,7 @@ class Inertia:
             if isinstance(moments, np.ndarray):  # booleans, dates and masked arrays (asarray drops a mask)
                 _validate.numeric_input("moments", moments)
             seq = _as_list(moments, "moments")
-            N_ = dimension_from_count(len(seq)) if len(seq) else None
+            N_ = _validate.dimension_from_count(len(seq), name="moments", what="plane moments") if len(seq) else None
             if N_ is None:
                 raise ValueError("moments must not be empty (got []): give N(N-1)/2 plane moments (N >= 2)")
             if N is not None and check_dimension(N) != N_:
@@ -423,9 +430,9 @@ class Inertia:
         :attr:`principal_axes` (column ``k`` is the principal axis closest to
         input axis ``k``; ``det R = +1``).
         """
-        M = second_moment_matrix(masses, positions, center=center)
+        M, factor = second_moments_scaled(masses, positions, center=center)  # (M factor: exact powers of two)
         vals, R = principal_axes(M)
-        vals = np.clip(vals, 0.0, None)  # round-off of flat bodies
+        vals = np.clip(vals, 0.0, None) * factor  # round-off of flat bodies
         out = cls.from_mass_tensor(vals)
         out.principal_axes = R
         return out

@@ -10,13 +10,16 @@ moments from the principal axes computed here.
 """
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
 
 from hyperrotor import _pricing, _validate
 from hyperrotor._lazy import sympy as sp  # SymPy loads on first use (light ``import hyperrotor``)
+from hyperrotor._floats import power_of_two_scale
 from hyperrotor._options import options, register
+from hyperrotor.conventions import check_dimension
 
 __all__ = ["inertia_tensor", "second_moment_matrix", "check_tensor_symmetries"]
 
@@ -44,11 +47,36 @@ def second_moment_matrix(masses: Any, positions: Any, *, center: bool = True) ->
         Measure positions from the centre of mass (default), the origin the
         paper assumes for eq. (6); otherwise from the coordinate origin.
     """
+    M, factor = second_moments_scaled(masses, positions, center=center)
+    return M * factor
+
+
+def second_moments_scaled(masses: Any, positions: Any, *, center: bool = True) -> tuple[np.ndarray, float]:
+    """``(M', f)`` with :func:`second_moment_matrix` ``= f M'``: one BLAS product of the points scaled by powers of two
+    (exact), so that positions of 1e160 or 1e-170 do not overflow or underflow in the squares, and ``f`` a power of
+    two (the principal axes come from ``M'``: exactly the same for a body scaled by any power of two). Priced; a
+    matrix beyond the double range is refused naming the points."""
     center = _validate.flag("center", center)
     m, r = check_points(masses, positions)
+    _pricing.check("second_moment_matrix", N=r.shape[1], points=r.shape[0])
+    sm = power_of_two_scale(float(np.max(m)))
+    sr = power_of_two_scale(float(np.max(np.abs(r))))
+    m, r = m / sm, r / sr
     if center:
         r = r - (m @ r) / m.sum()
-    return np.einsum("p,pk,pl->kl", m, r, r)
+    M = (r.T * m) @ r
+    M = 0.5 * (M + M.T)  # (symmetric to the last bit: the principal axes come from its lower triangle)
+    factor = sm * sr * sr
+    scale = float(np.max(np.abs(M))) * factor if math.isfinite(factor) else math.inf
+    if not (scale <= np.finfo(float).max):
+        raise ValueError(f"the second moments sum m r^2 of the points exceed double precision (masses up to "
+                         f"{_validate.fmt(float(np.max(m) * sm))}, positions up to "
+                         f"{_validate.fmt(float(np.max(np.abs(r)) * sr))}); rescale the masses or the positions")
+    if scale < np.finfo(float).tiny and np.any(M):  # (the factor alone may have underflowed to 0)
+        raise ValueError(f"the second moments sum m r^2 of the points underflow double precision (masses up to "
+                         f"{_validate.fmt(float(np.max(m) * sm))}, positions up to "
+                         f"{_validate.fmt(float(np.max(np.abs(r)) * sr))}); rescale the masses or the positions")
+    return M, factor
 
 
 def check_points(masses: Any, positions: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -56,6 +84,7 @@ def check_points(masses: Any, positions: Any) -> tuple[np.ndarray, np.ndarray]:
     r = _validate.finite_array("positions", positions)
     if r.ndim != 2 or r.shape[1] < 2:
         raise ValueError(f"positions must have shape (n_points, N) with N >= 2, got shape {r.shape}")
+    check_dimension(r.shape[1])  # (options["max_dimension"], before any product)
     if m.ndim == 0:
         m = np.full(r.shape[0], float(m))
     if m.shape != (r.shape[0],):
@@ -135,6 +164,7 @@ def principal_axes(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     from scipy.optimize import linear_sum_assignment
 
+    _pricing.check("principal_axes", N=M.shape[0])
     vals, vecs = np.linalg.eigh(M)
     rows, cols = linear_sum_assignment(-np.abs(vecs))  # rows: input axis, cols: eigenvector
     order = np.empty(len(vals), dtype=int)

@@ -122,9 +122,8 @@ def poincare_section(
     moments = _validate.moments(body, name="body")
     n = moments.size
     N = dimension_from_count(n)
-    w0 = _validate.components("omega0", omega0, n, what="angular velocities omega_ij in plane order")
-    if w0.ndim != 1:
-        raise ValueError(f"poincare_section takes one orbit: omega0 must have shape ({n},), got shape {w0.shape}")
+    w0 = _validate.components("omega0", omega0, n, what="angular velocities omega_ij in plane order (one orbit)",
+                              batch=False)
     T = _validate.positive("T", T)
     labels = _labels(body, N)  # (a locked body's planes are named by its own axes, as in linear_stability)
     ij = _local_plane(plane, labels)
@@ -136,9 +135,9 @@ def poincare_section(
     progress = _validate.flag("progress", progress, allow_none=True)
     a = plane_index(ij, N)
     L0 = w0 * moments
+    s = power_of_two_scale(float(np.max(np.abs(L0))))  # (exact: no overflow)
+    wmax = float(rate_bound(moments[None, :], L0[None, :] / s)[0]) * s
     if dt is None:
-        s = power_of_two_scale(float(np.max(np.abs(L0))))  # (exact: no overflow)
-        wmax = float(rate_bound(moments[None, :], L0[None, :] / s)[0]) * s
         dt = options["lyapunov_step"] / wmax if wmax > 0 else T
         dt = min(dt, T)  # a (nearly) resting body: one step (lyapunov_step / wmax overflows for subnormal omega)
     steps = T / dt
@@ -146,6 +145,7 @@ def poincare_section(
         raise _pricing.refuse("poincare_section", f"the orbit over T = {_validate.fmt(T)} in steps of dt = {dt:.3g} "
                               f"(omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))})", steps,
                               "max_steps", "steps", "shorten T or give a larger dt")
+    _pricing.check("poincare_section", N=N, steps=steps, turns=T * wmax)  # (its time: the event at every step)
 
     def crossing(_t, L):
         return L[a] - value

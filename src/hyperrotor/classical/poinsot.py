@@ -1,7 +1,9 @@
 r"""Closed form of the 3D free body (Euler-Poinsot) with Jacobi elliptic functions.
 
-Paper Sec. 3's third family: :func:`euler_poinsot` gives :math:`\omega(t)` in both regimes of the
-energy-momentum relation, on the separatrix and for the symmetric top, in the package order
+The third family of closed forms beside the paper's Sec. 3.1 (equal moments) and 3.2 (the quartet): the
+textbook solution of the 3D reduction (the paper's Sec. 3 has no 3D subsection). :func:`euler_poinsot` gives
+:math:`\omega(t)` in both regimes of the energy-momentum relation, on the separatrix and for the symmetric top,
+in the package order
 ``(w12, w13, w23)``; :func:`euler_poinsot_period` its period. Moments and ``omega0`` of any
 scale are exact (scaled by powers of two). Close to the separatrix (a spin about the middle axis, tilted)
 the parameter's distance :math:`1 - m` to it is computed exactly and carried separately (``ellipkm1``,

@@ -579,7 +579,8 @@ class RigidBody:
                 out = _manakov_traces(L, J, lam_value)
             if np.all(np.isfinite(out)):
                 return out
-            if abs(lam_value) * float(np.max(np.abs(J))) ** 2 >= float(np.max(np.abs(L), initial=0.0)):
+            Jmax = float(np.max(np.abs(J)))  # (a product, not ** 2: a Python float's power raises OverflowError)
+            if abs(lam_value) * Jmax * Jmax >= float(np.max(np.abs(L), initial=0.0)):
                 big, sizes = "lam", np.array([lam_value])
             else:
                 big, sizes = of, (self._check_omega(values) if of == "omega" else L)

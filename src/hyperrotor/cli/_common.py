@@ -149,6 +149,13 @@ def budget_message(err: Exception, args: argparse.Namespace | None = None) -> st
     return text + "; choose a smaller run" + (f" or raise {flags[0]}" if flags else "")
 
 
+def unreachable(err: Exception, what: str, advice: str) -> RuntimeError:
+    """The command's words for a step control that cannot reach its accuracy (``UnreachableAccuracyError``): the
+    library's reason without its advice (a larger ``rtol``, which no command takes), then ``advice`` (options of the
+    command). Raise it ``from None``: the work failed (exit status 1)."""
+    return RuntimeError(f"{what} cannot be integrated to its accuracy: {str(err).split('. Ask for')[0]}; {advice}")
+
+
 def _fields(text: str, option: str, what: str) -> list[str]:
     """The comma-separated fields of ``text`` (none for an empty text); an empty field is refused, naming it."""
     if not text.strip():

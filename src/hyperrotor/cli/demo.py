@@ -15,7 +15,8 @@ import numpy as np
 
 from hyperrotor import _validate
 from hyperrotor.cli._common import (UsageError, add_common, check_budget, check_common, check_invariants_fit,
-                                    choice_of, have_matplotlib, integer, num, number, number_list, nums, usage)
+                                    choice_of, have_matplotlib, integer, num, number, number_list, nums, unreachable,
+                                    usage)
 from hyperrotor.cli._files import OutputFile, Outputs, output_file
 from hyperrotor.conventions import CONVENTIONS
 from hyperrotor.demo import DEMO_OMEGA, quartet_invariants, save_quartet_motion
@@ -63,6 +64,7 @@ def _pretty_block(label: str, expr, use_unicode: bool) -> str:
 def run(args: argparse.Namespace) -> int:
     from hyperrotor import Inertia, RigidBody
     from hyperrotor._options import options
+    from hyperrotor.classical import UnreachableAccuracyError
     from hyperrotor.demo import compare_quartet_motion, quartet_motion_seconds
 
     # --- checks, before any work -------------------------------------------------
@@ -101,7 +103,11 @@ def run(args: argparse.Namespace) -> int:
         with options(max_seconds=max(float(options["max_seconds"]), args.max_seconds or 0.0,
                                      float(options["cli_max_seconds"])),  # the CLI's budget was checked above,
                      max_steps=max(int(options["max_steps"]), 2**62)):  # the steps folded into it (--max-seconds)
-            motion = compare_quartet_motion(kappa, omega, t_end, axis=args.axis)
+            try:
+                motion = compare_quartet_motion(kappa, omega, t_end, axis=args.axis)
+            except UnreachableAccuracyError as err:  # (a stiff body over a long run: round-off near rtol 1e-12)
+                raise unreachable(err, f"the motion over --t-end {num(t_end)} with --kappa {args.kappa}",
+                                  "choose a smaller --kappa or a shorter --t-end") from None
         out.extend(_motion_lines(motion))
         out.append("")
         if png is not None:

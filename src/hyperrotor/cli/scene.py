@@ -18,7 +18,7 @@ from hyperrotor._options import options
 from hyperrotor.cli._common import (CLI_BUDGETS, UsageError, add_common, bar, budget_message, check_budget,
                                     check_common, check_invariants_fit, choice_of, duration_text,
                                     have_matplotlib, have_module, int_list, integer, num, number, number_list,
-                                    size_text, usage)
+                                    size_text, unreachable, usage)
 from hyperrotor.cli._files import Outputs, output_file
 from hyperrotor.cli._signals import checkpoint
 
@@ -214,10 +214,9 @@ def run(args: argparse.Namespace) -> int:
                     res = scene.evaluate()
                 except BudgetError as err:  # the library's advice names Python options; name the CLI's
                     raise UsageError(_budget_message(err, args)) from None
-                except UnreachableAccuracyError as err:  # (its advice, a larger rtol, is no option of the command)
-                    raise RuntimeError(f"the motion over --t-end {num(s['t_end'])} cannot be integrated to the "
-                                       f"scene's accuracy: {str(err).split('. Ask for')[0]}; choose a shorter --t-end"
-                                       ) from None
+                except UnreachableAccuracyError as err:
+                    raise unreachable(err, f"the motion over --t-end {num(s['t_end'])}", "choose a shorter --t-end"
+                                      ) from None
         checkpoint()
         title = (f"{args.shape} in {N}D, {args.inertia} inertia: space axes {', '.join(map(str, s['axes']))} drawn"
                  + (f", colour = x{s['colour_axis']}" if s["colour_axis"] else ""))
