@@ -9,11 +9,11 @@ from hyperrotor.cli import main
 
 def test_work_precision_errors_against_the_elliptic_solution():
     pts = work_precision("euler-poinsot", ["splitting8", "DOP853"], repeats=1)
-    by = {(p.method, p.value): p for p in pts}
-    # order 8: the step 1 -> 0.6 (100 -> 200 steps on the unit output spacing, a true halving) gains
-    # over 2^6 (2^8 asymptotically); from dt = 0.3 on the error is at the round-off floor (< 1e-11)
-    assert by["splitting8", 1.0].error / by["splitting8", 0.6].error > 2**6
-    assert max(by["splitting8", v].error for v in (0.3, 0.2, 0.1)) < 1e-11
+    by = {(p.method, round(p.value, 12)): p for p in pts}
+    # order 8: the step 1 -> 0.5 (100 -> 200 steps on the unit output spacing, a true halving) gains
+    # over 2^6 (2^8 asymptotically); from dt = 1/4 on the error is at the round-off floor (< 1e-11)
+    assert by["splitting8", 1.0].error / by["splitting8", 0.5].error > 2**6
+    assert max(by["splitting8", round(v, 12)].error for v in (0.25, 0.2, 0.1)) < 1e-11
     assert by["DOP853", 1e-12].error < 1e-10
     assert all(p.seconds > 0 for p in pts)
 
@@ -91,3 +91,20 @@ def test_write_csv_dicts_and_dataclasses_round_trip(tmp_path):
                    "N": "5", "t_end": "200.0"}
     with pytest.raises(ValueError, match="at least one row"):
         write_csv([], tmp_path / "e.csv")
+
+
+def test_the_steps_reported_are_the_steps_taken():
+    """bench's dt column was the requested largest step: on the 3D top's output intervals of 1, splitting10 at
+    dt = 2 and 1 were the same run (two points of one error under two labels), and splitting8's 0.6 ran at 0.5 on
+    the quartet's intervals of 2. The points are the distinct steps the runs take now."""
+    from hyperrotor import simulate
+    from hyperrotor.bench import BENCH_PROBLEMS, _problem, n_runs
+
+    for problem in BENCH_PROBLEMS:
+        pts = work_precision(problem, ["splitting10"], repeats=1)
+        steps = [p.value for p in pts]
+        assert len(set(steps)) == len(steps) == n_runs([problem], ["splitting10"])
+        body, w0, t, _ = _problem(problem)
+        for p in pts:
+            assert simulate(body, w0, t, method="splitting10", dt=p.value).stats["dt"] == pytest.approx(p.value,
+                                                                                                      rel=1e-12)

@@ -180,7 +180,7 @@ def test_demo_can_run_twice_and_owns_only_its_default_png(capsys, tmp_path, monk
         assert _files(tmp_path) == ["hyperrotor-demo.png"]
     (tmp_path / "hyperrotor-demo.png").write_text("not a demo picture")  # not its own: kept
     code, out, err = _run(capsys, ["demo", "--ascii", "--t-end", "2"])
-    assert code == 2 and "'hyperrotor-demo.png' exists; pass --force" in err
+    assert code == 2 and "the demo's picture 'hyperrotor-demo.png' (the default of --png) exists; pass --force" in err
     assert (tmp_path / "hyperrotor-demo.png").read_text() == "not a demo picture"
 
 
@@ -637,6 +637,8 @@ def test_bench_paths_keep_the_documented_names(tmp_path, monkeypatch):
     with pytest.raises(UsageError, match=r"got '\.\.\.' \(a name of dots and spaces only\)"):
         bench_paths("...")
     with pytest.raises(UsageError, match="got an empty string"):
+        bench_paths("")
+    with pytest.raises(UsageError, match="got ' '"):
         bench_paths(" ")
 
 
@@ -1002,3 +1004,40 @@ def test_demo_summary_is_true_of_the_body_run(capsys):
     code, out, _ = _run(capsys, ["demo", "--no-png", "--t-end", "1", "--omega=1,2,3,0,0,0,0,0,0,0"])
     summary = out.split("\nsummary: ")[1].split("\n")[0]
     assert summary.endswith("(12, 13, 14, 23, 24, 34); at this omega also 15, 25, 35, 45 (dw/dt = 0 here);")
+
+
+def test_negative_values_follow_their_option(capsys):
+    """argparse reads only '-12' and '-1.5' as values: '--kappa -1/2', '--t-end -1e3', '--kappa -inf' were refused as
+    'expected one argument', without the value's name or what is allowed."""
+    code, out, err = _run(capsys, ["demo", "--no-png", "--kappa", "-1/2", "--t-end", "1"])
+    assert code == 0 and "(28)" in out, err
+    code, _, err = _run(capsys, ["demo", "--no-png", "--t-end", "-1e3"])
+    assert code == 2 and err == "hyperrotor demo: error: --t-end must be finite and > 0, got -1000.0\n"
+    code, _, err = _run(capsys, ["demo", "--no-png", "--kappa", "-inf"])
+    assert code == 2 and "--kappa='-inf' cannot be read" in err
+    code, _, err = _run(capsys, ["bench", "--repeats", "-2e0"])
+    assert code == 2 and "--repeats must be an integer >= 1, got -2" in err
+    code, out, err = _run(capsys, ["demo", "--no-png", "--omega", "-1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1", "--t-end", "1"])
+    assert code == 0, err
+
+
+def test_a_huge_kappa_is_a_usage_error(capsys):
+    """--kappa 1e80 failed with exit 1 and 'OverflowError' (the Manakov traces' own overflow check squared a Python
+    float); it is refused as a usage error naming --kappa, as --kappa 1e60 was."""
+    code, _, err = _run(capsys, ["demo", "--no-png", "--kappa", "1e80", "--t-end", "1e-100"])
+    assert code == 2 and "choose a --kappa of smaller magnitude" in err and "OverflowError" not in err
+
+
+def test_messages_name_what_was_given(capsys, tmp_path, monkeypatch):
+    """The default picture's refusal named a --png that was not given; a blank --output was called empty; a huge
+    --repeats printed its 100 digits."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hyperrotor-demo.png").mkdir()
+    code, out, err = _run(capsys, ["demo"])
+    assert code == 2 and out == ""
+    assert err.startswith("hyperrotor demo: error: the demo's picture 'hyperrotor-demo.png' (the default of --png) "
+                          "is a folder") and err.endswith(" (--png FILE.png or --no-png avoids it)\n")
+    code, _, err = _run(capsys, ["bench", "--output", " "])
+    assert code == 2 and "got ' '" in err
+    code, _, err = _run(capsys, ["bench", "--repeats", "10**99"])
+    assert code == 2 and "--repeats 1e+99 would take" in err

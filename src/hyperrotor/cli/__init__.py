@@ -47,8 +47,10 @@ Conventions of every subcommand
 * **Progress** bars (tqdm) go to stderr, for work that can take more than a few
   seconds (scene, bench, verify), when stderr is a terminal or with
   ``--progress`` (``--no-progress`` turns them off).
-* **Warnings** (e.g. numerical ones from NumPy) are reported after the work,
+* **Warnings** (e.g. numerical ones from NumPy) are reported as they are raised,
   one line each (``hyperrotor demo: warning: RuntimeWarning: ...``).
+* **Negative values** follow their option directly (``--kappa -1/2``, ``--t-end -1e3`` is refused as
+  not > 0 by its own check), as ``--kappa=-1/2`` does.
 * **Numbers** print as plain values with 12 significant digits (``-0.33``, not
   ``-0.32999999999999996``); values in error messages via
   :func:`hyperrotor._validate.fmt`.
@@ -88,7 +90,14 @@ class Subcommand:
 
 
 class _Parser(argparse.ArgumentParser):
-    """An argument parser whose errors are one line (raised as :class:`UsageError`)."""
+    """An argument parser whose errors are one line (raised as :class:`UsageError`), and which reads every value
+    that starts like a negative number (``-1e3``, ``-1/2``, ``-inf``, ``-2e0``) as a value, not as an option:
+    argparse's own pattern knows only ``-12`` and ``-1.5``, and ``--kappa -1/2`` was refused as "expected one
+    argument" without naming the value (the value's own check then names it, e.g. "--t-end must be > 0")."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r"^-(?:\d|\.\d|inf|nan)", re.IGNORECASE)  # (argparse's hook)
 
     def error(self, message: str):  # noqa: D401 - argparse API
         raise UsageError(f"{message} (see '{self.prog} --help')")

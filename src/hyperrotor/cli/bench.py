@@ -56,7 +56,7 @@ def bench_paths(stem: str) -> tuple[Path, Path]:
         it would write hidden or blank-named files such as ``.csv.csv``.
     """
     if not stem or not stem.strip():
-        raise UsageError("--output needs a file stem or a folder, got an empty string")
+        raise UsageError(f"--output needs a file stem or a folder, got {'an empty string' if not stem else repr(stem)}")
     path = Path(stem).expanduser()
     if stem.endswith(("/", os.sep)) or path.is_dir():
         path = path / BENCH_STEM
@@ -83,7 +83,7 @@ def run(args: argparse.Namespace) -> int:
     error = usage(_validate.positive, "--error", number(args.error, "--error"))
     if error >= 1:
         raise UsageError(f"--error is a relative error level and must be < 1, got {_validate.fmt(error)}")
-    check_budget(args, f"bench with --repeats {repeats}", estimate_seconds(problems, methods, repeats),
+    check_budget(args, f"bench with --repeats {num(repeats, 6)}", estimate_seconds(problems, methods, repeats),
                   hint="use fewer --repeats, --problem or --method")
     csv_path, png_path = bench_paths(args.output)
     plot = have_matplotlib()

@@ -40,7 +40,7 @@ def configure(p: argparse.ArgumentParser) -> None:
                    help="matrix convention of the printed equations (default: paper, eq. 21)")
     p.add_argument("--omega", default=None,
                    help="comma-separated 10 angular velocity components in plane order "
-                        f"(default {','.join(map(str, DEMO_OMEGA))}; write --omega=-1,... for a negative first value)")
+                        f"(default {','.join(map(str, DEMO_OMEGA))})")
     p.add_argument("--ascii", action="store_true", help="ASCII instead of Unicode pretty printing")
     p.add_argument("--t-end", default=DEMO_T_END,
                    help=f"length of the simulated motion, closed form vs numerical (default {DEMO_T_END:g})")
@@ -179,7 +179,11 @@ def _png_output(args: argparse.Namespace) -> OutputFile:
         return usage(output_file, args.png, option="--png", suffixes=(".png",), force=args.force)
     path = Path(DEMO_PNG)
     own = path.is_file() and not path.is_symlink() and path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    return usage(output_file, DEMO_PNG, option="--png", suffixes=(".png",), force=args.force or own)
+    try:
+        return usage(output_file, DEMO_PNG, option="--png", suffixes=(".png",), force=args.force or own)
+    except UsageError as err:  # (no --png was given: name the default, and the ways around it)
+        raise UsageError(str(err).replace(f"--png {DEMO_PNG!r}", f"the demo's picture {DEMO_PNG!r} (the default of "
+                                          f"--png)", 1) + " (--png FILE.png or --no-png avoids it)") from None
 
 
 def _demo_text(args, body, inertia, kappa, omega) -> list[str]:

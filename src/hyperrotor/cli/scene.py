@@ -50,7 +50,7 @@ def configure(p: argparse.ArgumentParser) -> None:
     p.add_argument("--omega", default=None,
                    help="comma-separated initial angular velocity, N(N-1)/2 components in plane order "
                         "(default 0.1, 0.2, ..., 1 for N = 5, and 10/n times 0.1, 0.2, ... for n = N(N-1)/2 > 10 "
-                        "planes: max |omega| = 1; write --omega=-1,... for a negative first value)")
+                        "planes: max |omega| = 1)")
     p.add_argument("--lock", default="", help="comma-separated axes whose rotation planes start (and stay) at rest "
                                              "(the default --omega is 0 there; a given --omega must be)")
     p.add_argument("--axes", default="1,2,3", help="the three space axes drawn (default 1,2,3)")
