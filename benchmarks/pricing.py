@@ -120,12 +120,22 @@ def cases():
         phase = sum(abs(th) * float(abs(gens[p]).sum(axis=1).max()) for p, th in _givens_angles(Q))
         out.append(("apply_rotation", f"dim={rep.dim}", dict(dim=rep.dim, phase=phase, factors=3), lambda rep=rep: rep,
                     lambda rep: hq.apply_rotation(rep, Q, np.ones(rep.dim) / rep.dim**0.5)))
-    for ls, K in (([1] * 50, 5), ([10, 40, 80], 200), ([100, 200], 100)):
+    for ls, K in (([1] * 50, 5), ([10, 40, 80], 200), ([100, 200], 100), ([1600], 100)):
         dims = [2 * l + 1 for l in ls]
         out.append(("ehrenfest_time", f"{len(ls)} irreps, {K} times",
                     dict(irreps=len(ls), dims=sum(dims), dim_squares=sum(d * d for d in dims), n_times=K, n=3),
                     lambda: None, lambda _, ls=ls, K=K: hq.ehrenfest_time([1.0, 2.0, 3.0], [0.3, 0.2, 1.0], ls,
                                                                             np.linspace(0.0, 3.0, K))))
+    for N, ls, K in ((4, [10, 30], 100), (5, [25], 100), (5, [40], 100)):  # (the coherent states of a simple L0)
+        hws = [(l,) + (0,) * (N // 2 - 1) for l in ls]
+        dims = [float(hq.weyl_dimension(N, hw)) for hw in hws]
+        n = N * (N - 1) // 2
+        out.append(("ehrenfest_time", f"so({N}) l = {ls}, {K} times",
+                    dict(irreps=len(ls), dims=sum(dims), dim_squares=sum(d * d for d in dims), n_times=K, n=n),
+                    lambda: None,
+                    lambda _, N=N, n=n, ls=ls, K=K: hq.ehrenfest_time(np.linspace(1.0, 2.0, n),
+                                                                      np.r_[0.6, 0.8, np.zeros(n - 2)], ls,
+                                                                      np.linspace(0.0, 3.0, K))))
     for n in (500, 1000, 2000):
         out.append(("dense_diagonalization", f"sample_spectrum gue n={n}", dict(dim=n, complex=True), lambda: None,
                     lambda _, n=n: hq.sample_spectrum("gue", n, rng=1)))

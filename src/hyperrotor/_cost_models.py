@@ -260,16 +260,20 @@ def _evolve(dim: Any, n_times: Any, states: bool = True, krylov_phase: Any = 0.0
 @model("ehrenfest_time", "ask for fewer irreps (ls) or fewer times (t)")
 def _ehrenfest_time(irreps: Any, dims: Any = None, dim_squares: Any = None, n_times: Any = None, n: Any = 3
                     ) -> tuple[Cost, ...]:
-    # per irrep (measured, so(3), dimensions 3-161, 5-200 times): ~20 ms of set-up (the irrep, its Hamiltonian,
-    # coherent state and sectors), ~1.5 ms per unit of dimension (the generators, the sectors' propagation), the
-    # highest-weight search (dim^2) and the expectation values of the n generators at every time; without the
+    # per irrep (measured on the 2-core reference machine, session 49): ~12 ms of set-up (the irrep, its
+    # Hamiltonian, coherent state and sectors) and the expectation values of the n generators at every time; so(3)
+    # (dimensions 3-3201, 5-200 times): ~1 ms per unit of dimension (the generators, the sectors' propagation) and
+    # 1.7e-7 s per dim^2 (the few large sectors of an so(3) irrep: 5 s at dimension 3201); N >= 4 (n > 3), irreps
+    # (l, 0, ...): many small sectors of which the coherent state populates few, ~8e-5 s per unit of dimension and
+    # 5e-10 per dim^2 (so(4), so(5), dimensions 121-23821: the so(3) figures priced them 12-30x high). Without the
     # dimensions (a first check on the count alone) every irrep counts as dimension 1
     k = _f(irreps)
     K = 1.0 if n_times is None else _f(n_times)
     d1 = k if dims is None else _f(dims)
     d2 = k if dim_squares is None else _f(dim_squares)
+    per_dim, per_square = (1.0e-3, 1.7e-7) if _f(n) <= 3.0 else (8e-5, 5e-10)
     what = f"{irreps} irreps (ls)" + ("" if n_times is None else f" x {n_times} times (t)")
-    return (_seconds(what, k * (0.02 + K * _EVOLVE_S * _f(n)) + 1.5e-3 * d1 + _LANCZOS_S * d2),
+    return (_seconds(what, k * (0.012 + K * _EVOLVE_S * _f(n)) + per_dim * d1 + per_square * d2),
             Cost(f"the quantum curves of {what} x {n} planes", 16.0 * _mul(k, K, n), "max_output_bytes", "bytes"))
 
 

@@ -37,15 +37,30 @@ __all__ = [
 
 
 def _pyplot():
+    """matplotlib's pyplot, with the caller's backend (for the figures a caller shows: :func:`plot_poincare`)."""
     try:
-        import matplotlib
-
-        if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
-            matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:  # pragma: no cover - depends on the environment
         raise ImportError("plotting needs matplotlib: pip install 'hyperrotor[viz]'") from None
     return plt
+
+
+#: the most panels (problems) of :func:`plot_work_precision`, side by side
+MAX_PANELS = 12
+
+
+def _figure(**kwargs: Any):
+    """A figure drawn by Agg outside pyplot, for the pictures written to files: no backend is switched (the
+    caller's Qt or Tk session keeps its own; the first version switched the process to Agg) and nothing is
+    registered with pyplot, so a figure given up half-way (an error, Ctrl-C) is garbage, not a leak."""
+    try:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+    except ImportError:  # pragma: no cover - depends on the environment
+        raise ImportError("plotting needs matplotlib: pip install 'hyperrotor[viz]'") from None
+    fig = Figure(**kwargs)
+    FigureCanvasAgg(fig)
+    return fig
 
 
 def _hidden_colour(projection: np.ndarray):
@@ -98,6 +113,15 @@ def draw_projection(ax, frame: np.ndarray, edges: Sequence[tuple[int, int]], *, 
     return sc
 
 
+def _check_times(t: Any, xyz: np.ndarray) -> None:
+    """The frames' times: one per frame of the projection (a shorter ``t`` titled only its first frames)."""
+    t = _v.finite_array("t", t)
+    if t.ndim != 1 or t.size == 0 or t.size != xyz.shape[0]:
+        raise ValueError(f"t must have one time per frame of the projection ({xyz.shape[0]}), got shape {t.shape}")
+    if xyz.shape[1] == 0:
+        raise ValueError("projection has no points (shape (len(t), 0, 3)): give at least one point")
+
+
 def _colour_setup(colour: np.ndarray | None):
     if colour is None:
         return None
@@ -126,14 +150,15 @@ def save_projection_frames(path, t: np.ndarray, projection: np.ndarray, edges, *
     after each panel is drawn; ``format`` is passed to ``savefig`` (so ``path``
     may carry any suffix, e.g. a temporary name).
     """
-    plt = _pyplot()
     xyz, colour = _hidden_colour(projection)
     if colour is not None and colour_axis is None:
         raise ValueError("a projection with 4 coordinates needs colour_axis (the space axis of the 4th)")
+    n_frames = _v.integer("n_frames", n_frames, minimum=1)
+    _check_times(t, xyz)
     idx = np.linspace(0, len(t) - 1, min(n_frames, len(t))).round().astype(int)
     cols = min(len(idx), 3)
     rows = -(-len(idx) // cols)
-    fig = plt.figure(figsize=(3.3 * cols + (1.0 if colour is not None else 0.0), 3.3 * rows + 0.5))
+    fig = _figure(figsize=(3.3 * cols + (1.0 if colour is not None else 0.0), 3.3 * rows + 0.5))
     lim = float(np.max(np.abs(xyz))) * 1.05
     norm = _colour_setup(colour)
     sc = None
@@ -153,10 +178,7 @@ def save_projection_frames(path, t: np.ndarray, projection: np.ndarray, edges, *
     if colour is not None:
         cax = fig.add_axes((0.9, 0.15, 0.015, 0.65))
         fig.colorbar(sc, cax=cax).set_label(_colour_label(axes_labels, colour_axis), fontsize=9)
-    try:
-        fig.savefig(path, dpi=100, format=format)
-    finally:
-        plt.close(fig)
+    fig.savefig(path, dpi=100, format=format)
     return str(path)
 
 
@@ -170,35 +192,36 @@ def save_projection_animation(path, t: np.ndarray, projection: np.ndarray, edges
     behind. ``path`` must end in ``.gif`` (Pillow picks the format from it).
     Colours and the colour bar as in :func:`save_projection_frames`.
     """
-    plt = _pyplot()
-    from matplotlib.animation import PillowWriter
-
     xyz, colour = _hidden_colour(projection)
     if colour is not None and colour_axis is None:
         raise ValueError("a projection with 4 coordinates needs colour_axis (the space axis of the 4th)")
+    if not str(path).lower().endswith(".gif"):
+        raise ValueError(f"path must end in .gif (Pillow picks the format from it), got {_v.fmt(str(path))}")
+    fps = _v.positive("fps", fps)
+    _check_times(t, xyz)
+    from matplotlib.animation import PillowWriter
+    from matplotlib.cm import ScalarMappable
+
     lim = float(np.max(np.abs(xyz))) * 1.05
     norm = _colour_setup(colour)
-    fig = plt.figure(figsize=(5.4 if colour is not None else 4.6, 4.8))
+    fig = _figure(figsize=(5.4 if colour is not None else 4.6, 4.8))
     ax = fig.add_axes((0.0, 0.0, 0.78 if colour is not None else 1.0, 0.9), projection="3d")
     writer = PillowWriter(fps=fps)
-    try:
-        writer.setup(fig, str(path), dpi=100)
-        if colour is not None:
-            cax = fig.add_axes((0.84, 0.15, 0.025, 0.6))
-            sm = plt.cm.ScalarMappable(norm=norm, cmap="coolwarm")
-            fig.colorbar(sm, cax=cax).set_label(_colour_label(axes_labels, colour_axis), fontsize=8)
-            cax.tick_params(labelsize=8)
-        for i in range(len(t)):
-            ax.cla()
-            draw_projection(ax, xyz[i], edges, limit=lim, axes_labels=axes_labels,
-                            colour=None if colour is None else colour[i], norm=norm)
-            fig.suptitle(f"{title}\nt = {t[i]:.3g}" if title else f"t = {t[i]:.3g}", fontsize=8)
-            writer.grab_frame()
-            if callback is not None:
-                callback()
-        writer.finish()  # writes the file
-    finally:
-        plt.close(fig)
+    writer.setup(fig, str(path), dpi=100)
+    if colour is not None:
+        cax = fig.add_axes((0.84, 0.15, 0.025, 0.6))
+        sm = ScalarMappable(norm=norm, cmap="coolwarm")
+        fig.colorbar(sm, cax=cax).set_label(_colour_label(axes_labels, colour_axis), fontsize=8)
+        cax.tick_params(labelsize=8)
+    for i in range(len(t)):
+        ax.cla()
+        draw_projection(ax, xyz[i], edges, limit=lim, axes_labels=axes_labels,
+                        colour=None if colour is None else colour[i], norm=norm)
+        fig.suptitle(f"{title}\nt = {t[i]:.3g}" if title else f"t = {t[i]:.3g}", fontsize=8)
+        writer.grab_frame()
+        if callback is not None:
+            callback()
+    writer.finish()  # writes the file (the frames are kept in memory until then: an error writes nothing)
     return str(path)
 
 
@@ -214,8 +237,22 @@ def save_motion_comparison(path, t: np.ndarray, exact: np.ndarray, runs: Mapping
     normalisation as the printed "max relative error"). Legends sit outside the
     data, to the right of each panel.
     """
-    plt = _pyplot()
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(10, 6.5), sharex=True, height_ratios=(3, 1.6))
+    t = _v.finite_array("t", t)
+    exact = _v.finite_array("exact", exact)
+    if t.ndim != 1 or exact.ndim != 2 or exact.shape[0] != t.size:
+        raise ValueError(f"exact must have shape (len(t), n) = ({t.size}, n), got {exact.shape}")
+    if not isinstance(runs, Mapping) or any(np.shape(w) != exact.shape for w in runs.values()):
+        raise ValueError(f"runs must map names to arrays of the shape of exact {exact.shape}, got "
+                         f"{ {k: np.shape(w) for k, w in runs.items()} if isinstance(runs, Mapping) else _v.fmt(runs)}")
+    components, labels = list(components), list(labels)
+    if len(labels) != len(components) or any(not 0 <= int(k) < exact.shape[1] for k in components):
+        raise ValueError(f"components must be {len(labels)} column indices of exact (0 .. {exact.shape[1] - 1}), one "
+                         f"per label, got components {components} and labels {labels}")
+    if marked is not None and marked not in runs:
+        raise ValueError(f"marked must be one of the runs {list(runs)} or None, got {marked!r}")
+    scale = _v.positive("scale", scale)
+    fig = _figure(figsize=(10, 6.5))
+    ax1, ax2 = fig.subplots(2, 1, sharex=True, height_ratios=(3, 1.6))
     step = max(1, len(t) // 50)
     for k, label in zip(components, labels):
         line, = ax1.plot(t, exact[:, k], lw=1.2, label=f"{label} closed form")
@@ -240,10 +277,7 @@ def save_motion_comparison(path, t: np.ndarray, exact: np.ndarray, runs: Mapping
                   r"\max|\omega_0|$", fontsize=9)
     fig.align_ylabels((ax1, ax2))
     fig.tight_layout()
-    try:
-        fig.savefig(path, dpi=110, format=format)
-    finally:
-        plt.close(fig)
+    fig.savefig(path, dpi=110, format=format)
     return str(path)
 
 
@@ -256,8 +290,9 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
     sections : PoincareSection or list of them
         the sections (one colour each).
     x, y : pair or str
-        the planes whose components :math:`L_x`, :math:`L_y` are drawn.
-    ax : matplotlib Axes, optional
+        the planes whose components :math:`L_x`, :math:`L_y` are drawn, in the sections' axis labels (a
+        locked body keeps its original ones, e.g. ``(2, 4)`` of a body locked on axis 1).
+    ax : 2-D matplotlib Axes, optional
         where to draw (default: a new figure; matplotlib is imported only here).
     labels : sequence of str, optional
         legend entries, one per section.
@@ -278,16 +313,21 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
         secs = []
     if not secs or not all(isinstance(s_, PoincareSection) for s_ in secs):
         raise TypeError(f"sections must be a PoincareSection or a list of them, got {_v.fmt(sections)}")
-    N = secs[0].N
-    px, py = _v.plane(x, N), _v.plane(y, N)
+    axes_of = {s_.axes or tuple(range(1, s_.N + 1)) for s_ in secs}
+    if len(axes_of) > 1:
+        raise ValueError(f"sections must be of bodies with the same axes to share a plot, got axes "
+                         f"{', '.join(map(str, sorted(axes_of)))}")
+    (body_axes,) = axes_of
+    px, py = (_section_plane(name, q, body_axes, default) for name, q, default in
+              (("x", x, (1, 3)), ("y", y, (2, 4))))
     if labels is not None:
         if not isinstance(labels, (list, tuple)) or not all(isinstance(lab, str) for lab in labels):
             raise TypeError(f"labels must be a list of strings (one per section), got {_v.fmt(labels)}")
         if len(labels) != len(secs):
             raise ValueError(f"labels must name each of the {len(secs)} sections, got {len(labels)}")
-    if ax is not None and not callable(getattr(ax, "scatter", None)):
-        raise TypeError(f"ax must be a matplotlib Axes (or None for a new figure), got {_v.fmt(ax)} "
-                        f"of type {type(ax).__name__}")
+    if ax is not None and getattr(ax, "name", None) != "rectilinear":  # (polar axes read L_x as an angle)
+        raise TypeError(f"ax must be a 2-D matplotlib Axes (or None for a new figure), got {_v.fmt(ax)} "
+                        f"of type {type(ax).__name__}" + (f" ({ax.name!r} projection)" if hasattr(ax, "name") else ""))
     if ax is None:  # constrained layout: the legend beside the axes stays inside the saved figure
         _, ax = _pyplot().subplots(figsize=(4.5 if labels is None else 5.6, 4.5), layout="constrained")
     opts = {"s": 2}
@@ -301,14 +341,28 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
                 raise
             raise TypeError(f"scatter_options {sorted(scatter_options)}: {exc} (they go to matplotlib's "
                             f"Axes.scatter)") from None
-    s0 = secs[0]
     ax.set_xlabel(f"$L_{{{px[0]}{px[1]}}}$")
     ax.set_ylabel(f"$L_{{{py[0]}{py[1]}}}$")
-    sign = {1: "upward", -1: "downward", 0: "both directions"}[s0.direction]
-    ax.set_title(f"section $L_{{{s0.plane[0]}{s0.plane[1]}}} = {s0.value:g}$ ({sign})")
+    sign = {1: "upward", -1: "downward", 0: "both directions"}
+    kinds = dict.fromkeys(f"$L_{{{s_.plane[0]}{s_.plane[1]}}} = {s_.value:g}$ ({sign[s_.direction]})" for s_ in secs)
+    ax.set_title(("section " if len(kinds) == 1 else "sections ") + "; ".join(kinds))  # (each kind once)
     if labels is not None:
         ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), markerscale=4, frameon=False)
     return ax
+
+
+def _section_plane(name: str, plane: Any, axes: tuple, default: tuple) -> tuple[int, int]:
+    """``plane`` (``x`` or ``y`` of :func:`plot_poincare`) as a pair of the sections' axis labels (a locked body keeps
+    its own, e.g. (2, 3, 4, 5)), or a ``ValueError`` naming the argument, the axes, and whether it was the default."""
+    try:
+        a, b = _v.plane(plane, max(axes))
+    except ValueError as err:
+        raise ValueError(f"{name}: {err}") from None
+    if a not in axes or b not in axes:
+        was = " (the default: pass x= and y=)" if tuple(plane) == default else ""
+        raise ValueError(f"{name} = {_v.fmt(plane)}{was} is no plane of the sections' axes {axes}: planes are pairs "
+                         f"(i, j), i < j, of them")
+    return a, b
 
 
 def plot_work_precision(points: Sequence, path, *, format: str | None = "png") -> str:
@@ -323,11 +377,22 @@ def plot_work_precision(points: Sequence, path, *, format: str | None = "png") -
     panels, off the data. ``format`` is passed to ``savefig`` (``path`` may be a
     temporary name).
     """
-    plt = _pyplot()
+    from .bench import WorkPrecisionPoint
+
+    if isinstance(points, (str, bytes, Mapping)) or not hasattr(points, "__iter__"):
+        raise TypeError(f"points must be a sequence of WorkPrecisionPoint records, got {_v.fmt(points)}")
+    points = list(points)
+    if not all(isinstance(p, WorkPrecisionPoint) for p in points):
+        raise TypeError(f"points must be WorkPrecisionPoint records (hyperrotor.bench), got "
+                        f"{sorted({type(p).__name__ for p in points if not isinstance(p, WorkPrecisionPoint)})}")
     problems = list(dict.fromkeys(p.problem for p in points))
     if not problems:
         raise ValueError("plot_work_precision needs at least one point")
-    fig, axes = plt.subplots(1, len(problems), figsize=(5.8 * len(problems), 4.8), squeeze=False)
+    if len(problems) > MAX_PANELS:  # (one panel each: 200 problems drew a 127600 px wide picture in 34 s)
+        raise ValueError(f"plot_work_precision draws one panel per problem, at most {MAX_PANELS}; got "
+                         f"{len(problems)} problems: plot them in groups")
+    fig = _figure(figsize=(5.8 * len(problems), 4.8))
+    axes = fig.subplots(1, len(problems), squeeze=False)
     handles = {}
     for ax, prob in zip(axes[0], problems):
         for k, method in enumerate(dict.fromkeys(p.method for p in points)):
@@ -349,8 +414,5 @@ def plot_work_precision(points: Sequence, path, *, format: str | None = "png") -
     fig.legend(list(handles.values()), list(handles), loc="lower center", ncol=min(len(handles), 7), fontsize=8,
                frameon=False)
     fig.tight_layout(rect=(0, 0.08, 1, 1))
-    try:
-        fig.savefig(path, dpi=110, format=format)
-    finally:
-        plt.close(fig)
+    fig.savefig(path, dpi=110, format=format)
     return str(path)

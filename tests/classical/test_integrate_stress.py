@@ -212,3 +212,16 @@ def test_constant_torque_long_splitting_run():
     assert np.all(np.isfinite(tr.omega))
     assert np.abs(tr.omega - ref.omega).max() < 1e-8 * np.abs(ref.omega).max()
     assert orthogonality(tr.attitude) < 1e-12
+
+
+def test_a_moment_ratio_of_1e300_runs():
+    """Moments (1e300, 2, 3.5): the step control's rate bound multiplied (I_c - I_a)(I_c - I_b) = 1e600 to inf,
+    the probe's step became 0 and simulate raised a bare ZeroDivisionError (a review, through ehrenfest_time). The
+    two ratios are taken apart now; the run agrees with DOP853."""
+    t = np.linspace(0.0, 10.0, 11)
+    a = simulate([1e300, 2.0, 3.5], [3e-301, 0.5, 0.05], t, rtol=1e-9)
+    b = simulate([1e300, 2.0, 3.5], [3e-301, 0.5, 0.05], t, method="DOP853", rtol=1e-12, atol=1e-14)
+    bound = step_control._coupled_rates(np.array([1e300, 2.0, 3.5]), np.array([[0.3, 1.0, 0.175]]),
+                                        *step_control._triples(3))
+    assert 0.5 < bound[0] < 10.0  # (the linearised frequency of the triple, finite; was inf)
+    np.testing.assert_allclose(a.omega, b.omega, rtol=0, atol=1e-9 * np.abs(b.omega).max())

@@ -358,3 +358,30 @@ def test_ehrenfest_time_takes_a_highest_weight_as_the_package_gives_it():
         hyperrotor.quantum.ehrenfest_time(moments, L0, [2], t, weight=(F(0),))
     with pytest.raises(TypeError, match="weight must be a sequence"):
         hyperrotor.quantum.ehrenfest_time(moments, L0, [2], t, weight="1/2")
+
+
+def test_expectations_and_ehrenfest_inputs_at_the_edges(monkeypatch):
+    """generator_expectations multiplied by -1j hbar in complex arithmetic: hbar = 5e307 gave inf and 1e308 nan
+    where the values are ~9e307; ehrenfest_time took method='sesolve' as far as the first irrep (its message then
+    advised evolve), and weight = (1e308,) raised a bare OverflowError from fractions (a review)."""
+    from hyperrotor.quantum import correspondence, ehrenfest_time, generator_expectations, irrep
+
+    rep = irrep(3, (1,))
+    psi = np.array([1.0, 1j, 0.3])
+    one = generator_expectations(rep, psi)
+    assert np.any(one != 0)
+    for hbar in (0.37, 5e307, 1e308):  # (hbar last and real: the same rounding at every scale)
+        np.testing.assert_array_equal(generator_expectations(rep, psi, hbar=hbar), one * hbar)
+
+    def no_run(*args, **kwargs):
+        raise AssertionError("the classical run started before the arguments were checked")
+
+    monkeypatch.setattr(correspondence, "simulate", no_run)
+    args = ([1.0, 2.0, 3.0], [0.3, 0.2, 1.0], [2], np.linspace(0.0, 1.0, 5))
+    with pytest.raises(ValueError, match=r"'sesolve' is QuTiP's solver; ehrenfest_time propagates in the symmetry "
+                                         r"sectors: one of 'auto', 'eigen', 'krylov', 'expm_multiply'"):
+        ehrenfest_time(*args, method="sesolve")
+    with pytest.raises(ValueError, match=r"unknown method 'foo'; allowed: 'auto', 'eigen', 'krylov', 'expm_multiply'$"):
+        ehrenfest_time(*args, method="foo")
+    with pytest.raises(ValueError, match="beyond double precision"):
+        ehrenfest_time(*args, weight=(1e308,))

@@ -85,7 +85,9 @@ def generator_expectations(rep: Any, psi: Any, *, hbar: float = 1) -> np.ndarray
     vec, _ = scaled_state(vec, "psi")  # (the ratio does not change; |psi|^2 of amplitudes near 1e308 would be inf)
     gens = rep.generators()
     nrm = np.vdot(vec, vec).real
-    return np.array([(np.vdot(vec, (-1j * hbar) * (gens[p] @ vec))).real / nrm for p in planes(int(rep.N))])
+    # <L_a> = hbar Re(-i <v|E_a v>) = hbar Im<v|E_a v> / <v|v>: hbar last and real (a complex product by -1j hbar
+    # overflowed near hbar = 1e308 to inf and nan where the value is 9e307)
+    return np.array([np.vdot(vec, gens[p] @ vec).imag / nrm * hbar for p in planes(int(rep.N))])
 
 
 def _cartan_planes(N: int) -> list[tuple[int, int]]:

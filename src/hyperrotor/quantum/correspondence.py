@@ -26,6 +26,7 @@ import numpy as np
 
 from .. import _pricing, _validate
 from .._equality import fields_equal, fields_unequal
+from .._floats import power_of_two_scale
 from .._options import options
 from .._parallel import interruptible, progress_bar
 from ..classical.simulate import simulate
@@ -35,6 +36,7 @@ from .sector_propagator import SectorPropagator, unit_state, warn_phase_rounding
 from .gelfand_tsetlin import DEFAULT_MAX_DIM, gt_size, irrep
 from .weights import _to_fraction
 from .hamiltonian import operator_matrix_and_dims, rotor_hamiltonian
+from .propagators import PROPAGATORS
 
 __all__ = ["EhrenfestResult", "OTOCResult", "ehrenfest_time", "otoc"]
 
@@ -242,6 +244,9 @@ def otoc(H: Any, W: Any, V: Any, t: Any, *, state: Any = None, samples: int | No
 
 def _highest_weight_entry(x: float) -> Fraction:
     """``l * w`` of a float weight entry as an integer or half-integer (a highest-weight entry), or ValueError."""
+    if not np.isfinite(x):
+        raise ValueError(f"l * weight must be integers or half-integers (a highest weight), got the entry {x!r} "
+                         f"(beyond double precision: a smaller weight or l)")
     f = Fraction(float(x)).limit_denominator(2)
     if abs(float(f) - x) > 1e-12 * max(1.0, abs(x)):
         raise ValueError(f"l * weight must be integers or half-integers (a highest weight), got the entry {x!r}")
@@ -307,12 +312,16 @@ def ehrenfest_time(body: Any, L0: Any, ls: Any, t: Any, *, weight: Any = None, t
     """
     moments = _validate.moments(body, name="body")
     N = _validate.dimension_from_count(moments.size, name="body", what="moments")
-    L0 = _validate.components("L0", L0, n_planes(N))
-    if L0.ndim != 1:
-        raise ValueError(f"L0 must be one vector of {n_planes(N)} plane components, got shape {L0.shape}")
-    norm0 = float(np.linalg.norm(L0))
+    L0 = _validate.components("L0", L0, n_planes(N), batch=False)
+    scale = power_of_two_scale(float(np.max(np.abs(L0))))  # (exact: the norm of 1e-300 components underflowed to 0)
+    norm0 = float(np.linalg.norm(L0 / scale)) * scale
     if norm0 == 0.0:
         raise ValueError("L0 must be non-zero")
+    native = tuple(k for k, c in PROPAGATORS.items() if c.native)  # (checked here, not after the classical run)
+    if isinstance(method, str) and method in PROPAGATORS and method not in native:
+        raise ValueError(f"method {method!r} is QuTiP's solver; ehrenfest_time propagates in the symmetry sectors: "
+                         f"one of {', '.join(map(repr, native))}")
+    method = _validate.choice("method", method, native)
     _validate.numeric_input("ls", ls)  # (booleans, text, masked arrays named; SymPy and NumPy integers pass)
     given = ls
     ls = np.atleast_1d(_validate.as_array("ls", ls, what="sequence of integers >= 1"))

@@ -229,7 +229,8 @@ def _coupled_rates(moments, L0, tc, ta, tb):  # pragma: no cover - jitted
             w = max(w, W[a])
         for i in range(tc.size):
             Ic, Ia, Ib = moments[tc[i]], moments[ta[i]], moments[tb[i]]
-            w = max(w, W[tc[i]] * math.sqrt(abs((Ic - Ia) * (Ic - Ib)) / (Ia * Ib)))
+            # (the two ratios apart: moments of 1e300 and 2 overflowed the product to inf, and the step to 0)
+            w = max(w, W[tc[i]] * (math.sqrt(abs(Ic - Ia) / Ia) * math.sqrt(abs(Ic - Ib) / Ib)))
         out[b] = w
     return out
 
