@@ -172,11 +172,15 @@ def cases():
         out.append(("symbolic_rhs", f"N={N}", dict(N=N), lambda N=N: _symbolic_body(N), lambda b: b.symbolic_rhs()))
         out.append(("symbolic_rhs", f"N={N}, numeric moments", dict(N=N, numeric=True),
                     lambda N=N: _numeric_body(N), lambda b: b.symbolic_rhs()))
-    for N, seed, T in ((3, 1, 3000.0), (5, 1, 3000.0), (8, 5, 1000.0)):
-        out.append(("poincare_section", f"N={N}, T={T:g}", dict(N=N, **_poincare_sizes(N, seed, T)),
-                    lambda N=N, seed=seed: (hr.poincare_section(*_random_orbit(N, seed), 1.0),  # (compiled)
-                                            _random_orbit(N, seed))[1],
-                    lambda mw, T=T: hr.poincare_section(*mw, T)))
+    for N, seed, T, method, stages in ((3, 1, 3000.0, "splitting8", 17), (5, 1, 3000.0, "splitting8", 17),
+                                       (8, 5, 1000.0, "splitting8", 17), (5, 1, 3000.0, "splitting2", 1),
+                                       (16, 2, 60.0, "splitting2", 1), (5, 1, 3000.0, "splitting10", 35)):
+        out.append(("poincare_section", f"N={N}, T={T:g}, {method}",
+                    dict(N=N, stages=stages, **_poincare_sizes(N, seed, T)),
+                    lambda N=N, seed=seed, method=method: (
+                        hr.poincare_section(*_random_orbit(N, seed), 1.0, method=method),  # (compiled)
+                        _random_orbit(N, seed))[1],
+                    lambda mw, T=T, method=method: hr.poincare_section(*mw, T, method=method)))
     for N, P in ((5, 300_000), (50, 100_000), (500, 2000)):
         out.append(("second_moment_matrix", f"N={N}, {P} points", dict(N=N, points=P),
                     lambda N=N, P=P: (np.ones(P), np.random.default_rng(P).normal(size=(P, N))),

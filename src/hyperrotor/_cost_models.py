@@ -366,7 +366,7 @@ def _principal_axes(N: Any) -> tuple[Cost, ...]:
     # eigh of the N x N second moments and the assignment of its eigenvectors to the input axes (N x N costs)
     N = _f(N)
     return (_memory(f"the principal axes in {N:.0f} dimensions", 48.0 * N * N),
-            _seconds(f"the principal axes in {N:.0f} dimensions", N ** 3 * _PRINCIPAL_AXES_S + N * N * 1e-7))
+            _seconds(f"the principal axes in {N:.0f} dimensions", N * N * N * _PRINCIPAL_AXES_S + N * N * 1e-7))
 
 
 @model("body_edges", "draw fewer points")
@@ -554,8 +554,10 @@ def _symbolic_casimirs(N: Any) -> tuple[Cost, ...]:
     # c_2k = the sum over the C(N, 2k) principal 2k x 2k submatrices of their squared Pfaffians, each of (2k - 1)!!
     # terms: sum_k C(N, 2k) ((2k - 1)!!)^2 products of terms to expand (N = 10: 1.4e6, 484 s measured by a review)
     N = int(_f(N))
-    terms = sum(math.comb(N, 2 * k) * float(math.prod(range(2 * k - 1, 0, -2))) ** 2 if k < 150 else math.inf
-                for k in range(1, N // 2 + 1))
+    # logarithms: C(N, 2k) = (N)! / ((2k)! (N - 2k)!), (2k - 1)!! = (2k)! / (2^k k!) (the numbers pass 1e308 at N ~ 170)
+    logs = [math.lgamma(N + 1) - math.lgamma(N - 2 * k + 1) + math.lgamma(2 * k + 1) - 2 * k * math.log(2.0)
+            - 2 * math.lgamma(k + 1) for k in range(1, N // 2 + 1)]
+    terms = sum(math.exp(x) if x < 700.0 else math.inf for x in logs)
     return (_seconds(f"the symbolic Casimirs of so({N}) ({terms:.3g} products of Pfaffian terms)",
                      0.01 + terms * _CASIMIR_TERM_S),)
 
@@ -571,20 +573,20 @@ def _symbolic_manakov(N: Any) -> tuple[Cost, ...]:
 
 
 #: seconds per step of poincare_section beyond its flows: the event function evaluated in Python at every step state
-_EVENT_STEP_S = 4.0e-6
+_EVENT_STEP_S = 2.0e-6
 #: seconds per crossing of poincare_section (Brent's method on the step it falls in: ~10 one-step re-integrations)
 _CROSSING_S = 3.0e-4
 
 
 @model("poincare_section", "shorten T or give a larger dt")
-def _poincare_section(N: Any, steps: Any, turns: Any) -> tuple[Cost, ...]:
-    # splitting8 steps of 17 (2n - 2) + 1 flows (~2e-8 s each, more for the longer flows of larger N:
-    # chunks.flow_weight), the event evaluated at every step, and the crossings located: about 0.05 per radian of
-    # the fastest rate (turns = T w_max; measured 0.007-0.15 over random bodies N = 3..8)
+def _poincare_section(N: Any, steps: Any, turns: Any, stages: Any = 17) -> tuple[Cost, ...]:
+    # steps of stages (2n - 2) + 1 flows (the method's stages: splitting8 17; ~2e-8 s each, more for the longer
+    # flows of larger N: chunks.flow_weight), the event evaluated at every step, and the crossings located: about
+    # 0.05 per radian of the fastest rate (turns = T w_max; measured 0.007-0.15 over random bodies N = 3..8)
     N = _f(N)
     n = N * (N - 1) / 2.0
-    flow = 2.0e-8 * max(1.0, ((N - 2.0) / 3.0) ** 1.2)
-    step = (17.0 * (2.0 * n - 2.0) + 1.0) * flow + _EVENT_STEP_S
+    flow = 2.0e-8 * max(1.0, ((N - 2.0) / 3.0) ** 0.8)  # (flatter than chunks.flow_weight here: measured N = 3..16)
+    step = (_f(stages) * (2.0 * n - 2.0) + 1.0) * flow + _EVENT_STEP_S
     crossings = min(0.05 * _f(turns), _f(steps))  # (at most one per step: a sign change between two step states)
     return (_seconds(f"{_f(steps):.3g} steps of so({N:.0f}) with an event at each and ~{crossings:.3g} crossings",
                      _f(steps) * step + crossings * _CROSSING_S),)

@@ -475,3 +475,20 @@ def test_point_clouds_are_priced_before_their_products(monkeypatch):
         Inertia.from_points(np.ones(3), np.eye(3, 600))
     with hr.options(max_memory_bytes=10**6), pytest.raises(hr.BudgetError, match="second_moment_matrix"):
         hr.second_moment_matrix(np.ones(10**5), np.zeros((10**5, 5)))
+
+
+def test_second_moments_that_fit_are_returned():
+    """The range was first judged on the scale factor alone: a 1e300 mass at the origin with a unit mass at 1e100
+    (moments 1e200), a cloud at 1e160 of spread 1e146 (~1e292), coincident points at 1e160 (exactly 0) and
+    positions of 1e-160 (2e-320, subnormal) were refused although they fit (a review of the session's change)."""
+    np.testing.assert_array_equal(hr.second_moment_matrix([1e300, 1.0], [[0.0, 0.0], [1e100, 0.0]], center=False),
+                                  [[1e200, 0.0], [0.0, 0.0]])
+    np.testing.assert_array_equal(hr.second_moment_matrix(np.ones(3), np.full((3, 2), 1e160)), np.zeros((2, 2)))
+    np.testing.assert_array_equal(hr.second_moment_matrix(np.ones(2), [[1e-160, 0.0], [-1e-160, 0.0]]),
+                                  [[2e-320, 0.0], [0.0, 0.0]])
+    g = np.random.default_rng(0)
+    r = g.normal(size=(20, 3))
+    far = Inertia.from_points(np.ones(20), 2.0 ** 500 + 2.0 ** 490 * r)  # (at 3e150, a spread of 3e147)
+    near = Inertia.from_points(np.ones(20), r)
+    np.testing.assert_allclose(np.asarray(far.moments, float), np.asarray(near.moments, float) * 2.0 ** 980,
+                               rtol=1e-9, atol=0)  # (the centre rounds the positions to ~2e-13 of the spread)

@@ -486,3 +486,12 @@ def test_symbolic_invariants_are_priced_before_sympy_runs(monkeypatch):
         assert "max_seconds" in str(info.value)
     c = RigidBody(Inertia.equal(4, 1)).casimirs(plane_symbols("L", 4), of="L")  # (a small one runs)
     assert len(c) == 2
+
+
+def test_the_symbolic_price_itself_does_not_overflow():
+    """The model's term count passed 1e308 at N ~ 172 and raised a bare OverflowError (a review): a BudgetError
+    now, as for any run beyond the budget."""
+    from hyperrotor.conventions import plane_symbols
+
+    with pytest.raises(hr.BudgetError, match=r"symbolic_casimirs: .*so\(180\) \(inf products"):
+        RigidBody(Inertia.equal(180, 1)).casimirs(plane_symbols("L", 180), of="L")

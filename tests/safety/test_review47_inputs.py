@@ -94,7 +94,7 @@ def test_body_frame_coherent_state_names_minus_L_and_the_irrep_that_fits():
 def test_one_initial_momentum_only():
     """ehrenfest_time(L0=[[1, 0, 0]]) returned curves of shape (1, 2, 3) against the documented (len(t), 3);
     coherent_state flattened an L of shape (3, 1)."""
-    with pytest.raises(ValueError, match=r"L0 must be one vector of 3 plane components, got shape \(1, 3\)"):
+    with pytest.raises(ValueError, match=r"L0 must have shape \(3,\) \(3 plane components\), got shape \(1, 3\)"):
         hq.ehrenfest_time([1.0, 1.5, 2.0], [[1.0, 0.0, 0.0]], [2], [0.0, 0.1])
     with pytest.raises(ValueError, match=r"L must be one vector .* got shape \(3, 1\)"):
         hq.coherent_state(hq.irrep(3, (1,)), np.ones((3, 1)))

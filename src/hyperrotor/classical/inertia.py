@@ -430,9 +430,9 @@ class Inertia:
         :attr:`principal_axes` (column ``k`` is the principal axis closest to
         input axis ``k``; ``det R = +1``).
         """
-        M, factor = second_moments_scaled(masses, positions, center=center)  # (M factor: exact powers of two)
+        M, e = second_moments_scaled(masses, positions, center=center)  # (M 2^e: exact powers of two)
         vals, R = principal_axes(M)
-        vals = np.clip(vals, 0.0, None) * factor  # round-off of flat bodies
+        vals = np.ldexp(np.clip(vals, 0.0, None), e)  # (clipped: round-off of flat bodies)
         out = cls.from_mass_tensor(vals)
         out.principal_axes = R
         return out

@@ -47,36 +47,37 @@ def second_moment_matrix(masses: Any, positions: Any, *, center: bool = True) ->
         Measure positions from the centre of mass (default), the origin the
         paper assumes for eq. (6); otherwise from the coordinate origin.
     """
-    M, factor = second_moments_scaled(masses, positions, center=center)
-    return M * factor
+    M, e = second_moments_scaled(masses, positions, center=center)
+    return np.ldexp(M, e)
 
 
-def second_moments_scaled(masses: Any, positions: Any, *, center: bool = True) -> tuple[np.ndarray, float]:
-    """``(M', f)`` with :func:`second_moment_matrix` ``= f M'``: one BLAS product of the points scaled by powers of two
-    (exact), so that positions of 1e160 or 1e-170 do not overflow or underflow in the squares, and ``f`` a power of
-    two (the principal axes come from ``M'``: exactly the same for a body scaled by any power of two). Priced; a
-    matrix beyond the double range is refused naming the points."""
+def second_moments_scaled(masses: Any, positions: Any, *, center: bool = True) -> tuple[np.ndarray, int]:
+    """``(M', e)`` with :func:`second_moment_matrix` ``= M' 2^e``: one BLAS product of the points scaled by powers of
+    two (exact), so that positions of 1e160 or 1e-170 do not overflow or underflow in the squares (the principal
+    axes come from ``M'``: exactly the same for a body scaled by any power of two). Priced; a matrix whose largest
+    entry passes the double range (or underflows to 0 entirely) is refused naming the points."""
     center = _validate.flag("center", center)
     m, r = check_points(masses, positions)
     _pricing.check("second_moment_matrix", N=r.shape[1], points=r.shape[0])
-    sm = power_of_two_scale(float(np.max(m)))
-    sr = power_of_two_scale(float(np.max(np.abs(r))))
+    m_max, r_max = float(np.max(m)), float(np.max(np.abs(r)))
+    sm, sr = power_of_two_scale(m_max), power_of_two_scale(r_max)
     m, r = m / sm, r / sr
     if center:
         r = r - (m @ r) / m.sum()
     M = (r.T * m) @ r
     M = 0.5 * (M + M.T)  # (symmetric to the last bit: the principal axes come from its lower triangle)
-    factor = sm * sr * sr
-    scale = float(np.max(np.abs(M))) * factor if math.isfinite(factor) else math.inf
-    if not (scale <= np.finfo(float).max):
-        raise ValueError(f"the second moments sum m r^2 of the points exceed double precision (masses up to "
-                         f"{_validate.fmt(float(np.max(m) * sm))}, positions up to "
-                         f"{_validate.fmt(float(np.max(np.abs(r)) * sr))}); rescale the masses or the positions")
-    if scale < np.finfo(float).tiny and np.any(M):  # (the factor alone may have underflowed to 0)
-        raise ValueError(f"the second moments sum m r^2 of the points underflow double precision (masses up to "
-                         f"{_validate.fmt(float(np.max(m) * sm))}, positions up to "
-                         f"{_validate.fmt(float(np.max(np.abs(r)) * sr))}); rescale the masses or the positions")
-    return M, factor
+    e = math.frexp(sm)[1] + 2 * math.frexp(sr)[1] - 3  # (sm = 2^(e_m - 1), sr = 2^(e_r - 1))
+    big = float(np.max(np.abs(M)))
+    if big > 0.0:
+        top = math.frexp(big)[1] + e  # (the largest entry is in [2^(top - 1), 2^top))
+        points = f"masses up to {_validate.fmt(m_max)}, positions up to {_validate.fmt(r_max)}"
+        if top > 1024:
+            raise ValueError(f"the second moments sum m r^2 of the points exceed double precision ({points}); "
+                             f"rescale the masses or the positions")
+        if top < -1073:
+            raise ValueError(f"the second moments sum m r^2 of the points underflow double precision to 0 "
+                             f"({points}); rescale the masses or the positions")
+    return M, e
 
 
 def check_points(masses: Any, positions: Any) -> tuple[np.ndarray, np.ndarray]:

@@ -16,6 +16,8 @@ from hyperrotor.conventions import dimension_from_count, plane_index
 
 from .chaos import LYAPUNOV_METHODS
 from .simulate import simulate
+from .solvers import SOLVERS
+from .solvers.splitting import splitting_coefficients
 from .solvers.step_control import rate_bound
 from .stability import _labels, _local_plane
 
@@ -145,7 +147,8 @@ def poincare_section(
         raise _pricing.refuse("poincare_section", f"the orbit over T = {_validate.fmt(T)} in steps of dt = {dt:.3g} "
                               f"(omega0 up to |omega| = {_validate.fmt(float(np.max(np.abs(w0))))})", steps,
                               "max_steps", "steps", "shorten T or give a larger dt")
-    _pricing.check("poincare_section", N=N, steps=steps, turns=T * wmax)  # (its time: the event at every step)
+    stages = splitting_coefficients(SOLVERS[method].order).size  # (splitting2: 1 ... splitting10: 35)
+    _pricing.check("poincare_section", N=N, steps=steps, turns=T * wmax, stages=stages)  # (the event at every step)
 
     def crossing(_t, L):
         return L[a] - value

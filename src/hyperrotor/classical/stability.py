@@ -153,7 +153,9 @@ class StabilityResult:
     omega0 : float
         The steady angular velocity :math:`\Omega` in the plane.
     jacobian : ndarray (n_planes, n_planes)
-        :math:`J_{ad} = \Omega C_{dp}^{\;a} (I_p - I_d)/I_a`.
+        :math:`J_{ad} = \Omega C_{dp}^{\;a} (I_p - I_d)/I_a` (``inf`` where an entry passes the double range:
+        moments 1e300 and 1e-300; the eigenvalues below come from the pairs' factors and stay finite as long as
+        they fit).
     eigenvalues : ndarray, complex (n_planes,)
         From the 2x2 blocks: :math:`\pm\Omega\sqrt{-\nu_k^2}` per pair, zeros for the
         uncoupled components. Exact (purely imaginary when stable).
@@ -200,7 +202,8 @@ def linearization(body: Any, plane: Any, omega0: float) -> np.ndarray:
     # structure constants, built alone (the whole n^3 table was 5.2 GB at N = 60)
     d, a, c = _structure_constants_slice(N, local)
     J = np.zeros((I.size, I.size))
-    J[a, d] = Om * c * (I[p] - I[d]) / I[a]  # (each entry once)
+    with np.errstate(over="ignore"):  # (moments 1e300 and 1e-300 make an entry of ~1e600: inf, documented)
+        J[a, d] = Om * c * (I[p] - I[d]) / I[a]  # (each entry once)
     return J
 
 
@@ -287,7 +290,7 @@ def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None
         d1, d2 = I[p] - I1, I[p] - I2
         d1 = 0.0 if abs(d1) <= tol else d1
         d2 = 0.0 if abs(d2) <= tol else d2
-        r1, r2 = float(d1 / I1), float(d2 / I2)  # (Python floats: an overflow of their product is inf, no warning)
+        r1, r2 = float(d1) / float(I1), float(d2) / float(I2)  # (Python floats: an overflow is inf, no warning)
         nu2 = r1 * r2  # (inf beyond the double range: 1e200 against 1; the roots below come from its factors)
         root = math.sqrt(abs(r1)) * math.sqrt(abs(r2))  # sqrt|nu^2|, finite wherever |Omega| sqrt|nu^2| is
         if d1 == 0.0 and d2 == 0.0:
@@ -299,7 +302,8 @@ def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None
         else:
             kind = "unstable"
         pairs.append(CoupledPair(k=labels[k - 1], planes=(lab(P1), lab(P2)), nu2=float(nu2), kind=kind))
-        lam = Om * root * (1j if kind == "oscillating" else 1.0)  # (+-Omega sqrt(-nu^2))
+        lam = complex(0.0, Om * root) if kind == "oscillating" else complex(Om * root)  # (+-Omega sqrt(-nu^2);
+        # complex(0, x), not x * 1j: inf * 1j is nan + inf j)
         eig += [lam, -lam]
         if Om != 0.0:
             if kind == "oscillating":
