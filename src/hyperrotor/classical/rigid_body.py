@@ -318,10 +318,13 @@ class RigidBody:
             :math:`(-1)^{i+j}m_{ij}`.
 
         Identical in both conventions. Gather-and-sum over precomputed index
-        tables: no Python loop over planes. No overflow check (scipy's integrators call it at every stage;
-        a check would cost them ~2 us per call): an ``omega`` whose products pass double precision
-        (``|omega| ~ 1e154`` and beyond) gives ``inf`` with NumPy's ``RuntimeWarning``, where :meth:`energy`
-        and :meth:`casimirs` refuse it.
+        tables: no Python loop over planes.
+
+        Notes
+        -----
+        No overflow check: scipy's integrators call it at every stage, and a check would cost them about 2 us
+        per call. An ``omega`` whose products pass double precision (``|omega|`` of about 1e154 and beyond)
+        gives ``inf`` with NumPy's ``RuntimeWarning``, where :meth:`energy` and :meth:`casimirs` refuse it.
         """
         if self._coef is None:
             raise TypeError("rhs needs numeric moments; use symbolic_rhs() or euler_equations() for symbolic inertia")
