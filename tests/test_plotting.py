@@ -89,3 +89,29 @@ def test_the_caller_s_backend_stays(tmp_path):
         assert (tmp_path / "a.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"  # (drawn by Agg all the same)
     finally:
         matplotlib.use(before)
+
+
+def test_negative_components_and_2d_axes_of_any_kind(tmp_path):
+    """components=[-1] (numpy's index from the end) was refused by the new checks, and a registered 2-D Axes subclass
+    by plot_poincare's name test (a review of the change)."""
+    pytest.importorskip("matplotlib")
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.projections import register_projection
+
+    from hyperrotor.classical import PoincareSection
+    from hyperrotor.plotting import plot_poincare, save_motion_comparison
+
+    t = np.linspace(0.0, 1.0, 4)
+    exact = np.ones((4, 3))
+    save_motion_comparison(tmp_path / "a.png", t, exact, {"run": exact}, components=[-1], labels=["last"], scale=1.0)
+    assert (tmp_path / "a.png").exists()
+
+    class MyAxes(Axes):
+        name = "hyperrotor_test_axes"
+
+    register_projection(MyAxes)
+    L = np.arange(12.0).reshape(2, 6) + 1.0
+    sec = PoincareSection(t=np.array([0.5, 1.0]), L=L, omega=L, plane=(1, 2), value=0.0, direction=1, N=4)
+    ax = plot_poincare(sec, ax=Figure().add_subplot(projection="hyperrotor_test_axes"))
+    np.testing.assert_array_equal(np.asarray(ax.collections[0].get_offsets()), sec.coordinates((1, 3), (2, 4)))

@@ -47,6 +47,8 @@ def _pyplot():
 
 #: the most panels (problems) of :func:`plot_work_precision`, side by side
 MAX_PANELS = 12
+#: matplotlib's projections that are no plane of two Cartesian coordinates (plot_poincare refuses them)
+_NOT_CARTESIAN = frozenset({"polar", "3d", "aitoff", "hammer", "lambert", "mollweide"})
 
 
 def _figure(**kwargs: Any):
@@ -245,9 +247,9 @@ def save_motion_comparison(path, t: np.ndarray, exact: np.ndarray, runs: Mapping
         raise ValueError(f"runs must map names to arrays of the shape of exact {exact.shape}, got "
                          f"{ {k: np.shape(w) for k, w in runs.items()} if isinstance(runs, Mapping) else _v.fmt(runs)}")
     components, labels = list(components), list(labels)
-    if len(labels) != len(components) or any(not 0 <= int(k) < exact.shape[1] for k in components):
-        raise ValueError(f"components must be {len(labels)} column indices of exact (0 .. {exact.shape[1] - 1}), one "
-                         f"per label, got components {components} and labels {labels}")
+    if len(labels) != len(components) or any(not -exact.shape[1] <= int(k) < exact.shape[1] for k in components):
+        raise ValueError(f"components must be {len(labels)} column indices of exact (0 .. {exact.shape[1] - 1}, or "
+                         f"negative from the end), one per label, got components {components} and labels {labels}")
     if marked is not None and marked not in runs:
         raise ValueError(f"marked must be one of the runs {list(runs)} or None, got {marked!r}")
     scale = _v.positive("scale", scale)
@@ -325,9 +327,12 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
             raise TypeError(f"labels must be a list of strings (one per section), got {_v.fmt(labels)}")
         if len(labels) != len(secs):
             raise ValueError(f"labels must name each of the {len(secs)} sections, got {len(labels)}")
-    if ax is not None and getattr(ax, "name", None) != "rectilinear":  # (polar axes read L_x as an angle)
-        raise TypeError(f"ax must be a 2-D matplotlib Axes (or None for a new figure), got {_v.fmt(ax)} "
-                        f"of type {type(ax).__name__}" + (f" ({ax.name!r} projection)" if hasattr(ax, "name") else ""))
+    if ax is not None:  # (polar and map axes read L_x as an angle, 3-D ones want a third coordinate)
+        from matplotlib.axes import Axes
+
+        if not isinstance(ax, Axes) or ax.name in _NOT_CARTESIAN:
+            raise TypeError(f"ax must be a 2-D matplotlib Axes (or None for a new figure), got {_v.fmt(ax)} of type "
+                            f"{type(ax).__name__}" + (f" ({ax.name!r} projection)" if isinstance(ax, Axes) else ""))
     if ax is None:  # constrained layout: the legend beside the axes stays inside the saved figure
         _, ax = _pyplot().subplots(figsize=(4.5 if labels is None else 5.6, 4.5), layout="constrained")
     opts = {"s": 2}
@@ -354,12 +359,12 @@ def plot_poincare(sections: Any, x: Any = (1, 3), y: Any = (2, 4), *, ax: Any = 
 def _section_plane(name: str, plane: Any, axes: tuple, default: tuple) -> tuple[int, int]:
     """``plane`` (``x`` or ``y`` of :func:`plot_poincare`) as a pair of the sections' axis labels (a locked body keeps
     its own, e.g. (2, 3, 4, 5)), or a ``ValueError`` naming the argument, the axes, and whether it was the default."""
+    was = " (the default: pass x= and y=)" if isinstance(plane, tuple) and plane == default else ""
     try:
         a, b = _v.plane(plane, max(axes))
     except ValueError as err:
-        raise ValueError(f"{name}: {err}") from None
+        raise ValueError(f"{name}{was}: {err}") from None
     if a not in axes or b not in axes:
-        was = " (the default: pass x= and y=)" if tuple(plane) == default else ""
         raise ValueError(f"{name} = {_v.fmt(plane)}{was} is no plane of the sections' axes {axes}: planes are pairs "
                          f"(i, j), i < j, of them")
     return a, b

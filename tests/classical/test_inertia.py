@@ -492,3 +492,15 @@ def test_second_moments_that_fit_are_returned():
     near = Inertia.from_points(np.ones(20), r)
     np.testing.assert_allclose(np.asarray(far.moments, float), np.asarray(near.moments, float) * 2.0 ** 980,
                                rtol=1e-9, atol=0)  # (the centre rounds the positions to ~2e-13 of the spread)
+
+
+def test_masses_beyond_the_range_of_each_other_are_refused():
+    """Scaled by the heaviest, a mass below 2^-1022 of it lost its share silently (0 where m r^2 = 1e100; digits
+    lost at 3.3e-160 beside 1e160); principal moments up to the trace overflowed in from_points after a range check
+    on the largest entry only ('J_2 must be finite, got inf')."""
+    with pytest.raises(ValueError, match=r"masses span more than double precision: 1e-300 beside 1e\+300"):
+        hr.second_moment_matrix([1e300, 1e-300], [[0.0, 0.0], [1e200, 0.0]])
+    with pytest.raises(ValueError, match="masses span more than double precision"):
+        hr.second_moment_matrix([1e160, 3.3e-160], [[0.0, 0.0], [1e150, 0.0]])
+    with pytest.raises(ValueError, match="second moments .* exceed double precision"):
+        Inertia.from_points([0.5, 0.5], [[1e154, 1e154], [-1e154, -1e154]])

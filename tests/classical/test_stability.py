@@ -306,3 +306,15 @@ def test_large_bodies_and_large_moments():
     assert big.pairs[0].nu2 == np.inf  # (5e399: beyond the double range; its root is not)
     np.testing.assert_allclose(big.frequencies, [np.sqrt(1e200 - 1.0) * np.sqrt((1e200 - 2.0) / 2.0)], rtol=1e-14, atol=0)
     assert big.stable and small.stable
+
+
+def test_equal_moments_are_judged_against_the_two_compared():
+    """rtol * max(I) over the whole body made every difference of order 1 an 'equality' beside a moment of 1e14: an
+    oscillating pair (eigenvalues +-0.707i, numpy's of the Jacobian) was reported secular with eigenvalues 0."""
+    I = [1.0, 2.0, 1e14]
+    r = linear_stability(I, (1, 2), 1.0)
+    assert [p.kind for p in r.pairs] == ["oscillating"] and r.stable
+    ev = np.linalg.eigvals(r.jacobian)
+    np.testing.assert_allclose(np.sort(ev.imag), np.sort(r.eigenvalues.imag), rtol=0, atol=1e-12)
+    near = linear_stability([1.0, 1.0 + 1e-13, 3.0], (1, 2), 1.0)  # (a difference within rtol of the two: equal)
+    assert near.pairs[0].kind == "secular"

@@ -61,13 +61,17 @@ def second_moments_scaled(masses: Any, positions: Any, *, center: bool = True) -
     _pricing.check("second_moment_matrix", N=r.shape[1], points=r.shape[0])
     m_max, r_max = float(np.max(m)), float(np.max(np.abs(r)))
     sm, sr = power_of_two_scale(m_max), power_of_two_scale(r_max)
+    lost = (m > 0.0) & (m / sm < np.finfo(float).tiny)  # (a mass below 2^-1022 of the largest: digits or all lost)
+    if np.any(lost):
+        raise ValueError(f"masses span more than double precision: {_validate.fmt(float(np.min(m[lost])))} beside "
+                         f"{_validate.fmt(m_max)} (the lighter points' share would be lost); rescale or drop them")
     m, r = m / sm, r / sr
     if center:
         r = r - (m @ r) / m.sum()
     M = (r.T * m) @ r
     M = 0.5 * (M + M.T)  # (symmetric to the last bit: the principal axes come from its lower triangle)
     e = math.frexp(sm)[1] + 2 * math.frexp(sr)[1] - 3  # (sm = 2^(e_m - 1), sr = 2^(e_r - 1))
-    big = float(np.max(np.abs(M)))
+    big = max(float(np.max(np.abs(M))), float(np.trace(M)))  # (the trace bounds the principal moments too)
     if big > 0.0:
         top = math.frexp(big)[1] + e  # (the largest entry is in [2^(top - 1), 2^top))
         points = f"masses up to {_validate.fmt(m_max)}, positions up to {_validate.fmt(r_max)}"

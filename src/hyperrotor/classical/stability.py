@@ -76,7 +76,7 @@ from .._options import options, register
 
 register(
     "stability_rtol", 1e-12,
-    "linear_stability: a moment difference |I_p - I_q| <= this * max(I) counts as an equality (a neutral or "
+    "linear_stability: a moment difference |I_p - I_q| <= this * max(I_p, I_q) counts as an equality (a neutral or "
     "secular pair instead of a tiny frequency or growth rate). 1e-12 is far above the round-off of moments "
     "computed from a mass distribution (~1e-15 relative) and far below any physical splitting.",
 )
@@ -167,7 +167,7 @@ class StabilityResult:
     stable : bool
         Linear stability: every eigenvalue purely imaginary and no defective
         (secularly growing) zero eigenvalue. Moment differences with
-        ``|I_p - I_q| <= rtol * max(I)`` count as equalities.
+        ``|I_p - I_q| <= rtol * max(I_p, I_q)`` count as equalities.
     condition : str
         The stability condition for this plane, one factor per triple.
     reason : str
@@ -252,7 +252,7 @@ def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None
     omega0 : float
         Angular velocity :math:`\Omega` of the steady rotation.
     rtol : float, optional
-        Moment differences below ``rtol * max(I)`` count as zero, ``0 <= rtol < 1``
+        Moment differences ``|I_p - I_q| <= rtol * max(I_p, I_q)`` count as zero, ``0 <= rtol < 1``
         (default ``hr.options["stability_rtol"]``, 1e-12).
 
     Returns
@@ -278,7 +278,6 @@ def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None
     Om = _validate.real("omega0", omega0)
     rtol = options["stability_rtol"] if rtol is None else _validate.tolerance("rtol", rtol, allow_zero=True)
     p = plane_index((i, j), N)
-    tol = rtol * float(np.max(I))
     pairs, eig = [], []
     freqs, rates, factors = [], [], []
     secular = unstable = False
@@ -288,8 +287,10 @@ def linear_stability(body: Any, plane: Any, omega0: float, *, rtol: float | None
         P1, P2 = (min(i, k), max(i, k)), (min(j, k), max(j, k))
         I1, I2 = I[plane_index(P1, N)], I[plane_index(P2, N)]
         d1, d2 = I[p] - I1, I[p] - I2
-        d1 = 0.0 if abs(d1) <= tol else d1
-        d2 = 0.0 if abs(d2) <= tol else d2
+        # (relative to the two moments compared: against max(I), a body with one moment of 1e14 had every
+        # difference of order 1 counted as an equality, its oscillating pairs reported secular)
+        d1 = 0.0 if abs(d1) <= rtol * max(I[p], I1) else d1
+        d2 = 0.0 if abs(d2) <= rtol * max(I[p], I2) else d2
         r1, r2 = float(d1) / float(I1), float(d2) / float(I2)  # (Python floats: an overflow is inf, no warning)
         nu2 = r1 * r2  # (inf beyond the double range: 1e200 against 1; the roots below come from its factors)
         root = math.sqrt(abs(r1)) * math.sqrt(abs(r2))  # sqrt|nu^2|, finite wherever |Omega| sqrt|nu^2| is
