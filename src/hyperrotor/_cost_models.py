@@ -583,8 +583,7 @@ def _poincare_section(N: Any, steps: Any, turns: Any, stages: Any = 17) -> tuple
     # steps of stages (2n - 2) + 1 flows (the method's stages: splitting8 17; ~2e-8 s each, more for the longer
     # flows of larger N: chunks.flow_weight), the event evaluated at every step, and the crossings located: about
     # 0.05 per radian of the fastest rate (turns = T w_max; measured 0.007-0.15 over random bodies N = 3..8)
-    N = _f(N)
-    n = N * (N - 1) / 2.0
+    N, n = _f(N), _n_planes(N)
     flow = 2.0e-8 * max(1.0, ((N - 2.0) / 3.0) ** 0.8)  # (flatter than chunks.flow_weight here: measured N = 3..16)
     step = (_f(stages) * (2.0 * n - 2.0) + 1.0) * flow + _EVENT_STEP_S
     crossings = min(0.05 * _f(turns), _f(steps))  # (at most one per step: a sign change between two step states)

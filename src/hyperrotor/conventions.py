@@ -385,7 +385,13 @@ def _bracket_terms(N: int, first: tuple[int, int], second: tuple[int, int]):
     for cond, (p, q), s in ((j == k, (i, l), 1), (i == k, (j, l), -1), (j == l, (i, k), -1), (i == l, (j, k), 1)):
         if cond and p != q:
             a, b, sign = (p, q, s) if p < q else (q, p, -s)
-            yield (a - 1) * (2 * N - a) // 2 + (b - a - 1), sign  # (the lexicographic position of (a, b))
+            yield _position(N, a, b), sign
+
+
+def _position(N: int, a: int, b: int) -> int:
+    """The 0-based lexicographic position of the plane ``(a, b)``, ``1 <= a < b <= N`` (:func:`plane_index` without
+    its checks and without the table of every plane: the brackets of one plane at N = 1000)."""
+    return (a - 1) * (2 * N - a) // 2 + (b - a - 1)
 
 
 def _structure_constants_slice(N: int, plane: tuple[int, int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -400,7 +406,7 @@ def _structure_constants_slice(N: int, plane: tuple[int, int]) -> tuple[np.ndarr
         if k in (i, j):
             continue
         for d in ((min(i, k), max(i, k)), (min(j, k), max(j, k))):
-            row = (d[0] - 1) * (2 * N - d[0]) // 2 + (d[1] - d[0] - 1)
+            row = _position(N, *d)
             for c, s in _bracket_terms(N, d, (i, j)):
                 rows.append(row)
                 cols.append(c)

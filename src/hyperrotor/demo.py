@@ -173,14 +173,21 @@ def quartet_motion_seconds(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
     kappa); ``a ... e`` measured on the 2-core reference machine (``benchmarks/pricing.py``). The first call of a
     process adds the kernels' load (1-3 s).
     """
+    _, _, _, sizes = _motion_request(kappa, omega0, t_end, axis, n_times)
+    (cost,) = _pricing.estimate("compare_quartet_motion", **sizes)
+    return MotionCost(cost.amount, sizes["rate"], sizes["frequency"])
+
+
+def _motion_request(kappa: Any, omega0: Any, t_end: Any, axis: Any, n_times: Any) -> tuple:
+    """``(body, axis, omega0, sizes)`` of a :func:`compare_quartet_motion` call, checked: ``sizes`` are those of its
+    cost model (the one price of :func:`quartet_motion_seconds` and of the call itself)."""
     body, axis = _body(kappa, axis)
     omega0 = _moving("omega0", body, omega0)
     t_end = _v.positive("t_end", t_end)
     n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
     rate, frequency = _motion_rates(float(kappa), body, omega0, axis)
-    (cost,) = _pricing.estimate("compare_quartet_motion", t_end=t_end, rate=rate, frequency=frequency,
-                                n_times=n_times, speed=float(np.max(np.abs(omega0))))
-    return MotionCost(cost.amount, rate, frequency)
+    return body, axis, omega0, dict(t_end=t_end, rate=rate, frequency=frequency, n_times=n_times,
+                                    speed=float(np.max(np.abs(omega0))))
 
 
 def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 200.0, *, axis: int = 5,
@@ -216,14 +223,9 @@ def compare_quartet_motion(kappa: Any, omega0: Any = DEMO_OMEGA, t_end: float = 
     from .classical.simulate import simulate
     from .classical.solvers import FixedStepSolver, solver_for
 
-    body, axis = _body(kappa, axis)
-    omega0 = _moving("omega0", body, omega0)
-    t_end = _v.positive("t_end", t_end)
-    n_times = _v.integer("n_times", n_times, minimum=2, maximum=10**6)
-    kappa = float(kappa)
-    rate, frequency = _motion_rates(kappa, body, omega0, axis)
-    _pricing.check("compare_quartet_motion", t_end=t_end, rate=rate, frequency=frequency, n_times=n_times,
-                   speed=float(np.max(np.abs(omega0))))
+    body, axis, omega0, sizes = _motion_request(kappa, omega0, t_end, axis, n_times)
+    _pricing.check("compare_quartet_motion", **sizes)
+    kappa, t_end, n_times = float(kappa), sizes["t_end"], sizes["n_times"]
     t = np.linspace(0.0, t_end, n_times)
     exact = quartet_solution(kappa, omega0, t, axis=axis)
     scale = float(np.max(np.abs(omega0)))

@@ -115,13 +115,18 @@ def draw_projection(ax, frame: np.ndarray, edges: Sequence[tuple[int, int]], *, 
     return sc
 
 
-def _check_times(t: Any, xyz: np.ndarray) -> None:
-    """The frames' times: one per frame of the projection (a shorter ``t`` titled only its first frames)."""
+def _frames(t: Any, projection: Any, colour_axis: int | None) -> tuple:
+    """``(drawn coordinates, colour values or None)`` of a projection checked with its times (one per frame: a
+    shorter ``t`` titled only the first frames), its points (at least one) and its colour axis."""
+    xyz, colour = _hidden_colour(projection)
+    if colour is not None and colour_axis is None:
+        raise ValueError("a projection with 4 coordinates needs colour_axis (the space axis of the 4th)")
     t = _v.finite_array("t", t)
     if t.ndim != 1 or t.size == 0 or t.size != xyz.shape[0]:
         raise ValueError(f"t must have one time per frame of the projection ({xyz.shape[0]}), got shape {t.shape}")
     if xyz.shape[1] == 0:
         raise ValueError("projection has no points (shape (len(t), 0, 3)): give at least one point")
+    return xyz, colour
 
 
 def _colour_setup(colour: np.ndarray | None):
@@ -152,11 +157,8 @@ def save_projection_frames(path, t: np.ndarray, projection: np.ndarray, edges, *
     after each panel is drawn; ``format`` is passed to ``savefig`` (so ``path``
     may carry any suffix, e.g. a temporary name).
     """
-    xyz, colour = _hidden_colour(projection)
-    if colour is not None and colour_axis is None:
-        raise ValueError("a projection with 4 coordinates needs colour_axis (the space axis of the 4th)")
+    xyz, colour = _frames(t, projection, colour_axis)
     n_frames = _v.integer("n_frames", n_frames, minimum=1)
-    _check_times(t, xyz)
     idx = np.linspace(0, len(t) - 1, min(n_frames, len(t))).round().astype(int)
     cols = min(len(idx), 3)
     rows = -(-len(idx) // cols)
@@ -194,13 +196,10 @@ def save_projection_animation(path, t: np.ndarray, projection: np.ndarray, edges
     behind. ``path`` must end in ``.gif`` (Pillow picks the format from it).
     Colours and the colour bar as in :func:`save_projection_frames`.
     """
-    xyz, colour = _hidden_colour(projection)
-    if colour is not None and colour_axis is None:
-        raise ValueError("a projection with 4 coordinates needs colour_axis (the space axis of the 4th)")
+    xyz, colour = _frames(t, projection, colour_axis)
     if not str(path).lower().endswith(".gif"):
         raise ValueError(f"path must end in .gif (Pillow picks the format from it), got {_v.fmt(str(path))}")
     fps = _v.positive("fps", fps)
-    _check_times(t, xyz)
     from matplotlib.animation import PillowWriter
     from matplotlib.cm import ScalarMappable
 
